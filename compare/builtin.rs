@@ -1,0 +1,10 @@
+//! The built-in level set, embedded in the binary so that `platbench` runs with no files.
+
+/// `(file name, TOML text)` of every built-in level, in run order.
+pub const LEVELS: &[(&str, &str)] = &[
+    ("flat_seams.toml", include_str!("levels/flat_seams.toml")),
+    ("drops.toml", include_str!("levels/drops.toml")),
+    ("jumps.toml", include_str!("levels/jumps.toml")),
+    ("corridor.toml", include_str!("levels/corridor.toml")),
+    ("thin_wall.toml", include_str!("levels/thin_wall.toml")),
+];

@@ -1,0 +1,207 @@
+//! `platbench`: the command-line harness. It only wires the library together: parse levels,
+//! run every scenario on every configuration, write CSV files, print tables.
+
+mod builtin;
+mod output;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{bail, Context as _, Result};
+use clap::{Args, Parser, Subcommand};
+
+use platbench::level::{parse_level, Level};
+use platbench::metrics::{evaluate, MetricRow};
+use platbench::report::{detail_table, summary_table};
+use platbench::scenario::{BackendConfig, RunConfig};
+use platbench::trace::Trace;
+
+/// Compare 2D platformer character controllers on the same levels, side by side.
+///
+/// With no subcommand, runs every built-in scenario on every configuration and prints a
+/// summary table (the worst case of each metric per configuration).
+#[derive(Parser)]
+#[command(
+    name = "platbench",
+    version,
+    about,
+    long_about,
+    args_conflicts_with_subcommands = true
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run level files (the built-in set when none is given) and write traces and metrics.
+    ///
+    /// Writes DIR/traces/<level>.<scenario>.<backend>[.<config>].csv (one row per frame)
+    /// and DIR/metrics.csv (one row per metric), replacing DIR as a whole once the run is
+    /// complete.
+    Run(RunArgs),
+    /// List the built-in levels and their scenarios.
+    Levels,
+}
+
+#[derive(Args, Default)]
+#[command(allow_negative_numbers = true)]
+struct RunArgs {
+    /// Level files (TOML); the built-in set when none is given.
+    levels: Vec<PathBuf>,
+    /// Output directory.
+    #[arg(long, default_value = "platbench-out")]
+    out: PathBuf,
+    /// Print every metric of every scenario, not only the per-metric summary.
+    #[arg(long)]
+    detail: bool,
+    /// Override every scenario's time step, in seconds.
+    #[arg(long, value_name = "SECONDS")]
+    dt: Option<f32>,
+    /// The sweep controller's overlap tolerance, in tiles.
+    #[arg(long, value_name = "TILES")]
+    epsilon: Option<f32>,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => run(&RunArgs::default(), false),
+        Some(Command::Run(args)) => run(&args, true),
+        Some(Command::Levels) => list_levels(),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Parses the built-in levels; they are part of the binary, so a failure is a bug.
+fn builtin_levels() -> Result<Vec<Level>> {
+    builtin::LEVELS
+        .iter()
+        .map(|(file, text)| {
+            parse_level(text, &format!("builtin:{file}"))
+                .with_context(|| format!("built-in level {file} is invalid"))
+        })
+        .collect()
+}
+
+fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
+    if paths.is_empty() {
+        return builtin_levels();
+    }
+    let mut levels: Vec<Level> = Vec::new();
+    for p in paths {
+        let text = std::fs::read_to_string(p)
+            .with_context(|| format!("cannot read level file {}", p.display()))?;
+        let level = parse_level(&text, &p.display().to_string())?;
+        if let Some(other) = levels.iter().find(|l| l.name == level.name) {
+            bail!(
+                "{} and {} both name their level {:?}; level names must be unique in a run (they name the trace files)",
+                other.source,
+                level.source,
+                level.name
+            );
+        }
+        levels.push(level);
+    }
+    Ok(levels)
+}
+
+fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
+    let mut set = RunConfig::builtin_set();
+    if let Some(eps) = args.epsilon {
+        if !(eps.is_finite() && eps >= 0.0) {
+            bail!("--epsilon {eps}: expected a finite number >= 0 (tiles)");
+        }
+        for c in &mut set {
+            let BackendConfig::Sweep(s) = &mut c.backend;
+            s.epsilon = eps;
+        }
+    }
+    Ok(set)
+}
+
+fn run(args: &RunArgs, write: bool) -> Result<()> {
+    let mut levels = load_levels(&args.levels)?;
+    if let Some(dt) = args.dt {
+        if !(dt.is_finite() && dt > 0.0 && dt <= 1.0) {
+            bail!("--dt {dt}: expected a time step in seconds, 0 < dt <= 1");
+        }
+        for l in &mut levels {
+            for s in &mut l.scenarios {
+                s.dt = dt;
+            }
+        }
+    }
+    let configs = configs(args)?;
+    let total: usize = levels.iter().map(|l| l.scenarios.len()).sum::<usize>() * configs.len();
+    eprintln!(
+        "platbench: {} scenarios on {} configurations ({} runs)",
+        total / configs.len().max(1),
+        configs.len(),
+        total
+    );
+    let started = Instant::now();
+    let mut traces: Vec<Trace> = Vec::new();
+    let mut metrics: Vec<MetricRow> = Vec::new();
+    let mut done = 0;
+    for level in &levels {
+        for spec in &level.scenarios {
+            for run in &configs {
+                let e = evaluate(level, spec, run).with_context(|| {
+                    format!(
+                        "running {}.{} on {}/{}",
+                        level.name,
+                        spec.name,
+                        run.backend.name(),
+                        run.label
+                    )
+                })?;
+                metrics.extend(e.metrics);
+                if write {
+                    traces.push(e.trace);
+                }
+                done += 1;
+            }
+        }
+        eprintln!("  [{done}/{total}] {} ({})", level.name, level.source);
+    }
+    eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
+    println!("{}", summary_table(&metrics));
+    if args.detail {
+        println!();
+        println!("{}", detail_table(&metrics));
+    }
+    if write {
+        output::write_run(&args.out, &traces, &metrics)?;
+        eprintln!(
+            "wrote {} traces and {} metric rows to {}",
+            traces.len(),
+            metrics.len(),
+            args.out.display()
+        );
+    } else {
+        eprintln!("(worst case per metric over all scenarios; `platbench run --detail` lists every scenario, `--out DIR` writes the CSV files)");
+    }
+    Ok(())
+}
+
+fn list_levels() -> Result<()> {
+    for level in builtin_levels()? {
+        println!(
+            "{} ({} x {} tiles): {}",
+            level.name, level.width, level.height, level.description
+        );
+        for s in &level.scenarios {
+            println!("    {}  ({} s)", s.name, s.duration);
+        }
+    }
+    Ok(())
+}

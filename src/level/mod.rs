@@ -1,0 +1,295 @@
+//! The level model: a grid of tiles one world unit wide, the features a level contains and
+//! the scenarios that run on it. It knows nothing of backends.
+//!
+//! Coordinates: tile `(i, j)` covers `[i, i+1] x [j, j+1]`; `j = 0` is the bottom row and y
+//! points up. The text format ([`parse`]) lists map rows top to bottom.
+
+mod parse;
+
+pub use parse::{parse_level, LevelError};
+
+use glam::Vec2;
+use parry2d::bounding_volume::Aabb;
+
+/// What one grid cell holds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tile {
+    /// Nothing: characters pass.
+    Empty,
+    /// A full solid square.
+    Solid,
+    /// A platform that blocks only from above (`=`).
+    OneWay,
+    /// A ladder (`H`).
+    Ladder,
+    /// A sloped tile.
+    Slope(Slope),
+}
+
+/// The surface of a sloped tile.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Slope {
+    /// The seed's integer height array: 16 heights in sixteenths of a tile, left to right.
+    Heights([u8; 16]),
+    /// The seed's line slope: surface heights at the tile's left and right edge, in tiles.
+    Line {
+        /// Height at the tile's left edge, in tiles (0..=1).
+        left: f32,
+        /// Height at the tile's right edge, in tiles (0..=1).
+        right: f32,
+    },
+}
+
+/// What a level contains beyond solid tiles; backends build and run only what is set here.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Features {
+    /// The level has sloped tiles.
+    pub slopes: bool,
+    /// The level has one-way platforms.
+    pub one_way: bool,
+    /// The level has ladders.
+    pub ladders: bool,
+    /// The level has moving platforms.
+    pub moving_platforms: bool,
+}
+
+impl Features {
+    /// Names of the features that are set, for messages.
+    pub fn names(&self) -> Vec<&'static str> {
+        let mut v = Vec::new();
+        if self.slopes {
+            v.push("slopes");
+        }
+        if self.one_way {
+            v.push("one-way platforms");
+        }
+        if self.ladders {
+            v.push("ladders");
+        }
+        if self.moving_platforms {
+            v.push("moving platforms");
+        }
+        v
+    }
+}
+
+/// One timed change of the held buttons in a scenario's input script. Buttons not named keep
+/// their previous state.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct InputEvent {
+    /// Time at which the change takes effect, in seconds from the start.
+    pub t: f32,
+    /// New state of the left button, if it changes.
+    pub left: Option<bool>,
+    /// New state of the right button, if it changes.
+    pub right: Option<bool>,
+    /// New state of the up button, if it changes.
+    pub up: Option<bool>,
+    /// New state of the down button, if it changes.
+    pub down: Option<bool>,
+    /// New state of the jump button, if it changes.
+    pub jump: Option<bool>,
+}
+
+/// Per-scenario changes to the run's motion parameters.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MotionOverrides {
+    /// Replaces the jump height, in tiles.
+    pub jump_height: Option<f32>,
+    /// Replaces the run speed, in tiles/s.
+    pub run_speed: Option<f32>,
+    /// Replaces the gravity, in tiles/s².
+    pub gravity: Option<f32>,
+}
+
+/// A scenario as the level file states it: one character, its spawn and its input script.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScenarioSpec {
+    /// Name, unique within the level.
+    pub name: String,
+    /// Spawn position of the character's feet (bottom centre of its box), in tiles.
+    pub spawn: Vec2,
+    /// Width and height of the character's box, in tiles.
+    pub size: Vec2,
+    /// Initial velocity, in tiles/s.
+    pub velocity: Vec2,
+    /// Length of the run, in seconds.
+    pub duration: f32,
+    /// Time step, in seconds.
+    pub dt: f32,
+    /// Input changes, in time order.
+    pub inputs: Vec<InputEvent>,
+    /// Changes to the motion parameters for this scenario.
+    pub motion: MotionOverrides,
+}
+
+/// Default character box: 0.8 x 0.9 tiles, the size of the reference measurements.
+pub const DEFAULT_CHARACTER_SIZE: Vec2 = Vec2::new(0.8, 0.9);
+/// Default time step: 1/60 s.
+pub const DEFAULT_DT: f32 = 1.0 / 60.0;
+
+/// A parsed level.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    /// Name, used in file names and tables.
+    pub name: String,
+    /// One-line description.
+    pub description: String,
+    /// Where it came from (a path or `builtin:NAME`), for messages.
+    pub source: String,
+    /// Width in tiles.
+    pub width: u32,
+    /// Height in tiles.
+    pub height: u32,
+    /// Tiles row by row from the bottom (`j * width + i`).
+    tiles: Vec<Tile>,
+    /// What the level contains.
+    pub features: Features,
+    /// The scenarios that run on it.
+    pub scenarios: Vec<ScenarioSpec>,
+}
+
+impl Level {
+    /// Builds a level from rows given bottom first; computes its features.
+    pub fn from_tiles(name: &str, width: u32, height: u32, tiles: Vec<Tile>) -> Level {
+        assert_eq!(tiles.len(), (width * height) as usize);
+        let mut features = Features::default();
+        for t in &tiles {
+            match t {
+                Tile::OneWay => features.one_way = true,
+                Tile::Ladder => features.ladders = true,
+                Tile::Slope(_) => features.slopes = true,
+                Tile::Empty | Tile::Solid => {}
+            }
+        }
+        Level {
+            name: name.to_string(),
+            description: String::new(),
+            source: format!("builtin:{name}"),
+            width,
+            height,
+            tiles,
+            features,
+            scenarios: Vec::new(),
+        }
+    }
+
+    /// The tile at column `i`, row `j` (from the bottom); outside the map is empty.
+    pub fn tile(&self, i: i64, j: i64) -> Tile {
+        if i < 0 || j < 0 || i >= self.width as i64 || j >= self.height as i64 {
+            return Tile::Empty;
+        }
+        self.tiles[(j as usize) * self.width as usize + i as usize]
+    }
+
+    /// The box of tile `(i, j)`.
+    pub fn tile_box(i: i64, j: i64) -> Aabb {
+        Aabb::new(
+            Vec2::new(i as f32, j as f32),
+            Vec2::new(i as f32 + 1.0, j as f32 + 1.0),
+        )
+    }
+
+    /// Every solid tile's box, in row order.
+    pub fn solid_boxes(&self) -> impl Iterator<Item = Aabb> + '_ {
+        let w = self.width as usize;
+        self.tiles
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| **t == Tile::Solid)
+            .map(move |(k, _)| Self::tile_box((k % w) as i64, (k / w) as i64))
+    }
+
+    /// Solid tiles whose boxes overlap `area` with positive area (touching does not count).
+    pub fn solids_overlapping(&self, area: &Aabb) -> impl Iterator<Item = Aabb> + '_ {
+        let i0 = area.mins.x.floor() as i64;
+        let i1 = area.maxs.x.ceil() as i64;
+        let j0 = area.mins.y.floor() as i64;
+        let j1 = area.maxs.y.ceil() as i64;
+        let a = *area;
+        (j0..j1)
+            .flat_map(move |j| (i0..i1).map(move |i| (i, j)))
+            .filter(move |&(i, j)| self.tile(i, j) == Tile::Solid)
+            .map(|(i, j)| Self::tile_box(i, j))
+            .filter(move |b| {
+                b.mins.x < a.maxs.x
+                    && a.mins.x < b.maxs.x
+                    && b.mins.y < a.maxs.y
+                    && a.mins.y < b.maxs.y
+            })
+    }
+
+    /// The highest solid top at or below `y + tolerance` under the horizontal span
+    /// `[x0, x1]` (open at both ends), or `None` if nothing is below.
+    pub fn support_below(&self, x0: f32, x1: f32, y: f32, tolerance: f32) -> Option<f32> {
+        let i0 = x0.floor() as i64;
+        let i1 = x1.ceil() as i64;
+        let top_row = ((y + tolerance).floor() as i64 - 1).min(self.height as i64 - 1);
+        let mut best: Option<f32> = None;
+        for i in i0..i1 {
+            if (i as f32 + 1.0) <= x0 || i as f32 >= x1 {
+                continue;
+            }
+            let mut j = top_row;
+            while j >= 0 {
+                if self.tile(i, j) == Tile::Solid {
+                    let top = j as f32 + 1.0;
+                    best = Some(best.map_or(top, |b: f32| b.max(top)));
+                    break;
+                }
+                j -= 1;
+            }
+        }
+        best
+    }
+}
+
+/// The box of a character whose feet (bottom centre) are at `pos`.
+pub fn character_box(pos: Vec2, size: Vec2) -> Aabb {
+    Aabb::new(
+        Vec2::new(pos.x - size.x * 0.5, pos.y),
+        Vec2::new(pos.x + size.x * 0.5, pos.y + size.y),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn small() -> Level {
+        // Row 0: solid floor of 4 tiles; row 1: one solid at i = 3.
+        let mut t = vec![Tile::Solid; 4];
+        t.extend([Tile::Empty, Tile::Empty, Tile::Empty, Tile::Solid]);
+        t.extend([Tile::Empty; 4]);
+        Level::from_tiles("small", 4, 3, t)
+    }
+
+    #[test]
+    fn tile_lookup_and_bounds() {
+        let l = small();
+        assert_eq!(l.tile(0, 0), Tile::Solid);
+        assert_eq!(l.tile(3, 1), Tile::Solid);
+        assert_eq!(l.tile(-1, 0), Tile::Empty);
+        assert_eq!(l.tile(0, 3), Tile::Empty);
+        assert_eq!(l.solid_boxes().count(), 5);
+        assert_eq!(l.features, Features::default());
+    }
+
+    #[test]
+    fn support_below_finds_the_highest_top() {
+        let l = small();
+        assert_eq!(l.support_below(0.5, 1.5, 1.0, 0.0), Some(1.0));
+        assert_eq!(l.support_below(2.5, 3.5, 2.0, 0.0), Some(2.0));
+        assert_eq!(l.support_below(2.5, 3.5, 1.5, 0.0), Some(1.0));
+        assert_eq!(l.support_below(5.0, 6.0, 1.0, 0.0), None);
+    }
+
+    #[test]
+    fn overlap_ignores_touching() {
+        let l = small();
+        let b = character_box(Vec2::new(1.0, 1.0), Vec2::new(0.8, 0.9));
+        assert_eq!(l.solids_overlapping(&b).count(), 0);
+        let sunk = character_box(Vec2::new(1.0, 0.99), Vec2::new(0.8, 0.9));
+        assert_eq!(l.solids_overlapping(&sunk).count(), 2);
+    }
+}

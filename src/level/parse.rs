@@ -1,0 +1,583 @@
+//! The TOML level format (DESIGN.md, "Level format"): metadata, a legend, an ASCII map and
+//! `[[scenario]]` entries. Every error names the file, line and column and what was expected.
+
+use std::collections::{BTreeMap, HashMap};
+use std::ops::Range;
+
+use glam::Vec2;
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::{
+    InputEvent, Level, MotionOverrides, ScenarioSpec, Slope, Tile, DEFAULT_CHARACTER_SIZE,
+    DEFAULT_DT,
+};
+
+/// A level file that could not be read, with where and why.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{file}:{line}:{column}: {message}")]
+pub struct LevelError {
+    /// The file (or `builtin:NAME`).
+    pub file: String,
+    /// 1-based line.
+    pub line: usize,
+    /// 1-based column, in characters.
+    pub column: usize,
+    /// What was found and what was expected.
+    pub message: String,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLevel {
+    name: Option<String>,
+    description: Option<String>,
+    #[serde(default)]
+    legend: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
+    map: Spanned<String>,
+    #[serde(default)]
+    platform: Vec<Spanned<toml::Value>>,
+    #[serde(default)]
+    scenario: Vec<Spanned<RawScenario>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScenario {
+    name: Spanned<String>,
+    spawn: Spanned<[f64; 2]>,
+    duration: Spanned<f64>,
+    dt: Option<Spanned<f64>>,
+    size: Option<Spanned<[f64; 2]>>,
+    velocity: Option<Spanned<[f64; 2]>>,
+    #[serde(default)]
+    inputs: Vec<Spanned<RawInput>>,
+    motion: Option<Spanned<RawMotion>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawInput {
+    t: f64,
+    left: Option<bool>,
+    right: Option<bool>,
+    up: Option<bool>,
+    down: Option<bool>,
+    jump: Option<bool>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMotion {
+    jump_height: Option<f64>,
+    run_speed: Option<f64>,
+    gravity: Option<f64>,
+}
+
+/// Turns byte offsets into line and column.
+struct Locator<'a> {
+    file: &'a str,
+    text: &'a str,
+}
+
+impl Locator<'_> {
+    fn err(&self, offset: usize, message: impl Into<String>) -> LevelError {
+        let offset = offset.min(self.text.len());
+        let before = &self.text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |p| p + 1);
+        let column = before[line_start..].chars().count() + 1;
+        LevelError {
+            file: self.file.to_string(),
+            line,
+            column,
+            message: message.into(),
+        }
+    }
+
+    fn at(&self, span: &Range<usize>, message: impl Into<String>) -> LevelError {
+        self.err(span.start, message)
+    }
+}
+
+/// Parses a level file's text. `file` names it in errors.
+pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
+    let loc = Locator { file, text };
+    let raw: RawLevel = toml::from_str(text).map_err(|e| {
+        let offset = e.span().map_or(0, |s| s.start);
+        loc.err(offset, e.message().trim().to_string())
+    })?;
+
+    if let Some(p) = raw.platform.first() {
+        return Err(loc.at(
+            &p.span(),
+            "found a [[platform]]: moving platforms are not supported yet by this version of platbench",
+        ));
+    }
+
+    let legend = parse_legend(&loc, &raw.legend)?;
+    let (width, height, tiles) = parse_map(&loc, &raw.map, &legend)?;
+    let name = raw.name.unwrap_or_else(|| {
+        std::path::Path::new(file)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("level")
+            .to_string()
+    });
+    if name.is_empty()
+        || !name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        return Err(loc.err(
+            0,
+            format!("level name {name:?} must be non-empty ASCII letters, digits, '_' or '-' (it names output files)"),
+        ));
+    }
+    let mut level = Level::from_tiles(&name, width, height, tiles);
+    level.description = raw.description.unwrap_or_default();
+    level.source = file.to_string();
+
+    let mut seen = HashMap::new();
+    for s in &raw.scenario {
+        let spec = parse_scenario(&loc, s.get_ref())?;
+        if let Some(prev) = seen.insert(spec.name.clone(), s.span()) {
+            let first = loc.at(&prev, "");
+            return Err(loc.at(
+                &s.get_ref().name.span(),
+                format!(
+                    "scenario name {:?} is used twice (first at line {}); expected unique names",
+                    spec.name, first.line
+                ),
+            ));
+        }
+        check_spawn(&loc, &level, &spec, &s.get_ref().spawn.span())?;
+        level.scenarios.push(spec);
+    }
+    Ok(level)
+}
+
+fn parse_legend(
+    loc: &Locator,
+    raw: &BTreeMap<Spanned<String>, Spanned<toml::Value>>,
+) -> Result<HashMap<char, Tile>, LevelError> {
+    let mut legend: HashMap<char, Tile> = HashMap::from([
+        ('#', Tile::Solid),
+        ('.', Tile::Empty),
+        (' ', Tile::Empty),
+        ('=', Tile::OneWay),
+        ('H', Tile::Ladder),
+        (
+            '/',
+            Tile::Slope(Slope::Line {
+                left: 0.0,
+                right: 1.0,
+            }),
+        ),
+        (
+            '\\',
+            Tile::Slope(Slope::Line {
+                left: 1.0,
+                right: 0.0,
+            }),
+        ),
+    ]);
+    for (key, value) in raw {
+        let mut chars = key.get_ref().chars();
+        let c = match (chars.next(), chars.next()) {
+            (Some(c), None) => c,
+            _ => {
+                return Err(loc.at(
+                    &key.span(),
+                    format!("legend key {:?} must be a single character", key.get_ref()),
+                ))
+            }
+        };
+        let tile = parse_legend_value(loc, value)?;
+        legend.insert(c, tile);
+    }
+    Ok(legend)
+}
+
+fn parse_legend_value(loc: &Locator, value: &Spanned<toml::Value>) -> Result<Tile, LevelError> {
+    let span = value.span();
+    let expected = "expected \"solid\", \"empty\", \"oneway\", \"ladder\", { heights = [16 integers 0..=16] } or { line = [left, right] }";
+    match value.get_ref() {
+        toml::Value::String(s) => match s.as_str() {
+            "solid" => Ok(Tile::Solid),
+            "empty" => Ok(Tile::Empty),
+            "oneway" => Ok(Tile::OneWay),
+            "ladder" => Ok(Tile::Ladder),
+            other => Err(loc.at(&span, format!("unknown tile kind {other:?}; {expected}"))),
+        },
+        toml::Value::Table(t) if t.len() == 1 && t.contains_key("heights") => {
+            let arr = t["heights"].as_array();
+            let heights: Option<Vec<u8>> = arr.map(|a| {
+                a.iter()
+                    .filter_map(|v| v.as_integer())
+                    .filter(|h| (0..=16).contains(h))
+                    .map(|h| h as u8)
+                    .collect()
+            });
+            match (arr.map(|a| a.len()), heights) {
+                (Some(16), Some(h)) if h.len() == 16 => {
+                    let mut out = [0u8; 16];
+                    out.copy_from_slice(&h);
+                    Ok(Tile::Slope(Slope::Heights(out)))
+                }
+                _ => Err(loc.at(
+                    &span,
+                    "a height array must hold exactly 16 integers between 0 and 16 (sixteenths of a tile)",
+                )),
+            }
+        }
+        toml::Value::Table(t) if t.len() == 1 && t.contains_key("line") => {
+            let pair: Option<Vec<f64>> = t["line"].as_array().map(|a| {
+                a.iter()
+                    .filter_map(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+                    .collect()
+            });
+            match pair.as_deref() {
+                Some(&[l, r]) if (0.0..=1.0).contains(&l) && (0.0..=1.0).contains(&r) => {
+                    Ok(Tile::Slope(Slope::Line {
+                        left: l as f32,
+                        right: r as f32,
+                    }))
+                }
+                _ => Err(loc.at(
+                    &span,
+                    "a line slope must be [left, right]: two numbers between 0 and 1 (tiles)",
+                )),
+            }
+        }
+        other => Err(loc.at(
+            &span,
+            format!("found {} as a legend entry; {expected}", other.type_str()),
+        )),
+    }
+}
+
+fn parse_map(
+    loc: &Locator,
+    map: &Spanned<String>,
+    legend: &HashMap<char, Tile>,
+) -> Result<(u32, u32, Vec<Tile>), LevelError> {
+    let span = map.span();
+    // Where the string's content starts in the file: after the opening quotes, and after
+    // the newline that TOML trims right after triple quotes.
+    let raw = &loc.text[span.clone()];
+    let mut content_start = span.start;
+    if raw.starts_with("\"\"\"") || raw.starts_with("'''") {
+        content_start += 3;
+        let rest = &loc.text[content_start..];
+        if rest.starts_with("\r\n") {
+            content_start += 2;
+        } else if rest.starts_with('\n') {
+            content_start += 1;
+        }
+    } else {
+        content_start += 1;
+    }
+    let body = map.get_ref();
+    let mut rows: Vec<&str> = body.split('\n').map(|r| r.trim_end_matches('\r')).collect();
+    if rows.last() == Some(&"") {
+        rows.pop();
+    }
+    if rows.is_empty() || rows.iter().all(|r| r.is_empty()) {
+        return Err(loc.at(
+            &span,
+            "the map is empty; expected at least one row of tiles",
+        ));
+    }
+    // Byte offset in the file of each row, for errors.
+    let line_offsets: Vec<usize> = {
+        let mut v = Vec::with_capacity(rows.len());
+        let mut off = content_start;
+        for r in &rows {
+            v.push(off);
+            off += r.len() + 1;
+        }
+        v
+    };
+    let width = rows[0].chars().count();
+    for (r, row) in rows.iter().enumerate() {
+        let n = row.chars().count();
+        if n != width {
+            return Err(loc.err(
+                line_offsets[r] + row.len(),
+                format!("map row {} has {n} tiles, expected {width} like the first row (rows must have equal length)", r + 1),
+            ));
+        }
+    }
+    let height = rows.len();
+    let mut tiles = vec![Tile::Empty; width * height];
+    for (r, row) in rows.iter().enumerate() {
+        let j = height - 1 - r;
+        for (i, (byte, c)) in row.char_indices().enumerate() {
+            let tile = legend.get(&c).ok_or_else(|| {
+                loc.err(
+                    line_offsets[r] + byte,
+                    format!("unknown map character {c:?}; expected '#', '.', ' ', '=', 'H', '/', '\\' or a key of [legend]"),
+                )
+            })?;
+            tiles[j * width + i] = *tile;
+        }
+    }
+    Ok((width as u32, height as u32, tiles))
+}
+
+fn finite(loc: &Locator, span: &Range<usize>, what: &str, v: f64) -> Result<f32, LevelError> {
+    if !v.is_finite() || v.abs() > f32::MAX as f64 {
+        return Err(loc.at(span, format!("{what} is {v}; expected a finite number")));
+    }
+    Ok(v as f32)
+}
+
+fn positive(loc: &Locator, span: &Range<usize>, what: &str, v: f64) -> Result<f32, LevelError> {
+    let x = finite(loc, span, what, v)?;
+    if x <= 0.0 {
+        return Err(loc.at(span, format!("{what} is {v}; expected a number > 0")));
+    }
+    Ok(x)
+}
+
+fn vec2(
+    loc: &Locator,
+    v: &Spanned<[f64; 2]>,
+    what: &str,
+    must_be_positive: bool,
+) -> Result<Vec2, LevelError> {
+    let span = v.span();
+    let [a, b] = *v.get_ref();
+    let check = if must_be_positive { positive } else { finite };
+    Ok(Vec2::new(
+        check(loc, &span, what, a)?,
+        check(loc, &span, what, b)?,
+    ))
+}
+
+fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelError> {
+    let name = s.name.get_ref().clone();
+    if name.is_empty()
+        || !name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        return Err(loc.at(
+            &s.name.span(),
+            format!("scenario name {name:?} must be non-empty ASCII letters, digits, '_' or '-' (it names output files)"),
+        ));
+    }
+    let duration = positive(loc, &s.duration.span(), "duration", *s.duration.get_ref())?;
+    let dt = match &s.dt {
+        Some(d) => positive(loc, &d.span(), "dt", *d.get_ref())?,
+        None => DEFAULT_DT,
+    };
+    if duration / dt > 10_000_000.0 {
+        return Err(loc.at(
+            &s.duration.span(),
+            format!(
+                "duration / dt is {} frames; expected at most 10,000,000",
+                duration / dt
+            ),
+        ));
+    }
+    let spawn = vec2(loc, &s.spawn, "spawn", false)?;
+    let size = match &s.size {
+        Some(v) => vec2(loc, v, "size", true)?,
+        None => DEFAULT_CHARACTER_SIZE,
+    };
+    let velocity = match &s.velocity {
+        Some(v) => vec2(loc, v, "velocity", false)?,
+        None => Vec2::ZERO,
+    };
+    let mut inputs = Vec::with_capacity(s.inputs.len());
+    let mut last_t = f32::NEG_INFINITY;
+    for ev in &s.inputs {
+        let span = ev.span();
+        let e = ev.get_ref();
+        let t = finite(loc, &span, "input time t", e.t)?;
+        if t < 0.0 || t > duration {
+            return Err(loc.at(
+                &span,
+                format!("input time t = {t} is outside the scenario; expected 0 <= t <= duration ({duration})"),
+            ));
+        }
+        if t < last_t {
+            return Err(loc.at(
+                &span,
+                format!("input time t = {t} comes before the previous event's t = {last_t}; expected events in time order"),
+            ));
+        }
+        last_t = t;
+        inputs.push(InputEvent {
+            t,
+            left: e.left,
+            right: e.right,
+            up: e.up,
+            down: e.down,
+            jump: e.jump,
+        });
+    }
+    let motion = match &s.motion {
+        None => MotionOverrides::default(),
+        Some(m) => {
+            let span = m.span();
+            let m = m.get_ref();
+            let opt = |v: Option<f64>, what: &str| -> Result<Option<f32>, LevelError> {
+                v.map(|x| positive(loc, &span, what, x)).transpose()
+            };
+            MotionOverrides {
+                jump_height: opt(m.jump_height, "motion.jump_height")?,
+                run_speed: opt(m.run_speed, "motion.run_speed")?,
+                gravity: opt(m.gravity, "motion.gravity")?,
+            }
+        }
+    };
+    Ok(ScenarioSpec {
+        name,
+        spawn,
+        size,
+        velocity,
+        duration,
+        dt,
+        inputs,
+        motion,
+    })
+}
+
+fn check_spawn(
+    loc: &Locator,
+    level: &Level,
+    spec: &ScenarioSpec,
+    span: &Range<usize>,
+) -> Result<(), LevelError> {
+    let b = super::character_box(spec.spawn, spec.size);
+    if let Some(t) = level.solids_overlapping(&b).next() {
+        return Err(loc.at(
+            span,
+            format!(
+                "spawn ({}, {}) puts the {} x {} character inside the solid tile at ({}, {}); expected a spawn in empty space (the position is the feet, bottom centre)",
+                spec.spawn.x, spec.spawn.y, spec.size.x, spec.size.y, t.mins.x, t.mins.y
+            ),
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const OK: &str = r#"
+name = "t"
+map = """
+....
+#..#
+####
+"""
+
+[[scenario]]
+name = "drop"
+spawn = [1.5, 2.0]
+duration = 1.0
+inputs = [ { t = 0.0, right = true }, { t = 0.5, right = false } ]
+"#;
+
+    #[test]
+    fn parses_map_bottom_up() {
+        let l = parse_level(OK, "t.toml").unwrap();
+        assert_eq!((l.width, l.height), (4, 3));
+        assert_eq!(l.tile(0, 0), Tile::Solid);
+        assert_eq!(l.tile(0, 1), Tile::Solid);
+        assert_eq!(l.tile(1, 1), Tile::Empty);
+        assert_eq!(l.tile(0, 2), Tile::Empty);
+        assert_eq!(l.scenarios.len(), 1);
+        assert_eq!(l.scenarios[0].inputs[1].right, Some(false));
+        assert_eq!(l.scenarios[0].size, DEFAULT_CHARACTER_SIZE);
+    }
+
+    fn err(text: &str) -> LevelError {
+        parse_level(text, "bad.toml").unwrap_err()
+    }
+
+    #[test]
+    fn unknown_map_character_names_line_and_column() {
+        let e = err("map = \"\"\"\n....\n.x..\n\"\"\"\n");
+        assert_eq!((e.line, e.column), (3, 2), "{e}");
+        assert!(e.message.contains("unknown map character 'x'"), "{e}");
+        assert!(e.to_string().starts_with("bad.toml:3:2:"));
+    }
+
+    #[test]
+    fn ragged_rows_are_an_error() {
+        let e = err("map = \"\"\"\n....\n...\n\"\"\"\n");
+        assert_eq!(e.line, 3, "{e}");
+        assert!(e.message.contains("has 3 tiles, expected 4"), "{e}");
+    }
+
+    #[test]
+    fn toml_syntax_error_has_position() {
+        let e = err("name = \"x\"\nmap = [\n");
+        assert!(e.line >= 2, "{e}");
+    }
+
+    #[test]
+    fn unknown_field_is_named() {
+        let e = err("map = \"#\"\nmpa = 3\n");
+        assert_eq!(e.line, 2, "{e}");
+        assert!(e.message.contains("unknown field"), "{e}");
+    }
+
+    #[test]
+    fn spawn_inside_solid_is_rejected() {
+        let e = err("map = \"\"\"\n..\n##\n\"\"\"\n[[scenario]]\nname = \"a\"\nspawn = [0.5, 0.5]\nduration = 1.0\n");
+        assert_eq!(e.line, 7, "{e}");
+        assert!(e.message.contains("inside the solid tile"), "{e}");
+    }
+
+    #[test]
+    fn inputs_out_of_order_and_bad_numbers() {
+        let base = "map = \"\"\"\n..\n##\n\"\"\"\n[[scenario]]\nname = \"a\"\nspawn = [0.5, 1.0]\n";
+        let e = err(&format!("{base}duration = -1.0\n"));
+        assert!(e.message.contains("expected a number > 0"), "{e}");
+        let e = err(&format!("{base}duration = nan\n"));
+        assert!(e.message.contains("finite"), "{e}");
+        let e = err(&format!(
+            "{base}duration = 2.0\ninputs = [ {{ t = 1.0 }}, {{ t = 0.5 }} ]\n"
+        ));
+        assert!(e.message.contains("time order"), "{e}");
+        assert_eq!(e.line, 9, "{e}");
+    }
+
+    #[test]
+    fn legend_entries_and_features() {
+        let text = "map = \"ab=H#\"\n[legend]\na = { heights = [12, 11, 10, 8, 7, 6, 5, 5, 5, 5, 5, 4, 3, 2, 1, 1] }\nb = { line = [0.0, 0.5] }\n";
+        let l = parse_level(text, "f.toml").unwrap();
+        assert!(l.features.slopes && l.features.one_way && l.features.ladders);
+        assert_eq!(
+            l.tile(1, 0),
+            Tile::Slope(Slope::Line {
+                left: 0.0,
+                right: 0.5
+            })
+        );
+        let e = err("map = \"a\"\n[legend]\na = { heights = [1, 2] }\n");
+        assert_eq!(e.line, 3, "{e}");
+        assert!(e.message.contains("exactly 16"), "{e}");
+        let e = err("map = \"a\"\n[legend]\nab = \"solid\"\n");
+        assert!(e.message.contains("single character"), "{e}");
+    }
+
+    #[test]
+    fn platforms_are_refused_clearly() {
+        let e = err("map = \"#\"\n[[platform]]\nrect = [0, 0, 1, 1]\n");
+        assert!(e.message.contains("not supported yet"), "{e}");
+    }
+
+    #[test]
+    fn empty_map_is_an_error() {
+        let e = err("map = \"\"\n");
+        assert!(e.message.contains("empty"), "{e}");
+    }
+}

@@ -1,0 +1,17 @@
+//! platbench: run 2D platformer character controllers over the same levels and compare them.
+//!
+//! The pieces, in dependency order: [`level`] (the tile model and its text format) ←
+//! [`motion`] and [`backend`] (shared game rules and the controller interface) ← the
+//! controllers ([`sweep`]) ← [`scenario`] (the runner) and [`trace`] ← [`metrics`] ←
+//! [`report`]. The `platbench` binary only wires these together.
+
+#![warn(missing_docs)]
+
+pub mod backend;
+pub mod level;
+pub mod metrics;
+pub mod motion;
+pub mod report;
+pub mod scenario;
+pub mod sweep;
+pub mod trace;

@@ -1,0 +1,567 @@
+//! Behaviour metrics, computed from a trace, the level geometry and the scenario's script, each
+//! against an analytic or geometric reference (DESIGN.md, "metric catalog"). No metric reads
+//! backend internals.
+//!
+//! A metric is reported only for scenarios where it means something: `land_frame_error` for a
+//! character dropped with no input until it should land, `apex_error` for a jump with room
+//! above, `progress_ratio` for a walk over flat open ground, `rest_gap` and `rest_jitter` for
+//! scenarios that end with at least [`REST_WINDOW`] seconds of idle input. `max_penetration`,
+//! `grounded_flicker` and `tunneled` apply to every scenario. Only character 0 is measured.
+
+mod reference;
+
+pub use reference::{commanded_distance, predicted_landing_frame};
+
+use serde::Serialize;
+
+use crate::level::{character_box, Level, ScenarioSpec, Tile};
+use crate::motion::MotionParams;
+use crate::scenario::input_script;
+use crate::trace::{Trace, TraceRow};
+use glam::Vec2;
+use parry2d::bounding_volume::Aabb;
+
+/// Idle time at the end of a scenario needed for the rest metrics, in seconds.
+pub const REST_WINDOW: f32 = 0.5;
+/// How far below the feet the ground may be for a grounded-to-airborne switch to count as a
+/// flicker rather than leaving the ground, in tiles. Larger than Rapier's default offset
+/// (1% of a 0.9-tile character) so a controller that keeps a skin gap is not penalised.
+pub const FLICKER_SUPPORT_TOLERANCE: f32 = 0.1;
+
+/// Every metric this version computes, in catalog order (tables list them in this order).
+pub const CATALOG: &[&str] = &[
+    "land_frame_error",
+    "rest_gap",
+    "max_penetration",
+    "rest_jitter",
+    "grounded_flicker",
+    "apex_error",
+    "progress_ratio",
+    "tunneled",
+];
+
+/// One row of `metrics.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MetricRow {
+    /// Level name.
+    pub level: String,
+    /// Scenario name.
+    pub scenario: String,
+    /// Backend name.
+    pub backend: String,
+    /// Configuration label.
+    pub config: String,
+    /// Metric name (DESIGN.md catalog).
+    pub metric: &'static str,
+    /// Measured value.
+    pub value: f64,
+    /// Unit of `value`.
+    pub unit: &'static str,
+    /// What an ideal controller would measure.
+    pub reference: f64,
+    /// `value - reference`.
+    pub error: f64,
+}
+
+/// A measured metric before it is labelled with its run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Measure {
+    /// Metric name.
+    pub metric: &'static str,
+    /// Measured value.
+    pub value: f64,
+    /// Unit.
+    pub unit: &'static str,
+    /// Ideal value.
+    pub reference: f64,
+}
+
+/// Everything a metric may read.
+pub struct Context<'a> {
+    /// The level the scenario ran on.
+    pub level: &'a Level,
+    /// The scenario.
+    pub spec: &'a ScenarioSpec,
+    /// The motion parameters it ran with (overrides applied).
+    pub params: &'a MotionParams,
+    /// The trace.
+    pub trace: &'a Trace,
+}
+
+/// Computes every metric that applies to the scenario.
+pub fn compute(ctx: &Context) -> Vec<MetricRow> {
+    let rows: Vec<TraceRow> = ctx.trace.character(0).copied().collect();
+    let mut out = Vec::new();
+    let mut push = |m: Option<Measure>| {
+        if let Some(m) = m {
+            out.push(MetricRow {
+                level: ctx.trace.level.clone(),
+                scenario: ctx.trace.scenario.clone(),
+                backend: ctx.trace.backend.clone(),
+                config: ctx.trace.config.clone(),
+                metric: m.metric,
+                value: m.value,
+                unit: m.unit,
+                reference: m.reference,
+                error: m.value - m.reference,
+            });
+        }
+    };
+    push(land_frame_error(ctx, &rows));
+    let rest = rest_frames(ctx, &rows);
+    push(rest.clone().map(|r| rest_gap(ctx, &rows[r])));
+    push(Some(max_penetration(ctx, &rows)));
+    push(rest.map(|r| rest_jitter(&rows[r])));
+    push(Some(grounded_flicker(ctx, &rows)));
+    push(apex_error(ctx, &rows));
+    push(progress_ratio(ctx, &rows));
+    push(Some(tunneled(ctx, &rows)));
+    out
+}
+
+fn pos(r: &TraceRow) -> Vec2 {
+    Vec2::new(r.x, r.y)
+}
+
+/// Deepest overlap of the box with a solid tile: the smaller of the two axis overlaps.
+fn penetration(level: &Level, b: &Aabb) -> f32 {
+    level
+        .solids_overlapping(b)
+        .map(|t| {
+            let ox = b.maxs.x.min(t.maxs.x) - b.mins.x.max(t.mins.x);
+            let oy = b.maxs.y.min(t.maxs.y) - b.mins.y.max(t.mins.y);
+            ox.min(oy)
+        })
+        .fold(0.0, f32::max)
+}
+
+/// `max_penetration`: deepest overlap with any solid over the whole run, in tiles.
+pub fn max_penetration(ctx: &Context, rows: &[TraceRow]) -> Measure {
+    let worst = rows
+        .iter()
+        .map(|r| penetration(ctx.level, &character_box(pos(r), ctx.spec.size)))
+        .fold(0.0f32, f32::max);
+    Measure {
+        metric: "max_penetration",
+        value: worst as f64,
+        unit: "tiles",
+        reference: 0.0,
+    }
+}
+
+/// `land_frame_error`: first grounded frame minus the frame the discrete integrator predicts,
+/// for a character that starts in the air, above ground, with no horizontal velocity and no
+/// input before it should land.
+pub fn land_frame_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let spec = ctx.spec;
+    if spec.velocity.x != 0.0 {
+        return None;
+    }
+    let half = spec.size.x * 0.5;
+    let top =
+        ctx.level
+            .support_below(spec.spawn.x - half, spec.spawn.x + half, spec.spawn.y, 0.0)?;
+    if spec.spawn.y <= top {
+        return None;
+    }
+    let predicted = predicted_landing_frame(
+        (spec.spawn.y - top) as f64,
+        spec.velocity.y as f64,
+        ctx.params.gravity as f64,
+        spec.dt as f64,
+    )?;
+    let script = input_script(spec);
+    if script
+        .iter()
+        .take(predicted)
+        .any(|i| *i != crate::motion::Input::default())
+    {
+        return None;
+    }
+    let landed = rows
+        .iter()
+        .skip(1)
+        .find(|r| r.is_grounded())
+        .map(|r| r.frame);
+    let value = landed.map_or(f64::INFINITY, |f| f as f64 - predicted as f64);
+    Some(Measure {
+        metric: "land_frame_error",
+        value,
+        unit: "frames",
+        reference: 0.0,
+    })
+}
+
+/// The frames over which the character should be at rest: from its first grounded frame within
+/// the final idle window (or the window's last [`REST_WINDOW`] seconds if it never lands there)
+/// to the end. `None` if the scenario does not end with such a window.
+fn rest_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::Range<usize>> {
+    let script = input_script(ctx.spec);
+    let idle = crate::motion::Input::default();
+    let n = script.len();
+    let first_idle_step = script.iter().rposition(|i| *i != idle).map_or(0, |k| k + 1);
+    // Step k produces row k + 1; the idle window's rows are first_idle_step + 1 ..= n.
+    let window_rows = n.saturating_sub(first_idle_step);
+    let needed = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
+    if window_rows < needed || rows.len() != n + 1 {
+        return None;
+    }
+    let start = first_idle_step + 1;
+    let landed = (start..=n).find(|&k| rows[k].is_grounded());
+    let from = landed.unwrap_or(n + 1 - needed);
+    Some(from..n + 1)
+}
+
+/// `rest_gap`: signed distance from the feet to the ground top at the last frame (negative:
+/// sunk into the ground), in tiles.
+fn rest_gap(ctx: &Context, rows: &[TraceRow]) -> Measure {
+    let last = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
+    let half = ctx.spec.size.x * 0.5;
+    // Look for the ground up to half the character's height above the feet, so a character
+    // that sank in still finds the surface it sank into.
+    let top = ctx
+        .level
+        .support_below(last.x - half, last.x + half, last.y, ctx.spec.size.y * 0.5);
+    let value = top.map_or(f64::INFINITY, |t| (last.y - t) as f64);
+    Measure {
+        metric: "rest_gap",
+        value,
+        unit: "tiles",
+        reference: 0.0,
+    }
+}
+
+/// `rest_jitter`: max minus min of y over the resting frames, in tiles.
+fn rest_jitter(rows: &[TraceRow]) -> Measure {
+    let (lo, hi) = rows
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), r| {
+            (lo.min(r.y), hi.max(r.y))
+        });
+    Measure {
+        metric: "rest_jitter",
+        value: if rows.is_empty() {
+            0.0
+        } else {
+            (hi - lo) as f64
+        },
+        unit: "tiles",
+        reference: 0.0,
+    }
+}
+
+/// `grounded_flicker`: grounded-to-airborne switches that no jump explains while the ground is
+/// still within [`FLICKER_SUPPORT_TOLERANCE`] under the feet.
+pub fn grounded_flicker(ctx: &Context, rows: &[TraceRow]) -> Measure {
+    let script = input_script(ctx.spec);
+    let half = ctx.spec.size.x * 0.5;
+    let mut count = 0u32;
+    for k in 1..rows.len() {
+        let (prev, cur) = (&rows[k - 1], &rows[k]);
+        if !prev.is_grounded() || cur.is_grounded() {
+            continue;
+        }
+        // Step k-1 produced row k: a jump pressed on that step explains leaving the ground.
+        let jumped = script.get(k - 1).is_some_and(|i| i.jump)
+            && (k < 2 || script.get(k - 2).is_none_or(|i| !i.jump));
+        if jumped {
+            continue;
+        }
+        let on_ground = ctx
+            .level
+            .support_below(cur.x - half, cur.x + half, cur.y, FLICKER_SUPPORT_TOLERANCE)
+            .is_some_and(|top| (cur.y - top).abs() <= FLICKER_SUPPORT_TOLERANCE);
+        if on_ground {
+            count += 1;
+        }
+    }
+    Measure {
+        metric: "grounded_flicker",
+        value: count as f64,
+        unit: "count",
+        reference: 0.0,
+    }
+}
+
+/// `apex_error`: the rise of the feet from take-off to the apex of the first jump, minus the
+/// requested jump height, in tiles. Only for a jump with no solid within the jump's reach above
+/// the character.
+pub fn apex_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let script = input_script(ctx.spec);
+    let press = script
+        .iter()
+        .enumerate()
+        .position(|(k, i)| i.jump && (k == 0 || !script[k - 1].jump))?;
+    let start = rows.get(press)?;
+    let h = ctx.params.jump_height;
+    let half = ctx.spec.size.x * 0.5;
+    let reach = Aabb::new(
+        Vec2::new(start.x - half, start.y + ctx.spec.size.y),
+        Vec2::new(start.x + half, start.y + ctx.spec.size.y + h + 0.5),
+    );
+    if ctx.level.solids_overlapping(&reach).next().is_some() {
+        return None;
+    }
+    let mut apex = start.y;
+    for r in rows.iter().skip(press + 1) {
+        apex = apex.max(r.y);
+        if r.is_grounded() && r.frame as usize > press + 1 {
+            break;
+        }
+    }
+    Some(Measure {
+        metric: "apex_error",
+        value: (apex - start.y) as f64 - h as f64,
+        unit: "tiles",
+        reference: 0.0,
+    })
+}
+
+/// `progress_ratio`: distance walked over distance commanded, for a walk that starts on the
+/// ground with the whole commanded path flat, supported and free of obstacles.
+pub fn progress_ratio(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let spec = ctx.spec;
+    let script = input_script(spec);
+    if spec.velocity != Vec2::ZERO || script.iter().all(|i| i.horizontal() == 0.0 || i.jump) {
+        return None;
+    }
+    if script.iter().any(|i| i.jump || i.up || i.down) {
+        return None;
+    }
+    let d = commanded_distance(ctx.params, &script, spec.velocity.x, spec.dt);
+    if d.abs() < 1e-6 {
+        return None;
+    }
+    // The path: the character's box swept over the commanded distance.
+    let half = spec.size.x * 0.5;
+    let (x0, y0) = (spec.spawn.x as f64, spec.spawn.y);
+    let lo = (x0 - half as f64 + d.min(0.0)) as f32;
+    let hi = (x0 + half as f64 + d.max(0.0)) as f32;
+    if y0.fract() != 0.0 {
+        return None;
+    }
+    let path = Aabb::new(Vec2::new(lo, y0), Vec2::new(hi, y0 + spec.size.y));
+    if ctx.level.solids_overlapping(&path).next().is_some() {
+        return None;
+    }
+    let row = y0 as i64 - 1;
+    let flat = (lo.floor() as i64..hi.ceil() as i64).all(|i| ctx.level.tile(i, row) == Tile::Solid);
+    if !flat {
+        return None;
+    }
+    let last = rows.last()?;
+    let walked = last.x as f64 - x0;
+    Some(Measure {
+        metric: "progress_ratio",
+        value: walked / d,
+        unit: "ratio",
+        reference: 1.0,
+    })
+}
+
+/// `tunneled`: 1 if between two frames the character passed entirely through a solid tile that
+/// overlapped its box's cross-section both before and after the move, else 0.
+pub fn tunneled(ctx: &Context, rows: &[TraceRow]) -> Measure {
+    let size = ctx.spec.size;
+    let passed = rows.windows(2).any(|w| {
+        let a = character_box(pos(&w[0]), size);
+        let b = character_box(pos(&w[1]), size);
+        passed_through(ctx.level, &a, &b, 0) || passed_through(ctx.level, &a, &b, 1)
+    });
+    Measure {
+        metric: "tunneled",
+        value: passed as u8 as f64,
+        unit: "bool",
+        reference: 0.0,
+    }
+}
+
+/// Whether a solid tile lies wholly between boxes `a` and `b` along `axis` while overlapping
+/// both boxes on the other axis.
+fn passed_through(level: &Level, a: &Aabb, b: &Aabb, axis: usize) -> bool {
+    let o = 1 - axis;
+    let (gap_lo, gap_hi) = if b.mins[axis] >= a.maxs[axis] {
+        (a.maxs[axis], b.mins[axis])
+    } else if a.mins[axis] >= b.maxs[axis] {
+        (b.maxs[axis], a.mins[axis])
+    } else {
+        return false;
+    };
+    let cross_lo = a.mins[o].max(b.mins[o]);
+    let cross_hi = a.maxs[o].min(b.maxs[o]);
+    if cross_hi <= cross_lo || gap_hi - gap_lo < 1.0 {
+        return false;
+    }
+    let mut area = Aabb::new(Vec2::ZERO, Vec2::ZERO);
+    area.mins[axis] = gap_lo;
+    area.maxs[axis] = gap_hi;
+    area.mins[o] = cross_lo;
+    area.maxs[o] = cross_hi;
+    level
+        .solids_overlapping(&area)
+        .any(|t| t.mins[axis] >= gap_lo && t.maxs[axis] <= gap_hi)
+}
+
+/// A scenario's trace and its metrics on one configuration.
+#[derive(Clone, Debug)]
+pub struct Evaluation {
+    /// The run's trace.
+    pub trace: Trace,
+    /// The metrics that apply to the scenario.
+    pub metrics: Vec<MetricRow>,
+}
+
+/// Runs `spec` on `run` and measures it.
+pub fn evaluate(
+    level: &Level,
+    spec: &ScenarioSpec,
+    run: &crate::scenario::RunConfig,
+) -> Result<Evaluation, crate::backend::BackendError> {
+    let trace = crate::scenario::run_scenario(level, spec, run)?;
+    let params = crate::scenario::effective_params(&run.params, spec);
+    let metrics = compute(&Context {
+        level,
+        spec,
+        params: &params,
+        trace: &trace,
+    });
+    Ok(Evaluation { trace, metrics })
+}
+
+#[cfg(test)]
+mod tests {
+    //! Each metric on hand-made traces of a bad controller, so that a test asserting a bound on
+    //! a real run is known to be able to fail.
+    use super::*;
+    use crate::level::{parse_level, InputEvent};
+
+    const LEVEL: &str = r#"
+name = "m"
+map = """
+..........#.........
+..........#.........
+..........#.........
+####################
+"""
+"#;
+
+    fn spec(spawn: Vec2, inputs: Vec<InputEvent>, duration: f32) -> ScenarioSpec {
+        ScenarioSpec {
+            name: "s".into(),
+            spawn,
+            size: Vec2::new(0.8, 0.9),
+            velocity: Vec2::ZERO,
+            duration,
+            dt: 0.1,
+            inputs,
+            motion: Default::default(),
+        }
+    }
+
+    fn trace(points: &[(f32, f32, bool)]) -> Trace {
+        Trace {
+            level: "m".into(),
+            scenario: "s".into(),
+            backend: "fake".into(),
+            config: "default".into(),
+            rows: points
+                .iter()
+                .enumerate()
+                .map(|(k, &(x, y, g))| TraceRow {
+                    frame: k as u32,
+                    t: k as f32 * 0.1,
+                    character: 0,
+                    x,
+                    y,
+                    vx: 0.0,
+                    vy: 0.0,
+                    grounded: g as u8,
+                    ground_nx: 0.0,
+                    ground_ny: 0.0,
+                    platform: None,
+                    ladder: 0,
+                })
+                .collect(),
+        }
+    }
+
+    fn measure(s: &ScenarioSpec, t: &Trace) -> Vec<MetricRow> {
+        let level = parse_level(LEVEL, "m.toml").unwrap();
+        let p = MotionParams::default();
+        compute(&Context {
+            level: &level,
+            spec: s,
+            params: &p,
+            trace: t,
+        })
+    }
+
+    fn value(rows: &[MetricRow], m: &str) -> Option<f64> {
+        rows.iter().find(|r| r.metric == m).map(|r| r.value)
+    }
+
+    #[test]
+    fn tunneling_through_the_wall_is_detected() {
+        let s = spec(Vec2::new(5.5, 1.0), vec![], 0.2);
+        let through = trace(&[(5.5, 1.0, true), (15.5, 1.0, true), (15.5, 1.0, true)]);
+        assert_eq!(value(&measure(&s, &through), "tunneled"), Some(1.0));
+        let stopped = trace(&[(5.5, 1.0, true), (9.6, 1.0, true), (9.6, 1.0, true)]);
+        assert_eq!(value(&measure(&s, &stopped), "tunneled"), Some(0.0));
+        // Dropping through the floor from above.
+        let fell = trace(&[(2.5, 2.0, false), (2.5, -1.5, false), (2.5, -2.0, false)]);
+        assert_eq!(value(&measure(&s, &fell), "tunneled"), Some(1.0));
+    }
+
+    #[test]
+    fn penetration_rest_gap_and_jitter_are_measured() {
+        let s = spec(Vec2::new(2.5, 1.0), vec![], 1.0);
+        let mut pts = vec![(2.5, 1.0, true); 11];
+        pts[4].1 = 0.97; // sank 0.03 into the floor
+        pts[10].1 = 1.02; // ends 0.02 above it
+        let rows = measure(&s, &trace(&pts));
+        assert!((value(&rows, "max_penetration").unwrap() - 0.03).abs() < 1e-6);
+        assert!((value(&rows, "rest_gap").unwrap() - 0.02).abs() < 1e-6);
+        assert!((value(&rows, "rest_jitter").unwrap() - 0.05).abs() < 1e-6);
+    }
+
+    #[test]
+    fn flicker_counts_unexplained_airborne_frames_on_ground() {
+        let s = spec(Vec2::new(2.5, 1.0), vec![], 0.5);
+        let pts = [
+            (2.5, 1.0, true),
+            (2.5, 1.0, true),
+            (2.5, 1.005, false),
+            (2.5, 1.0, true),
+            (2.5, 1.005, false),
+            (2.5, 1.0, true),
+        ];
+        assert_eq!(
+            value(&measure(&s, &trace(&pts)), "grounded_flicker"),
+            Some(2.0)
+        );
+    }
+
+    #[test]
+    fn progress_ratio_and_landing_on_a_stuck_or_late_controller() {
+        let walk = spec(
+            Vec2::new(1.5, 1.0),
+            vec![InputEvent {
+                t: 0.0,
+                right: Some(true),
+                ..Default::default()
+            }],
+            0.5,
+        );
+        // Commanded: 0.1 s steps at accel 60 reach 6 t/s in one step: 5 x 0.6 = 3 tiles.
+        let stuck = trace(&[(1.5, 1.0, true); 6]);
+        assert_eq!(value(&measure(&walk, &stuck), "progress_ratio"), Some(0.0));
+        let drop = spec(Vec2::new(2.5, 1.5), vec![], 2.0);
+        // From 0.5 tiles at g dt² = 0.3: 0.3 * n(n+1)/2 >= 0.5 at n = 2; landing at frame 4.
+        let mut pts = vec![(2.5, 1.5, false); 4];
+        pts.extend(vec![(2.5, 1.0, true); 17]);
+        assert_eq!(
+            value(&measure(&drop, &trace(&pts)), "land_frame_error"),
+            Some(2.0)
+        );
+    }
+}

@@ -1,0 +1,82 @@
+//! Analytic references for the metrics: what the shared motion model predicts with no
+//! collision error, computed in f64.
+
+use crate::motion::{Input, MotionParams};
+
+/// The first step count `n >= 1` after which a body dropped from `height` above the ground
+/// with initial vertical speed `vy0` has reached the ground under symplectic Euler:
+/// `vy0 n dt - g dt² n(n+1)/2 <= -height`. `None` if it never does.
+pub fn predicted_landing_frame(height: f64, vy0: f64, g: f64, dt: f64) -> Option<usize> {
+    if g <= 0.0 || dt <= 0.0 || !height.is_finite() {
+        return None;
+    }
+    // Solve the quadratic for the real root, then correct for rounding.
+    let a = g * dt * dt / 2.0;
+    let b = a - vy0 * dt;
+    let n_real = (-b + (b * b + 4.0 * a * height).sqrt()) / (2.0 * a);
+    let mut n = n_real.floor().max(1.0) as usize;
+    let drop = |n: usize| -(vy0 * dt * n as f64) + a * (n * (n + 1)) as f64;
+    while n > 1 && drop(n - 1) >= height {
+        n -= 1;
+    }
+    while drop(n) < height {
+        n += 1;
+        if n > 100_000_000 {
+            return None;
+        }
+    }
+    Some(n)
+}
+
+/// Horizontal distance the shared motion model commands over the script, on flat ground with no
+/// obstacle: the run acceleration while a direction is held, the ground friction otherwise.
+pub fn commanded_distance(p: &MotionParams, script: &[Input], vx0: f32, dt: f32) -> f64 {
+    let (mut vx, dt) = (vx0 as f64, dt as f64);
+    let mut d = 0.0;
+    for i in script {
+        let dir = i.horizontal() as f64;
+        if dir != 0.0 {
+            let target = dir * p.run_speed as f64;
+            let step = p.run_accel as f64 * dt;
+            vx = if vx < target {
+                (vx + step).min(target)
+            } else {
+                (vx - step).max(target)
+            };
+        }
+        d += vx * dt;
+        if dir == 0.0 {
+            vx *= p.ground_friction as f64;
+        }
+    }
+    d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn landing_frame_for_a_drop() {
+        // g dt² = 30/3600; n(n+1)/2 * 30/3600 >= 0.1 first holds at n = 5 (15 * 0.00833 = 0.125).
+        assert_eq!(predicted_landing_frame(0.1, 0.0, 30.0, 1.0 / 60.0), Some(5));
+        // Exactly on a boundary: 1 step of a 1-unit/step² fall reaches 1.0.
+        assert_eq!(predicted_landing_frame(1.0, 0.0, 2.0, 1.0), Some(1));
+        assert_eq!(predicted_landing_frame(1.0, 0.0, 0.0, 1.0), None);
+    }
+
+    #[test]
+    fn commanded_walk() {
+        let p = MotionParams::default();
+        let right = Input {
+            right: true,
+            ..Default::default()
+        };
+        let script = vec![right; 600];
+        let d = commanded_distance(&p, &script, 0.0, 1.0 / 60.0);
+        // 10 s at 6 tiles/s, minus the ramp-up: accel 60 t/s² reaches 6 t/s in 0.1 s (6
+        // frames), losing sum_{k=1..6} (6 - k) / 60 = 15/60 = 0.25 tiles against full speed.
+        // Tolerance: dt is the f32 nearest 1/60, 6.6e-10 s too long, over 3,585 tile-frames.
+        assert!((d - (60.0 - 0.25)).abs() < 1e-5, "{d}");
+    }
+}

@@ -1,0 +1,214 @@
+//! Terminal tables over metric rows: a per-metric summary (the worst scenario of each
+//! configuration, side by side, with the better one named) and a per-scenario detail table.
+//! Tables are Markdown-style ASCII so they read the same in a terminal, a CI log and a PR.
+
+use comfy_table::{presets, CellAlignment, Table};
+
+use crate::metrics::MetricRow;
+
+/// Formats a metric value compactly: integers as integers, small magnitudes in scientific form.
+pub fn format_value(v: f64) -> String {
+    if v.is_nan() {
+        "NaN".into()
+    } else if v.is_infinite() {
+        if v > 0.0 { "inf" } else { "-inf" }.into()
+    } else if v == 0.0 {
+        "0".into()
+    } else if v.fract() == 0.0 && v.abs() < 1e9 {
+        format!("{v:.0}")
+    } else if v.abs() >= 1e-3 && v.abs() < 1e5 {
+        format!("{v:.4}")
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
+/// A configuration as a column label: `backend/config`.
+fn column(r: &MetricRow) -> String {
+    format!("{}/{}", r.backend, r.config)
+}
+
+/// How far a row is from ideal (larger is worse).
+fn badness(r: &MetricRow) -> f64 {
+    let e = r.error.abs();
+    if e.is_nan() {
+        f64::INFINITY
+    } else {
+        e
+    }
+}
+
+fn new_table(header: Vec<String>) -> Table {
+    let mut t = Table::new();
+    t.load_style(presets::ASCII_MARKDOWN);
+    t.set_header(header);
+    t
+}
+
+/// The summary: one row per metric; for each configuration the worst value over all scenarios
+/// and where it occurred; the configuration whose worst case is closest to ideal.
+pub fn summary_table(rows: &[MetricRow]) -> String {
+    let mut columns: Vec<String> = Vec::new();
+    let mut metrics: Vec<(&'static str, &'static str)> = Vec::new();
+    for r in rows {
+        let c = column(r);
+        if !columns.contains(&c) {
+            columns.push(c);
+        }
+        if !metrics.iter().any(|(m, _)| *m == r.metric) {
+            metrics.push((r.metric, r.unit));
+        }
+    }
+    let order = |m: &str| {
+        crate::metrics::CATALOG
+            .iter()
+            .position(|c| *c == m)
+            .unwrap_or(usize::MAX)
+    };
+    metrics.sort_by_key(|(m, _)| order(m));
+    let mut header = vec![
+        "metric".to_string(),
+        "unit".to_string(),
+        "ideal".to_string(),
+    ];
+    header.extend(columns.iter().map(|c| format!("{c} (worst)")));
+    header.push("better".into());
+    let mut table = new_table(header);
+    for (metric, unit) in &metrics {
+        let mut cells = vec![metric.to_string(), unit.to_string()];
+        let mut ideal = String::new();
+        let mut worst_per_col: Vec<Option<f64>> = Vec::new();
+        for c in &columns {
+            let of_col = || {
+                rows.iter()
+                    .filter(|r| r.metric == *metric && column(r) == *c)
+            };
+            let worst = of_col().max_by(|a, b| badness(a).total_cmp(&badness(b)));
+            match worst {
+                Some(w) => {
+                    ideal = format_value(w.reference);
+                    let count = of_col().count();
+                    let same = of_col().filter(|r| badness(r) == badness(w)).count();
+                    let place = if same == count && count > 1 {
+                        format!("all {count}")
+                    } else {
+                        format!("{}.{}", w.level, w.scenario)
+                    };
+                    cells.push(format!("{} ({place})", format_value(w.value)));
+                    worst_per_col.push(Some(badness(w)));
+                }
+                None => {
+                    cells.push("-".into());
+                    worst_per_col.push(None);
+                }
+            }
+        }
+        cells.insert(2, ideal);
+        cells.push(better(&columns, &worst_per_col));
+        table.add_row(cells);
+    }
+    for i in 3..3 + columns.len() {
+        if let Some(c) = table.column_mut(i) {
+            c.set_cell_alignment(CellAlignment::Right);
+        }
+    }
+    table.to_string()
+}
+
+/// Names the column with the smallest badness, `=` on a tie between all, `-` if only one.
+fn better(columns: &[String], bad: &[Option<f64>]) -> String {
+    let present: Vec<(usize, f64)> = bad
+        .iter()
+        .enumerate()
+        .filter_map(|(i, b)| b.map(|b| (i, b)))
+        .collect();
+    if present.len() < 2 {
+        return "-".into();
+    }
+    let best = present.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    let winners: Vec<&str> = present
+        .iter()
+        .filter(|p| p.1 == best)
+        .map(|p| columns[p.0].as_str())
+        .collect();
+    if winners.len() == present.len() {
+        "=".into()
+    } else {
+        winners.join(", ")
+    }
+}
+
+/// Every metric of every scenario, configurations side by side.
+pub fn detail_table(rows: &[MetricRow]) -> String {
+    let mut columns: Vec<String> = Vec::new();
+    let mut keys: Vec<(String, String, &'static str)> = Vec::new();
+    for r in rows {
+        let c = column(r);
+        if !columns.contains(&c) {
+            columns.push(c);
+        }
+        let k = (r.level.clone(), r.scenario.clone(), r.metric);
+        if !keys.contains(&k) {
+            keys.push(k);
+        }
+    }
+    let mut header = vec!["scenario".to_string(), "metric".to_string()];
+    header.extend(columns.iter().cloned());
+    let mut table = new_table(header);
+    for (level, scenario, metric) in &keys {
+        let mut cells = vec![format!("{level}.{scenario}"), metric.to_string()];
+        for c in &columns {
+            let v = rows.iter().find(|r| {
+                r.level == *level
+                    && r.scenario == *scenario
+                    && r.metric == *metric
+                    && column(r) == *c
+            });
+            cells.push(v.map_or("-".into(), |r| format_value(r.value)));
+        }
+        table.add_row(cells);
+    }
+    table.to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(config: &str, scenario: &str, value: f64) -> MetricRow {
+        MetricRow {
+            level: "l".into(),
+            scenario: scenario.into(),
+            backend: "sweep".into(),
+            config: config.into(),
+            metric: "apex_error",
+            value,
+            unit: "tiles",
+            reference: 0.0,
+            error: value,
+        }
+    }
+
+    #[test]
+    fn summary_picks_worst_and_better() {
+        let rows = vec![
+            row("a", "s1", 1e-6),
+            row("a", "s2", -2e-6),
+            row("b", "s1", -0.1),
+            row("b", "s2", 0.01),
+        ];
+        let t = summary_table(&rows);
+        assert!(t.contains("-2.00e-6 (l.s2)"), "{t}");
+        assert!(t.contains("-0.1000 (l.s1)"), "{t}");
+        assert!(t.trim_end().ends_with("| sweep/a |"), "{t}");
+    }
+
+    #[test]
+    fn values_format_compactly() {
+        assert_eq!(format_value(0.0), "0");
+        assert_eq!(format_value(3.0), "3");
+        assert_eq!(format_value(0.25), "0.2500");
+        assert_eq!(format_value(1.5e-7), "1.50e-7");
+        assert_eq!(format_value(f64::INFINITY), "inf");
+    }
+}

@@ -1,0 +1,59 @@
+//! Broadphase of the sweep controller: the level's static solid tiles in a parry2d [`Bvh`].
+//!
+//! A step asks for the tiles that touch the box swept along one axis; the narrow test is the
+//! seed's AABB-vs-AABB, done by the resolve stage on the boxes returned here.
+
+use parry2d::bounding_volume::Aabb;
+use parry2d::partitioning::{Bvh, BvhBuildStrategy};
+
+use crate::level::Level;
+
+/// Static solid boxes and a BVH over them.
+pub struct StaticTiles {
+    boxes: Vec<Aabb>,
+    bvh: Bvh,
+}
+
+impl StaticTiles {
+    /// Collects the level's solid tiles (one box per tile) and builds the BVH.
+    pub fn new(level: &Level) -> Self {
+        let boxes: Vec<Aabb> = level.solid_boxes().collect();
+        let bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes);
+        StaticTiles { boxes, bvh }
+    }
+
+    /// Boxes whose AABB intersects `area` (inclusive of touching; the caller filters).
+    pub fn query<'a>(&'a self, area: &'a Aabb) -> impl Iterator<Item = &'a Aabb> + 'a {
+        self.bvh
+            .intersect_aabb(area)
+            .map(move |leaf| &self.boxes[leaf as usize])
+    }
+
+    /// Number of solid boxes.
+    pub fn len(&self) -> usize {
+        self.boxes.len()
+    }
+
+    /// Whether the level has no solid tile.
+    pub fn is_empty(&self) -> bool {
+        self.boxes.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::level::Tile;
+    use glam::Vec2;
+
+    #[test]
+    fn query_returns_only_nearby_tiles() {
+        let level = Level::from_tiles("row", 100, 1, vec![Tile::Solid; 100]);
+        let tiles = StaticTiles::new(&level);
+        assert_eq!(tiles.len(), 100);
+        let area = Aabb::new(Vec2::new(10.2, 0.5), Vec2::new(11.8, 2.0));
+        let mut found: Vec<f32> = tiles.query(&area).map(|b| b.mins.x).collect();
+        found.sort_by(f32::total_cmp);
+        assert_eq!(found, vec![10.0, 11.0]);
+    }
+}

@@ -1,0 +1,187 @@
+//! Collision resolution, the seed's "collision avoidance": move along one axis, find the
+//! closest obstacle the move would reach, snap the box flush against it, and report the hit.
+//!
+//! The seed moves x first, then y. Each axis move sweeps the box over the whole displacement,
+//! so a fast mover cannot tunnel through a thin wall whatever its speed.
+//!
+//! Snapping flush involves a subtraction, and in floating point the result can still overlap
+//! the obstacle by a rounding error. The seed's fix is an overlap tolerance: an overlap smaller
+//! than `epsilon` is not a collision. Here that tolerance appears twice: a box counts as beside
+//! the mover only if the two overlap by more than `epsilon` across the move, and a box that the
+//! mover already overlaps by less than `epsilon` along the move still counts as ahead of it (so
+//! the next snap puts it back flush rather than letting it sink further). Symmetrically, a move
+//! that ends less than `epsilon` short of an obstacle counts as reaching it and snaps flush, so
+//! a fall that arrives on the floor exactly (within rounding) is a landing on that frame.
+
+use glam::Vec2;
+use parry2d::bounding_volume::Aabb;
+
+use super::broadphase::StaticTiles;
+
+/// The axis of a move.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    /// Horizontal.
+    X,
+    /// Vertical.
+    Y,
+}
+
+impl Axis {
+    fn index(self) -> usize {
+        match self {
+            Axis::X => 0,
+            Axis::Y => 1,
+        }
+    }
+}
+
+/// Moves the box whose feet are at `pos` by `delta` along `axis`, stopping flush at the
+/// closest obstacle. Returns `true` if an obstacle stopped the move.
+pub fn move_axis(
+    tiles: &StaticTiles,
+    pos: &mut Vec2,
+    size: Vec2,
+    axis: Axis,
+    delta: f32,
+    epsilon: f32,
+) -> bool {
+    if delta == 0.0 {
+        return false;
+    }
+    let a = axis.index();
+    let o = 1 - a;
+    let b = crate::level::character_box(*pos, size);
+    let (lo, hi) = (b.mins[a], b.maxs[a]);
+    // The box swept over the whole move (and epsilon beyond it), shrunk by epsilon across it:
+    // boxes that only touch (or overlap by less than epsilon) on the other axis are not
+    // obstacles.
+    let mut swept = b;
+    if delta > 0.0 {
+        swept.maxs[a] = hi + delta + epsilon;
+    } else {
+        swept.mins[a] = lo + delta - epsilon;
+    }
+    swept.mins[o] += epsilon;
+    swept.maxs[o] -= epsilon;
+
+    let mut closest: Option<f32> = None;
+    for t in tiles.query(&swept) {
+        if !overlaps_across(&b, t, o, epsilon) {
+            continue;
+        }
+        if delta > 0.0 {
+            let face = t.mins[a];
+            // Ahead of the mover (allowing an overlap below epsilon) and within reach.
+            if face >= hi - epsilon
+                && face <= hi + delta + epsilon
+                && closest.is_none_or(|c| face < c)
+            {
+                closest = Some(face);
+            }
+        } else {
+            let face = t.maxs[a];
+            if face <= lo + epsilon
+                && face >= lo + delta - epsilon
+                && closest.is_none_or(|c| face > c)
+            {
+                closest = Some(face);
+            }
+        }
+    }
+    match closest {
+        None => {
+            pos[a] += delta;
+            false
+        }
+        Some(face) => {
+            // Snap flush: the box's leading side goes onto the face.
+            pos[a] = if delta > 0.0 {
+                face - (hi - pos[a])
+            } else {
+                face + (pos[a] - lo)
+            };
+            true
+        }
+    }
+}
+
+/// Whether `b` and `t` overlap by more than `epsilon` on axis `o`.
+fn overlaps_across(b: &Aabb, t: &Aabb, o: usize, epsilon: f32) -> bool {
+    b.maxs[o].min(t.maxs[o]) - b.mins[o].max(t.mins[o]) > epsilon
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::level::{Level, Tile};
+
+    /// A floor row at j = 0 and a wall column at i = 10 (rows 1..4), 20 x 5 tiles.
+    fn room() -> StaticTiles {
+        let (w, h) = (20u32, 5u32);
+        let mut t = vec![Tile::Empty; (w * h) as usize];
+        for i in 0..w {
+            t[i as usize] = Tile::Solid;
+        }
+        for j in 1..h {
+            t[(j * w + 10) as usize] = Tile::Solid;
+        }
+        StaticTiles::new(&Level::from_tiles("room", w, h, t))
+    }
+
+    const SIZE: Vec2 = Vec2::new(0.8, 0.9);
+    const EPS: f32 = 0.001;
+
+    #[test]
+    fn falls_and_snaps_flush_onto_the_floor() {
+        let tiles = room();
+        let mut p = Vec2::new(2.5, 3.0);
+        assert!(move_axis(&tiles, &mut p, SIZE, Axis::Y, -5.0, EPS));
+        assert_eq!(p.y, 1.0);
+    }
+
+    #[test]
+    fn walks_over_seams_without_snagging() {
+        let tiles = room();
+        let mut p = Vec2::new(2.5, 1.0);
+        for _ in 0..60 {
+            assert!(!move_axis(&tiles, &mut p, SIZE, Axis::X, 0.1, EPS));
+        }
+        assert!((p.x - 8.5).abs() < 1e-4);
+    }
+
+    #[test]
+    fn stops_flush_at_a_wall_even_at_huge_speed() {
+        let tiles = room();
+        let mut p = Vec2::new(2.5, 1.0);
+        assert!(move_axis(&tiles, &mut p, SIZE, Axis::X, 1000.0, EPS));
+        assert!((p.x + SIZE.x / 2.0 - 10.0).abs() < 1e-5, "{p}");
+        // Flush now: a further push is still stopped and does not sink in.
+        assert!(move_axis(&tiles, &mut p, SIZE, Axis::X, 0.5, EPS));
+        assert!(p.x + SIZE.x / 2.0 <= 10.0 + EPS);
+    }
+
+    #[test]
+    fn ending_within_epsilon_of_the_floor_is_a_landing() {
+        let tiles = room();
+        let mut p = Vec2::new(2.5, 1.5);
+        // Stops 0.0005 short of the floor: a contact, snapped flush.
+        assert!(move_axis(&tiles, &mut p, SIZE, Axis::Y, -0.4995, EPS));
+        assert_eq!(p.y, 1.0);
+        // Stops 0.01 short: no contact.
+        let mut q = Vec2::new(2.5, 1.5);
+        assert!(!move_axis(&tiles, &mut q, SIZE, Axis::Y, -0.49, EPS));
+        assert!((q.y - 1.01).abs() < 1e-6);
+    }
+
+    #[test]
+    fn overlap_below_epsilon_is_not_a_side_collision() {
+        let tiles = room();
+        // Feet 0.0005 inside the floor: less than epsilon, so the floor does not block x.
+        let mut p = Vec2::new(2.5, 1.0 - 0.0005);
+        assert!(!move_axis(&tiles, &mut p, SIZE, Axis::X, 1.0, EPS));
+        // 0.01 inside: a real overlap, so the floor tile ahead blocks.
+        let mut q = Vec2::new(2.5, 1.0 - 0.01);
+        assert!(move_axis(&tiles, &mut q, SIZE, Axis::X, 1.0, EPS));
+    }
+}

@@ -1,0 +1,93 @@
+//! The `platbench` command as a user runs it.
+
+use std::process::Command;
+
+fn platbench() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_platbench"))
+}
+
+#[test]
+fn no_arguments_prints_the_summary() {
+    let out = platbench().output().unwrap();
+    assert!(out.status.success());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    for m in [
+        "land_frame_error",
+        "rest_gap",
+        "apex_error",
+        "progress_ratio",
+        "tunneled",
+    ] {
+        assert!(stdout.contains(m), "summary lacks {m}:\n{stdout}");
+    }
+}
+
+#[test]
+fn run_writes_traces_and_metrics() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("out");
+    let out = platbench()
+        .args(["run", "--out"])
+        .arg(&out_dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
+    assert!(
+        metrics.starts_with("level,scenario,backend,config,metric,value,unit,reference,error\n")
+    );
+    let trace = out_dir.join("traces/flat_seams.walk_right_10s.sweep.csv");
+    let text = std::fs::read_to_string(&trace).unwrap();
+    // 10 s at 1/60 s: the spawn row, 600 step rows, and the header.
+    assert_eq!(text.lines().count(), 602);
+    // Running again into the same directory replaces it whole: no stale files survive.
+    std::fs::write(out_dir.join("traces/stale.csv"), "x").unwrap();
+    let again = platbench()
+        .args(["run", "--out"])
+        .arg(&out_dir)
+        .output()
+        .unwrap();
+    assert!(again.status.success());
+    assert!(!out_dir.join("traces/stale.csv").exists());
+}
+
+#[test]
+fn bad_level_file_is_an_error_with_position_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.toml");
+    std::fs::write(&path, "name = \"bad\"\nmap = \"\"\"\n..\n#x\n\"\"\"\n").unwrap();
+    let out = platbench().arg("run").arg(&path).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.toml:4:2: unknown map character 'x'"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn missing_file_and_bad_flags_are_errors() {
+    let out = platbench()
+        .args(["run", "/nonexistent/level.toml"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot read level file"));
+    let out = platbench().args(["run", "--dt", "-1"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--dt"));
+}
+
+#[test]
+fn levels_lists_the_builtins() {
+    let out = platbench().arg("levels").output().unwrap();
+    let s = String::from_utf8_lossy(&out.stdout);
+    for l in ["flat_seams", "drops", "jumps", "corridor", "thin_wall"] {
+        assert!(s.contains(l), "{s}");
+    }
+}

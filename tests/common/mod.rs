@@ -1,0 +1,46 @@
+//! Shared helpers for the integration tests: the built-in levels and runs over them.
+#![allow(dead_code)]
+
+#[path = "../../compare/builtin.rs"]
+mod builtin;
+
+use platbench::level::{parse_level, Level};
+use platbench::metrics::{evaluate, Evaluation, MetricRow};
+use platbench::scenario::RunConfig;
+
+/// Every built-in level, parsed.
+pub fn builtin_levels() -> Vec<Level> {
+    builtin::LEVELS
+        .iter()
+        .map(|(f, t)| parse_level(t, f).expect("built-in level parses"))
+        .collect()
+}
+
+/// One built-in level by name.
+pub fn level(name: &str) -> Level {
+    builtin_levels()
+        .into_iter()
+        .find(|l| l.name == name)
+        .unwrap_or_else(|| panic!("no built-in level {name}"))
+}
+
+/// Runs every scenario of `levels` on `run`.
+pub fn evaluate_all(levels: &[Level], run: &RunConfig) -> Vec<(String, Evaluation)> {
+    let mut out = Vec::new();
+    for l in levels {
+        for s in &l.scenarios {
+            let e = evaluate(l, s, run).expect("scenario runs");
+            out.push((format!("{}.{}", l.name, s.name), e));
+        }
+    }
+    out
+}
+
+/// All rows of metric `m`.
+pub fn rows<'a>(evals: &'a [(String, Evaluation)], m: &str) -> Vec<&'a MetricRow> {
+    evals
+        .iter()
+        .flat_map(|(_, e)| e.metrics.iter())
+        .filter(|r| r.metric == m)
+        .collect()
+}
