@@ -13,7 +13,7 @@ use clap::{Args, Parser, Subcommand};
 
 use platbench::level::{parse_level, Level};
 use platbench::metrics::{evaluate, MetricRow};
-use platbench::report::{detail_table, summary_table};
+use platbench::report::{detail_table, notes, summary_table};
 use platbench::scenario::{BackendConfig, RunConfig};
 use platbench::trace::Trace;
 
@@ -121,8 +121,9 @@ fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
             bail!("--epsilon {eps}: expected a finite number >= 0 (tiles)");
         }
         for c in &mut set {
-            let BackendConfig::Sweep(s) = &mut c.backend;
-            s.epsilon = eps;
+            if let BackendConfig::Sweep(s) = &mut c.backend {
+                s.epsilon = eps;
+            }
         }
     }
     Ok(set)
@@ -175,6 +176,9 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
     }
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
     println!("{}", summary_table(&metrics));
+    for n in notes(&metrics) {
+        println!("- {n}");
+    }
     if args.detail {
         println!();
         println!("{}", detail_table(&metrics));

@@ -2,7 +2,7 @@
 //!
 //! The pieces, in dependency order: [`level`] (the tile model and its text format) ←
 //! [`motion`] and [`backend`] (shared game rules and the controller interface) ← the
-//! controllers ([`sweep`]) ← [`scenario`] (the runner) and [`trace`] ← [`metrics`] ←
+//! controllers ([`sweep`], [`rapier`]) ← [`scenario`] (the runner) and [`trace`] ← [`metrics`] ←
 //! [`report`]. The `platbench` binary only wires these together.
 
 #![warn(missing_docs)]
@@ -11,6 +11,7 @@ pub mod backend;
 pub mod level;
 pub mod metrics;
 pub mod motion;
+pub mod rapier;
 pub mod report;
 pub mod scenario;
 pub mod sweep;

@@ -55,6 +55,9 @@ pub struct MotionParams {
     /// multiplied by this factor (dimensionless, 0..=1) on each frame with such a contact.
     /// 1 means no wall drag.
     pub wall_friction: f32,
+    /// Steepest ground the character can walk up, in radians from horizontal. Rapier's
+    /// climb and slide angles are set from it; the sweep uses it once levels have slopes.
+    pub max_climb_angle: f32,
 }
 
 impl Default for MotionParams {
@@ -67,6 +70,7 @@ impl Default for MotionParams {
             jump_mode: JumpMode::ExactDiscrete,
             ground_friction: 0.5,
             wall_friction: 1.0,
+            max_climb_angle: std::f32::consts::FRAC_PI_4,
         }
     }
 }
@@ -154,10 +158,14 @@ impl MotionState {
     }
 
     /// Applies what the backend's move ran into: a blocked axis loses its velocity and the
-    /// other axis gets the seed's friction constant.
+    /// other axis gets the seed's friction constant. As with friction, held input keeps
+    /// driving the feet: a wall stops a character that coasts into it, while one that is
+    /// steered into it keeps its run speed (and is blocked again next frame).
     pub fn apply_contacts(&mut self, p: &MotionParams, input: &Input, c: Contacts) {
         if c.wall {
-            self.vel.x = 0.0;
+            if input.horizontal() * self.vel.x <= 0.0 {
+                self.vel.x = 0.0;
+            }
             self.vel.y *= p.wall_friction;
         }
         if c.ground || c.ceiling {
@@ -306,6 +314,28 @@ mod tests {
         };
         held.integrate(&p, &jump, 1.0 / 60.0);
         assert!(held.vel.y < 0.0, "holding jump does not re-fire");
+    }
+
+    #[test]
+    fn a_wall_stops_a_coasting_character_but_not_a_steered_one() {
+        let p = MotionParams::default();
+        let wall = Contacts {
+            wall: true,
+            ..Default::default()
+        };
+        let mut coasting = MotionState::with_velocity(Vec2::new(-1000.0, 0.0));
+        coasting.apply_contacts(&p, &Input::default(), wall);
+        assert_eq!(coasting.vel.x, 0.0);
+        let left = Input {
+            left: true,
+            ..Default::default()
+        };
+        let mut steered = MotionState::with_velocity(Vec2::new(-6.0, 0.0));
+        steered.apply_contacts(&p, &left, wall);
+        assert_eq!(steered.vel.x, -6.0);
+        let mut reversing = MotionState::with_velocity(Vec2::new(6.0, 0.0));
+        reversing.apply_contacts(&p, &left, wall);
+        assert_eq!(reversing.vel.x, 0.0);
     }
 
     #[test]

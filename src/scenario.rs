@@ -4,6 +4,7 @@
 use crate::backend::{Backend, BackendError, CharacterSpec};
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::{Input, JumpMode, MotionParams};
+use crate::rapier::{ColliderBuilding, RapierBackend, RapierConfig};
 use crate::sweep::{SweepBackend, SweepConfig};
 use crate::trace::{Trace, TraceRow};
 
@@ -12,6 +13,8 @@ use crate::trace::{Trace, TraceRow};
 pub enum BackendConfig {
     /// The sweep-and-snap controller.
     Sweep(SweepConfig),
+    /// rapier2d's kinematic character controller.
+    Rapier(RapierConfig),
 }
 
 impl BackendConfig {
@@ -19,6 +22,7 @@ impl BackendConfig {
     pub fn name(&self) -> &'static str {
         match self {
             BackendConfig::Sweep(_) => "sweep",
+            BackendConfig::Rapier(_) => "rapier",
         }
     }
 
@@ -30,6 +34,11 @@ impl BackendConfig {
     ) -> Result<Box<dyn Backend>, BackendError> {
         match self {
             BackendConfig::Sweep(c) => Ok(Box::new(SweepBackend::new(
+                level,
+                params.clone(),
+                c.clone(),
+            )?)),
+            BackendConfig::Rapier(c) => Ok(Box::new(RapierBackend::new(
                 level,
                 params.clone(),
                 c.clone(),
@@ -59,8 +68,22 @@ impl RunConfig {
         }
     }
 
-    /// The built-in comparison set: the default sweep, and the sweep with the seed's
-    /// continuous jump formula, so that the two jump modes' apex errors stand side by side.
+    /// Rapier with its default settings and the given collider building.
+    pub fn rapier(colliders: ColliderBuilding) -> Self {
+        let config = RapierConfig {
+            colliders,
+            ..Default::default()
+        };
+        RunConfig {
+            label: config.label(),
+            backend: BackendConfig::Rapier(config),
+            params: MotionParams::default(),
+        }
+    }
+
+    /// The built-in comparison set: the default sweep; the sweep with the seed's continuous
+    /// jump formula, so the two jump modes' apex errors stand side by side; and Rapier with
+    /// one collider per tile and with merged colliders.
     pub fn builtin_set() -> Vec<RunConfig> {
         let continuous = RunConfig {
             label: "jump=continuous".into(),
@@ -70,7 +93,12 @@ impl RunConfig {
             },
             ..Self::sweep_default()
         };
-        vec![Self::sweep_default(), continuous]
+        vec![
+            Self::sweep_default(),
+            continuous,
+            Self::rapier(ColliderBuilding::PerTile),
+            Self::rapier(ColliderBuilding::Merged),
+        ]
     }
 }
 

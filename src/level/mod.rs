@@ -54,6 +54,14 @@ pub struct Features {
 }
 
 impl Features {
+    /// A level of solid tiles only.
+    pub const NONE: Features = Features {
+        slopes: false,
+        one_way: false,
+        ladders: false,
+        moving_platforms: false,
+    };
+
     /// Names of the features that are set, for messages.
     pub fn names(&self) -> Vec<&'static str> {
         let mut v = Vec::new();
@@ -200,6 +208,43 @@ impl Level {
             .map(move |(k, _)| Self::tile_box((k % w) as i64, (k / w) as i64))
     }
 
+    /// Solid tiles merged into rectangles: each row's runs of solid tiles, grown upward while
+    /// the rows above hold the same run. Every solid tile is in exactly one rectangle.
+    pub fn merged_solid_rects(&self) -> Vec<Aabb> {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let solid = |i: usize, j: usize| self.tiles[j * w + i] == Tile::Solid;
+        let mut used = vec![false; w * h];
+        let mut out = Vec::new();
+        for j in 0..h {
+            let mut i = 0;
+            while i < w {
+                if !solid(i, j) || used[j * w + i] {
+                    i += 1;
+                    continue;
+                }
+                let mut i1 = i + 1;
+                while i1 < w && solid(i1, j) && !used[j * w + i1] {
+                    i1 += 1;
+                }
+                let mut j1 = j + 1;
+                while j1 < h && (i..i1).all(|k| solid(k, j1) && !used[j1 * w + k]) {
+                    j1 += 1;
+                }
+                for jj in j..j1 {
+                    for k in i..i1 {
+                        used[jj * w + k] = true;
+                    }
+                }
+                out.push(Aabb::new(
+                    Vec2::new(i as f32, j as f32),
+                    Vec2::new(i1 as f32, j1 as f32),
+                ));
+                i = i1;
+            }
+        }
+        out
+    }
+
     /// Solid tiles whose boxes overlap `area` with positive area (touching does not count).
     pub fn solids_overlapping(&self, area: &Aabb) -> impl Iterator<Item = Aabb> + '_ {
         let i0 = area.mins.x.floor() as i64;
@@ -282,6 +327,19 @@ mod tests {
         assert_eq!(l.support_below(2.5, 3.5, 2.0, 0.0), Some(2.0));
         assert_eq!(l.support_below(2.5, 3.5, 1.5, 0.0), Some(1.0));
         assert_eq!(l.support_below(5.0, 6.0, 1.0, 0.0), None);
+    }
+
+    #[test]
+    fn merged_rects_cover_every_solid_tile_once() {
+        let l = small();
+        let rects = l.merged_solid_rects();
+        // The floor row is one run; the single tile above it at i = 3 is its own rectangle.
+        assert_eq!(rects.len(), 2, "{rects:?}");
+        let area: f32 = rects.iter().map(|r| r.extents().x * r.extents().y).sum();
+        assert_eq!(area, l.solid_boxes().count() as f32);
+        // A solid 3 x 2 block becomes one rectangle.
+        let block = Level::from_tiles("b", 3, 2, vec![Tile::Solid; 6]);
+        assert_eq!(block.merged_solid_rects().len(), 1);
     }
 
     #[test]

@@ -40,6 +40,10 @@ pub const CATALOG: &[&str] = &[
     "tunneled",
 ];
 
+/// How far above a floor a walker may spawn for `progress_ratio` to apply, in tiles: enough
+/// to let a controller settle at its own rest height, too little to matter to the distance.
+pub const PROGRESS_SPAWN_HEIGHT: f32 = 0.05;
+
 /// One row of `metrics.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct MetricRow {
@@ -332,12 +336,14 @@ pub fn progress_ratio(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     if d.abs() < 1e-6 {
         return None;
     }
-    // The path: the character's box swept over the commanded distance.
+    // The path: the character's box swept over the commanded distance, from the floor it
+    // starts on (spawned on it, or up to PROGRESS_SPAWN_HEIGHT above it).
     let half = spec.size.x * 0.5;
-    let (x0, y0) = (spec.spawn.x as f64, spec.spawn.y);
+    let x0 = spec.spawn.x as f64;
+    let y0 = spec.spawn.y.floor();
     let lo = (x0 - half as f64 + d.min(0.0)) as f32;
     let hi = (x0 + half as f64 + d.max(0.0)) as f32;
-    if y0.fract() != 0.0 {
+    if spec.spawn.y - y0 > PROGRESS_SPAWN_HEIGHT {
         return None;
     }
     let path = Aabb::new(Vec2::new(lo, y0), Vec2::new(hi, y0 + spec.size.y));

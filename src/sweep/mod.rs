@@ -49,12 +49,7 @@ pub struct SweepBackend {
 
 impl SweepBackend {
     /// What this backend models today.
-    pub const SUPPORTED: Features = Features {
-        slopes: false,
-        one_way: false,
-        ladders: false,
-        moving_platforms: false,
-    };
+    pub const SUPPORTED: Features = Features::NONE;
 
     /// Builds the backend for `level`; refuses levels with features it does not model.
     pub fn new(

@@ -1,0 +1,306 @@
+//! The rapier2d backend: `KinematicCharacterController::move_shape` over the level's colliders,
+//! set up the way Rapier's docs and examples do it.
+//!
+//! Each frame, per character: the shared motion integrates the velocity (gravity accumulates
+//! while airborne), the desired translation `v * dt` goes to `move_shape` through the broad
+//! phase's `QueryPipeline`, the returned translation is added to the position, and the result is
+//! fed back as Rapier's examples do: when grounded the vertical velocity is reset. A ceiling hit
+//! that blocked a rising move also resets it (as any platformer must, or the character sticks
+//! under the ceiling until gravity wins). A wall that blocked the horizontal move goes through
+//! the same shared rule as the sweep's: it stops a coasting character, while held input keeps
+//! driving one steered into it. That rule matters for Rapier: its controller reports the
+//! internal edges of a per-tile floor as wall contacts, and a walker that lost its speed on each
+//! of them would pay our acceleration ramp on top of Rapier's snag. No rigid-body simulation
+//! runs: the level has only static colliders.
+
+pub mod colliders;
+pub mod shape;
+
+use glam::Vec2;
+use rapier2d::control::{CharacterAutostep, CharacterLength, KinematicCharacterController};
+use rapier2d::parry::query::DefaultQueryDispatcher;
+use rapier2d::prelude::{Pose, QueryFilter, SharedShape};
+
+use crate::backend::{
+    require_supported, Backend, BackendError, CharacterId, CharacterSpec, CharacterState,
+};
+use crate::level::{Features, Level};
+use crate::motion::{Contacts, Input, MotionParams, MotionState};
+pub use colliders::{ColliderBuilding, StaticWorld};
+pub use shape::CharacterShape;
+
+/// A length that is either absolute (tiles) or relative to the character's height, as Rapier's
+/// `CharacterLength`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Length {
+    /// In tiles.
+    Absolute(f32),
+    /// As a fraction of the character's height.
+    Relative(f32),
+}
+
+impl From<Length> for CharacterLength {
+    fn from(l: Length) -> Self {
+        match l {
+            Length::Absolute(v) => CharacterLength::Absolute(v),
+            Length::Relative(v) => CharacterLength::Relative(v),
+        }
+    }
+}
+
+/// Settings of the Rapier backend: every option of Rapier's `KinematicCharacterController`,
+/// with Rapier's own defaults, plus how the level and the character are built.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RapierConfig {
+    /// How solid tiles become colliders.
+    pub colliders: ColliderBuilding,
+    /// The character's collision shape, fitted to its box.
+    pub shape: CharacterShape,
+    /// Gap the controller keeps between the character and obstacles. Rapier's default, 1% of
+    /// the character's height; Rapier's docs advise a small non-zero value for numerical
+    /// stability, so `rest_gap` is about this value by design.
+    pub offset: Length,
+    /// Whether the character slides along what it hits (Rapier's default: on).
+    pub slide: bool,
+    /// Automatic stepping over small obstacles (Rapier's default: off, "computationally
+    /// expensive"): maximum step height and minimum free width on top.
+    pub autostep: Option<(Length, Length)>,
+    /// Steepest slope the character can climb, in radians; `None` takes
+    /// [`MotionParams::max_climb_angle`] (Rapier's default is 45 degrees, as is ours).
+    pub max_slope_climb_angle: Option<f32>,
+    /// Slope angle from which the character slides down, in radians; `None` takes
+    /// [`MotionParams::max_climb_angle`] (Rapier's default is 45 degrees).
+    pub min_slope_slide_angle: Option<f32>,
+    /// Snap to the ground when it is closer than this below the feet (Rapier's default: 20% of
+    /// the character's height); `None` disables snapping.
+    pub snap_to_ground: Option<Length>,
+    /// Nudge along contact normals that keeps shape casts from sticking while sliding, in
+    /// tiles (Rapier's default: 1e-4).
+    pub normal_nudge_factor: f32,
+    /// Where the level's corner (tile (0, 0)'s lower left) sits in Rapier's world, in tiles.
+    /// Rapier computes in world coordinates, and its results depend on them through f32
+    /// rounding; traces stay in level coordinates. Default: the origin.
+    pub world_origin: Vec2,
+}
+
+impl Default for RapierConfig {
+    fn default() -> Self {
+        let kcc = KinematicCharacterController::default();
+        RapierConfig {
+            colliders: ColliderBuilding::PerTile,
+            shape: CharacterShape::Cuboid,
+            offset: Length::Relative(0.01),
+            slide: kcc.slide,
+            autostep: None,
+            max_slope_climb_angle: None,
+            min_slope_slide_angle: None,
+            snap_to_ground: Some(Length::Relative(0.2)),
+            normal_nudge_factor: kcc.normal_nudge_factor,
+            world_origin: Vec2::ZERO,
+        }
+    }
+}
+
+impl RapierConfig {
+    /// The controller these settings describe, for motion parameters `p`.
+    pub fn controller(&self, p: &MotionParams) -> KinematicCharacterController {
+        KinematicCharacterController {
+            up: Vec2::Y,
+            offset: self.offset.into(),
+            slide: self.slide,
+            autostep: self.autostep.map(|(h, w)| CharacterAutostep {
+                max_height: h.into(),
+                min_width: w.into(),
+                include_dynamic_bodies: false,
+            }),
+            max_slope_climb_angle: self.max_slope_climb_angle.unwrap_or(p.max_climb_angle),
+            min_slope_slide_angle: self.min_slope_slide_angle.unwrap_or(p.max_climb_angle),
+            snap_to_ground: self.snap_to_ground.map(Into::into),
+            normal_nudge_factor: self.normal_nudge_factor,
+        }
+    }
+
+    /// Short label for tables and file names: the collider building, plus the shape when it
+    /// is not the default.
+    pub fn label(&self) -> String {
+        let mut s = self.colliders.label().to_string();
+        if self.shape != RapierConfig::default().shape {
+            s.push('/');
+            s.push_str(&self.shape.label());
+        }
+        s
+    }
+}
+
+/// What one call of the controller did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Move {
+    /// Translation applied, in tiles.
+    pub translation: Vec2,
+    /// Whether the controller reports the character grounded after the move.
+    pub grounded: bool,
+    /// The contacts seen in the controller's collision events.
+    pub contacts: Contacts,
+    /// Normal of the ground hit, if any.
+    pub ground_normal: Option<Vec2>,
+}
+
+struct Character {
+    /// Feet position (bottom centre), in Rapier's world coordinates.
+    pos: Vec2,
+    size: Vec2,
+    shape: SharedShape,
+    motion: MotionState,
+    ground_normal: Vec2,
+}
+
+/// The Rapier backend over one level.
+pub struct RapierBackend {
+    world: StaticWorld,
+    dispatcher: DefaultQueryDispatcher,
+    controller: KinematicCharacterController,
+    params: MotionParams,
+    config: RapierConfig,
+    characters: Vec<Character>,
+}
+
+impl RapierBackend {
+    /// What this backend models today.
+    pub const SUPPORTED: Features = Features::NONE;
+
+    /// Builds the colliders for `level`; refuses levels with features it does not model.
+    pub fn new(
+        level: &Level,
+        params: MotionParams,
+        config: RapierConfig,
+    ) -> Result<Self, BackendError> {
+        require_supported("rapier", &level.name, level.features, Self::SUPPORTED)?;
+        let controller = config.controller(&params);
+        Ok(RapierBackend {
+            world: StaticWorld::new(level, config.colliders, config.world_origin),
+            dispatcher: DefaultQueryDispatcher,
+            controller,
+            params,
+            config,
+            characters: Vec::new(),
+        })
+    }
+
+    /// The settings this backend runs with.
+    pub fn config(&self) -> &RapierConfig {
+        &self.config
+    }
+
+    /// Number of static colliders built for the level.
+    pub fn collider_count(&self) -> usize {
+        self.world.colliders.len()
+    }
+
+    /// Adds a static collider (in Rapier's world coordinates) beside the level's tiles and
+    /// updates the broad phase so queries see it: for scenes that tiles cannot express, such
+    /// as the rotated-cuboid slopes of Rapier's own tests.
+    pub fn insert_static_collider(&mut self, collider: rapier2d::prelude::Collider) {
+        self.world.insert(collider);
+    }
+
+    /// Moves character `id` by `desired` through the controller, bypassing the shared motion:
+    /// the raw `move_shape` call, for reproducing Rapier's own tests.
+    pub fn move_raw(&mut self, id: CharacterId, desired: Vec2, dt: f32) -> Move {
+        let m = self.move_shape(id, desired, dt);
+        self.characters[id].pos += m.translation;
+        m
+    }
+
+    fn move_shape(&self, id: CharacterId, desired: Vec2, dt: f32) -> Move {
+        let c = &self.characters[id];
+        let w = &self.world;
+        let queries = w.broad_phase.as_query_pipeline(
+            &self.dispatcher,
+            &w.bodies,
+            &w.colliders,
+            QueryFilter::default(),
+        );
+        let pose = Pose::from_translation(c.pos + Vec2::new(0.0, c.size.y * 0.5));
+        let mut contacts = Contacts::default();
+        let mut ground_normal: Option<Vec2> = None;
+        let mvt = self
+            .controller
+            .move_shape(dt, &queries, &*c.shape, &pose, desired, |hit| {
+                // The obstacle's surface normal, as Rapier's controller itself reads it
+                // (`is_ceiling = up.dot(normal1) < 0` in its source).
+                let n = hit.hit.normal1;
+                if n.y > 0.5 {
+                    ground_normal = Some(n);
+                } else if n.y < -0.5 {
+                    contacts.ceiling = true;
+                } else if n.x * desired.x < 0.0 {
+                    contacts.wall = true;
+                }
+            });
+        contacts.ground = mvt.grounded;
+        Move {
+            translation: mvt.translation,
+            grounded: mvt.grounded,
+            contacts,
+            ground_normal,
+        }
+    }
+
+    fn step_character(&mut self, id: CharacterId, input: &Input, dt: f32) {
+        let desired = self.characters[id]
+            .motion
+            .integrate(&self.params, input, dt);
+        let m = self.move_shape(id, desired, dt);
+        let c = &mut self.characters[id];
+        c.pos += m.translation;
+        let mut contacts = m.contacts;
+        // A rising character that the controller still calls grounded (the take-off frame)
+        // keeps its jump: only a downward or level move lands.
+        contacts.ground = m.grounded && desired.y <= 0.0;
+        // A wall or ceiling counts only if it blocked the move toward it.
+        contacts.wall &= m.translation.x.abs() < desired.x.abs() - 1e-6;
+        contacts.ceiling &= desired.y > 0.0 && m.translation.y < desired.y;
+        c.motion.apply_contacts(&self.params, input, contacts);
+        c.ground_normal = if contacts.ground {
+            m.ground_normal.unwrap_or(Vec2::Y)
+        } else {
+            Vec2::ZERO
+        };
+    }
+}
+
+impl Backend for RapierBackend {
+    fn name(&self) -> &'static str {
+        "rapier"
+    }
+
+    fn add_character(&mut self, spec: CharacterSpec) -> CharacterId {
+        self.characters.push(Character {
+            pos: spec.spawn + self.config.world_origin,
+            size: spec.size,
+            shape: self.config.shape.build(spec.size),
+            motion: MotionState::with_velocity(spec.velocity),
+            ground_normal: Vec2::ZERO,
+        });
+        self.characters.len() - 1
+    }
+
+    fn step(&mut self, inputs: &[Input], dt: f32) {
+        for id in 0..self.characters.len() {
+            let input = inputs.get(id).copied().unwrap_or_default();
+            self.step_character(id, &input, dt);
+        }
+    }
+
+    fn state(&self, id: CharacterId) -> CharacterState {
+        let c = &self.characters[id];
+        CharacterState {
+            pos: c.pos - self.config.world_origin,
+            vel: c.motion.vel,
+            grounded: c.motion.grounded,
+            ground_normal: c.ground_normal,
+            platform: None,
+            ladder: false,
+        }
+    }
+}
