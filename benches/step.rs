@@ -1,49 +1,57 @@
-//! Cost of one character step on each built-in level (criterion). Benches measure; no test
-//! asserts a time.
+//! Cost of one character step for each configuration of the built-in comparison on each
+//! built-in level's first scenario (criterion). Benches measure; no test asserts a time.
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use platbench::backend::CharacterSpec;
-use platbench::level::parse_level;
-use platbench::scenario::{input_script, RunConfig};
+use platbench::backend::{Backend, CharacterSpec};
+use platbench::level::{parse_level, Level, ScenarioSpec};
+use platbench::scenario::{effective_params, input_script, RunConfig};
 
 #[path = "../compare/builtin.rs"]
 mod builtin;
 
+fn fresh(level: &Level, spec: &ScenarioSpec, run: &RunConfig) -> Box<dyn Backend> {
+    let params = effective_params(&run.params, spec);
+    let mut b = run.backend.build(level, &params).expect("backend builds");
+    b.add_character(CharacterSpec {
+        spawn: spec.spawn,
+        size: spec.size,
+        velocity: spec.velocity,
+    });
+    b
+}
+
 fn step_cost(c: &mut Criterion) {
-    let run = RunConfig::sweep_default();
     for (file, text) in builtin::LEVELS {
         let level = parse_level(text, file).expect("built-in level parses");
         let spec = &level.scenarios[0];
         let script = input_script(spec);
-        c.bench_function(&format!("sweep/{}.{}", level.name, spec.name), |b| {
-            let mut backend = run
-                .backend
-                .build(&level, &run.params)
-                .expect("backend builds");
-            backend.add_character(CharacterSpec {
-                spawn: spec.spawn,
-                size: spec.size,
-                velocity: spec.velocity,
+        let mut group = c.benchmark_group(format!("step/{}.{}", level.name, spec.name));
+        for run in RunConfig::builtin_set() {
+            let name = format!("{}/{}", run.backend.name(), run.label);
+            group.bench_function(name, |b| {
+                // One iteration is one step of the scenario's script; when the script ends the
+                // backend is rebuilt outside the timed region, so only steps are measured.
+                b.iter_custom(|iters| {
+                    let mut total = Duration::ZERO;
+                    let mut left = iters as usize;
+                    while left > 0 {
+                        let mut backend = fresh(&level, spec, &run);
+                        let n = left.min(script.len());
+                        let start = Instant::now();
+                        for input in &script[..n] {
+                            backend.step(std::slice::from_ref(black_box(input)), spec.dt);
+                        }
+                        total += start.elapsed();
+                        left -= n;
+                    }
+                    total
+                });
             });
-            let mut k = 0;
-            b.iter(|| {
-                // Replays the scenario's script in a loop; restarts are rare and cheap.
-                if k == script.len() {
-                    backend = run
-                        .backend
-                        .build(&level, &run.params)
-                        .expect("backend builds");
-                    backend.add_character(CharacterSpec {
-                        spawn: spec.spawn,
-                        size: spec.size,
-                        velocity: spec.velocity,
-                    });
-                    k = 0;
-                }
-                backend.step(std::slice::from_ref(&script[k]), spec.dt);
-                k += 1;
-            });
-        });
+        }
+        group.finish();
     }
 }
 
