@@ -7,4 +7,9 @@ pub const LEVELS: &[(&str, &str)] = &[
     ("jumps.toml", include_str!("levels/jumps.toml")),
     ("corridor.toml", include_str!("levels/corridor.toml")),
     ("thin_wall.toml", include_str!("levels/thin_wall.toml")),
+    ("long_floor.toml", include_str!("levels/long_floor.toml")),
+    (
+        "very_long_floor.toml",
+        include_str!("levels/very_long_floor.toml"),
+    ),
 ];

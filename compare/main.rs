@@ -12,9 +12,9 @@ use anyhow::{bail, Context as _, Result};
 use clap::{Args, Parser, Subcommand};
 
 use platbench::level::{parse_level, Level};
-use platbench::metrics::{evaluate, MetricRow};
+use platbench::metrics::{evaluate_with, MetricRow};
 use platbench::report::{detail_table, notes, summary_table};
-use platbench::scenario::{BackendConfig, RunConfig};
+use platbench::scenario::{BackendConfig, RunConfig, Runner};
 use platbench::trace::Trace;
 
 /// Compare 2D platformer character controllers on the same levels, side by side.
@@ -63,6 +63,9 @@ struct RunArgs {
     /// The sweep controller's overlap tolerance, in tiles.
     #[arg(long, value_name = "TILES")]
     epsilon: Option<f32>,
+    /// Rapier character shapes to run (repeat or comma-separate); all of them by default.
+    #[arg(long = "shape", value_name = "SHAPE", value_delimiter = ',', value_parser = ["capsule", "cuboid", "ball", "round-cuboid"])]
+    shapes: Vec<String>,
 }
 
 fn main() -> ExitCode {
@@ -116,6 +119,12 @@ fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
 
 fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
     let mut set = RunConfig::builtin_set();
+    if !args.shapes.is_empty() {
+        set.retain(|c| match &c.backend {
+            BackendConfig::Rapier(r) => args.shapes.contains(&r.shape.label()),
+            _ => true,
+        });
+    }
     if let Some(eps) = args.epsilon {
         if !(eps.is_finite() && eps >= 0.0) {
             bail!("--epsilon {eps}: expected a finite number >= 0 (tiles)");
@@ -154,9 +163,11 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut done = 0;
     for level in &levels {
+        let level_start = Instant::now();
+        let mut runner = Runner::new(level);
         for spec in &level.scenarios {
             for run in &configs {
-                let e = evaluate(level, spec, run).with_context(|| {
+                let e = evaluate_with(&mut runner, spec, run).with_context(|| {
                     format!(
                         "running {}.{} on {}/{}",
                         level.name,
@@ -172,7 +183,12 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
                 done += 1;
             }
         }
-        eprintln!("  [{done}/{total}] {} ({})", level.name, level.source);
+        eprintln!(
+            "  [{done}/{total}] {} ({}) {:.2} s",
+            level.name,
+            level.source,
+            level_start.elapsed().as_secs_f64()
+        );
     }
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
     println!("{}", summary_table(&metrics));

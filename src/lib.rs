@@ -14,5 +14,6 @@ pub mod motion;
 pub mod rapier;
 pub mod report;
 pub mod scenario;
+pub mod shape;
 pub mod sweep;
 pub mod trace;

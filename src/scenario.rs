@@ -4,7 +4,10 @@
 use crate::backend::{Backend, BackendError, CharacterSpec};
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::{Input, JumpMode, MotionParams};
-use crate::rapier::{ColliderBuilding, RapierBackend, RapierConfig};
+use std::rc::Rc;
+
+use crate::rapier::{ColliderBuilding, RapierBackend, RapierConfig, StaticWorld};
+use crate::shape::CharacterShape;
 use crate::sweep::{SweepBackend, SweepConfig};
 use crate::trace::{Trace, TraceRow};
 
@@ -23,6 +26,14 @@ impl BackendConfig {
         match self {
             BackendConfig::Sweep(_) => "sweep",
             BackendConfig::Rapier(_) => "rapier",
+        }
+    }
+
+    /// The character's collision shape on this backend.
+    pub fn shape(&self) -> CharacterShape {
+        match self {
+            BackendConfig::Sweep(_) => CharacterShape::Cuboid,
+            BackendConfig::Rapier(c) => c.shape,
         }
     }
 
@@ -68,10 +79,16 @@ impl RunConfig {
         }
     }
 
-    /// Rapier with its default settings and the given collider building.
-    pub fn rapier(colliders: ColliderBuilding) -> Self {
+    /// The character's collision shape in this configuration.
+    pub fn shape(&self) -> CharacterShape {
+        self.backend.shape()
+    }
+
+    /// Rapier with its default settings, the given collider building and character shape.
+    pub fn rapier(colliders: ColliderBuilding, shape: CharacterShape) -> Self {
         let config = RapierConfig {
             colliders,
+            shape,
             ..Default::default()
         };
         RunConfig {
@@ -83,7 +100,8 @@ impl RunConfig {
 
     /// The built-in comparison set: the default sweep; the sweep with the seed's continuous
     /// jump formula, so the two jump modes' apex errors stand side by side; and Rapier with
-    /// one collider per tile and with merged colliders.
+    /// every character shape its users pick, each on one collider per tile and on merged
+    /// colliders.
     pub fn builtin_set() -> Vec<RunConfig> {
         let continuous = RunConfig {
             label: "jump=continuous".into(),
@@ -93,12 +111,13 @@ impl RunConfig {
             },
             ..Self::sweep_default()
         };
-        vec![
-            Self::sweep_default(),
-            continuous,
-            Self::rapier(ColliderBuilding::PerTile),
-            Self::rapier(ColliderBuilding::Merged),
-        ]
+        let mut set = vec![Self::sweep_default(), continuous];
+        for shape in CharacterShape::ALL {
+            for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
+                set.push(Self::rapier(building, shape));
+            }
+        }
+        set
     }
 }
 
@@ -148,6 +167,63 @@ pub fn input_script(spec: &ScenarioSpec) -> Vec<Input> {
     out
 }
 
+/// Runs scenarios of one level, building each backend's level geometry once and sharing it
+/// between configurations and scenarios (Rapier's colliders are built once per collider
+/// building, whatever the character shape).
+pub struct Runner<'a> {
+    level: &'a Level,
+    rapier_worlds: Vec<(ColliderBuilding, Rc<StaticWorld>)>,
+}
+
+impl<'a> Runner<'a> {
+    /// A runner for `level` with nothing built yet.
+    pub fn new(level: &'a Level) -> Self {
+        Runner {
+            level,
+            rapier_worlds: Vec::new(),
+        }
+    }
+
+    /// The level this runner runs.
+    pub fn level(&self) -> &'a Level {
+        self.level
+    }
+
+    /// Builds the backend of `run` with motion parameters `params`, reusing built geometry.
+    pub fn build(
+        &mut self,
+        run: &RunConfig,
+        params: &MotionParams,
+    ) -> Result<Box<dyn Backend>, BackendError> {
+        match &run.backend {
+            BackendConfig::Rapier(c) => {
+                let world = match self.rapier_worlds.iter().find(|(b, _)| *b == c.colliders) {
+                    Some((_, w)) => w.clone(),
+                    None => {
+                        let w = Rc::new(StaticWorld::new(self.level, c.colliders));
+                        self.rapier_worlds.push((c.colliders, w.clone()));
+                        w
+                    }
+                };
+                Ok(Box::new(RapierBackend::with_world(
+                    self.level,
+                    world,
+                    params.clone(),
+                    c.clone(),
+                )?))
+            }
+            other => other.build(self.level, params),
+        }
+    }
+
+    /// Runs one scenario of the level on one configuration (see [`run_scenario`]).
+    pub fn run(&mut self, spec: &ScenarioSpec, run: &RunConfig) -> Result<Trace, BackendError> {
+        let params = effective_params(&run.params, spec);
+        let backend = self.build(run, &params)?;
+        Ok(drive(self.level, spec, run, backend))
+    }
+}
+
 /// Runs one scenario on one configuration. Row 0 of the trace is the spawn state; row `k` is
 /// the state after `k` steps.
 pub fn run_scenario(
@@ -155,8 +231,16 @@ pub fn run_scenario(
     spec: &ScenarioSpec,
     run: &RunConfig,
 ) -> Result<Trace, BackendError> {
-    let params = effective_params(&run.params, spec);
-    let mut backend = run.backend.build(level, &params)?;
+    Runner::new(level).run(spec, run)
+}
+
+/// Steps `backend` through the scenario's script and records the trace.
+fn drive(
+    level: &Level,
+    spec: &ScenarioSpec,
+    run: &RunConfig,
+    mut backend: Box<dyn Backend>,
+) -> Trace {
     let id = backend.add_character(CharacterSpec {
         spawn: spec.spawn,
         size: spec.size,
@@ -182,13 +266,13 @@ pub fn run_scenario(
             &backend.state(id),
         ));
     }
-    Ok(Trace {
+    Trace {
         level: level.name.clone(),
         scenario: spec.name.clone(),
         backend: backend.name().to_string(),
         config: run.label.clone(),
         rows,
-    })
+    }
 }
 
 #[cfg(test)]

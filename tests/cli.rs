@@ -11,14 +11,23 @@ fn no_arguments_prints_the_summary() {
     let out = platbench().output().unwrap();
     assert!(out.status.success());
     let stdout = String::from_utf8_lossy(&out.stdout);
+    // Metric names are stacked in the header, one word a line.
     for m in [
-        "land_frame_error",
-        "rest_gap",
-        "apex_error",
-        "progress_ratio",
+        "land",
+        "penetration",
+        "apex",
+        "progress",
+        "stuck",
         "tunneled",
     ] {
         assert!(stdout.contains(m), "summary lacks {m}:\n{stdout}");
+    }
+    for config in [
+        "| sweep ",
+        "| rapier per-tile capsule ",
+        "| rapier merged cuboid ",
+    ] {
+        assert!(stdout.contains(config), "summary lacks {config}:\n{stdout}");
     }
 }
 

@@ -19,12 +19,12 @@ const DT: f32 = 1.0 / 60.0;
 fn ground_detection(colliders: ColliderBuilding, snap: bool) -> (f32, u32) {
     let mut tiles = vec![Tile::Solid; 2002];
     tiles.extend(vec![Tile::Empty; 2002]);
-    let level = Level::from_tiles("ground", 2002, 2, tiles);
+    let mut level = Level::from_tiles("ground", 2002, 2, tiles);
+    level.origin = Vec2::new(-1001.0, -1.0);
     let config = RapierConfig {
         colliders,
         shape: CharacterShape::Ball,
         snap_to_ground: snap.then_some(Length::Relative(0.2)),
-        world_origin: Vec2::new(-1001.0, -1.0),
         ..Default::default()
     };
     let mut b = RapierBackend::new(&level, MotionParams::default(), config).unwrap();

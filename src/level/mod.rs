@@ -149,6 +149,10 @@ pub struct Level {
     pub width: u32,
     /// Height in tiles.
     pub height: u32,
+    /// Where the level's corner (tile (0, 0)'s lower left) sits in the backends' world, in
+    /// tiles. Controllers compute in world coordinates, where f32 rounding depends on the
+    /// magnitude; traces and metrics stay in level coordinates. Default: the origin.
+    pub origin: Vec2,
     /// Tiles row by row from the bottom (`j * width + i`).
     tiles: Vec<Tile>,
     /// What the level contains.
@@ -176,6 +180,7 @@ impl Level {
             source: format!("builtin:{name}"),
             width,
             height,
+            origin: Vec2::ZERO,
             tiles,
             features,
             scenarios: Vec::new(),

@@ -32,6 +32,7 @@ pub struct LevelError {
 struct RawLevel {
     name: Option<String>,
     description: Option<String>,
+    origin: Option<Spanned<[f64; 2]>>,
     #[serde(default)]
     legend: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
     map: Spanned<String>,
@@ -136,6 +137,9 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
     }
     let mut level = Level::from_tiles(&name, width, height, tiles);
     level.description = raw.description.unwrap_or_default();
+    if let Some(o) = &raw.origin {
+        level.origin = vec2(&loc, o, "origin", false)?;
+    }
     level.source = file.to_string();
 
     let mut seen = HashMap::new();

@@ -6,20 +6,25 @@
 //! character dropped with no input until it should land, `apex_error` for a jump with room
 //! above, `progress_ratio` for a walk over flat open ground, `rest_gap` and `rest_jitter` for
 //! scenarios that end with at least [`REST_WINDOW`] seconds of idle input. `max_penetration`,
-//! `grounded_flicker` and `tunneled` apply to every scenario. Only character 0 is measured.
+//! `grounded_flicker`, `stuck_frames` and `tunneled` apply to every scenario. Only character 0
+//! is measured.
 
 mod reference;
 
-pub use reference::{commanded_distance, predicted_landing_frame};
+pub use reference::{commanded_distance, commanded_steps, predicted_landing_frame};
 
 use serde::Serialize;
 
 use crate::level::{character_box, Level, ScenarioSpec, Tile};
 use crate::motion::MotionParams;
 use crate::scenario::input_script;
+use crate::shape::CharacterShape;
 use crate::trace::{Trace, TraceRow};
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
+use parry2d::math::Pose;
+use parry2d::query::contact;
+use parry2d::shape::{Cuboid, SharedShape};
 
 /// Idle time at the end of a scenario needed for the rest metrics, in seconds.
 pub const REST_WINDOW: f32 = 0.5;
@@ -35,8 +40,10 @@ pub const CATALOG: &[&str] = &[
     "max_penetration",
     "rest_jitter",
     "grounded_flicker",
+    "false_grounded",
     "apex_error",
     "progress_ratio",
+    "stuck_frames",
     "tunneled",
 ];
 
@@ -82,6 +89,8 @@ pub struct Measure {
 
 /// Everything a metric may read.
 pub struct Context<'a> {
+    /// The character's collision shape (the box for the sweep).
+    pub shape: CharacterShape,
     /// The level the scenario ran on.
     pub level: &'a Level,
     /// The scenario.
@@ -117,8 +126,10 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     push(Some(max_penetration(ctx, &rows)));
     push(rest.map(|r| rest_jitter(&rows[r])));
     push(Some(grounded_flicker(ctx, &rows)));
+    push(Some(false_grounded(ctx, &rows)));
     push(apex_error(ctx, &rows));
     push(progress_ratio(ctx, &rows));
+    push(Some(stuck_frames(ctx, &rows)));
     push(Some(tunneled(ctx, &rows)));
     out
 }
@@ -127,23 +138,30 @@ fn pos(r: &TraceRow) -> Vec2 {
     Vec2::new(r.x, r.y)
 }
 
-/// Deepest overlap of the box with a solid tile: the smaller of the two axis overlaps.
-fn penetration(level: &Level, b: &Aabb) -> f32 {
+/// Deepest overlap of the character's shape with a solid tile, from parry's contact query
+/// between the shape and each tile's square (for the box: the smaller axis overlap).
+fn penetration(level: &Level, shape: &SharedShape, feet: Vec2, size: Vec2) -> f32 {
+    let pose = CharacterShape::pose(feet, size);
+    let tile = Cuboid::new(Vec2::splat(0.5));
     level
-        .solids_overlapping(b)
+        .solids_overlapping(&character_box(feet, size))
         .map(|t| {
-            let ox = b.maxs.x.min(t.maxs.x) - b.mins.x.max(t.mins.x);
-            let oy = b.maxs.y.min(t.maxs.y) - b.mins.y.max(t.mins.y);
-            ox.min(oy)
+            let tile_pose = Pose::from_translation(t.center());
+            match contact(&pose, &**shape, &tile_pose, &tile, 0.0) {
+                Ok(Some(c)) if c.dist < 0.0 => -c.dist,
+                _ => 0.0,
+            }
         })
         .fold(0.0, f32::max)
 }
 
-/// `max_penetration`: deepest overlap with any solid over the whole run, in tiles.
+/// `max_penetration`: deepest overlap of the character's shape with any solid tile over the
+/// whole run, in tiles, computed from the level geometry (not from a backend's contacts).
 pub fn max_penetration(ctx: &Context, rows: &[TraceRow]) -> Measure {
+    let shape = ctx.shape.build(ctx.spec.size);
     let worst = rows
         .iter()
-        .map(|r| penetration(ctx.level, &character_box(pos(r), ctx.spec.size)))
+        .map(|r| penetration(ctx.level, &shape, pos(r), ctx.spec.size))
         .fold(0.0f32, f32::max);
     Measure {
         metric: "max_penetration",
@@ -211,7 +229,7 @@ fn rest_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::Range<usize
         return None;
     }
     let start = first_idle_step + 1;
-    let landed = (start..=n).find(|&k| rows[k].is_grounded());
+    let landed = (start..=n).find(|&k| rows[k].is_grounded() && supported(ctx, &rows[k]));
     let from = landed.unwrap_or(n + 1 - needed);
     Some(from..n + 1)
 }
@@ -254,11 +272,37 @@ fn rest_jitter(rows: &[TraceRow]) -> Measure {
     }
 }
 
+/// Whether there is ground under the feet: a solid top at most [`FLICKER_SUPPORT_TOLERANCE`]
+/// below them, or above them within half the character's height (sunk into the ground, which
+/// `max_penetration` measures).
+fn supported(ctx: &Context, r: &TraceRow) -> bool {
+    let half = ctx.spec.size.x * 0.5;
+    ctx.level
+        .support_below(r.x - half, r.x + half, r.y, ctx.spec.size.y * 0.5)
+        .is_some_and(|top| r.y - top <= FLICKER_SUPPORT_TOLERANCE)
+}
+
+/// `false_grounded`: frames reported grounded with no ground within
+/// [`FLICKER_SUPPORT_TOLERANCE`] of the feet (standing on air, or on a wall's side). Not in
+/// DESIGN.md's catalog: added because a controller that calls itself grounded mid-air resets
+/// its fall and can jump from there.
+pub fn false_grounded(ctx: &Context, rows: &[TraceRow]) -> Measure {
+    let count = rows
+        .iter()
+        .filter(|r| r.is_grounded() && !supported(ctx, r))
+        .count();
+    Measure {
+        metric: "false_grounded",
+        value: count as f64,
+        unit: "frames",
+        reference: 0.0,
+    }
+}
+
 /// `grounded_flicker`: grounded-to-airborne switches that no jump explains while the ground is
 /// still within [`FLICKER_SUPPORT_TOLERANCE`] under the feet.
 pub fn grounded_flicker(ctx: &Context, rows: &[TraceRow]) -> Measure {
     let script = input_script(ctx.spec);
-    let half = ctx.spec.size.x * 0.5;
     let mut count = 0u32;
     for k in 1..rows.len() {
         let (prev, cur) = (&rows[k - 1], &rows[k]);
@@ -268,14 +312,7 @@ pub fn grounded_flicker(ctx: &Context, rows: &[TraceRow]) -> Measure {
         // Step k-1 produced row k: a jump pressed on that step explains leaving the ground.
         let jumped = script.get(k - 1).is_some_and(|i| i.jump)
             && (k < 2 || script.get(k - 2).is_none_or(|i| !i.jump));
-        if jumped {
-            continue;
-        }
-        let on_ground = ctx
-            .level
-            .support_below(cur.x - half, cur.x + half, cur.y, FLICKER_SUPPORT_TOLERANCE)
-            .is_some_and(|top| (cur.y - top).abs() <= FLICKER_SUPPORT_TOLERANCE);
-        if on_ground {
+        if !jumped && supported(ctx, cur) {
             count += 1;
         }
     }
@@ -365,6 +402,45 @@ pub fn progress_ratio(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     })
 }
 
+/// Below this fraction of the commanded step a commanded move counts as stuck.
+pub const STUCK_FRACTION: f64 = 0.01;
+/// Height above the feet below which a solid ahead is the floor (or a seam in it), not an
+/// obstacle, for `stuck_frames`, in tiles: larger than Rapier's offset and a snapped step.
+pub const STUCK_FLOOR_BAND: f32 = 0.05;
+
+/// `stuck_frames`: steps in which the character was commanded to move horizontally, was
+/// grounded, and moved less than [`STUCK_FRACTION`] of the commanded step, while nothing in the
+/// level blocked that step (a wall being pushed against is not "stuck").
+pub fn stuck_frames(ctx: &Context, rows: &[TraceRow]) -> Measure {
+    let script = input_script(ctx.spec);
+    let commanded = commanded_steps(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt);
+    let size = ctx.spec.size;
+    let mut count = 0u32;
+    for (k, step) in commanded.iter().enumerate() {
+        let (Some(before), Some(after)) = (rows.get(k), rows.get(k + 1)) else {
+            break;
+        };
+        if script[k].horizontal() == 0.0 || !after.is_grounded() || step.abs() < 1e-9 {
+            continue;
+        }
+        if ((after.x - before.x) as f64).abs() >= STUCK_FRACTION * step.abs() {
+            continue;
+        }
+        // The box moved by the commanded step, lifted out of the floor band.
+        let mut ahead = character_box(pos(before) + Vec2::new(*step as f32, 0.0), size);
+        ahead.mins.y += STUCK_FLOOR_BAND;
+        if ctx.level.solids_overlapping(&ahead).next().is_none() {
+            count += 1;
+        }
+    }
+    Measure {
+        metric: "stuck_frames",
+        value: count as f64,
+        unit: "frames",
+        reference: 0.0,
+    }
+}
+
 /// `tunneled`: 1 if between two frames the character passed entirely through a solid tile that
 /// overlapped its box's cross-section both before and after the move, else 0.
 pub fn tunneled(ctx: &Context, rows: &[TraceRow]) -> Measure {
@@ -423,9 +499,20 @@ pub fn evaluate(
     spec: &ScenarioSpec,
     run: &crate::scenario::RunConfig,
 ) -> Result<Evaluation, crate::backend::BackendError> {
-    let trace = crate::scenario::run_scenario(level, spec, run)?;
+    evaluate_with(&mut crate::scenario::Runner::new(level), spec, run)
+}
+
+/// Runs `spec` on `run` with a runner that shares level geometry between runs, and measures it.
+pub fn evaluate_with(
+    runner: &mut crate::scenario::Runner,
+    spec: &ScenarioSpec,
+    run: &crate::scenario::RunConfig,
+) -> Result<Evaluation, crate::backend::BackendError> {
+    let level = runner.level();
+    let trace = runner.run(spec, run)?;
     let params = crate::scenario::effective_params(&run.params, spec);
     let metrics = compute(&Context {
+        shape: run.shape(),
         level,
         spec,
         params: &params,
@@ -495,6 +582,7 @@ map = """
         let level = parse_level(LEVEL, "m.toml").unwrap();
         let p = MotionParams::default();
         compute(&Context {
+            shape: CharacterShape::Cuboid,
             level: &level,
             spec: s,
             params: &p,
@@ -544,6 +632,46 @@ map = """
         assert_eq!(
             value(&measure(&s, &trace(&pts)), "grounded_flicker"),
             Some(2.0)
+        );
+    }
+
+    #[test]
+    fn stuck_frames_count_open_ground_only_and_false_grounded_counts_air() {
+        let right = vec![InputEvent {
+            t: 0.0,
+            right: Some(true),
+            ..Default::default()
+        }];
+        // Commanded 0.6 tiles a step; the character moves on step 1, stalls on steps 2 and 3.
+        let walk = spec(Vec2::new(1.5, 1.0), right.clone(), 0.3);
+        let pts = [
+            (1.5, 1.0, true),
+            (2.1, 1.0, true),
+            (2.1, 1.0, true),
+            (2.1, 1.0, true),
+        ];
+        assert_eq!(
+            value(&measure(&walk, &trace(&pts)), "stuck_frames"),
+            Some(2.0)
+        );
+        // Against the wall at x = 10 (box edge 9.6 + 0.4): blocked, not stuck.
+        let wall = spec(Vec2::new(9.6, 1.0), right, 0.2);
+        let pts = [(9.6, 1.0, true), (9.6, 1.0, true), (9.6, 1.0, true)];
+        assert_eq!(
+            value(&measure(&wall, &trace(&pts)), "stuck_frames"),
+            Some(0.0)
+        );
+        // Grounded 2 tiles above the floor: false; grounded 0.05 above or 0.3 sunk: real ground.
+        let s = spec(Vec2::new(2.5, 1.0), vec![], 0.3);
+        let pts = [
+            (2.5, 3.0, true),
+            (2.5, 1.05, true),
+            (2.5, 0.7, true),
+            (2.5, 3.0, false),
+        ];
+        assert_eq!(
+            value(&measure(&s, &trace(&pts)), "false_grounded"),
+            Some(1.0)
         );
     }
 

@@ -31,8 +31,14 @@ pub fn predicted_landing_frame(height: f64, vy0: f64, g: f64, dt: f64) -> Option
 /// Horizontal distance the shared motion model commands over the script, on flat ground with no
 /// obstacle: the run acceleration while a direction is held, the ground friction otherwise.
 pub fn commanded_distance(p: &MotionParams, script: &[Input], vx0: f32, dt: f32) -> f64 {
+    commanded_steps(p, script, vx0, dt).iter().sum()
+}
+
+/// The horizontal displacement the shared motion model commands at each step of the script,
+/// on flat ground with no obstacle (see [`commanded_distance`]).
+pub fn commanded_steps(p: &MotionParams, script: &[Input], vx0: f32, dt: f32) -> Vec<f64> {
     let (mut vx, dt) = (vx0 as f64, dt as f64);
-    let mut d = 0.0;
+    let mut d = Vec::with_capacity(script.len());
     for i in script {
         let dir = i.horizontal() as f64;
         if dir != 0.0 {
@@ -44,7 +50,7 @@ pub fn commanded_distance(p: &MotionParams, script: &[Input], vx0: f32, dt: f32)
                 (vx - step).max(target)
             };
         }
-        d += vx * dt;
+        d.push(vx * dt);
         if dir == 0.0 {
             vx *= p.ground_friction as f64;
         }

@@ -29,7 +29,9 @@ impl ColliderBuilding {
     }
 }
 
-/// The level's static colliders and the broad phase that holds them.
+/// The level's static colliders and the broad phase that holds them. Built once per level and
+/// collider building, and shared by every character shape and scenario run on it.
+#[derive(Clone)]
 pub struct StaticWorld {
     /// Empty: static colliders are parentless, and no rigid body is simulated.
     pub bodies: RigidBodySet,
@@ -42,8 +44,8 @@ pub struct StaticWorld {
 impl StaticWorld {
     /// Builds the colliders for `level` and runs one broad-phase update, which is what makes
     /// them visible to queries (before it the broad phase is empty and a character falls
-    /// through the floor). The level's corner is placed at `origin` in Rapier's world.
-    pub fn new(level: &Level, building: ColliderBuilding, origin: glam::Vec2) -> Self {
+    /// through the floor). The level's corner is placed at `level.origin` in Rapier's world.
+    pub fn new(level: &Level, building: ColliderBuilding) -> Self {
         let rects = match building {
             ColliderBuilding::PerTile => level.solid_boxes().collect::<Vec<_>>(),
             ColliderBuilding::Merged => level.merged_solid_rects(),
@@ -55,7 +57,7 @@ impl StaticWorld {
                 let half = r.half_extents();
                 colliders.insert(
                     ColliderBuilder::cuboid(half.x, half.y)
-                        .translation(r.center() + origin)
+                        .translation(r.center() + level.origin)
                         .build(),
                 )
             })

@@ -14,20 +14,21 @@
 //! runs: the level has only static colliders.
 
 pub mod colliders;
-pub mod shape;
+
+use std::rc::Rc;
 
 use glam::Vec2;
 use rapier2d::control::{CharacterAutostep, CharacterLength, KinematicCharacterController};
 use rapier2d::parry::query::DefaultQueryDispatcher;
-use rapier2d::prelude::{Pose, QueryFilter, SharedShape};
+use rapier2d::prelude::{QueryFilter, SharedShape};
 
 use crate::backend::{
     require_supported, Backend, BackendError, CharacterId, CharacterSpec, CharacterState,
 };
 use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
+pub use crate::shape::CharacterShape;
 pub use colliders::{ColliderBuilding, StaticWorld};
-pub use shape::CharacterShape;
 
 /// A length that is either absolute (tiles) or relative to the character's height, as Rapier's
 /// `CharacterLength`.
@@ -54,7 +55,8 @@ impl From<Length> for CharacterLength {
 pub struct RapierConfig {
     /// How solid tiles become colliders.
     pub colliders: ColliderBuilding,
-    /// The character's collision shape, fitted to its box.
+    /// The character's collision shape, fitted to its box. Default: a capsule, the shape of
+    /// Rapier's own 2D character-controller example (`examples2d/character_controller2.rs`).
     pub shape: CharacterShape,
     /// Gap the controller keeps between the character and obstacles. Rapier's default, 1% of
     /// the character's height; Rapier's docs advise a small non-zero value for numerical
@@ -77,10 +79,6 @@ pub struct RapierConfig {
     /// Nudge along contact normals that keeps shape casts from sticking while sliding, in
     /// tiles (Rapier's default: 1e-4).
     pub normal_nudge_factor: f32,
-    /// Where the level's corner (tile (0, 0)'s lower left) sits in Rapier's world, in tiles.
-    /// Rapier computes in world coordinates, and its results depend on them through f32
-    /// rounding; traces stay in level coordinates. Default: the origin.
-    pub world_origin: Vec2,
 }
 
 impl Default for RapierConfig {
@@ -88,7 +86,7 @@ impl Default for RapierConfig {
         let kcc = KinematicCharacterController::default();
         RapierConfig {
             colliders: ColliderBuilding::PerTile,
-            shape: CharacterShape::Cuboid,
+            shape: CharacterShape::Capsule,
             offset: Length::Relative(0.01),
             slide: kcc.slide,
             autostep: None,
@@ -96,7 +94,6 @@ impl Default for RapierConfig {
             min_slope_slide_angle: None,
             snap_to_ground: Some(Length::Relative(0.2)),
             normal_nudge_factor: kcc.normal_nudge_factor,
-            world_origin: Vec2::ZERO,
         }
     }
 }
@@ -120,15 +117,9 @@ impl RapierConfig {
         }
     }
 
-    /// Short label for tables and file names: the collider building, plus the shape when it
-    /// is not the default.
+    /// Short label for tables and file names: the collider building and the shape.
     pub fn label(&self) -> String {
-        let mut s = self.colliders.label().to_string();
-        if self.shape != RapierConfig::default().shape {
-            s.push('/');
-            s.push_str(&self.shape.label());
-        }
-        s
+        format!("{} {}", self.colliders.label(), self.shape.label())
     }
 }
 
@@ -156,7 +147,9 @@ struct Character {
 
 /// The Rapier backend over one level.
 pub struct RapierBackend {
-    world: StaticWorld,
+    world: Rc<StaticWorld>,
+    /// The level's corner in Rapier's world.
+    origin: Vec2,
     dispatcher: DefaultQueryDispatcher,
     controller: KinematicCharacterController,
     params: MotionParams,
@@ -174,10 +167,23 @@ impl RapierBackend {
         params: MotionParams,
         config: RapierConfig,
     ) -> Result<Self, BackendError> {
+        let world = Rc::new(StaticWorld::new(level, config.colliders));
+        Self::with_world(level, world, params, config)
+    }
+
+    /// Runs over colliders already built for `level` with `config.colliders` (see
+    /// [`StaticWorld::new`]), so that several configurations share one level build.
+    pub fn with_world(
+        level: &Level,
+        world: Rc<StaticWorld>,
+        params: MotionParams,
+        config: RapierConfig,
+    ) -> Result<Self, BackendError> {
         require_supported("rapier", &level.name, level.features, Self::SUPPORTED)?;
         let controller = config.controller(&params);
         Ok(RapierBackend {
-            world: StaticWorld::new(level, config.colliders, config.world_origin),
+            world,
+            origin: level.origin,
             dispatcher: DefaultQueryDispatcher,
             controller,
             params,
@@ -200,7 +206,7 @@ impl RapierBackend {
     /// updates the broad phase so queries see it: for scenes that tiles cannot express, such
     /// as the rotated-cuboid slopes of Rapier's own tests.
     pub fn insert_static_collider(&mut self, collider: rapier2d::prelude::Collider) {
-        self.world.insert(collider);
+        Rc::make_mut(&mut self.world).insert(collider);
     }
 
     /// Moves character `id` by `desired` through the controller, bypassing the shared motion:
@@ -220,7 +226,7 @@ impl RapierBackend {
             &w.colliders,
             QueryFilter::default(),
         );
-        let pose = Pose::from_translation(c.pos + Vec2::new(0.0, c.size.y * 0.5));
+        let pose = CharacterShape::pose(c.pos, c.size);
         let mut contacts = Contacts::default();
         let mut ground_normal: Option<Vec2> = None;
         let mvt = self
@@ -276,7 +282,7 @@ impl Backend for RapierBackend {
 
     fn add_character(&mut self, spec: CharacterSpec) -> CharacterId {
         self.characters.push(Character {
-            pos: spec.spawn + self.config.world_origin,
+            pos: spec.spawn + self.origin,
             size: spec.size,
             shape: self.config.shape.build(spec.size),
             motion: MotionState::with_velocity(spec.velocity),
@@ -295,7 +301,7 @@ impl Backend for RapierBackend {
     fn state(&self, id: CharacterId) -> CharacterState {
         let c = &self.characters[id];
         CharacterState {
-            pos: c.pos - self.config.world_origin,
+            pos: c.pos - self.origin,
             vel: c.motion.vel,
             grounded: c.motion.grounded,
             ground_normal: c.ground_normal,

@@ -15,9 +15,13 @@ pub struct StaticTiles {
 }
 
 impl StaticTiles {
-    /// Collects the level's solid tiles (one box per tile) and builds the BVH.
+    /// Collects the level's solid tiles (one box per tile, placed at the level's origin in the
+    /// world) and builds the BVH.
     pub fn new(level: &Level) -> Self {
-        let boxes: Vec<Aabb> = level.solid_boxes().collect();
+        let boxes: Vec<Aabb> = level
+            .solid_boxes()
+            .map(|b| b.translated(level.origin))
+            .collect();
         let bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes);
         StaticTiles { boxes, bvh }
     }

@@ -34,6 +34,7 @@ impl Default for SweepConfig {
 }
 
 struct Character {
+    /// Feet position in world coordinates.
     pos: Vec2,
     size: Vec2,
     motion: MotionState,
@@ -42,6 +43,8 @@ struct Character {
 /// The sweep backend over one level.
 pub struct SweepBackend {
     tiles: StaticTiles,
+    /// The level's corner in the world.
+    origin: Vec2,
     params: MotionParams,
     config: SweepConfig,
     characters: Vec<Character>,
@@ -67,6 +70,7 @@ impl SweepBackend {
         }
         Ok(SweepBackend {
             tiles: StaticTiles::new(level),
+            origin: level.origin,
             params,
             config,
             characters: Vec::new(),
@@ -96,7 +100,7 @@ impl Backend for SweepBackend {
 
     fn add_character(&mut self, spec: CharacterSpec) -> CharacterId {
         self.characters.push(Character {
-            pos: spec.spawn,
+            pos: spec.spawn + self.origin,
             size: spec.size,
             motion: MotionState::with_velocity(spec.velocity),
         });
@@ -113,7 +117,7 @@ impl Backend for SweepBackend {
     fn state(&self, id: CharacterId) -> CharacterState {
         let c = &self.characters[id];
         CharacterState {
-            pos: c.pos,
+            pos: c.pos - self.origin,
             vel: c.motion.vel,
             grounded: c.motion.grounded,
             ground_normal: if c.motion.grounded {

@@ -1,10 +1,12 @@
-//! The character's collision shape for Rapier, fitted to the same outer box as the sweep
-//! character so both backends move the same footprint.
+//! The character's collision shape, fitted to the same outer box as the sweep's AABB so every
+//! backend moves the same footprint. The sweep always moves the box; Rapier moves any of these;
+//! metrics use the shape to measure overlap with the level.
 
 use glam::Vec2;
-use rapier2d::prelude::SharedShape;
+use parry2d::math::Pose;
+use parry2d::shape::SharedShape;
 
-/// The shape Rapier's controller moves.
+/// A character's collision shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CharacterShape {
     /// A cuboid with the character's width and height: the same box as the sweep's AABB.
@@ -24,19 +26,41 @@ pub enum CharacterShape {
 }
 
 impl CharacterShape {
-    /// Label used in configs and CSV files.
+    /// The round cuboid of the reference measurements: border 1/16 of the width.
+    pub const ROUND_CUBOID: CharacterShape = CharacterShape::RoundCuboid {
+        border_fraction: 1.0 / 16.0,
+    };
+
+    /// Every shape a Rapier user would pick, in table order.
+    pub const ALL: [CharacterShape; 4] = [
+        CharacterShape::Capsule,
+        CharacterShape::Cuboid,
+        CharacterShape::Ball,
+        CharacterShape::ROUND_CUBOID,
+    ];
+
+    /// Label used in configs and CSV files (`round-cuboid` for the default border).
     pub fn label(self) -> String {
         match self {
             CharacterShape::Cuboid => "cuboid".into(),
             CharacterShape::Capsule => "capsule".into(),
             CharacterShape::Ball => "ball".into(),
             CharacterShape::RoundCuboid { border_fraction } => {
-                format!("round-cuboid{border_fraction}")
+                if self == Self::ROUND_CUBOID {
+                    "round-cuboid".into()
+                } else {
+                    format!("round-cuboid{border_fraction}")
+                }
             }
         }
     }
 
-    /// The rapier shape for a character of outer `size`, centred on its local origin.
+    /// The pose of the shape's centre for a character whose feet (bottom centre) are at `feet`.
+    pub fn pose(feet: Vec2, size: Vec2) -> Pose {
+        Pose::from_translation(feet + Vec2::new(0.0, size.y * 0.5))
+    }
+
+    /// The parry shape for a character of outer `size`, centred on its local origin.
     pub fn build(self, size: Vec2) -> SharedShape {
         let half = size * 0.5;
         match self {
@@ -57,7 +81,6 @@ impl CharacterShape {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rapier2d::prelude::Pose;
 
     #[test]
     fn every_shape_fits_the_outer_box() {
