@@ -7,6 +7,11 @@ pub const LEVELS: &[(&str, &str)] = &[
     ("jumps.toml", include_str!("levels/jumps.toml")),
     ("corridor.toml", include_str!("levels/corridor.toml")),
     ("thin_wall.toml", include_str!("levels/thin_wall.toml")),
+    ("slope_22_5.toml", include_str!("levels/slope_22_5.toml")),
+    ("slope_26_6.toml", include_str!("levels/slope_26_6.toml")),
+    ("slope_45.toml", include_str!("levels/slope_45.toml")),
+    ("slope_63_4.toml", include_str!("levels/slope_63_4.toml")),
+    ("seed_tile.toml", include_str!("levels/seed_tile.toml")),
     ("long_floor.toml", include_str!("levels/long_floor.toml")),
     (
         "very_long_floor.toml",

@@ -32,12 +32,79 @@ pub enum Slope {
     /// The seed's integer height array: 16 heights in sixteenths of a tile, left to right.
     Heights([u8; 16]),
     /// The seed's line slope: surface heights at the tile's left and right edge, in tiles.
+    /// Heights outside 0..=1 describe a line that leaves the tile through its top or bottom;
+    /// the surface is clamped into the tile, so a straight ramp of any angle spans rows exactly.
     Line {
-        /// Height at the tile's left edge, in tiles (0..=1).
+        /// Height of the line at the tile's left edge, in tiles.
         left: f32,
-        /// Height at the tile's right edge, in tiles (0..=1).
+        /// Height of the line at the tile's right edge, in tiles.
         right: f32,
     },
+}
+
+impl Slope {
+    /// The tile's solid part as an outline in tile-local coordinates: bottom-left corner, the
+    /// surface points left to right, bottom-right corner (repeated points removed).
+    pub fn outline(&self) -> Vec<Vec2> {
+        let mut pts = vec![Vec2::ZERO];
+        pts.extend(self.surface_points());
+        pts.push(Vec2::X);
+        pts.dedup_by(|a, b| (*a - *b).length() < 1e-6);
+        pts
+    }
+
+    /// Surface height above the tile's bottom, in tiles, at `u` (0..=1 across the tile).
+    ///
+    /// Height arrays are the seed's step function: the entry under `u` (sixteenths of a tile).
+    /// Line slopes interpolate from `left` at u = 0 to `right` at u = 1. (The seed's slide writes
+    /// `Lerp(a, b, alpha) = a * alpha + b * (1 - alpha)` with `a` the left height, which would
+    /// put the right height at the left edge; the surface here runs the intended way.)
+    pub fn height_at(&self, u: f32) -> f32 {
+        let u = u.clamp(0.0, 1.0);
+        match self {
+            Slope::Heights(h) => h[((u * 16.0) as usize).min(15)] as f32 / 16.0,
+            Slope::Line { left, right } => (left + (right - left) * u).clamp(0.0, 1.0),
+        }
+    }
+
+    /// Heights at the tile's left and right edges, in tiles.
+    pub fn edges(&self) -> (f32, f32) {
+        (self.height_at(0.0), self.height_at(1.0))
+    }
+
+    /// The surface as a polyline in tile-local coordinates (x and y in 0..=1), left to right:
+    /// the line itself, or for a height array the points at the centres of its 16 columns
+    /// extended flat to the edges (the smooth surface the steps approximate).
+    pub fn surface_points(&self) -> Vec<Vec2> {
+        match self {
+            Slope::Line { left, right } => {
+                // The clamped line: its ends, and where it crosses the tile's bottom or top.
+                let mut us = vec![0.0, 1.0];
+                for level in [0.0f32, 1.0] {
+                    if right != left {
+                        let u = (level - left) / (right - left);
+                        if u > 0.0 && u < 1.0 {
+                            us.push(u);
+                        }
+                    }
+                }
+                us.sort_by(f32::total_cmp);
+                us.into_iter()
+                    .map(|u| Vec2::new(u, self.height_at(u)))
+                    .collect()
+            }
+            Slope::Heights(h) => {
+                let mut pts = vec![Vec2::new(0.0, h[0] as f32 / 16.0)];
+                pts.extend(
+                    h.iter()
+                        .enumerate()
+                        .map(|(i, v)| Vec2::new((i as f32 + 0.5) / 16.0, *v as f32 / 16.0)),
+                );
+                pts.push(Vec2::new(1.0, h[15] as f32 / 16.0));
+                pts
+            }
+        }
+    }
 }
 
 /// What a level contains beyond solid tiles; backends build and run only what is set here.
@@ -187,6 +254,21 @@ impl Level {
         }
     }
 
+    /// A copy of the level's geometry without its scenarios, for a backend to keep.
+    pub fn geometry(&self) -> Level {
+        Level {
+            name: self.name.clone(),
+            description: String::new(),
+            source: self.source.clone(),
+            width: self.width,
+            height: self.height,
+            origin: self.origin,
+            tiles: self.tiles.clone(),
+            features: self.features,
+            scenarios: Vec::new(),
+        }
+    }
+
     /// The tile at column `i`, row `j` (from the bottom); outside the map is empty.
     pub fn tile(&self, i: i64, j: i64) -> Tile {
         if i < 0 || j < 0 || i >= self.width as i64 || j >= self.height as i64 {
@@ -294,6 +376,66 @@ impl Level {
     }
 }
 
+impl Level {
+    /// The highest ground surface in column `floor(x)` at or below `top`, looking down at most
+    /// `depth` tiles: a solid tile's top or a slope's surface at `x`. Returns the height and, for
+    /// a slope, its tile.
+    pub fn surface_at(&self, x: f32, top: f32, depth: f32) -> Option<(f32, Option<(i64, i64)>)> {
+        let i = x.floor() as i64;
+        let lowest = top - depth;
+        let mut j = top.floor() as i64;
+        while j as f32 + 1.0 > lowest && j >= 0 {
+            match self.tile(i, j) {
+                Tile::Solid => {
+                    let h = j as f32 + 1.0;
+                    return (h <= top && h >= lowest).then_some((h, None));
+                }
+                Tile::Slope(s) => {
+                    // Where the surface is at the tile's bottom, this tile holds nothing at x.
+                    let local = s.height_at(x - i as f32);
+                    let h = j as f32 + local;
+                    if local > 0.0 && h <= top {
+                        return (h >= lowest).then_some((h, Some((i, j))));
+                    }
+                }
+                _ => {}
+            }
+            j -= 1;
+        }
+        None
+    }
+
+    /// The slope surface's normal at `x` in slope tile `(i, j)`, from the gradient over a
+    /// sixteenth of a tile around `x` (the width of one height-array column).
+    pub fn slope_normal(&self, i: i64, j: i64, x: f32) -> Vec2 {
+        let Tile::Slope(s) = self.tile(i, j) else {
+            return Vec2::Y;
+        };
+        let u = x - i as f32;
+        let (a, b) = ((u - 1.0 / 32.0).max(0.0), (u + 1.0 / 32.0).min(1.0));
+        let grad = (s.height_at(b) - s.height_at(a)) / (b - a).max(1e-6);
+        Vec2::new(-grad, 1.0).normalize()
+    }
+
+    /// Whether tile `(i, j)` is a solid tile carrying a slope tile: part of a ramp's mass, which
+    /// the centre-column slope rules govern rather than the box sweep.
+    pub fn supports_slope(&self, i: i64, j: i64) -> bool {
+        self.tile(i, j) == Tile::Solid && matches!(self.tile(i, j + 1), Tile::Slope(_))
+    }
+
+    /// Every slope tile with its column and row.
+    pub fn slopes(&self) -> impl Iterator<Item = (i64, i64, Slope)> + '_ {
+        let w = self.width as usize;
+        self.tiles
+            .iter()
+            .enumerate()
+            .filter_map(move |(k, t)| match t {
+                Tile::Slope(s) => Some(((k % w) as i64, (k / w) as i64, *s)),
+                _ => None,
+            })
+    }
+}
+
 /// The box of a character whose feet (bottom centre) are at `pos`.
 pub fn character_box(pos: Vec2, size: Vec2) -> Aabb {
     Aabb::new(
@@ -332,6 +474,45 @@ mod tests {
         assert_eq!(l.support_below(2.5, 3.5, 2.0, 0.0), Some(2.0));
         assert_eq!(l.support_below(2.5, 3.5, 1.5, 0.0), Some(1.0));
         assert_eq!(l.support_below(5.0, 6.0, 1.0, 0.0), None);
+    }
+
+    #[test]
+    fn slope_surfaces_run_left_to_right() {
+        let up = Slope::Line {
+            left: 0.0,
+            right: 0.5,
+        };
+        assert_eq!(up.height_at(0.0), 0.0);
+        assert_eq!(up.height_at(1.0), 0.5);
+        assert_eq!(up.height_at(0.5), 0.25);
+        let seed = Slope::Heights([12, 11, 10, 8, 7, 6, 5, 5, 5, 5, 5, 4, 3, 2, 1, 1]);
+        assert_eq!(seed.height_at(0.0), 12.0 / 16.0);
+        assert_eq!(seed.height_at(3.5 / 16.0), 8.0 / 16.0);
+        assert_eq!(seed.height_at(1.0), 1.0 / 16.0);
+        assert_eq!(seed.surface_points().len(), 18);
+    }
+
+    #[test]
+    fn surface_at_finds_solids_and_slopes() {
+        // Row 0 solid; row 1: a '/' at i = 1.
+        let mut t = vec![Tile::Solid; 3];
+        t.extend([
+            Tile::Empty,
+            Tile::Slope(Slope::Line {
+                left: 0.0,
+                right: 1.0,
+            }),
+            Tile::Empty,
+        ]);
+        t.extend([Tile::Empty; 3]);
+        let l = Level::from_tiles("s", 3, 3, t);
+        assert_eq!(l.surface_at(0.5, 2.5, 2.0), Some((1.0, None)));
+        assert_eq!(l.surface_at(1.25, 2.5, 2.0), Some((1.25, Some((1, 1)))));
+        // Below the slope surface the slope is not "at or below": the solid under it is found.
+        assert_eq!(l.surface_at(1.75, 1.5, 2.0), Some((1.0, None)));
+        assert_eq!(l.surface_at(1.75, 1.5, 0.2), None);
+        let n = l.slope_normal(1, 1, 1.5);
+        assert!((n - Vec2::new(-1.0, 1.0).normalize()).length() < 1e-5);
     }
 
     #[test]

@@ -242,7 +242,7 @@ fn parse_legend_value(loc: &Locator, value: &Spanned<toml::Value>) -> Result<Til
                     .collect()
             });
             match pair.as_deref() {
-                Some(&[l, r]) if (0.0..=1.0).contains(&l) && (0.0..=1.0).contains(&r) => {
+                Some(&[l, r]) if l.abs() <= 16.0 && r.abs() <= 16.0 => {
                     Ok(Tile::Slope(Slope::Line {
                         left: l as f32,
                         right: r as f32,
@@ -250,7 +250,7 @@ fn parse_legend_value(loc: &Locator, value: &Spanned<toml::Value>) -> Result<Til
                 }
                 _ => Err(loc.at(
                     &span,
-                    "a line slope must be [left, right]: two numbers between 0 and 1 (tiles)",
+                    "a line slope must be [left, right]: two numbers between -16 and 16 (heights of the line at the tile's edges, in tiles; the surface is clamped into the tile)",
                 )),
             }
         }
@@ -569,6 +569,8 @@ inputs = [ { t = 0.0, right = true }, { t = 0.5, right = false } ]
         let e = err("map = \"a\"\n[legend]\na = { heights = [1, 2] }\n");
         assert_eq!(e.line, 3, "{e}");
         assert!(e.message.contains("exactly 16"), "{e}");
+        let e = err("map = \"a\"\n[legend]\na = { line = [0.0] }\n");
+        assert!(e.message.contains("line slope"), "{e}");
         let e = err("map = \"a\"\n[legend]\nab = \"solid\"\n");
         assert!(e.message.contains("single character"), "{e}");
     }

@@ -9,6 +9,7 @@
 //! `grounded_flicker`, `stuck_frames` and `tunneled` apply to every scenario. Only character 0
 //! is measured.
 
+pub mod ground;
 mod reference;
 
 pub use reference::{commanded_distance, commanded_steps, predicted_landing_frame};
@@ -21,10 +22,8 @@ use crate::scenario::input_script;
 use crate::shape::CharacterShape;
 use crate::trace::{Trace, TraceRow};
 use glam::Vec2;
+use ground::Ground;
 use parry2d::bounding_volume::Aabb;
-use parry2d::math::Pose;
-use parry2d::query::contact;
-use parry2d::shape::{Cuboid, SharedShape};
 
 /// Idle time at the end of a scenario needed for the rest metrics, in seconds.
 pub const REST_WINDOW: f32 = 0.5;
@@ -44,6 +43,10 @@ pub const CATALOG: &[&str] = &[
     "apex_error",
     "progress_ratio",
     "stuck_frames",
+    "slope_airborne_frames",
+    "slope_gap_max",
+    "slope_speed_ratio",
+    "steep_blocked",
     "tunneled",
 ];
 
@@ -104,6 +107,13 @@ pub struct Context<'a> {
 /// Computes every metric that applies to the scenario.
 pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     let rows: Vec<TraceRow> = ctx.trace.character(0).copied().collect();
+    let ground = Ground::new(
+        ctx.level,
+        ctx.shape,
+        ctx.spec.size,
+        ctx.params.max_climb_angle,
+    );
+    let g = &ground;
     let mut out = Vec::new();
     let mut push = |m: Option<Measure>| {
         if let Some(m) = m {
@@ -121,15 +131,20 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
         }
     };
     push(land_frame_error(ctx, &rows));
-    let rest = rest_frames(ctx, &rows);
-    push(rest.clone().map(|r| rest_gap(ctx, &rows[r])));
-    push(Some(max_penetration(ctx, &rows)));
+    let rest = rest_frames(ctx, g, &rows);
+    push(rest.clone().map(|r| rest_gap(ctx, g, &rows[r])));
+    push(Some(max_penetration(g, &rows)));
     push(rest.map(|r| rest_jitter(&rows[r])));
-    push(Some(grounded_flicker(ctx, &rows)));
-    push(Some(false_grounded(ctx, &rows)));
+    push(Some(grounded_flicker(ctx, g, &rows)));
+    push(Some(false_grounded(g, &rows)));
     push(apex_error(ctx, &rows));
     push(progress_ratio(ctx, &rows));
     push(Some(stuck_frames(ctx, &rows)));
+    let on_slope = slope_frames(ctx, &rows);
+    push(slope_airborne_frames(ctx, &rows, &on_slope));
+    push(slope_gap_max(ctx, g, &rows, &on_slope));
+    push(slope_speed_ratio(ctx, &rows, &on_slope));
+    push(steep_blocked(ctx, &rows));
     push(Some(tunneled(ctx, &rows)));
     out
 }
@@ -138,30 +153,13 @@ fn pos(r: &TraceRow) -> Vec2 {
     Vec2::new(r.x, r.y)
 }
 
-/// Deepest overlap of the character's shape with a solid tile, from parry's contact query
-/// between the shape and each tile's square (for the box: the smaller axis overlap).
-fn penetration(level: &Level, shape: &SharedShape, feet: Vec2, size: Vec2) -> f32 {
-    let pose = CharacterShape::pose(feet, size);
-    let tile = Cuboid::new(Vec2::splat(0.5));
-    level
-        .solids_overlapping(&character_box(feet, size))
-        .map(|t| {
-            let tile_pose = Pose::from_translation(t.center());
-            match contact(&pose, &**shape, &tile_pose, &tile, 0.0) {
-                Ok(Some(c)) if c.dist < 0.0 => -c.dist,
-                _ => 0.0,
-            }
-        })
-        .fold(0.0, f32::max)
-}
-
 /// `max_penetration`: deepest overlap of the character's shape with any solid tile over the
-/// whole run, in tiles, computed from the level geometry (not from a backend's contacts).
-pub fn max_penetration(ctx: &Context, rows: &[TraceRow]) -> Measure {
-    let shape = ctx.shape.build(ctx.spec.size);
+/// whole run, in tiles, from parry's contact query between the shape and each tile's square
+/// (not from a backend's contacts).
+pub fn max_penetration(g: &Ground, rows: &[TraceRow]) -> Measure {
     let worst = rows
         .iter()
-        .map(|r| penetration(ctx.level, &shape, pos(r), ctx.spec.size))
+        .map(|r| g.solid_penetration(pos(r)))
         .fold(0.0f32, f32::max);
     Measure {
         metric: "max_penetration",
@@ -183,7 +181,12 @@ pub fn land_frame_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     let top =
         ctx.level
             .support_below(spec.spawn.x - half, spec.spawn.x + half, spec.spawn.y, 0.0)?;
-    if spec.spawn.y <= top {
+    // Only onto flat solid ground: no slope between the feet and that top under the centre.
+    let flat = ctx
+        .level
+        .surface_at(spec.spawn.x, spec.spawn.y, spec.spawn.y - top + 0.5)
+        .is_some_and(|(h, slope)| slope.is_none() && h == top);
+    if spec.spawn.y <= top || !flat {
         return None;
     }
     let predicted = predicted_landing_frame(
@@ -217,7 +220,7 @@ pub fn land_frame_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
 /// The frames over which the character should be at rest: from its first grounded frame within
 /// the final idle window (or the window's last [`REST_WINDOW`] seconds if it never lands there)
 /// to the end. `None` if the scenario does not end with such a window.
-fn rest_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::Range<usize>> {
+fn rest_frames(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<std::ops::Range<usize>> {
     let script = input_script(ctx.spec);
     let idle = crate::motion::Input::default();
     let n = script.len();
@@ -229,25 +232,18 @@ fn rest_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::Range<usize
         return None;
     }
     let start = first_idle_step + 1;
-    let landed = (start..=n).find(|&k| rows[k].is_grounded() && supported(ctx, &rows[k]));
+    let landed = (start..=n).find(|&k| rows[k].is_grounded() && supported(g, &rows[k]));
     let from = landed.unwrap_or(n + 1 - needed);
     Some(from..n + 1)
 }
 
-/// `rest_gap`: signed distance from the feet to the ground top at the last frame (negative:
-/// sunk into the ground), in tiles.
-fn rest_gap(ctx: &Context, rows: &[TraceRow]) -> Measure {
+/// `rest_gap`: signed gap from the character's shape down to the ground at the last frame
+/// (negative: sunk into a solid), in tiles; see [`Ground::gap`].
+fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let last = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
-    let half = ctx.spec.size.x * 0.5;
-    // Look for the ground up to half the character's height above the feet, so a character
-    // that sank in still finds the surface it sank into.
-    let top = ctx
-        .level
-        .support_below(last.x - half, last.x + half, last.y, ctx.spec.size.y * 0.5);
-    let value = top.map_or(f64::INFINITY, |t| (last.y - t) as f64);
     Measure {
         metric: "rest_gap",
-        value,
+        value: g.gap(last) as f64,
         unit: "tiles",
         reference: 0.0,
     }
@@ -272,24 +268,20 @@ fn rest_jitter(rows: &[TraceRow]) -> Measure {
     }
 }
 
-/// Whether there is ground under the feet: a solid top at most [`FLICKER_SUPPORT_TOLERANCE`]
-/// below them, or above them within half the character's height (sunk into the ground, which
-/// `max_penetration` measures).
-fn supported(ctx: &Context, r: &TraceRow) -> bool {
-    let half = ctx.spec.size.x * 0.5;
-    ctx.level
-        .support_below(r.x - half, r.x + half, r.y, ctx.spec.size.y * 0.5)
-        .is_some_and(|top| r.y - top <= FLICKER_SUPPORT_TOLERANCE)
+/// Whether the character's shape is within [`FLICKER_SUPPORT_TOLERANCE`] of the ground (or in
+/// it).
+fn supported(g: &Ground, r: &TraceRow) -> bool {
+    g.gap(pos(r)) <= FLICKER_SUPPORT_TOLERANCE
 }
 
-/// `false_grounded`: frames reported grounded with no ground within
-/// [`FLICKER_SUPPORT_TOLERANCE`] of the feet (standing on air, or on a wall's side). Not in
+/// `false_grounded`: frames reported grounded with the ground farther than
+/// [`FLICKER_SUPPORT_TOLERANCE`] below the shape (standing on air, or on a wall's side). Not in
 /// DESIGN.md's catalog: added because a controller that calls itself grounded mid-air resets
 /// its fall and can jump from there.
-pub fn false_grounded(ctx: &Context, rows: &[TraceRow]) -> Measure {
+pub fn false_grounded(g: &Ground, rows: &[TraceRow]) -> Measure {
     let count = rows
         .iter()
-        .filter(|r| r.is_grounded() && !supported(ctx, r))
+        .filter(|r| r.is_grounded() && !supported(g, r))
         .count();
     Measure {
         metric: "false_grounded",
@@ -301,7 +293,7 @@ pub fn false_grounded(ctx: &Context, rows: &[TraceRow]) -> Measure {
 
 /// `grounded_flicker`: grounded-to-airborne switches that no jump explains while the ground is
 /// still within [`FLICKER_SUPPORT_TOLERANCE`] under the feet.
-pub fn grounded_flicker(ctx: &Context, rows: &[TraceRow]) -> Measure {
+pub fn grounded_flicker(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let script = input_script(ctx.spec);
     let mut count = 0u32;
     for k in 1..rows.len() {
@@ -312,7 +304,7 @@ pub fn grounded_flicker(ctx: &Context, rows: &[TraceRow]) -> Measure {
         // Step k-1 produced row k: a jump pressed on that step explains leaving the ground.
         let jumped = script.get(k - 1).is_some_and(|i| i.jump)
             && (k < 2 || script.get(k - 2).is_none_or(|i| !i.jump));
-        if !jumped && supported(ctx, cur) {
+        if !jumped && supported(g, cur) {
             count += 1;
         }
     }
@@ -384,7 +376,10 @@ pub fn progress_ratio(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
         return None;
     }
     let path = Aabb::new(Vec2::new(lo, y0), Vec2::new(hi, y0 + spec.size.y));
-    if ctx.level.solids_overlapping(&path).next().is_some() {
+    let open = (lo.floor() as i64..hi.ceil() as i64).all(|i| {
+        (y0 as i64..(y0 + spec.size.y).ceil() as i64).all(|j| ctx.level.tile(i, j) == Tile::Empty)
+    });
+    if ctx.level.solids_overlapping(&path).next().is_some() || !open {
         return None;
     }
     let row = y0 as i64 - 1;
@@ -429,7 +424,10 @@ pub fn stuck_frames(ctx: &Context, rows: &[TraceRow]) -> Measure {
         // The box moved by the commanded step, lifted out of the floor band.
         let mut ahead = character_box(pos(before) + Vec2::new(*step as f32, 0.0), size);
         ahead.mins.y += STUCK_FLOOR_BAND;
-        if ctx.level.solids_overlapping(&ahead).next().is_none() {
+        let dir = step.signum() as f32;
+        let steep_ahead = steep_columns(ctx, dir)
+            .any(|i| (i as f32) < ahead.maxs.x && (i as f32 + 1.0) > ahead.mins.x);
+        if ctx.level.solids_overlapping(&ahead).next().is_none() && !steep_ahead {
             count += 1;
         }
     }
@@ -439,6 +437,169 @@ pub fn stuck_frames(ctx: &Context, rows: &[TraceRow]) -> Measure {
         unit: "frames",
         reference: 0.0,
     }
+}
+
+/// Columns holding a slope that rises in direction `dir` (+1 right, -1 left) more steeply than
+/// the climb limit somewhere in the tile.
+fn steep_columns<'a>(ctx: &'a Context, dir: f32) -> impl Iterator<Item = i64> + 'a {
+    let limit = ctx.params.max_climb_angle.tan() + 1e-3;
+    ctx.level.slopes().filter_map(move |(i, _, s)| {
+        let steep = (0..16).any(|k| {
+            let (a, b) = (k as f32 / 16.0, (k + 1) as f32 / 16.0);
+            (s.height_at(b) - s.height_at(a)) * 16.0 * dir > limit
+        });
+        steep.then_some(i)
+    })
+}
+
+/// For each row, whether the ground under the character's centre (from half a tile above its
+/// feet to one tile below) is a slope no steeper than the climb limit.
+fn slope_frames(ctx: &Context, rows: &[TraceRow]) -> Vec<bool> {
+    let limit = ctx.params.max_climb_angle.tan() + 1e-3;
+    rows.iter()
+        .map(|r| match ctx.level.surface_at(r.x, r.y + 0.5, 1.5) {
+            Some((_, Some((i, j)))) => {
+                let n = ctx.level.slope_normal(i, j, r.x);
+                (n.x / n.y).abs() <= limit
+            }
+            _ => false,
+        })
+        .collect()
+}
+
+/// Whether the scenario walks (a direction held at some point) and never jumps.
+fn walks_without_jumping(script: &[crate::motion::Input]) -> bool {
+    script.iter().any(|i| i.horizontal() != 0.0) && !script.iter().any(|i| i.jump)
+}
+
+/// Whether the scenario's walk, as commanded, crosses a column holding a slope no steeper than
+/// the climb limit: the slope metrics then apply, whatever the controller does.
+fn walks_over_slopes(ctx: &Context) -> bool {
+    let script = input_script(ctx.spec);
+    if !walks_without_jumping(&script) {
+        return false;
+    }
+    let d = commanded_distance(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt) as f32;
+    let half = ctx.spec.size.x * 0.5;
+    let (a, b) = (ctx.spec.spawn.x, ctx.spec.spawn.x + d);
+    let (x0, x1) = (a.min(b) - half, a.max(b) + half);
+    let limit = ctx.params.max_climb_angle.tan() + 1e-3;
+    ctx.level.slopes().any(|(i, _, s)| {
+        let walkable = (0..16).any(|k| {
+            let (u, v) = (k as f32 / 16.0, (k + 1) as f32 / 16.0);
+            let grad = (s.height_at(v) - s.height_at(u)) * 16.0;
+            grad != 0.0 && grad.abs() <= limit
+        });
+        walkable && (i as f32) < x1 && (i as f32 + 1.0) > x0
+    })
+}
+
+/// `slope_airborne_frames`: frames airborne over a walkable slope while walking, without a jump.
+pub fn slope_airborne_frames(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
+    if !walks_over_slopes(ctx) {
+        return None;
+    }
+    let script = input_script(ctx.spec);
+    let count = (1..rows.len())
+        .filter(|&k| on[k] && script[k - 1].horizontal() != 0.0 && !rows[k].is_grounded())
+        .count();
+    Some(Measure {
+        metric: "slope_airborne_frames",
+        value: count as f64,
+        unit: "frames",
+        reference: 0.0,
+    })
+}
+
+/// `slope_gap_max`: the largest gap between the character's shape and the ground over a
+/// walkable slope while reported grounded, in tiles (0 if it never stood on one).
+pub fn slope_gap_max(ctx: &Context, g: &Ground, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
+    if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
+        return None;
+    }
+    let gaps: Vec<f32> = rows
+        .iter()
+        .zip(on)
+        .filter(|(r, o)| **o && r.is_grounded())
+        .map(|(r, _)| g.gap(pos(r)))
+        .collect();
+    Some(Measure {
+        metric: "slope_gap_max",
+        value: gaps.iter().fold(0.0f32, |a, b| a.max(*b)) as f64,
+        unit: "tiles",
+        reference: 0.0,
+    })
+}
+
+/// Whether the scenario drops the character onto a slope and leaves it there (no input).
+fn rest_on_slope(ctx: &Context) -> bool {
+    input_script(ctx.spec)
+        .iter()
+        .all(|i| *i == crate::motion::Input::default())
+        && matches!(
+            ctx.level
+                .surface_at(ctx.spec.spawn.x, ctx.spec.spawn.y, ctx.spec.spawn.y),
+            Some((_, Some(_)))
+        )
+}
+
+/// `slope_speed_ratio`: mean horizontal speed over a walkable slope while walking at full run
+/// speed, over the run speed (the horizontal speed the same input gives on flat ground).
+pub fn slope_speed_ratio(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
+    if !walks_over_slopes(ctx) {
+        return None;
+    }
+    let script = input_script(ctx.spec);
+    // Steps at full commanded speed: the same direction held since the ramp-up ended.
+    let ramp = (ctx.params.run_speed / (ctx.params.run_accel * ctx.spec.dt)).ceil() as usize + 1;
+    let speeds: Vec<f64> = (1..rows.len())
+        .filter(|&k| {
+            let dir = script[k - 1].horizontal();
+            dir != 0.0
+                && on[k]
+                && on[k - 1]
+                && k > ramp
+                && script[k - 1 - ramp..k]
+                    .iter()
+                    .all(|i| i.horizontal() == dir)
+        })
+        .map(|k| ((rows[k].x - rows[k - 1].x) as f64 / ctx.spec.dt as f64).abs())
+        .collect();
+    // Never on a slope at full speed: it did not walk the slope.
+    let mean = if speeds.is_empty() {
+        0.0
+    } else {
+        speeds.iter().sum::<f64>() / speeds.len() as f64
+    };
+    Some(Measure {
+        metric: "slope_speed_ratio",
+        value: mean / ctx.params.run_speed as f64,
+        unit: "ratio",
+        reference: 1.0,
+    })
+}
+
+/// `steep_blocked`: for a walk toward a slope that rises more steeply than the climb limit, 1 if
+/// the character never got half a tile above where it started, else 0.
+pub fn steep_blocked(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let script = input_script(ctx.spec);
+    if !walks_without_jumping(&script) {
+        return None;
+    }
+    let d = commanded_distance(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt) as f32;
+    let (a, b) = (ctx.spec.spawn.x, ctx.spec.spawn.x + d);
+    let (x0, x1) = (a.min(b), a.max(b));
+    let ahead = steep_columns(ctx, d.signum()).any(|i| (i as f32) < x1 && (i as f32 + 1.0) > x0);
+    if !ahead {
+        return None;
+    }
+    let top = rows.iter().map(|r| r.y).fold(f32::NEG_INFINITY, f32::max);
+    Some(Measure {
+        metric: "steep_blocked",
+        value: (top < ctx.spec.spawn.y + 0.5) as u8 as f64,
+        unit: "bool",
+        reference: 1.0,
+    })
 }
 
 /// `tunneled`: 1 if between two frames the character passed entirely through a solid tile that

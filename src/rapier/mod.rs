@@ -30,6 +30,12 @@ use crate::motion::{Contacts, Input, MotionParams, MotionState};
 pub use crate::shape::CharacterShape;
 pub use colliders::{ColliderBuilding, StaticWorld};
 
+/// Added to [`MotionParams::max_climb_angle`] for Rapier's climb and slide angles, in radians.
+/// Rapier calls a slope at exactly its limit a wall (`angle >= max_slope_climb_angle`), while the
+/// shared limit is the steepest walkable slope; 0.001 rad is the margin Rapier's own climb test
+/// puts around its limit.
+pub const CLIMB_LIMIT_MARGIN: f32 = 1e-3;
+
 /// A length that is either absolute (tiles) or relative to the character's height, as Rapier's
 /// `CharacterLength`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -68,10 +74,12 @@ pub struct RapierConfig {
     /// expensive"): maximum step height and minimum free width on top.
     pub autostep: Option<(Length, Length)>,
     /// Steepest slope the character can climb, in radians; `None` takes
-    /// [`MotionParams::max_climb_angle`] (Rapier's default is 45 degrees, as is ours).
+    /// [`MotionParams::max_climb_angle`] plus [`CLIMB_LIMIT_MARGIN`] (Rapier's default is 45
+    /// degrees, as is ours).
     pub max_slope_climb_angle: Option<f32>,
     /// Slope angle from which the character slides down, in radians; `None` takes
-    /// [`MotionParams::max_climb_angle`] (Rapier's default is 45 degrees).
+    /// [`MotionParams::max_climb_angle`] plus [`CLIMB_LIMIT_MARGIN`] (Rapier's default is 45
+    /// degrees).
     pub min_slope_slide_angle: Option<f32>,
     /// Snap to the ground when it is closer than this below the feet (Rapier's default: 20% of
     /// the character's height); `None` disables snapping.
@@ -110,8 +118,12 @@ impl RapierConfig {
                 min_width: w.into(),
                 include_dynamic_bodies: false,
             }),
-            max_slope_climb_angle: self.max_slope_climb_angle.unwrap_or(p.max_climb_angle),
-            min_slope_slide_angle: self.min_slope_slide_angle.unwrap_or(p.max_climb_angle),
+            max_slope_climb_angle: self
+                .max_slope_climb_angle
+                .unwrap_or(p.max_climb_angle + CLIMB_LIMIT_MARGIN),
+            min_slope_slide_angle: self
+                .min_slope_slide_angle
+                .unwrap_or(p.max_climb_angle + CLIMB_LIMIT_MARGIN),
             snap_to_ground: self.snap_to_ground.map(Into::into),
             normal_nudge_factor: self.normal_nudge_factor,
         }
@@ -159,7 +171,10 @@ pub struct RapierBackend {
 
 impl RapierBackend {
     /// What this backend models today.
-    pub const SUPPORTED: Features = Features::NONE;
+    pub const SUPPORTED: Features = Features {
+        slopes: true,
+        ..Features::NONE
+    };
 
     /// Builds the colliders for `level`; refuses levels with features it does not model.
     pub fn new(

@@ -3,12 +3,16 @@
 //! One step per character: the shared motion integrates the velocity (symplectic Euler with a
 //! force accumulator, [`crate::motion`]), then [`resolve`] moves the box along x, then along
 //! y, each time snapping flush to the closest obstacle found through the parry2d broadphase
-//! ([`broadphase`]); the blocked axis loses its velocity and the other gets friction.
+//! ([`broadphase`]); the blocked axis loses its velocity and the other gets friction. Levels
+//! with slopes add the centre-column rules of [`slopes`]; a level without them runs none of
+//! that code ([`SweepStats`] counts it).
 
 pub mod broadphase;
 pub mod resolve;
+pub mod slopes;
 
 use glam::Vec2;
+use parry2d::bounding_volume::Aabb;
 
 use crate::backend::{
     require_supported, Backend, BackendError, CharacterId, CharacterSpec, CharacterState,
@@ -25,11 +29,19 @@ pub struct SweepConfig {
     /// so rounding after a snap never reads as a new hit. The seed: "try 0.001, and lower until
     /// unstable".
     pub epsilon: f32,
+    /// How much farther than the steepest walkable slope the ground may drop away under a
+    /// walking character and still be followed rather than left, in tiles. Height-array slopes
+    /// drop in steps (the seed's tile drops 2/16 of a tile between two columns), so following
+    /// them at run speed needs a little more than the walkable gradient. Default: 1/8 tile.
+    pub snap_down: f32,
 }
 
 impl Default for SweepConfig {
     fn default() -> Self {
-        SweepConfig { epsilon: 0.001 }
+        SweepConfig {
+            epsilon: 0.001,
+            snap_down: 0.125,
+        }
     }
 }
 
@@ -38,11 +50,22 @@ struct Character {
     pos: Vec2,
     size: Vec2,
     motion: MotionState,
+    ground_normal: Vec2,
+}
+
+/// How often each feature's code ran: evidence that a step costs only what the level contains.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SweepStats {
+    /// Character steps that ran the slope rules.
+    pub slope_steps: u64,
 }
 
 /// The sweep backend over one level.
 pub struct SweepBackend {
     tiles: StaticTiles,
+    /// The level's grid, for the per-column feature rules (slopes).
+    level: Level,
+    stats: SweepStats,
     /// The level's corner in the world.
     origin: Vec2,
     params: MotionParams,
@@ -52,7 +75,10 @@ pub struct SweepBackend {
 
 impl SweepBackend {
     /// What this backend models today.
-    pub const SUPPORTED: Features = Features::NONE;
+    pub const SUPPORTED: Features = Features {
+        slopes: true,
+        ..Features::NONE
+    };
 
     /// Builds the backend for `level`; refuses levels with features it does not model.
     pub fn new(
@@ -61,6 +87,13 @@ impl SweepBackend {
         config: SweepConfig,
     ) -> Result<Self, BackendError> {
         require_supported("sweep", &level.name, level.features, Self::SUPPORTED)?;
+        if !(config.snap_down.is_finite() && config.snap_down >= 0.0) {
+            return Err(BackendError::InvalidParameter {
+                name: "snap_down",
+                value: config.snap_down.to_string(),
+                expected: "a finite number >= 0 (tiles)",
+            });
+        }
         if !(config.epsilon.is_finite() && config.epsilon >= 0.0) {
             return Err(BackendError::InvalidParameter {
                 name: "epsilon",
@@ -70,6 +103,8 @@ impl SweepBackend {
         }
         Ok(SweepBackend {
             tiles: StaticTiles::new(level),
+            level: level.geometry(),
+            stats: SweepStats::default(),
             origin: level.origin,
             params,
             config,
@@ -77,19 +112,95 @@ impl SweepBackend {
         })
     }
 
+    /// How often each feature's code has run.
+    pub fn stats(&self) -> SweepStats {
+        self.stats
+    }
+
     /// Moves one character by one step.
     fn step_character(&mut self, id: usize, input: &Input, dt: f32) {
         let eps = self.config.epsilon;
+        let slopes = self.level.features.slopes;
+        let p = &self.params;
         let c = &mut self.characters[id];
-        let delta = c.motion.integrate(&self.params, input, dt);
-        let wall = move_axis(&self.tiles, &mut c.pos, c.size, Axis::X, delta.x, eps);
-        let hit_y = move_axis(&self.tiles, &mut c.pos, c.size, Axis::Y, delta.y, eps);
+        let was_grounded = c.motion.grounded;
+        let delta = c.motion.integrate(p, input, dt);
+        let start = c.pos;
+
+        // Standing on a slope, the box overhangs the ground by up to half its width times the
+        // climb gradient: solids within that height above the slope under the centre are the
+        // slope rules' business, not obstacles (the seed's centre model), and so is the mass
+        // under a ramp along x.
+        let overhang = c.size.x * 0.5 * p.max_climb_angle.tan() + eps;
+        let under = |pos: Vec2| {
+            if slopes {
+                slopes::slope_under(&self.level, self.origin, pos, overhang)
+            } else {
+                None
+            }
+        };
+        let floor_x = under(c.pos);
+        let skip_x = |t: &Aabb, under_slope: bool| {
+            under_slope || floor_x.is_some_and(|h| t.maxs.y <= h + overhang)
+        };
+        let mut wall = move_axis(
+            &self.tiles,
+            &mut c.pos,
+            c.size,
+            Axis::X,
+            delta.x,
+            eps,
+            skip_x,
+        );
+        // How far the ground under the centre may rise during this x move (the climb limit).
+        let rise_allow = p.max_climb_angle.tan() * (c.pos.x - start.x).abs() + eps;
+        if slopes {
+            self.stats.slope_steps += 1;
+            if slopes::climb_blocked(&self.level, self.origin, c.pos.x, c.pos.y, rise_allow) {
+                c.pos.x = start.x;
+                wall = true;
+            }
+        }
+
+        let before_y = c.pos.y;
+        let floor_y = under(c.pos);
+        let skip_y = |t: &Aabb, _: bool| {
+            floor_y.is_some_and(|h| t.maxs.y > h + eps && t.maxs.y <= h + overhang)
+        };
+        let hit_y = move_axis(
+            &self.tiles,
+            &mut c.pos,
+            c.size,
+            Axis::Y,
+            delta.y,
+            eps,
+            skip_y,
+        );
+        let mut ground = hit_y && delta.y < 0.0;
+        let ceiling = hit_y && delta.y > 0.0;
+        let mut normal = Vec2::Y;
+        if slopes {
+            if let Some(g) =
+                slopes::resolve_up(&self.level, self.origin, &mut c.pos, before_y, rise_allow)
+            {
+                (ground, normal) = (true, g.normal);
+            } else if !ground && was_grounded && delta.y <= 0.0 {
+                // Walking down: follow the ground by the drop the steepest walkable slope gives
+                // at this speed, plus this step's fall.
+                let max_drop = rise_allow + self.config.snap_down - delta.y.min(0.0);
+                if let Some(g) = slopes::follow_down(&self.level, self.origin, &mut c.pos, max_drop)
+                {
+                    (ground, normal) = (true, g.normal);
+                }
+            }
+        }
         let contacts = Contacts {
             wall,
-            ground: hit_y && delta.y < 0.0,
-            ceiling: hit_y && delta.y > 0.0,
+            ground,
+            ceiling,
         };
-        c.motion.apply_contacts(&self.params, input, contacts);
+        c.motion.apply_contacts(p, input, contacts);
+        c.ground_normal = if ground { normal } else { Vec2::ZERO };
     }
 }
 
@@ -103,6 +214,7 @@ impl Backend for SweepBackend {
             pos: spec.spawn + self.origin,
             size: spec.size,
             motion: MotionState::with_velocity(spec.velocity),
+            ground_normal: Vec2::ZERO,
         });
         self.characters.len() - 1
     }

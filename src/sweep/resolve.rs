@@ -37,7 +37,8 @@ impl Axis {
 }
 
 /// Moves the box whose feet are at `pos` by `delta` along `axis`, stopping flush at the
-/// closest obstacle. Returns `true` if an obstacle stopped the move.
+/// closest obstacle. `skip` tells which boxes are not obstacles for this move (it gets the box
+/// and whether it carries a slope). Returns `true` if an obstacle stopped the move.
 pub fn move_axis(
     tiles: &StaticTiles,
     pos: &mut Vec2,
@@ -45,6 +46,7 @@ pub fn move_axis(
     axis: Axis,
     delta: f32,
     epsilon: f32,
+    skip: impl Fn(&Aabb, bool) -> bool,
 ) -> bool {
     if delta == 0.0 {
         return false;
@@ -66,8 +68,9 @@ pub fn move_axis(
     swept.maxs[o] -= epsilon;
 
     let mut closest: Option<f32> = None;
-    for t in tiles.query(&swept) {
-        if !overlaps_across(&b, t, o, epsilon) {
+    for (t, under_slope) in tiles.query(&swept) {
+        // A ramp's mass is the slope rules' business along x: the box overhangs it by design.
+        if skip(t, under_slope) || !overlaps_across(&b, t, o, epsilon) {
             continue;
         }
         if delta > 0.0 {
@@ -136,7 +139,15 @@ mod tests {
     fn falls_and_snaps_flush_onto_the_floor() {
         let tiles = room();
         let mut p = Vec2::new(2.5, 3.0);
-        assert!(move_axis(&tiles, &mut p, SIZE, Axis::Y, -5.0, EPS));
+        assert!(move_axis(
+            &tiles,
+            &mut p,
+            SIZE,
+            Axis::Y,
+            -5.0,
+            EPS,
+            |_, _| false
+        ));
         assert_eq!(p.y, 1.0);
     }
 
@@ -145,7 +156,15 @@ mod tests {
         let tiles = room();
         let mut p = Vec2::new(2.5, 1.0);
         for _ in 0..60 {
-            assert!(!move_axis(&tiles, &mut p, SIZE, Axis::X, 0.1, EPS));
+            assert!(!move_axis(
+                &tiles,
+                &mut p,
+                SIZE,
+                Axis::X,
+                0.1,
+                EPS,
+                |_, _| false
+            ));
         }
         assert!((p.x - 8.5).abs() < 1e-4);
     }
@@ -154,10 +173,26 @@ mod tests {
     fn stops_flush_at_a_wall_even_at_huge_speed() {
         let tiles = room();
         let mut p = Vec2::new(2.5, 1.0);
-        assert!(move_axis(&tiles, &mut p, SIZE, Axis::X, 1000.0, EPS));
+        assert!(move_axis(
+            &tiles,
+            &mut p,
+            SIZE,
+            Axis::X,
+            1000.0,
+            EPS,
+            |_, _| false
+        ));
         assert!((p.x + SIZE.x / 2.0 - 10.0).abs() < 1e-5, "{p}");
         // Flush now: a further push is still stopped and does not sink in.
-        assert!(move_axis(&tiles, &mut p, SIZE, Axis::X, 0.5, EPS));
+        assert!(move_axis(
+            &tiles,
+            &mut p,
+            SIZE,
+            Axis::X,
+            0.5,
+            EPS,
+            |_, _| false
+        ));
         assert!(p.x + SIZE.x / 2.0 <= 10.0 + EPS);
     }
 
@@ -166,11 +201,27 @@ mod tests {
         let tiles = room();
         let mut p = Vec2::new(2.5, 1.5);
         // Stops 0.0005 short of the floor: a contact, snapped flush.
-        assert!(move_axis(&tiles, &mut p, SIZE, Axis::Y, -0.4995, EPS));
+        assert!(move_axis(
+            &tiles,
+            &mut p,
+            SIZE,
+            Axis::Y,
+            -0.4995,
+            EPS,
+            |_, _| false
+        ));
         assert_eq!(p.y, 1.0);
         // Stops 0.01 short: no contact.
         let mut q = Vec2::new(2.5, 1.5);
-        assert!(!move_axis(&tiles, &mut q, SIZE, Axis::Y, -0.49, EPS));
+        assert!(!move_axis(
+            &tiles,
+            &mut q,
+            SIZE,
+            Axis::Y,
+            -0.49,
+            EPS,
+            |_, _| false
+        ));
         assert!((q.y - 1.01).abs() < 1e-6);
     }
 
@@ -179,9 +230,25 @@ mod tests {
         let tiles = room();
         // Feet 0.0005 inside the floor: less than epsilon, so the floor does not block x.
         let mut p = Vec2::new(2.5, 1.0 - 0.0005);
-        assert!(!move_axis(&tiles, &mut p, SIZE, Axis::X, 1.0, EPS));
+        assert!(!move_axis(
+            &tiles,
+            &mut p,
+            SIZE,
+            Axis::X,
+            1.0,
+            EPS,
+            |_, _| false
+        ));
         // 0.01 inside: a real overlap, so the floor tile ahead blocks.
         let mut q = Vec2::new(2.5, 1.0 - 0.01);
-        assert!(move_axis(&tiles, &mut q, SIZE, Axis::X, 1.0, EPS));
+        assert!(move_axis(
+            &tiles,
+            &mut q,
+            SIZE,
+            Axis::X,
+            1.0,
+            EPS,
+            |_, _| false
+        ));
     }
 }
