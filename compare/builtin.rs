@@ -12,6 +12,8 @@ pub const LEVELS: &[(&str, &str)] = &[
     ("slope_45.toml", include_str!("levels/slope_45.toml")),
     ("slope_63_4.toml", include_str!("levels/slope_63_4.toml")),
     ("seed_tile.toml", include_str!("levels/seed_tile.toml")),
+    ("oneway.toml", include_str!("levels/oneway.toml")),
+    ("ladders.toml", include_str!("levels/ladders.toml")),
     ("long_floor.toml", include_str!("levels/long_floor.toml")),
     (
         "very_long_floor.toml",

@@ -8,6 +8,7 @@
 #![warn(missing_docs)]
 
 pub mod backend;
+pub mod ladder;
 pub mod level;
 pub mod metrics;
 pub mod motion;

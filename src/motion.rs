@@ -55,9 +55,11 @@ pub struct MotionParams {
     /// multiplied by this factor (dimensionless, 0..=1) on each frame with such a contact.
     /// 1 means no wall drag.
     pub wall_friction: f32,
-    /// Steepest ground the character can walk up, in radians from horizontal. Rapier's
-    /// climb and slide angles are set from it; the sweep uses it once levels have slopes.
+    /// Steepest ground the character can walk up, in radians from horizontal: steeper slopes
+    /// block. Rapier's climb and slide angles are set from it.
     pub max_climb_angle: f32,
+    /// Climbing speed on a ladder, in tiles/s.
+    pub ladder_speed: f32,
 }
 
 impl Default for MotionParams {
@@ -71,6 +73,7 @@ impl Default for MotionParams {
             ground_friction: 0.5,
             wall_friction: 1.0,
             max_climb_angle: std::f32::consts::FRAC_PI_4,
+            ladder_speed: 4.0,
         }
     }
 }
@@ -106,6 +109,8 @@ pub struct Contacts {
     pub ground: bool,
     /// The vertical move was stopped by something above.
     pub ceiling: bool,
+    /// The ground is a one-way platform (which down + jump drops through).
+    pub one_way: bool,
 }
 
 /// Per-character motion state: velocity, the force accumulator and what the previous frame
@@ -120,6 +125,13 @@ pub struct MotionState {
     pub grounded: bool,
     /// Whether jump was held on the previous frame (jumps fire on the press, not the hold).
     pub jump_held: bool,
+    /// Whether the ground under the character is a one-way platform.
+    pub on_one_way: bool,
+    /// Set for the step in which down + jump asked to drop through the one-way platform under
+    /// the character: the backend ignores one-way platforms during that step.
+    pub drop_through: bool,
+    /// The seed's ladder state: no gravity, no horizontal move, only climbing.
+    pub on_ladder: bool,
 }
 
 impl MotionState {
@@ -140,15 +152,38 @@ impl MotionState {
     /// Euler: velocity first) and returns the displacement the character wants to make this
     /// frame, `v * dt`, for the backend to resolve against the level.
     pub fn integrate(&mut self, p: &MotionParams, input: &Input, dt: f32) -> Vec2 {
+        let pressed = input.jump && !self.jump_held;
+        if self.on_ladder {
+            if pressed {
+                // The seed: leave the ladder when the player hits jump. The jump then takes off
+                // as from the ground, so its apex is the same.
+                self.on_ladder = false;
+                self.vel = Vec2::ZERO;
+                self.grounded = true;
+            } else {
+                // On the ladder: no gravity, no left or right, only up and down at ladder speed.
+                self.jump_held = input.jump;
+                self.drop_through = false;
+                self.force = Vec2::ZERO;
+                let climb = (input.up as i32 - input.down as i32) as f32;
+                self.vel = Vec2::new(0.0, p.ladder_speed * climb);
+                return self.vel * dt;
+            }
+        }
         let dir = input.horizontal();
         if dir != 0.0 {
             self.vel.x = approach(self.vel.x, dir * p.run_speed, p.run_accel * dt);
         }
-        let pressed = input.jump && !self.jump_held;
         self.jump_held = input.jump;
+        self.drop_through = false;
         if pressed && self.grounded {
-            // The seed: "just apply impulse to velocity".
-            self.vel.y += jump_speed(p, dt);
+            if input.down && self.on_one_way {
+                // Down + jump on a one-way platform drops through it instead of jumping.
+                self.drop_through = true;
+            } else {
+                // The seed: "just apply impulse to velocity".
+                self.vel.y += jump_speed(p, dt);
+            }
             self.grounded = false;
         }
         self.add_force(Vec2::new(0.0, -p.gravity));
@@ -175,6 +210,7 @@ impl MotionState {
             }
         }
         self.grounded = c.ground;
+        self.on_one_way = c.ground && c.one_way;
     }
 }
 

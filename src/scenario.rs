@@ -291,6 +291,7 @@ mod tests {
             dt: 0.01,
             inputs,
             motion: Default::default(),
+            expect_y: None,
         }
     }
 

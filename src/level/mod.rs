@@ -196,6 +196,9 @@ pub struct ScenarioSpec {
     pub inputs: Vec<InputEvent>,
     /// Changes to the motion parameters for this scenario.
     pub motion: MotionOverrides,
+    /// Where the character's feet should end (y, in tiles), for scenarios whose outcome is a
+    /// place: which side of a one-way platform, or the top of a ladder.
+    pub expect_y: Option<f32>,
 }
 
 /// Default character box: 0.8 x 0.9 tiles, the size of the reference measurements.
@@ -351,7 +354,7 @@ impl Level {
             })
     }
 
-    /// The highest solid top at or below `y + tolerance` under the horizontal span
+    /// The highest solid or one-way top at or below `y + tolerance` under the horizontal span
     /// `[x0, x1]` (open at both ends), or `None` if nothing is below.
     pub fn support_below(&self, x0: f32, x1: f32, y: f32, tolerance: f32) -> Option<f32> {
         let i0 = x0.floor() as i64;
@@ -364,7 +367,7 @@ impl Level {
             }
             let mut j = top_row;
             while j >= 0 {
-                if self.tile(i, j) == Tile::Solid {
+                if self.tile(i, j) == Tile::Solid || self.is_one_way(i, j) {
                     let top = j as f32 + 1.0;
                     best = Some(best.map_or(top, |b: f32| b.max(top)));
                     break;
@@ -421,6 +424,39 @@ impl Level {
     /// the centre-column slope rules govern rather than the box sweep.
     pub fn supports_slope(&self, i: i64, j: i64) -> bool {
         self.tile(i, j) == Tile::Solid && matches!(self.tile(i, j + 1), Tile::Slope(_))
+    }
+
+    /// Whether tile `(i, j)` can be stood on from above only: a one-way platform, or the top
+    /// tile of a ladder (which the seed makes walkable like a one-way platform).
+    pub fn is_one_way(&self, i: i64, j: i64) -> bool {
+        match self.tile(i, j) {
+            Tile::OneWay => true,
+            Tile::Ladder => self.tile(i, j + 1) != Tile::Ladder,
+            _ => false,
+        }
+    }
+
+    /// The run of ladder tiles in column `i` that contains row `j`, as (bottom, top) heights.
+    pub fn ladder_extent(&self, i: i64, j: i64) -> Option<(f32, f32)> {
+        if self.tile(i, j) != Tile::Ladder {
+            return None;
+        }
+        let (mut lo, mut hi) = (j, j);
+        while self.tile(i, lo - 1) == Tile::Ladder {
+            lo -= 1;
+        }
+        while self.tile(i, hi + 1) == Tile::Ladder {
+            hi += 1;
+        }
+        Some((lo as f32, hi as f32 + 1.0))
+    }
+
+    /// Boxes of every one-way tile (see [`Level::is_one_way`]), in row order.
+    pub fn one_way_boxes(&self) -> impl Iterator<Item = Aabb> + '_ {
+        (0..self.height as i64)
+            .flat_map(move |j| (0..self.width as i64).map(move |i| (i, j)))
+            .filter(move |&(i, j)| self.is_one_way(i, j))
+            .map(|(i, j)| Self::tile_box(i, j))
     }
 
     /// Every slope tile with its column and row.

@@ -54,6 +54,7 @@ struct RawScenario {
     #[serde(default)]
     inputs: Vec<Spanned<RawInput>>,
     motion: Option<Spanned<RawMotion>>,
+    expect_y: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -438,6 +439,11 @@ fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelE
             }
         }
     };
+    let expect_y = s
+        .expect_y
+        .as_ref()
+        .map(|v| finite(loc, &v.span(), "expect_y", *v.get_ref()))
+        .transpose()?;
     Ok(ScenarioSpec {
         name,
         spawn,
@@ -447,6 +453,7 @@ fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelE
         dt,
         inputs,
         motion,
+        expect_y,
     })
 }
 

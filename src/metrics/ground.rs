@@ -1,5 +1,6 @@
 //! Where the ground is under a character, for every shape: how far the shape can drop before it
-//! touches the level's geometry (solid tiles as squares, slope tiles as their solid part). Used
+//! touches the level's geometry (solid tiles as squares, slope tiles as their solid part, and
+//! one-way platforms and ladder tops for a shape above them). Used
 //! by the metrics that ask whether a character stands on something and how far above it.
 //!
 //! The sweep stands the centre of its box on a slope and lets the box overhang the ground by up
@@ -115,8 +116,14 @@ impl<'a> Ground<'a> {
         for i in i0..=i1 {
             for j in (j_low..=j_top).rev() {
                 let origin = Vec2::new(i as f32, j as f32);
+                // One-way tops (platforms, ladder tops) are ground for a shape above them.
+                let one_way_below = self.level.is_one_way(i, j) && feet.y >= j as f32 + 1.0 - 1e-3;
                 let (tile_pose, tile_shape): (Pose, &dyn parry2d::shape::Shape) =
                     match self.level.tile(i, j) {
+                        _ if one_way_below => (
+                            Pose::from_translation(origin + Vec2::splat(0.5)),
+                            &self.tile,
+                        ),
                         Tile::Solid => (
                             Pose::from_translation(origin + Vec2::splat(0.5)),
                             &self.tile,

@@ -47,6 +47,9 @@ pub const CATALOG: &[&str] = &[
     "slope_gap_max",
     "slope_speed_ratio",
     "steep_blocked",
+    "oneway_result",
+    "ladder_speed_error",
+    "ladder_result",
     "tunneled",
 ];
 
@@ -145,6 +148,9 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     push(slope_gap_max(ctx, g, &rows, &on_slope));
     push(slope_speed_ratio(ctx, &rows, &on_slope));
     push(steep_blocked(ctx, &rows));
+    push(oneway_result(ctx, &rows));
+    push(ladder_speed_error(ctx, &rows));
+    push(ladder_result(ctx, &rows));
     push(Some(tunneled(ctx, &rows)));
     out
 }
@@ -325,6 +331,10 @@ pub fn apex_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
         .iter()
         .enumerate()
         .position(|(k, i)| i.jump && (k == 0 || !script[k - 1].jump))?;
+    // Down + jump is a drop through a one-way platform, not a jump.
+    if script[press].down {
+        return None;
+    }
     let start = rows.get(press)?;
     let h = ctx.params.jump_height;
     let half = ctx.spec.size.x * 0.5;
@@ -602,6 +612,74 @@ pub fn steep_blocked(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     })
 }
 
+/// How close to the expected height the feet must end for `oneway_result`, in tiles: above
+/// Rapier's offset, far below a tile.
+pub const EXPECT_TOLERANCE: f32 = 0.05;
+
+/// `oneway_result`: on a level with one-way platforms, 1 if the character ended where the
+/// scenario says the seed's rule puts it (`expect_y`: on the platform, or below it), else 0.
+pub fn oneway_result(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let expect = ctx.spec.expect_y?;
+    if !ctx.level.features.one_way {
+        return None;
+    }
+    let last = rows.last()?;
+    Some(Measure {
+        metric: "oneway_result",
+        value: ((last.y - expect).abs() <= EXPECT_TOLERANCE) as u8 as f64,
+        unit: "bool",
+        reference: 1.0,
+    })
+}
+
+/// `ladder_speed_error`: on a level with ladders, for a scenario that climbs (up or down held),
+/// the measured climbing speed minus the configured ladder speed, in tiles/s: the worst over the
+/// steps spent on the ladder from start to end while climbing (steps entering or leaving the
+/// ladder are not climbing at speed). A character that never climbed measures speed 0.
+pub fn ladder_speed_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let script = input_script(ctx.spec);
+    if !ctx.level.features.ladders || !script.iter().any(|i| i.up || i.down) {
+        return None;
+    }
+    let target = ctx.params.ladder_speed as f64;
+    let mut worst: Option<f64> = None;
+    for k in 1..rows.len() {
+        let i = script[k - 1];
+        if !(rows[k - 1].ladder == 1 && rows[k].ladder == 1 && i.up != i.down && !i.jump) {
+            continue;
+        }
+        let speed = ((rows[k].y - rows[k - 1].y) as f64 / ctx.spec.dt as f64).abs();
+        let err = speed - target;
+        if worst.is_none_or(|w| err.abs() > w.abs()) {
+            worst = Some(err);
+        }
+    }
+    Some(Measure {
+        metric: "ladder_speed_error",
+        value: worst.unwrap_or(-target),
+        unit: "tiles/s",
+        reference: 0.0,
+    })
+}
+
+/// `ladder_result`: on a level with ladders, 1 if the character ended where the scenario says
+/// (`expect_y`: at the top, back at the bottom, or on the floor after jumping off), else 0. Not
+/// in DESIGN.md's catalog: added so that entering and leaving a ladder is checked, not only the
+/// climbing speed.
+pub fn ladder_result(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let expect = ctx.spec.expect_y?;
+    if !ctx.level.features.ladders {
+        return None;
+    }
+    let last = rows.last()?;
+    Some(Measure {
+        metric: "ladder_result",
+        value: ((last.y - expect).abs() <= EXPECT_TOLERANCE) as u8 as f64,
+        unit: "bool",
+        reference: 1.0,
+    })
+}
+
 /// `tunneled`: 1 if between two frames the character passed entirely through a solid tile that
 /// overlapped its box's cross-section both before and after the move, else 0.
 pub fn tunneled(ctx: &Context, rows: &[TraceRow]) -> Measure {
@@ -709,6 +787,7 @@ map = """
             dt: 0.1,
             inputs,
             motion: Default::default(),
+            expect_y: None,
         }
     }
 

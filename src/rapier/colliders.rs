@@ -66,6 +66,20 @@ impl StaticWorld {
                 )
             })
             .collect();
+        if level.features.one_way || level.features.ladders {
+            for r in one_way_rects(level, building) {
+                let half = r.half_extents();
+                let top = r.maxs.y + level.origin.y;
+                handles.push(
+                    colliders.insert(
+                        ColliderBuilder::cuboid(half.x, half.y)
+                            .translation(r.center() + level.origin)
+                            .user_data(one_way_tag(top))
+                            .build(),
+                    ),
+                );
+            }
+        }
         for points in slope_outlines(level, building) {
             let pts: Vec<Vec2> = points.iter().map(|p| *p + level.origin).collect();
             let builder = match building {
@@ -104,6 +118,40 @@ impl StaticWorld {
             &mut events,
         );
     }
+}
+
+/// `user_data` bit marking a one-way collider; the low 32 bits hold its top (world y, f32 bits).
+pub const ONE_WAY: u128 = 1 << 64;
+
+/// The `user_data` of a one-way collider whose top is at world height `top`.
+pub fn one_way_tag(top: f32) -> u128 {
+    ONE_WAY | top.to_bits() as u128
+}
+
+/// The top of a one-way collider from its `user_data`, or `None` for any other collider.
+pub fn one_way_top(user_data: u128) -> Option<f32> {
+    (user_data & ONE_WAY != 0).then(|| f32::from_bits(user_data as u32))
+}
+
+/// One-way tiles (and ladder tops) as boxes: one per tile, or merged along each row.
+pub fn one_way_rects(
+    level: &Level,
+    building: ColliderBuilding,
+) -> Vec<parry2d::bounding_volume::Aabb> {
+    let mut out: Vec<parry2d::bounding_volume::Aabb> = Vec::new();
+    for b in level.one_way_boxes() {
+        match out.last_mut() {
+            Some(last)
+                if building == ColliderBuilding::Merged
+                    && last.maxs.x == b.mins.x
+                    && last.mins.y == b.mins.y =>
+            {
+                last.maxs.x = b.maxs.x
+            }
+            _ => out.push(b),
+        }
+    }
+    out
 }
 
 /// The outlines of the level's slopes, in level coordinates, as Rapier gets them. Per tile:

@@ -28,13 +28,17 @@ use crate::backend::{
 use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
 pub use crate::shape::CharacterShape;
-pub use colliders::{ColliderBuilding, StaticWorld};
+pub use colliders::{one_way_top, ColliderBuilding, StaticWorld};
 
 /// Added to [`MotionParams::max_climb_angle`] for Rapier's climb and slide angles, in radians.
 /// Rapier calls a slope at exactly its limit a wall (`angle >= max_slope_climb_angle`), while the
 /// shared limit is the steepest walkable slope; 0.001 rad is the margin Rapier's own climb test
 /// puts around its limit.
 pub const CLIMB_LIMIT_MARGIN: f32 = 1e-3;
+
+/// How far below a one-way platform's top the feet may start a move and still land on it, in
+/// tiles: rounding only (Rapier keeps its offset above the top when standing on it).
+pub const ONE_WAY_TOLERANCE: f32 = 1e-3;
 
 /// A length that is either absolute (tiles) or relative to the character's height, as Rapier's
 /// `CharacterLength`.
@@ -146,11 +150,17 @@ pub struct Move {
     pub contacts: Contacts,
     /// Normal of the ground hit, if any.
     pub ground_normal: Option<Vec2>,
+    /// Top of the one-way platform hit as ground, if any.
+    pub one_way_top: Option<f32>,
 }
 
 struct Character {
     /// Feet position (bottom centre), in Rapier's world coordinates.
     pos: Vec2,
+    /// Top of the one-way platform being dropped through, until the character is below it.
+    drop_top: Option<f32>,
+    /// Top of the one-way platform stood on, if any.
+    one_way_ground: Option<f32>,
     size: Vec2,
     shape: SharedShape,
     motion: MotionState,
@@ -160,6 +170,8 @@ struct Character {
 /// The Rapier backend over one level.
 pub struct RapierBackend {
     world: Rc<StaticWorld>,
+    /// The level's grid, kept only when it has ladders (for the shared ladder rules).
+    ladders: Option<Level>,
     /// The level's corner in Rapier's world.
     origin: Vec2,
     dispatcher: DefaultQueryDispatcher,
@@ -173,6 +185,8 @@ impl RapierBackend {
     /// What this backend models today.
     pub const SUPPORTED: Features = Features {
         slopes: true,
+        one_way: true,
+        ladders: true,
         ..Features::NONE
     };
 
@@ -198,6 +212,7 @@ impl RapierBackend {
         let controller = config.controller(&params);
         Ok(RapierBackend {
             world,
+            ladders: level.features.ladders.then(|| level.geometry()),
             origin: level.origin,
             dispatcher: DefaultQueryDispatcher,
             controller,
@@ -242,8 +257,23 @@ impl RapierBackend {
             QueryFilter::default(),
         );
         let pose = CharacterShape::pose(c.pos, c.size);
+        // One-way platforms, as Rapier users write them: a filter predicate that keeps a one-way
+        // collider only for a character entirely above its top at the start of the move, and
+        // never for one dropping through it.
+        let feet = c.pos.y;
+        let drop_top = c.drop_top;
+        let on_ladder = c.motion.on_ladder;
+        let one_way_rule = move |_: rapier2d::prelude::ColliderHandle,
+                                 co: &rapier2d::prelude::Collider| {
+            match one_way_top(co.user_data) {
+                None => true,
+                Some(top) => !on_ladder && feet >= top - ONE_WAY_TOLERANCE && drop_top != Some(top),
+            }
+        };
+        let queries = queries.with_filter(QueryFilter::default().predicate(&one_way_rule));
         let mut contacts = Contacts::default();
         let mut ground_normal: Option<Vec2> = None;
+        let mut ground_one_way: Option<f32> = None;
         let mvt = self
             .controller
             .move_shape(dt, &queries, &*c.shape, &pose, desired, |hit| {
@@ -252,6 +282,10 @@ impl RapierBackend {
                 let n = hit.hit.normal1;
                 if n.y > 0.5 {
                     ground_normal = Some(n);
+                    ground_one_way = w
+                        .colliders
+                        .get(hit.handle)
+                        .and_then(|co| one_way_top(co.user_data));
                 } else if n.y < -0.5 {
                     contacts.ceiling = true;
                 } else if n.x * desired.x < 0.0 {
@@ -259,7 +293,9 @@ impl RapierBackend {
                 }
             });
         contacts.ground = mvt.grounded;
+        contacts.one_way = ground_one_way.is_some();
         Move {
+            one_way_top: ground_one_way,
             translation: mvt.translation,
             grounded: mvt.grounded,
             contacts,
@@ -268,9 +304,14 @@ impl RapierBackend {
     }
 
     fn step_character(&mut self, id: CharacterId, input: &Input, dt: f32) {
-        let desired = self.characters[id]
-            .motion
-            .integrate(&self.params, input, dt);
+        let c = &mut self.characters[id];
+        if let Some(level) = &self.ladders {
+            crate::ladder::enter(level, self.origin, &mut c.motion, &mut c.pos, c.size, input);
+        }
+        let desired = c.motion.integrate(&self.params, input, dt);
+        if c.motion.drop_through {
+            c.drop_top = c.one_way_ground;
+        }
         let m = self.move_shape(id, desired, dt);
         let c = &mut self.characters[id];
         c.pos += m.translation;
@@ -282,6 +323,14 @@ impl RapierBackend {
         contacts.wall &= m.translation.x.abs() < desired.x.abs() - 1e-6;
         contacts.ceiling &= desired.y > 0.0 && m.translation.y < desired.y;
         c.motion.apply_contacts(&self.params, input, contacts);
+        if let Some(level) = &self.ladders {
+            crate::ladder::leave(level, self.origin, &mut c.motion, c.pos, c.size, input);
+        }
+        c.one_way_ground = if contacts.ground { m.one_way_top } else { None };
+        // The drop ends once the character is wholly below the platform it left.
+        if c.drop_top.is_some_and(|top| c.pos.y + c.size.y < top) {
+            c.drop_top = None;
+        }
         c.ground_normal = if contacts.ground {
             m.ground_normal.unwrap_or(Vec2::Y)
         } else {
@@ -298,6 +347,8 @@ impl Backend for RapierBackend {
     fn add_character(&mut self, spec: CharacterSpec) -> CharacterId {
         self.characters.push(Character {
             pos: spec.spawn + self.origin,
+            drop_top: None,
+            one_way_ground: None,
             size: spec.size,
             shape: self.config.shape.build(spec.size),
             motion: MotionState::with_velocity(spec.velocity),
@@ -321,7 +372,7 @@ impl Backend for RapierBackend {
             grounded: c.motion.grounded,
             ground_normal: c.ground_normal,
             platform: None,
-            ladder: false,
+            ladder: c.motion.on_ladder,
         }
     }
 }

@@ -8,11 +8,21 @@ use parry2d::partitioning::{Bvh, BvhBuildStrategy};
 
 use crate::level::Level;
 
-/// Static solid boxes and a BVH over them.
+/// What a box in the broadphase is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BoxKind {
+    /// A solid tile.
+    Solid,
+    /// A solid tile carrying a slope: part of a ramp's mass, which the x sweep skips.
+    UnderSlope,
+    /// A one-way platform (or a ladder's top): blocks only a character coming from above.
+    OneWay,
+}
+
+/// Static boxes (solid tiles, and one-way tiles when the level has them) and a BVH over them.
 pub struct StaticTiles {
     boxes: Vec<Aabb>,
-    /// Per box: a solid tile carrying a slope (part of a ramp's mass), which the x sweep skips.
-    under_slope: Vec<bool>,
+    kinds: Vec<BoxKind>,
     bvh: Bvh,
 }
 
@@ -20,26 +30,33 @@ impl StaticTiles {
     /// Collects the level's solid tiles (one box per tile, placed at the level's origin in the
     /// world) and builds the BVH.
     pub fn new(level: &Level) -> Self {
-        let solid: Vec<Aabb> = level.solid_boxes().collect();
-        let under_slope = solid
-            .iter()
-            .map(|b| level.supports_slope(b.mins.x as i64, b.mins.y as i64))
-            .collect();
-        let boxes: Vec<Aabb> = solid.iter().map(|b| b.translated(level.origin)).collect();
-        let bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes);
-        StaticTiles {
-            boxes,
-            under_slope,
-            bvh,
+        let mut boxes = Vec::new();
+        let mut kinds = Vec::new();
+        for b in level.solid_boxes() {
+            let under = level.supports_slope(b.mins.x as i64, b.mins.y as i64);
+            boxes.push(b.translated(level.origin));
+            kinds.push(if under {
+                BoxKind::UnderSlope
+            } else {
+                BoxKind::Solid
+            });
         }
+        if level.features.one_way || level.features.ladders {
+            for b in level.one_way_boxes() {
+                boxes.push(b.translated(level.origin));
+                kinds.push(BoxKind::OneWay);
+            }
+        }
+        let bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes);
+        StaticTiles { boxes, kinds, bvh }
     }
 
     /// Boxes whose AABB intersects `area` (inclusive of touching; the caller filters), with
-    /// whether each carries a slope.
-    pub fn query<'a>(&'a self, area: &'a Aabb) -> impl Iterator<Item = (&'a Aabb, bool)> + 'a {
+    /// their kind.
+    pub fn query<'a>(&'a self, area: &'a Aabb) -> impl Iterator<Item = (&'a Aabb, BoxKind)> + 'a {
         self.bvh
             .intersect_aabb(area)
-            .map(move |leaf| (&self.boxes[leaf as usize], self.under_slope[leaf as usize]))
+            .map(move |leaf| (&self.boxes[leaf as usize], self.kinds[leaf as usize]))
     }
 
     /// Number of solid boxes.

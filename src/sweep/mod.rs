@@ -19,7 +19,7 @@ use crate::backend::{
 };
 use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
-use broadphase::StaticTiles;
+use broadphase::{BoxKind, StaticTiles};
 use resolve::{move_axis, Axis};
 
 /// Settings of the sweep controller.
@@ -58,6 +58,10 @@ struct Character {
 pub struct SweepStats {
     /// Character steps that ran the slope rules.
     pub slope_steps: u64,
+    /// Character steps that ran the one-way platform rule.
+    pub one_way_steps: u64,
+    /// Character steps that ran the ladder rules.
+    pub ladder_steps: u64,
 }
 
 /// The sweep backend over one level.
@@ -77,6 +81,8 @@ impl SweepBackend {
     /// What this backend models today.
     pub const SUPPORTED: Features = Features {
         slopes: true,
+        one_way: true,
+        ladders: true,
         ..Features::NONE
     };
 
@@ -123,6 +129,17 @@ impl SweepBackend {
         let slopes = self.level.features.slopes;
         let p = &self.params;
         let c = &mut self.characters[id];
+        if self.level.features.ladders {
+            self.stats.ladder_steps += 1;
+            crate::ladder::enter(
+                &self.level,
+                self.origin,
+                &mut c.motion,
+                &mut c.pos,
+                c.size,
+                input,
+            );
+        }
         let was_grounded = c.motion.grounded;
         let delta = c.motion.integrate(p, input, dt);
         let start = c.pos;
@@ -140,8 +157,10 @@ impl SweepBackend {
             }
         };
         let floor_x = under(c.pos);
-        let skip_x = |t: &Aabb, under_slope: bool| {
-            under_slope || floor_x.is_some_and(|h| t.maxs.y <= h + overhang)
+        // One-way platforms never block along x (the seed: "don't collide x axis step").
+        let skip_x = |t: &Aabb, kind: BoxKind| match kind {
+            BoxKind::UnderSlope | BoxKind::OneWay => true,
+            BoxKind::Solid => floor_x.is_some_and(|h| t.maxs.y <= h + overhang),
         };
         let mut wall = move_axis(
             &self.tiles,
@@ -151,7 +170,8 @@ impl SweepBackend {
             delta.x,
             eps,
             skip_x,
-        );
+        )
+        .is_some();
         // How far the ground under the centre may rise during this x move (the climb limit).
         let rise_allow = p.max_climb_angle.tan() * (c.pos.x - start.x).abs() + eps;
         if slopes {
@@ -164,8 +184,17 @@ impl SweepBackend {
 
         let before_y = c.pos.y;
         let floor_y = under(c.pos);
-        let skip_y = |t: &Aabb, _: bool| {
-            floor_y.is_some_and(|h| t.maxs.y > h + eps && t.maxs.y <= h + overhang)
+        let one_way_level = self.level.features.one_way || self.level.features.ladders;
+        if one_way_level {
+            self.stats.one_way_steps += 1;
+        }
+        let dropping = c.motion.drop_through || c.motion.on_ladder;
+        // A one-way platform blocks only a fall that started entirely above it (the seed:
+        // "collide y only if previously entirely above platform"; "collide only if falling" is
+        // wrong, because a jump can start falling while inside the platform).
+        let skip_y = |t: &Aabb, kind: BoxKind| match kind {
+            BoxKind::OneWay => dropping || delta.y >= 0.0 || before_y < t.maxs.y - eps,
+            _ => floor_y.is_some_and(|h| t.maxs.y > h + eps && t.maxs.y <= h + overhang),
         };
         let hit_y = move_axis(
             &self.tiles,
@@ -176,14 +205,15 @@ impl SweepBackend {
             eps,
             skip_y,
         );
-        let mut ground = hit_y && delta.y < 0.0;
-        let ceiling = hit_y && delta.y > 0.0;
+        let mut ground = hit_y.is_some() && delta.y < 0.0;
+        let ceiling = hit_y.is_some() && delta.y > 0.0;
+        let mut one_way = hit_y == Some(BoxKind::OneWay);
         let mut normal = Vec2::Y;
         if slopes {
             if let Some(g) =
                 slopes::resolve_up(&self.level, self.origin, &mut c.pos, before_y, rise_allow)
             {
-                (ground, normal) = (true, g.normal);
+                (ground, normal, one_way) = (true, g.normal, false);
             } else if !ground && was_grounded && delta.y <= 0.0 {
                 // Walking down: follow the ground by the drop the steepest walkable slope gives
                 // at this speed, plus this step's fall.
@@ -198,8 +228,19 @@ impl SweepBackend {
             wall,
             ground,
             ceiling,
+            one_way,
         };
         c.motion.apply_contacts(p, input, contacts);
+        if self.level.features.ladders {
+            crate::ladder::leave(
+                &self.level,
+                self.origin,
+                &mut c.motion,
+                c.pos,
+                c.size,
+                input,
+            );
+        }
         c.ground_normal = if ground { normal } else { Vec2::ZERO };
     }
 }
@@ -238,7 +279,7 @@ impl Backend for SweepBackend {
                 Vec2::ZERO
             },
             platform: None,
-            ladder: false,
+            ladder: c.motion.on_ladder,
         }
     }
 }

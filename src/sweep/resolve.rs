@@ -16,7 +16,7 @@
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
-use super::broadphase::StaticTiles;
+use super::broadphase::{BoxKind, StaticTiles};
 
 /// The axis of a move.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,7 +38,7 @@ impl Axis {
 
 /// Moves the box whose feet are at `pos` by `delta` along `axis`, stopping flush at the
 /// closest obstacle. `skip` tells which boxes are not obstacles for this move (it gets the box
-/// and whether it carries a slope). Returns `true` if an obstacle stopped the move.
+/// and its kind). Returns the kind of the obstacle that stopped the move, if one did.
 pub fn move_axis(
     tiles: &StaticTiles,
     pos: &mut Vec2,
@@ -46,10 +46,10 @@ pub fn move_axis(
     axis: Axis,
     delta: f32,
     epsilon: f32,
-    skip: impl Fn(&Aabb, bool) -> bool,
-) -> bool {
+    skip: impl Fn(&Aabb, BoxKind) -> bool,
+) -> Option<BoxKind> {
     if delta == 0.0 {
-        return false;
+        return None;
     }
     let a = axis.index();
     let o = 1 - a;
@@ -67,10 +67,9 @@ pub fn move_axis(
     swept.mins[o] += epsilon;
     swept.maxs[o] -= epsilon;
 
-    let mut closest: Option<f32> = None;
-    for (t, under_slope) in tiles.query(&swept) {
-        // A ramp's mass is the slope rules' business along x: the box overhangs it by design.
-        if skip(t, under_slope) || !overlaps_across(&b, t, o, epsilon) {
+    let mut closest: Option<(f32, BoxKind)> = None;
+    for (t, kind) in tiles.query(&swept) {
+        if skip(t, kind) || !overlaps_across(&b, t, o, epsilon) {
             continue;
         }
         if delta > 0.0 {
@@ -78,33 +77,33 @@ pub fn move_axis(
             // Ahead of the mover (allowing an overlap below epsilon) and within reach.
             if face >= hi - epsilon
                 && face <= hi + delta + epsilon
-                && closest.is_none_or(|c| face < c)
+                && closest.is_none_or(|(c, _)| face < c)
             {
-                closest = Some(face);
+                closest = Some((face, kind));
             }
         } else {
             let face = t.maxs[a];
             if face <= lo + epsilon
                 && face >= lo + delta - epsilon
-                && closest.is_none_or(|c| face > c)
+                && closest.is_none_or(|(c, _)| face > c)
             {
-                closest = Some(face);
+                closest = Some((face, kind));
             }
         }
     }
     match closest {
         None => {
             pos[a] += delta;
-            false
+            None
         }
-        Some(face) => {
+        Some((face, kind)) => {
             // Snap flush: the box's leading side goes onto the face.
             pos[a] = if delta > 0.0 {
                 face - (hi - pos[a])
             } else {
                 face + (pos[a] - lo)
             };
-            true
+            Some(kind)
         }
     }
 }
@@ -133,21 +132,25 @@ mod tests {
     }
 
     const SIZE: Vec2 = Vec2::new(0.8, 0.9);
+
+    fn hits(
+        tiles: &StaticTiles,
+        p: &mut Vec2,
+        size: Vec2,
+        axis: Axis,
+        delta: f32,
+        eps: f32,
+        skip: impl Fn(&Aabb, BoxKind) -> bool,
+    ) -> bool {
+        move_axis(tiles, p, size, axis, delta, eps, skip).is_some()
+    }
     const EPS: f32 = 0.001;
 
     #[test]
     fn falls_and_snaps_flush_onto_the_floor() {
         let tiles = room();
         let mut p = Vec2::new(2.5, 3.0);
-        assert!(move_axis(
-            &tiles,
-            &mut p,
-            SIZE,
-            Axis::Y,
-            -5.0,
-            EPS,
-            |_, _| false
-        ));
+        assert!(hits(&tiles, &mut p, SIZE, Axis::Y, -5.0, EPS, |_, _| false));
         assert_eq!(p.y, 1.0);
     }
 
@@ -156,15 +159,7 @@ mod tests {
         let tiles = room();
         let mut p = Vec2::new(2.5, 1.0);
         for _ in 0..60 {
-            assert!(!move_axis(
-                &tiles,
-                &mut p,
-                SIZE,
-                Axis::X,
-                0.1,
-                EPS,
-                |_, _| false
-            ));
+            assert!(!hits(&tiles, &mut p, SIZE, Axis::X, 0.1, EPS, |_, _| false));
         }
         assert!((p.x - 8.5).abs() < 1e-4);
     }
@@ -173,26 +168,12 @@ mod tests {
     fn stops_flush_at_a_wall_even_at_huge_speed() {
         let tiles = room();
         let mut p = Vec2::new(2.5, 1.0);
-        assert!(move_axis(
-            &tiles,
-            &mut p,
-            SIZE,
-            Axis::X,
-            1000.0,
-            EPS,
-            |_, _| false
-        ));
+        assert!(hits(&tiles, &mut p, SIZE, Axis::X, 1000.0, EPS, |_, _| {
+            false
+        }));
         assert!((p.x + SIZE.x / 2.0 - 10.0).abs() < 1e-5, "{p}");
         // Flush now: a further push is still stopped and does not sink in.
-        assert!(move_axis(
-            &tiles,
-            &mut p,
-            SIZE,
-            Axis::X,
-            0.5,
-            EPS,
-            |_, _| false
-        ));
+        assert!(hits(&tiles, &mut p, SIZE, Axis::X, 0.5, EPS, |_, _| false));
         assert!(p.x + SIZE.x / 2.0 <= 10.0 + EPS);
     }
 
@@ -201,27 +182,15 @@ mod tests {
         let tiles = room();
         let mut p = Vec2::new(2.5, 1.5);
         // Stops 0.0005 short of the floor: a contact, snapped flush.
-        assert!(move_axis(
-            &tiles,
-            &mut p,
-            SIZE,
-            Axis::Y,
-            -0.4995,
-            EPS,
-            |_, _| false
-        ));
+        assert!(hits(&tiles, &mut p, SIZE, Axis::Y, -0.4995, EPS, |_, _| {
+            false
+        }));
         assert_eq!(p.y, 1.0);
         // Stops 0.01 short: no contact.
         let mut q = Vec2::new(2.5, 1.5);
-        assert!(!move_axis(
-            &tiles,
-            &mut q,
-            SIZE,
-            Axis::Y,
-            -0.49,
-            EPS,
-            |_, _| false
-        ));
+        assert!(!hits(&tiles, &mut q, SIZE, Axis::Y, -0.49, EPS, |_, _| {
+            false
+        }));
         assert!((q.y - 1.01).abs() < 1e-6);
     }
 
@@ -230,25 +199,9 @@ mod tests {
         let tiles = room();
         // Feet 0.0005 inside the floor: less than epsilon, so the floor does not block x.
         let mut p = Vec2::new(2.5, 1.0 - 0.0005);
-        assert!(!move_axis(
-            &tiles,
-            &mut p,
-            SIZE,
-            Axis::X,
-            1.0,
-            EPS,
-            |_, _| false
-        ));
+        assert!(!hits(&tiles, &mut p, SIZE, Axis::X, 1.0, EPS, |_, _| false));
         // 0.01 inside: a real overlap, so the floor tile ahead blocks.
         let mut q = Vec2::new(2.5, 1.0 - 0.01);
-        assert!(move_axis(
-            &tiles,
-            &mut q,
-            SIZE,
-            Axis::X,
-            1.0,
-            EPS,
-            |_, _| false
-        ));
+        assert!(hits(&tiles, &mut q, SIZE, Axis::X, 1.0, EPS, |_, _| false));
     }
 }
