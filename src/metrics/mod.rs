@@ -57,6 +57,37 @@ pub const CATALOG: &[&str] = &[
 /// to let a controller settle at its own rest height, too little to matter to the distance.
 pub const PROGRESS_SPAWN_HEIGHT: f32 = 0.05;
 
+/// The catalog in the groups the summary prints as separate tables.
+pub const GROUPS: &[(&str, &[&str])] = &[
+    (
+        "landing, jumping, walking, walls",
+        &[
+            "land_frame_error",
+            "rest_gap",
+            "max_penetration",
+            "rest_jitter",
+            "grounded_flicker",
+            "false_grounded",
+            "apex_error",
+            "progress_ratio",
+            "stuck_frames",
+            "tunneled",
+        ],
+    ),
+    (
+        "slopes, one-way platforms, ladders",
+        &[
+            "slope_airborne_frames",
+            "slope_gap_max",
+            "slope_speed_ratio",
+            "steep_blocked",
+            "oneway_result",
+            "ladder_speed_error",
+            "ladder_result",
+        ],
+    ),
+];
+
 /// One row of `metrics.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct MetricRow {
@@ -223,8 +254,8 @@ pub fn land_frame_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     })
 }
 
-/// The frames over which the character should be at rest: from its first grounded frame within
-/// the final idle window (or the window's last [`REST_WINDOW`] seconds if it never lands there)
+/// The frames over which the character should be at rest: from its first settled frame (grounded
+/// on real ground, moving less than 1% of the run speed) within the final idle window (or the window's last [`REST_WINDOW`] seconds if it never lands there)
 /// to the end. `None` if the scenario does not end with such a window.
 fn rest_frames(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<std::ops::Range<usize>> {
     let script = input_script(ctx.spec);
@@ -238,7 +269,12 @@ fn rest_frames(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<std::ops:
         return None;
     }
     let start = first_idle_step + 1;
-    let landed = (start..=n).find(|&k| rows[k].is_grounded() && supported(g, &rows[k]));
+    // At rest: grounded on real ground and no longer sliding (moving less than 1% of the run
+    // speed), so deceleration along a slope is not counted as jitter.
+    let still = ctx.params.run_speed * ctx.spec.dt * 0.01;
+    let landed = (start..=n).find(|&k| {
+        rows[k].is_grounded() && supported(g, &rows[k]) && (rows[k].x - rows[k - 1].x).abs() < still
+    });
     let from = landed.unwrap_or(n + 1 - needed);
     Some(from..n + 1)
 }
@@ -556,7 +592,8 @@ fn rest_on_slope(ctx: &Context) -> bool {
 /// `slope_speed_ratio`: mean horizontal speed over a walkable slope while walking at full run
 /// speed, over the run speed (the horizontal speed the same input gives on flat ground).
 pub fn slope_speed_ratio(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
-    if !walks_over_slopes(ctx) {
+    // A walk into a too-steep rise is steep_blocked's business, not a speed.
+    if !walks_over_slopes(ctx) || steep_ahead(ctx) {
         return None;
     }
     let script = input_script(ctx.spec);
@@ -589,6 +626,15 @@ pub fn slope_speed_ratio(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> Optio
     })
 }
 
+/// Whether the commanded walk reaches a slope rising more steeply than the climb limit.
+fn steep_ahead(ctx: &Context) -> bool {
+    let script = input_script(ctx.spec);
+    let d = commanded_distance(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt) as f32;
+    let (a, b) = (ctx.spec.spawn.x, ctx.spec.spawn.x + d);
+    let (x0, x1) = (a.min(b), a.max(b));
+    steep_columns(ctx, d.signum()).any(|i| (i as f32) < x1 && (i as f32 + 1.0) > x0)
+}
+
 /// `steep_blocked`: for a walk toward a slope that rises more steeply than the climb limit, 1 if
 /// the character never got half a tile above where it started, else 0.
 pub fn steep_blocked(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
@@ -596,11 +642,7 @@ pub fn steep_blocked(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     if !walks_without_jumping(&script) {
         return None;
     }
-    let d = commanded_distance(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt) as f32;
-    let (a, b) = (ctx.spec.spawn.x, ctx.spec.spawn.x + d);
-    let (x0, x1) = (a.min(b), a.max(b));
-    let ahead = steep_columns(ctx, d.signum()).any(|i| (i as f32) < x1 && (i as f32 + 1.0) > x0);
-    if !ahead {
+    if !steep_ahead(ctx) {
         return None;
     }
     let top = rows.iter().map(|r| r.y).fold(f32::NEG_INFINITY, f32::max);
