@@ -14,6 +14,7 @@ pub const LEVELS: &[(&str, &str)] = &[
     ("seed_tile.toml", include_str!("levels/seed_tile.toml")),
     ("oneway.toml", include_str!("levels/oneway.toml")),
     ("ladders.toml", include_str!("levels/ladders.toml")),
+    ("platforms.toml", include_str!("levels/platforms.toml")),
     ("long_floor.toml", include_str!("levels/long_floor.toml")),
     (
         "very_long_floor.toml",

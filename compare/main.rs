@@ -63,6 +63,9 @@ struct RunArgs {
     /// The sweep controller's overlap tolerance, in tiles.
     #[arg(long, value_name = "TILES")]
     epsilon: Option<f32>,
+    /// Backends to run (repeat or comma-separate); both by default.
+    #[arg(long = "backend", value_name = "BACKEND", value_delimiter = ',', value_parser = ["sweep", "rapier"])]
+    backends: Vec<String>,
     /// Rapier character shapes to run (repeat or comma-separate); all of them by default.
     #[arg(long = "shape", value_name = "SHAPE", value_delimiter = ',', value_parser = ["capsule", "cuboid", "ball", "round-cuboid"])]
     shapes: Vec<String>,
@@ -119,6 +122,9 @@ fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
 
 fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
     let mut set = RunConfig::builtin_set();
+    if !args.backends.is_empty() {
+        set.retain(|c| args.backends.iter().any(|b| b == c.backend.name()));
+    }
     if !args.shapes.is_empty() {
         set.retain(|c| match &c.backend {
             BackendConfig::Rapier(r) => args.shapes.contains(&r.shape.label()),

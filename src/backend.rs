@@ -41,6 +41,9 @@ pub struct CharacterState {
     pub platform: Option<u32>,
     /// Whether it is in the ladder state.
     pub ladder: bool,
+    /// Whether a moving platform pushed it into the level during the step (it could not make
+    /// room): the crush event, left to the scenario to judge.
+    pub crushed: bool,
 }
 
 /// Why a backend could not be built for a level.

@@ -292,6 +292,7 @@ mod tests {
             inputs,
             motion: Default::default(),
             expect_y: None,
+            ride: None,
         }
     }
 

@@ -1,5 +1,6 @@
 //! Per-frame trace rows and their CSV form (DESIGN.md, "Traces and metrics"):
-//! `frame,t,character,x,y,vx,vy,grounded,ground_nx,ground_ny,platform,ladder`.
+//! `frame,t,character,x,y,vx,vy,grounded,ground_nx,ground_ny,platform,ladder,crushed` (DESIGN.md's
+//! columns, and `crushed` for the moving-platform crush event).
 //!
 //! Floats are written in Rust's shortest round-trip form, so reading a trace back gives the
 //! same bits and two identical runs give byte-identical files.
@@ -37,6 +38,8 @@ pub struct TraceRow {
     pub platform: Option<u32>,
     /// 1 if in the ladder state, else 0.
     pub ladder: u8,
+    /// 1 if a moving platform crushed it against the level this frame, else 0.
+    pub crushed: u8,
 }
 
 impl TraceRow {
@@ -55,6 +58,7 @@ impl TraceRow {
             ground_ny: s.ground_normal.y,
             platform: s.platform,
             ladder: s.ladder as u8,
+            crushed: s.crushed as u8,
         }
     }
 
@@ -139,6 +143,7 @@ mod tests {
             ground_normal: Vec2::Y,
             platform: Some(2),
             ladder: false,
+            crushed: false,
         };
         let trace = Trace {
             level: "l".into(),
@@ -154,7 +159,7 @@ mod tests {
         trace.write_csv(&mut buf).unwrap();
         let text = String::from_utf8(buf.clone()).unwrap();
         assert!(text.starts_with(
-            "frame,t,character,x,y,vx,vy,grounded,ground_nx,ground_ny,platform,ladder\n"
+            "frame,t,character,x,y,vx,vy,grounded,ground_nx,ground_ny,platform,ladder,crushed\n"
         ));
         let back = Trace::read_rows(&buf[..]).unwrap();
         assert_eq!(back, trace.rows);

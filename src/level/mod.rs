@@ -5,8 +5,10 @@
 //! points up. The text format ([`parse`]) lists map rows top to bottom.
 
 mod parse;
+mod platform;
 
 pub use parse::{parse_level, LevelError};
+pub use platform::{Platform, PlatformMotion};
 
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
@@ -199,6 +201,9 @@ pub struct ScenarioSpec {
     /// Where the character's feet should end (y, in tiles), for scenarios whose outcome is a
     /// place: which side of a one-way platform, or the top of a ladder.
     pub expect_y: Option<f32>,
+    /// The moving platform (index in the level's list) this scenario rides, for the carry
+    /// metrics.
+    pub ride: Option<u32>,
 }
 
 /// Default character box: 0.8 x 0.9 tiles, the size of the reference measurements.
@@ -229,6 +234,8 @@ pub struct Level {
     pub features: Features,
     /// The scenarios that run on it.
     pub scenarios: Vec<ScenarioSpec>,
+    /// Moving platforms.
+    pub platforms: Vec<Platform>,
 }
 
 impl Level {
@@ -254,6 +261,7 @@ impl Level {
             tiles,
             features,
             scenarios: Vec::new(),
+            platforms: Vec::new(),
         }
     }
 
@@ -269,6 +277,7 @@ impl Level {
             tiles: self.tiles.clone(),
             features: self.features,
             scenarios: Vec::new(),
+            platforms: self.platforms.clone(),
         }
     }
 

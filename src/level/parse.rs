@@ -9,8 +9,8 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::{
-    InputEvent, Level, MotionOverrides, ScenarioSpec, Slope, Tile, DEFAULT_CHARACTER_SIZE,
-    DEFAULT_DT,
+    InputEvent, Level, MotionOverrides, Platform, PlatformMotion, ScenarioSpec, Slope, Tile,
+    DEFAULT_CHARACTER_SIZE, DEFAULT_DT,
 };
 
 /// A level file that could not be read, with where and why.
@@ -37,7 +37,7 @@ struct RawLevel {
     legend: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
     map: Spanned<String>,
     #[serde(default)]
-    platform: Vec<Spanned<toml::Value>>,
+    platform: Vec<Spanned<RawPlatform>>,
     #[serde(default)]
     scenario: Vec<Spanned<RawScenario>>,
 }
@@ -55,6 +55,33 @@ struct RawScenario {
     inputs: Vec<Spanned<RawInput>>,
     motion: Option<Spanned<RawMotion>>,
     expect_y: Option<Spanned<f64>>,
+    ride: Option<Spanned<u32>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPlatform {
+    rect: [f64; 4],
+    path: Option<Vec<[f64; 2]>>,
+    speed: Option<f64>,
+    sine: Option<RawSine>,
+    circle: Option<RawCircle>,
+    #[serde(default)]
+    one_way: bool,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSine {
+    amplitude: [f64; 2],
+    period: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCircle {
+    radius: f64,
+    period: f64,
 }
 
 #[derive(Deserialize)]
@@ -110,13 +137,6 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
         loc.err(offset, e.message().trim().to_string())
     })?;
 
-    if let Some(p) = raw.platform.first() {
-        return Err(loc.at(
-            &p.span(),
-            "found a [[platform]]: moving platforms are not supported yet by this version of platbench",
-        ));
-    }
-
     let legend = parse_legend(&loc, &raw.legend)?;
     let (width, height, tiles) = parse_map(&loc, &raw.map, &legend)?;
     let name = raw.name.unwrap_or_else(|| {
@@ -143,6 +163,24 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
     }
     level.source = file.to_string();
 
+    for p in &raw.platform {
+        level.platforms.push(parse_platform(&loc, p)?);
+    }
+    for s in &raw.scenario {
+        if let Some(r) = &s.get_ref().ride {
+            if *r.get_ref() as usize >= level.platforms.len() {
+                return Err(loc.at(
+                    &r.span(),
+                    format!(
+                        "ride = {} names no platform; the level has {} (numbered from 0)",
+                        r.get_ref(),
+                        level.platforms.len()
+                    ),
+                ));
+            }
+        }
+    }
+    level.features.moving_platforms = !level.platforms.is_empty();
     let mut seen = HashMap::new();
     for s in &raw.scenario {
         let spec = parse_scenario(&loc, s.get_ref())?;
@@ -331,6 +369,86 @@ fn parse_map(
     Ok((width as u32, height as u32, tiles))
 }
 
+fn parse_platform(loc: &Locator, p: &Spanned<RawPlatform>) -> Result<Platform, LevelError> {
+    let span = p.span();
+    let r = p.get_ref();
+    let [x, y, w, h] = r.rect;
+    let start = Vec2::new(
+        finite(loc, &span, "rect x", x)?,
+        finite(loc, &span, "rect y", y)?,
+    );
+    let size = Vec2::new(
+        positive(loc, &span, "rect width", w)?,
+        positive(loc, &span, "rect height", h)?,
+    );
+    let kinds = r.path.is_some() as u8 + r.sine.is_some() as u8 + r.circle.is_some() as u8;
+    if kinds != 1 {
+        return Err(loc.at(
+            &span,
+            format!("a platform needs exactly one motion: `path` with `speed`, `sine` or `circle` (found {kinds})"),
+        ));
+    }
+    let motion = if let Some(path) = &r.path {
+        let speed = r
+            .speed
+            .ok_or_else(|| loc.at(&span, "a platform with a `path` needs a `speed` (tiles/s)"))?;
+        let speed = positive(loc, &span, "speed", speed)?;
+        let mut points = Vec::with_capacity(path.len());
+        for [px, py] in path {
+            points.push(Vec2::new(
+                finite(loc, &span, "path x", *px)?,
+                finite(loc, &span, "path y", *py)?,
+            ));
+        }
+        if points.len() < 2 {
+            return Err(loc.at(
+                &span,
+                format!(
+                    "a platform path needs at least 2 waypoints, found {}",
+                    points.len()
+                ),
+            ));
+        }
+        if points[0] != start {
+            return Err(loc.at(
+                &span,
+                format!("the path starts at ({}, {}) but rect starts at ({}, {}); expected the first waypoint to be the rect's corner", points[0].x, points[0].y, start.x, start.y),
+            ));
+        }
+        if points.windows(2).all(|w| w[0] == w[1]) {
+            return Err(loc.at(
+                &span,
+                "the platform path has zero length; expected waypoints that differ",
+            ));
+        }
+        PlatformMotion::Waypoints { points, speed }
+    } else if let Some(s) = &r.sine {
+        let [ax, ay] = s.amplitude;
+        PlatformMotion::Sine {
+            amplitude: Vec2::new(
+                finite(loc, &span, "sine amplitude", ax)?,
+                finite(loc, &span, "sine amplitude", ay)?,
+            ),
+            period: positive(loc, &span, "sine period", s.period)?,
+        }
+    } else {
+        let c = r
+            .circle
+            .as_ref()
+            .ok_or_else(|| loc.at(&span, "missing motion"))?;
+        PlatformMotion::Circle {
+            radius: positive(loc, &span, "circle radius", c.radius)?,
+            period: positive(loc, &span, "circle period", c.period)?,
+        }
+    };
+    Ok(Platform {
+        start,
+        size,
+        motion,
+        one_way: r.one_way,
+    })
+}
+
 fn finite(loc: &Locator, span: &Range<usize>, what: &str, v: f64) -> Result<f32, LevelError> {
     if !v.is_finite() || v.abs() > f32::MAX as f64 {
         return Err(loc.at(span, format!("{what} is {v}; expected a finite number")));
@@ -454,6 +572,7 @@ fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelE
         inputs,
         motion,
         expect_y,
+        ride: s.ride.as_ref().map(|r| *r.get_ref()),
     })
 }
 
@@ -583,9 +702,22 @@ inputs = [ { t = 0.0, right = true }, { t = 0.5, right = false } ]
     }
 
     #[test]
-    fn platforms_are_refused_clearly() {
+    fn platforms_parse_and_bad_ones_are_named() {
+        let ok = "map = \"....\"\n[[platform]]\nrect = [0, 0, 2, 0.5]\npath = [[0, 0], [2, 0]]\nspeed = 1.0\n";
+        let l = parse_level(ok, "p.toml").unwrap();
+        assert!(l.features.moving_platforms);
+        assert_eq!(l.platforms[0].size, Vec2::new(2.0, 0.5));
         let e = err("map = \"#\"\n[[platform]]\nrect = [0, 0, 1, 1]\n");
-        assert!(e.message.contains("not supported yet"), "{e}");
+        assert!(e.message.contains("exactly one motion"), "{e}");
+        assert_eq!(e.line, 2, "{e}");
+        let e = err("map = \"#\"\n[[platform]]\nrect = [0, 0, 1, 1]\npath = [[0, 0]]\nspeed = 1\n");
+        assert!(e.message.contains("at least 2 waypoints"), "{e}");
+        let e = err(
+            "map = \"#\"\n[[platform]]\nrect = [0, 0, 1, 1]\npath = [[1, 0], [2, 0]]\nspeed = 1\n",
+        );
+        assert!(e.message.contains("first waypoint"), "{e}");
+        let e = err("map = \"#\"\n[[platform]]\nrect = [0, 0, -1, 1]\nsine = { amplitude = [1, 0], period = 2 }\n");
+        assert!(e.message.contains("rect width"), "{e}");
     }
 
     #[test]

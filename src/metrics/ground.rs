@@ -96,9 +96,41 @@ impl<'a> Ground<'a> {
             .fold(0.0, f32::max)
     }
 
-    /// Signed gap from the shape down to the ground, in tiles: the distance it can drop before
-    /// touching (0 when touching or resting its corners in a slope), minus the depth it has sunk
-    /// into a solid tile. Infinite if no ground is within [`GROUND_SEARCH`].
+    /// Signed gap from the shape down to the ground at time `t` (moving platforms included), in
+    /// tiles: the distance it can drop before touching (0 when touching or resting its corners in
+    /// a slope), minus the depth it has sunk into a solid tile. Infinite if no ground is within
+    /// [`GROUND_SEARCH`].
+    pub fn gap_at(&self, feet: Vec2, t: f64) -> f32 {
+        let mut best = self.gap(feet);
+        if best <= 0.0 {
+            return best;
+        }
+        let pose = CharacterShape::pose(feet, self.size);
+        let half = self.size.x * 0.5;
+        for p in &self.level.platforms {
+            let b = p.aabb(t);
+            // Under the shape, and (for a one-way platform) not above the feet.
+            if b.maxs.x <= feet.x - half || b.mins.x >= feet.x + half || b.maxs.y > feet.y + 1e-3 {
+                continue;
+            }
+            let half_extents = b.half_extents();
+            let options = ShapeCastOptions::with_max_time_of_impact(GROUND_SEARCH);
+            if let Ok(Some(hit)) = cast_shapes(
+                &pose,
+                Vec2::NEG_Y,
+                &*self.shape,
+                &Pose::from_translation(b.center()),
+                Vec2::ZERO,
+                &Cuboid::new(half_extents),
+                options,
+            ) {
+                best = best.min(hit.time_of_impact);
+            }
+        }
+        best
+    }
+
+    /// Signed gap from the shape down to the level's static ground (see [`Ground::gap_at`]).
     pub fn gap(&self, feet: Vec2) -> f32 {
         let sunk = self.solid_penetration(feet);
         if sunk > 0.0 {

@@ -50,6 +50,10 @@ pub const CATALOG: &[&str] = &[
     "oneway_result",
     "ladder_speed_error",
     "ladder_result",
+    "carry_drift",
+    "carry_airborne_frames",
+    "push_penetration",
+    "crush_count",
     "tunneled",
 ];
 
@@ -84,6 +88,15 @@ pub const GROUPS: &[(&str, &[&str])] = &[
             "oneway_result",
             "ladder_speed_error",
             "ladder_result",
+        ],
+    ),
+    (
+        "moving platforms",
+        &[
+            "carry_drift",
+            "carry_airborne_frames",
+            "push_penetration",
+            "crush_count",
         ],
     ),
 ];
@@ -182,6 +195,11 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     push(oneway_result(ctx, &rows));
     push(ladder_speed_error(ctx, &rows));
     push(ladder_result(ctx, &rows));
+    let ride = ride_frames(ctx, &rows);
+    push(ride.as_ref().map(|r| carry_drift(ctx, &rows, r)));
+    push(ride.as_ref().map(|r| carry_airborne_frames(&rows, r)));
+    push(push_penetration(ctx, &rows));
+    push(crush_count(ctx, &rows));
     push(Some(tunneled(ctx, &rows)));
     out
 }
@@ -223,7 +241,12 @@ pub fn land_frame_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
         .level
         .surface_at(spec.spawn.x, spec.spawn.y, spec.spawn.y - top + 0.5)
         .is_some_and(|(h, slope)| slope.is_none() && h == top);
-    if spec.spawn.y <= top || !flat {
+    // Not onto a moving platform (the prediction reads the static level).
+    let over_platform = ctx.level.platforms.iter().any(|p| {
+        let b = p.aabb(0.0);
+        b.maxs.y <= spec.spawn.y && b.maxs.x > spec.spawn.x - half && b.mins.x < spec.spawn.x + half
+    });
+    if spec.spawn.y <= top || !flat || over_platform {
         return None;
     }
     let predicted = predicted_landing_frame(
@@ -265,7 +288,8 @@ fn rest_frames(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<std::ops:
     // Step k produces row k + 1; the idle window's rows are first_idle_step + 1 ..= n.
     let window_rows = n.saturating_sub(first_idle_step);
     let needed = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
-    if window_rows < needed || rows.len() != n + 1 {
+    // A rider rests on a moving platform: its height is the platform's business.
+    if window_rows < needed || rows.len() != n + 1 || ctx.spec.ride.is_some() {
         return None;
     }
     let start = first_idle_step + 1;
@@ -285,7 +309,7 @@ fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let last = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
     Measure {
         metric: "rest_gap",
-        value: g.gap(last) as f64,
+        value: g.gap_at(last, rows.last().map_or(0.0, |r| r.t as f64)) as f64,
         unit: "tiles",
         reference: 0.0,
     }
@@ -313,7 +337,7 @@ fn rest_jitter(rows: &[TraceRow]) -> Measure {
 /// Whether the character's shape is within [`FLICKER_SUPPORT_TOLERANCE`] of the ground (or in
 /// it).
 fn supported(g: &Ground, r: &TraceRow) -> bool {
-    g.gap(pos(r)) <= FLICKER_SUPPORT_TOLERANCE
+    g.gap_at(pos(r), r.t as f64) <= FLICKER_SUPPORT_TOLERANCE
 }
 
 /// `false_grounded`: frames reported grounded with the ground farther than
@@ -722,6 +746,137 @@ pub fn ladder_result(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     })
 }
 
+/// How close above a platform's top the feet count as on it, for the carry metrics, in tiles:
+/// above Rapier's offset.
+pub const ON_PLATFORM: f32 = 0.05;
+
+/// The frames of the ride: from the first frame the character stands on the scenario's platform
+/// (grounded, feet within [`ON_PLATFORM`] of its top, overlapping it in x) with idle input and no
+/// velocity of its own, to the end of that idle input (or the end); from the first step if it
+/// never stands on it. `None` if the scenario names no platform.
+fn ride_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::Range<usize>> {
+    let p = ctx.level.platforms.get(ctx.spec.ride? as usize)?;
+    let script = input_script(ctx.spec);
+    let dt = ctx.spec.dt as f64;
+    let half = ctx.spec.size.x * 0.5;
+    let on = |k: usize| {
+        let r = &rows[k];
+        let b = p.aabb(k as f64 * dt);
+        r.is_grounded()
+            && (r.y - b.maxs.y).abs() <= ON_PLATFORM
+            && r.x + half > b.mins.x
+            && r.x - half < b.maxs.x
+    };
+    let idle = |k: usize| {
+        k == 0
+            || script
+                .get(k - 1)
+                .is_none_or(|i| *i == crate::motion::Input::default())
+    };
+    // From the first step's result (the spawn row has no contact yet) at which it stands on the
+    // platform, idle and not moving on its own (no walk or slide left over).
+    // A controller that never stands on it is measured over the whole run.
+    let start = (1..rows.len())
+        .find(|&k| on(k) && idle(k) && rows[k].vx.abs() < 1e-3)
+        .unwrap_or(1.min(rows.len()));
+    let end = (start..rows.len())
+        .find(|&k| !idle(k))
+        .unwrap_or(rows.len());
+    Some(start..end)
+}
+
+/// `carry_drift`: over the idle part of the ride, the largest change of the character's position
+/// relative to its platform, in tiles.
+pub fn carry_drift(ctx: &Context, rows: &[TraceRow], ride: &std::ops::Range<usize>) -> Measure {
+    let p = &ctx.level.platforms[ctx.spec.ride.unwrap_or(0) as usize];
+    let dt = ctx.spec.dt as f64;
+    let rel = |k: usize| pos(&rows[k]) - p.position(k as f64 * dt);
+    let first = rel(ride.start);
+    let drift = ride
+        .clone()
+        .map(|k| (rel(k) - first).length())
+        .fold(0.0f32, f32::max);
+    Measure {
+        metric: "carry_drift",
+        value: drift as f64,
+        unit: "tiles",
+        reference: 0.0,
+    }
+}
+
+/// `carry_airborne_frames`: frames airborne during the idle part of the ride.
+pub fn carry_airborne_frames(rows: &[TraceRow], ride: &std::ops::Range<usize>) -> Measure {
+    Measure {
+        metric: "carry_airborne_frames",
+        value: ride.clone().filter(|&k| !rows[k].is_grounded()).count() as f64,
+        unit: "frames",
+        reference: 0.0,
+    }
+}
+
+/// `push_penetration`: on a level with moving platforms, the deepest overlap of the character's
+/// box with a platform that is not one-way, over the run, in tiles.
+pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    if ctx.level.platforms.is_empty() {
+        return None;
+    }
+    let dt = ctx.spec.dt as f64;
+    let deepest = rows
+        .iter()
+        .enumerate()
+        .flat_map(|(k, r)| {
+            let b = character_box(pos(r), ctx.spec.size);
+            ctx.level
+                .platforms
+                .iter()
+                .filter(|p| !p.one_way)
+                .map(move |p| {
+                    let pb = p.aabb(k as f64 * dt);
+                    let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
+                    o.x.min(o.y).max(0.0)
+                })
+        })
+        .fold(0.0f32, f32::max);
+    Some(Measure {
+        metric: "push_penetration",
+        value: deepest as f64,
+        unit: "tiles",
+        reference: 0.0,
+    })
+}
+
+/// Overlap with a moving platform beyond which the character counts as crushed (or run
+/// through), in tiles: far beyond any contact tolerance.
+pub const CRUSH_DEPTH: f32 = 0.25;
+
+/// `crush_count`: on a level with moving platforms, how many times the character ended up inside
+/// a (not one-way) platform by more than [`CRUSH_DEPTH`]: crushed against the level, or run
+/// through by a platform that did not push it. Read from the geometry, so a backend without a
+/// crush event (Rapier) is counted the same way as the sweep, whose trace also flags the crush.
+pub fn crush_count(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    if ctx.level.platforms.is_empty() {
+        return None;
+    }
+    let dt = ctx.spec.dt as f64;
+    let inside = |k: usize| {
+        let b = character_box(pos(&rows[k]), ctx.spec.size);
+        ctx.level.platforms.iter().filter(|p| !p.one_way).any(|p| {
+            let pb = p.aabb(k as f64 * dt);
+            let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
+            o.x.min(o.y) > CRUSH_DEPTH
+        })
+    };
+    let count = (1..rows.len())
+        .filter(|&k| inside(k) && !inside(k - 1))
+        .count();
+    Some(Measure {
+        metric: "crush_count",
+        value: count as f64,
+        unit: "count",
+        reference: 0.0,
+    })
+}
+
 /// `tunneled`: 1 if between two frames the character passed entirely through a solid tile that
 /// overlapped its box's cross-section both before and after the move, else 0.
 pub fn tunneled(ctx: &Context, rows: &[TraceRow]) -> Measure {
@@ -830,6 +985,7 @@ map = """
             inputs,
             motion: Default::default(),
             expect_y: None,
+            ride: None,
         }
     }
 
@@ -855,6 +1011,7 @@ map = """
                     ground_ny: 0.0,
                     platform: None,
                     ladder: 0,
+                    crushed: 0,
                 })
                 .collect(),
         }

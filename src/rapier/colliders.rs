@@ -128,9 +128,17 @@ pub fn one_way_tag(top: f32) -> u128 {
     ONE_WAY | top.to_bits() as u128
 }
 
-/// The top of a one-way collider from its `user_data`, or `None` for any other collider.
-pub fn one_way_top(user_data: u128) -> Option<f32> {
-    (user_data & ONE_WAY != 0).then(|| f32::from_bits(user_data as u32))
+/// The top of a one-way collider (world y), or `None` for any other collider. Moving one-way
+/// platforms carry only the flag; their top is read from where the collider is.
+pub fn one_way_top(collider: &rapier2d::prelude::Collider) -> Option<f32> {
+    let data = collider.user_data;
+    if data & ONE_WAY == 0 {
+        None
+    } else if collider.parent().is_some() {
+        Some(collider.compute_aabb().maxs.y)
+    } else {
+        Some(f32::from_bits(data as u32))
+    }
 }
 
 /// One-way tiles (and ladder tops) as boxes: one per tile, or merged along each row.

@@ -14,6 +14,7 @@
 //! runs: the level has only static colliders.
 
 pub mod colliders;
+pub mod platforms;
 
 use std::rc::Rc;
 
@@ -29,6 +30,7 @@ use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
 pub use crate::shape::CharacterShape;
 pub use colliders::{one_way_top, ColliderBuilding, StaticWorld};
+pub use platforms::{PlatformCarry, Platforms};
 
 /// Added to [`MotionParams::max_climb_angle`] for Rapier's climb and slide angles, in radians.
 /// Rapier calls a slope at exactly its limit a wall (`angle >= max_slope_climb_angle`), while the
@@ -91,6 +93,9 @@ pub struct RapierConfig {
     /// Nudge along contact normals that keeps shape casts from sticking while sliding, in
     /// tiles (Rapier's default: 1e-4).
     pub normal_nudge_factor: f32,
+    /// How a rider is carried by a moving platform. Default: the controller's own carry, which
+    /// the reference measured exact horizontally; adding the displacement too over-carries.
+    pub platform_carry: PlatformCarry,
 }
 
 impl Default for RapierConfig {
@@ -106,6 +111,7 @@ impl Default for RapierConfig {
             min_slope_slide_angle: None,
             snap_to_ground: Some(Length::Relative(0.2)),
             normal_nudge_factor: kcc.normal_nudge_factor,
+            platform_carry: PlatformCarry::Controller,
         }
     }
 }
@@ -152,11 +158,15 @@ pub struct Move {
     pub ground_normal: Option<Vec2>,
     /// Top of the one-way platform hit as ground, if any.
     pub one_way_top: Option<f32>,
+    /// The rigid body (a moving platform) of the ground hit, if it has one.
+    pub ground_body: Option<rapier2d::prelude::RigidBodyHandle>,
 }
 
 struct Character {
     /// Feet position (bottom centre), in Rapier's world coordinates.
     pos: Vec2,
+    /// The moving platform it stood on after its last move.
+    riding: Option<u32>,
     /// Top of the one-way platform being dropped through, until the character is below it.
     drop_top: Option<f32>,
     /// Top of the one-way platform stood on, if any.
@@ -170,6 +180,10 @@ struct Character {
 /// The Rapier backend over one level.
 pub struct RapierBackend {
     world: Rc<StaticWorld>,
+    /// Moving platforms (kinematic bodies in this backend's own copy of the world), if any.
+    platforms: Option<Platforms>,
+    /// Steps taken, for the platforms' time.
+    frame: u64,
     /// The level's grid, kept only when it has ladders (for the shared ladder rules).
     ladders: Option<Level>,
     /// The level's corner in Rapier's world.
@@ -187,7 +201,7 @@ impl RapierBackend {
         slopes: true,
         one_way: true,
         ladders: true,
-        ..Features::NONE
+        moving_platforms: true,
     };
 
     /// Builds the colliders for `level`; refuses levels with features it does not model.
@@ -210,8 +224,13 @@ impl RapierBackend {
     ) -> Result<Self, BackendError> {
         require_supported("rapier", &level.name, level.features, Self::SUPPORTED)?;
         let controller = config.controller(&params);
+        let mut world = world;
+        let platforms =
+            (!level.platforms.is_empty()).then(|| Platforms::new(level, Rc::make_mut(&mut world)));
         Ok(RapierBackend {
             world,
+            platforms,
+            frame: 0,
             ladders: level.features.ladders.then(|| level.geometry()),
             origin: level.origin,
             dispatcher: DefaultQueryDispatcher,
@@ -265,7 +284,7 @@ impl RapierBackend {
         let on_ladder = c.motion.on_ladder;
         let one_way_rule = move |_: rapier2d::prelude::ColliderHandle,
                                  co: &rapier2d::prelude::Collider| {
-            match one_way_top(co.user_data) {
+            match one_way_top(co) {
                 None => true,
                 Some(top) => !on_ladder && feet >= top - ONE_WAY_TOLERANCE && drop_top != Some(top),
             }
@@ -274,6 +293,7 @@ impl RapierBackend {
         let mut contacts = Contacts::default();
         let mut ground_normal: Option<Vec2> = None;
         let mut ground_one_way: Option<f32> = None;
+        let mut ground_body: Option<rapier2d::prelude::RigidBodyHandle> = None;
         let mvt = self
             .controller
             .move_shape(dt, &queries, &*c.shape, &pose, desired, |hit| {
@@ -282,10 +302,9 @@ impl RapierBackend {
                 let n = hit.hit.normal1;
                 if n.y > 0.5 {
                     ground_normal = Some(n);
-                    ground_one_way = w
-                        .colliders
-                        .get(hit.handle)
-                        .and_then(|co| one_way_top(co.user_data));
+                    let co = w.colliders.get(hit.handle);
+                    ground_one_way = co.and_then(one_way_top);
+                    ground_body = co.and_then(|co| co.parent());
                 } else if n.y < -0.5 {
                     contacts.ceiling = true;
                 } else if n.x * desired.x < 0.0 {
@@ -296,6 +315,7 @@ impl RapierBackend {
         contacts.one_way = ground_one_way.is_some();
         Move {
             one_way_top: ground_one_way,
+            ground_body,
             translation: mvt.translation,
             grounded: mvt.grounded,
             contacts,
@@ -308,7 +328,14 @@ impl RapierBackend {
         if let Some(level) = &self.ladders {
             crate::ladder::enter(level, self.origin, &mut c.motion, &mut c.pos, c.size, input);
         }
-        let desired = c.motion.integrate(&self.params, input, dt);
+        let mut desired = c.motion.integrate(&self.params, input, dt);
+        // The carry Rapier users add: the platform's coming displacement, when grounded on it.
+        if let (Some(i), Some(p), PlatformCarry::ControllerPlusDisplacement) =
+            (c.riding, &self.platforms, self.config.platform_carry)
+        {
+            let t0 = self.frame as f64 * dt as f64;
+            desired += p.displacement(i as usize, t0, t0 + dt as f64);
+        }
         if c.motion.drop_through {
             c.drop_top = c.one_way_ground;
         }
@@ -327,6 +354,12 @@ impl RapierBackend {
             crate::ladder::leave(level, self.origin, &mut c.motion, c.pos, c.size, input);
         }
         c.one_way_ground = if contacts.ground { m.one_way_top } else { None };
+        c.riding = match (&self.platforms, m.ground_body) {
+            (Some(p), Some(body)) if contacts.ground => {
+                p.bodies.iter().position(|b| *b == body).map(|i| i as u32)
+            }
+            _ => None,
+        };
         // The drop ends once the character is wholly below the platform it left.
         if c.drop_top.is_some_and(|top| c.pos.y + c.size.y < top) {
             c.drop_top = None;
@@ -347,6 +380,7 @@ impl Backend for RapierBackend {
     fn add_character(&mut self, spec: CharacterSpec) -> CharacterId {
         self.characters.push(Character {
             pos: spec.spawn + self.origin,
+            riding: None,
             drop_top: None,
             one_way_ground: None,
             size: spec.size,
@@ -362,6 +396,12 @@ impl Backend for RapierBackend {
             let input = inputs.get(id).copied().unwrap_or_default();
             self.step_character(id, &input, dt);
         }
+        // Platforms move after the characters, as in the sweep.
+        if let Some(p) = &mut self.platforms {
+            let t1 = (self.frame + 1) as f64 * dt as f64;
+            p.step_to(Rc::make_mut(&mut self.world), t1, dt);
+        }
+        self.frame += 1;
     }
 
     fn state(&self, id: CharacterId) -> CharacterState {
@@ -371,8 +411,9 @@ impl Backend for RapierBackend {
             vel: c.motion.vel,
             grounded: c.motion.grounded,
             ground_normal: c.ground_normal,
-            platform: None,
+            platform: c.riding,
             ladder: c.motion.on_ladder,
+            crushed: false,
         }
     }
 }

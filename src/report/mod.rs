@@ -202,6 +202,9 @@ pub fn notes(rows: &[MetricRow]) -> Vec<String> {
     if rapier("steep_blocked").any(|r| r.value == 0.0) {
         out.push("rapier climbs a too-steep slope that rises to the left on merged colliders: its 2D climb test uses a signed angle that is negative for such slopes (the same slope rising to the right blocks).".into());
     }
+    if rapier("carry_airborne_frames").any(|r| r.value > 0.0) {
+        out.push("rapier riders: the controller carries a rider by the platform body's velocity from the previous step; on paths that turn (diagonal, circle) the rider loses the platform, and a platform moving into a character is not pushed out of it (Rapier's depenetration runs only for a zero desired move).".into());
+    }
     if rapier("progress_ratio").any(|r| r.value < 0.99) {
         out.push("rapier loses progress on flat ground: the shape catches on tile seams and, when it starts inside its offset band (spawned flush, walk_right_flush), creeps back out by only 1e-4 tiles a step.".into());
     }

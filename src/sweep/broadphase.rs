@@ -17,6 +17,13 @@ pub enum BoxKind {
     UnderSlope,
     /// A one-way platform (or a ladder's top): blocks only a character coming from above.
     OneWay,
+    /// Moving platform `index`, one-way or solid.
+    Platform {
+        /// Index in the level's platforms.
+        index: u32,
+        /// Whether it blocks only from above.
+        one_way: bool,
+    },
 }
 
 /// Static boxes (solid tiles, and one-way tiles when the level has them) and a BVH over them.

@@ -8,6 +8,7 @@
 //! that code ([`SweepStats`] counts it).
 
 pub mod broadphase;
+pub mod platforms;
 pub mod resolve;
 pub mod slopes;
 
@@ -48,6 +49,11 @@ impl Default for SweepConfig {
 struct Character {
     /// Feet position in world coordinates.
     pos: Vec2,
+    /// The moving platform it stands on (the seed's rider list, kept on the rider's side: a
+    /// platform's riders are the characters whose `riding` names it).
+    riding: Option<u32>,
+    /// Whether a platform pushed it into the level this step.
+    crushed: bool,
     size: Vec2,
     motion: MotionState,
     ground_normal: Vec2,
@@ -62,11 +68,18 @@ pub struct SweepStats {
     pub one_way_steps: u64,
     /// Character steps that ran the ladder rules.
     pub ladder_steps: u64,
+    /// Platform moves (one per platform per step).
+    pub platform_moves: u64,
 }
 
 /// The sweep backend over one level.
 pub struct SweepBackend {
     tiles: StaticTiles,
+    /// Moving platforms and their boxes at the current frame (empty on levels without them).
+    platforms: Vec<platforms::PlatformState>,
+    platform_boxes: Vec<(Aabb, BoxKind)>,
+    /// Steps taken, for the platforms' time.
+    frame: u64,
     /// The level's grid, for the per-column feature rules (slopes).
     level: Level,
     stats: SweepStats,
@@ -83,7 +96,7 @@ impl SweepBackend {
         slopes: true,
         one_way: true,
         ladders: true,
-        ..Features::NONE
+        moving_platforms: true,
     };
 
     /// Builds the backend for `level`; refuses levels with features it does not model.
@@ -109,6 +122,24 @@ impl SweepBackend {
         }
         Ok(SweepBackend {
             tiles: StaticTiles::new(level),
+            platforms: level
+                .platforms
+                .iter()
+                .map(|p| platforms::PlatformState::new(p, level.origin))
+                .collect(),
+            platform_boxes: level
+                .platforms
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    let kind = BoxKind::Platform {
+                        index: i as u32,
+                        one_way: p.one_way,
+                    };
+                    (p.aabb(0.0).translated(level.origin), kind)
+                })
+                .collect(),
+            frame: 0,
             level: level.geometry(),
             stats: SweepStats::default(),
             origin: level.origin,
@@ -160,10 +191,12 @@ impl SweepBackend {
         // One-way platforms never block along x (the seed: "don't collide x axis step").
         let skip_x = |t: &Aabb, kind: BoxKind| match kind {
             BoxKind::UnderSlope | BoxKind::OneWay => true,
+            BoxKind::Platform { one_way, .. } => one_way,
             BoxKind::Solid => floor_x.is_some_and(|h| t.maxs.y <= h + overhang),
         };
         let mut wall = move_axis(
             &self.tiles,
+            &self.platform_boxes,
             &mut c.pos,
             c.size,
             Axis::X,
@@ -193,11 +226,15 @@ impl SweepBackend {
         // "collide y only if previously entirely above platform"; "collide only if falling" is
         // wrong, because a jump can start falling while inside the platform).
         let skip_y = |t: &Aabb, kind: BoxKind| match kind {
-            BoxKind::OneWay => dropping || delta.y >= 0.0 || before_y < t.maxs.y - eps,
+            BoxKind::OneWay | BoxKind::Platform { one_way: true, .. } => {
+                dropping || delta.y >= 0.0 || before_y < t.maxs.y - eps
+            }
+            BoxKind::Platform { .. } => false,
             _ => floor_y.is_some_and(|h| t.maxs.y > h + eps && t.maxs.y <= h + overhang),
         };
         let hit_y = move_axis(
             &self.tiles,
+            &self.platform_boxes,
             &mut c.pos,
             c.size,
             Axis::Y,
@@ -207,7 +244,14 @@ impl SweepBackend {
         );
         let mut ground = hit_y.is_some() && delta.y < 0.0;
         let ceiling = hit_y.is_some() && delta.y > 0.0;
-        let mut one_way = hit_y == Some(BoxKind::OneWay);
+        let mut one_way = matches!(
+            hit_y,
+            Some(BoxKind::OneWay | BoxKind::Platform { one_way: true, .. })
+        );
+        c.riding = match hit_y {
+            Some(BoxKind::Platform { index, .. }) if ground => Some(index),
+            _ => None,
+        };
         let mut normal = Vec2::Y;
         if slopes {
             if let Some(g) =
@@ -256,6 +300,8 @@ impl Backend for SweepBackend {
             size: spec.size,
             motion: MotionState::with_velocity(spec.velocity),
             ground_normal: Vec2::ZERO,
+            riding: None,
+            crushed: false,
         });
         self.characters.len() - 1
     }
@@ -263,8 +309,14 @@ impl Backend for SweepBackend {
     fn step(&mut self, inputs: &[Input], dt: f32) {
         for id in 0..self.characters.len() {
             let input = inputs.get(id).copied().unwrap_or_default();
+            self.characters[id].crushed = false;
             self.step_character(id, &input, dt);
         }
+        // The seed's order: platforms move after every character has moved.
+        if !self.platforms.is_empty() {
+            self.move_platforms(dt);
+        }
+        self.frame += 1;
     }
 
     fn state(&self, id: CharacterId) -> CharacterState {
@@ -278,8 +330,9 @@ impl Backend for SweepBackend {
             } else {
                 Vec2::ZERO
             },
-            platform: None,
+            platform: c.riding,
             ladder: c.motion.on_ladder,
+            crushed: c.crushed,
         }
     }
 }

@@ -14,7 +14,7 @@
 //! a fall that arrives on the floor exactly (within rounding) is a landing on that frame.
 
 use glam::Vec2;
-use parry2d::bounding_volume::Aabb;
+use parry2d::bounding_volume::{Aabb, BoundingVolume};
 
 use super::broadphase::{BoxKind, StaticTiles};
 
@@ -37,10 +37,13 @@ impl Axis {
 }
 
 /// Moves the box whose feet are at `pos` by `delta` along `axis`, stopping flush at the
-/// closest obstacle. `skip` tells which boxes are not obstacles for this move (it gets the box
+/// closest obstacle among the static tiles and the `extra` boxes (moving platforms at their
+/// current place). `skip` tells which boxes are not obstacles for this move (it gets the box
 /// and its kind). Returns the kind of the obstacle that stopped the move, if one did.
+#[allow(clippy::too_many_arguments)]
 pub fn move_axis(
     tiles: &StaticTiles,
+    extra: &[(Aabb, BoxKind)],
     pos: &mut Vec2,
     size: Vec2,
     axis: Axis,
@@ -68,7 +71,11 @@ pub fn move_axis(
     swept.maxs[o] -= epsilon;
 
     let mut closest: Option<(f32, BoxKind)> = None;
-    for (t, kind) in tiles.query(&swept) {
+    let moving = extra
+        .iter()
+        .filter(|(t, _)| t.intersects(&swept))
+        .map(|(t, k)| (t, *k));
+    for (t, kind) in tiles.query(&swept).chain(moving) {
         if skip(t, kind) || !overlaps_across(&b, t, o, epsilon) {
             continue;
         }
@@ -142,7 +149,7 @@ mod tests {
         eps: f32,
         skip: impl Fn(&Aabb, BoxKind) -> bool,
     ) -> bool {
-        move_axis(tiles, p, size, axis, delta, eps, skip).is_some()
+        move_axis(tiles, &[], p, size, axis, delta, eps, skip).is_some()
     }
     const EPS: f32 = 0.001;
 

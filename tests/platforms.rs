@@ -1,0 +1,123 @@
+//! Moving platforms on both backends (issue 5), from traces and metrics of the built-in
+//! `platforms` level.
+
+mod common;
+
+use common::{evaluate_all, level, rows};
+use platbench::metrics::Evaluation;
+use platbench::rapier::{CharacterShape, ColliderBuilding};
+use platbench::scenario::RunConfig;
+use platbench::sweep::SweepConfig;
+
+fn find<'a>(evals: &'a [(String, Evaluation)], name: &str) -> &'a Evaluation {
+    &evals.iter().find(|(n, _)| n.ends_with(name)).unwrap().1
+}
+
+fn value(evals: &[(String, Evaluation)], scenario: &str, metric: &str) -> f64 {
+    rows(evals, metric)
+        .into_iter()
+        .find(|r| r.scenario == scenario)
+        .unwrap_or_else(|| panic!("{metric} on {scenario}"))
+        .value
+}
+
+/// Rides whose platform never drops away faster than a rider can fall: horizontal waypoints,
+/// smooth sines and a circle whose accelerations are far under gravity.
+const FOLLOWABLE: [&str; 7] = [
+    "ride_horizontal",
+    "elevator",
+    "diagonal",
+    "circle",
+    "walk_on_platform",
+    "jump_off_and_back_on",
+    "onto_one_way_lift_from_below",
+];
+
+#[test]
+fn sweep_carries_riders_without_drift() {
+    let evals = evaluate_all(&[level("platforms")], &RunConfig::sweep_default());
+    for name in FOLLOWABLE {
+        // Issue 5: carry_drift <= 1e-4 tiles, carry_airborne_frames = 0.
+        let drift = value(&evals, name, "carry_drift");
+        assert!(drift <= 1e-4, "{name}: carry_drift {drift}");
+        assert_eq!(value(&evals, name, "carry_airborne_frames"), 0.0, "{name}");
+    }
+    // Jumping off and back on: the rider is on platform 0 again at the end.
+    let back = find(&evals, "jump_off_and_back_on");
+    assert_eq!(back.trace.rows.last().unwrap().platform, Some(0));
+    assert!(back
+        .trace
+        .rows
+        .iter()
+        .any(|r| r.platform.is_none() && r.frame > 0));
+}
+
+#[test]
+fn a_platform_dropping_faster_than_gravity_leaves_its_rider_behind() {
+    // Platform 2 starts down at 20 tiles/s from rest: a rider can only fall g dt^2 in the first
+    // step, so it is left in the air and falls after it: airborne frames and a growing drift are
+    // the right outcome, not a defect.
+    let evals = evaluate_all(&[level("platforms")], &RunConfig::sweep_default());
+    assert!(value(&evals, "fast_descent", "carry_airborne_frames") > 0.0);
+    let fall = find(&evals, "fast_descent");
+    // It really falls (gravity), never through the platform: no crush, no deep overlap.
+    assert!(fall.trace.rows.iter().any(|r| r.vy < -5.0));
+    assert_eq!(value(&evals, "fast_descent", "crush_count"), 0.0);
+}
+
+#[test]
+fn sweep_pushes_without_overlap_and_reports_a_crush() {
+    let evals = evaluate_all(&[level("platforms")], &RunConfig::sweep_default());
+    let eps = SweepConfig::default().epsilon as f64;
+    for r in rows(&evals, "push_penetration") {
+        if r.scenario != "crushed_against_a_wall" {
+            // Issue 5: push_penetration <= epsilon.
+            assert!(
+                r.value <= eps,
+                "{}: push_penetration {}",
+                r.scenario,
+                r.value
+            );
+        }
+    }
+    // Pushed along the floor: it moved with the block.
+    let pushed = find(&evals, "pushed_across_the_floor");
+    let (first, last) = (pushed.trace.rows[0].x, pushed.trace.rows.last().unwrap().x);
+    assert!(last - first > 2.0, "pushed {} tiles", last - first);
+    // Crushed against the wall: the trace reports it, once, and the character is never left
+    // inside the static level (it stays against the wall, overlapping the platform).
+    let crushed = find(&evals, "crushed_against_a_wall");
+    assert!(crushed.trace.rows.iter().any(|r| r.crushed == 1));
+    assert_eq!(value(&evals, "crushed_against_a_wall", "crush_count"), 1.0);
+    assert!(value(&evals, "crushed_against_a_wall", "max_penetration") <= eps);
+}
+
+#[test]
+fn rapier_runs_every_platform_scenario_and_its_carry_is_pinned() {
+    for shape in CharacterShape::ALL {
+        for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
+            let run = RunConfig::rapier(building, shape);
+            let evals = evaluate_all(&[level("platforms")], &run);
+            assert_eq!(evals.len(), 10, "{}", run.label);
+            // The controller carries by the platform body's velocity from the previous step: on
+            // the horizontal ride the rider lags one step at each turn (2 tiles/s x 2 steps =
+            // 0.067 tiles, measured), and stays grounded.
+            let drift = value(&evals, "ride_horizontal", "carry_drift");
+            assert!(drift <= 0.07, "{}: horizontal drift {drift}", run.label);
+            assert_eq!(
+                value(&evals, "ride_horizontal", "carry_airborne_frames"),
+                0.0
+            );
+            // Measured, pinned: on the diagonal path the rider loses the platform (>= 1 airborne
+            // frame; 50 measured); and Rapier does not push a character out of a platform that
+            // closes on it against a wall (overlap 0.8, the platform's depth into it).
+            assert!(
+                value(&evals, "diagonal", "carry_airborne_frames") > 0.0,
+                "{}",
+                run.label
+            );
+            let crush = value(&evals, "crushed_against_a_wall", "push_penetration");
+            assert!(crush > 0.5, "{}: {crush}", run.label);
+        }
+    }
+}
