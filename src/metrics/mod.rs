@@ -685,13 +685,21 @@ pub const EXPECT_TOLERANCE: f32 = 0.05;
 /// `oneway_result`: on a level with one-way platforms, 1 if the character ended where the
 /// scenario says the seed's rule puts it (`expect_y`: on the platform, or below it), else 0.
 pub fn oneway_result(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
-    let expect = ctx.spec.expect_y?;
-    if !ctx.level.features.one_way {
-        return None;
-    }
+    ended_as_expected(ctx, rows, "oneway_result", ctx.level.features.one_way)
+}
+
+/// 1 if the last row's feet are within [`EXPECT_TOLERANCE`] of the scenario's `expect_y`, as
+/// metric `metric`, when `applies` and the scenario states an `expect_y`.
+fn ended_as_expected(
+    ctx: &Context,
+    rows: &[TraceRow],
+    metric: &'static str,
+    applies: bool,
+) -> Option<Measure> {
+    let expect = ctx.spec.expect_y.filter(|_| applies)?;
     let last = rows.last()?;
     Some(Measure {
-        metric: "oneway_result",
+        metric,
         value: ((last.y - expect).abs() <= EXPECT_TOLERANCE) as u8 as f64,
         unit: "bool",
         reference: 1.0,
@@ -733,17 +741,7 @@ pub fn ladder_speed_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
 /// in DESIGN.md's catalog: added so that entering and leaving a ladder is checked, not only the
 /// climbing speed.
 pub fn ladder_result(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
-    let expect = ctx.spec.expect_y?;
-    if !ctx.level.features.ladders {
-        return None;
-    }
-    let last = rows.last()?;
-    Some(Measure {
-        metric: "ladder_result",
-        value: ((last.y - expect).abs() <= EXPECT_TOLERANCE) as u8 as f64,
-        unit: "bool",
-        reference: 1.0,
-    })
+    ended_as_expected(ctx, rows, "ladder_result", ctx.level.features.ladders)
 }
 
 /// How close above a platform's top the feet count as on it, for the carry metrics, in tiles:
