@@ -44,6 +44,29 @@ enum Command {
     Run(RunArgs),
     /// List the built-in levels and their scenarios.
     Levels,
+    /// Compare a run directory against a baseline: metrics beyond tolerance, first divergent
+    /// trace frames. Exits 1 when a metric got worse (or went missing), 0 otherwise.
+    Diff(DiffArgs),
+}
+
+#[derive(Args)]
+#[command(allow_negative_numbers = true)]
+struct DiffArgs {
+    /// Baseline run directory (e.g. compare/baseline).
+    base: PathBuf,
+    /// New run directory (written by `platbench run --out`).
+    new: PathBuf,
+    /// Override a metric's tolerance: METRIC=ABS or METRIC=ABS,REL (REL a fraction of the
+    /// baseline's distance from ideal). Repeatable. Defaults: 1e-5 + 1% for lengths and ratios,
+    /// exact for counts, frames and booleans.
+    #[arg(long = "tol", value_name = "METRIC=ABS[,REL]")]
+    tolerances: Vec<String>,
+    /// Position difference at which a trace diverges, in tiles.
+    #[arg(long, default_value_t = 1e-4, value_name = "TILES")]
+    position_tolerance: f32,
+    /// Output format.
+    #[arg(long, default_value = "text", value_parser = ["text", "md", "csv"])]
+    format: String,
 }
 
 #[derive(Args, Default)]
@@ -57,6 +80,10 @@ struct RunArgs {
     /// Print every metric of every scenario, not only the per-metric summary.
     #[arg(long)]
     detail: bool,
+    /// Replace the committed baseline (compare/baseline) with this run: the only way it is
+    /// written. Runs the built-in set with every configuration.
+    #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes"])]
+    bless: bool,
     /// Override every scenario's time step, in seconds.
     #[arg(long, value_name = "SECONDS")]
     dt: Option<f32>,
@@ -77,6 +104,7 @@ fn main() -> ExitCode {
         None => run(&RunArgs::default(), false),
         Some(Command::Run(args)) => run(&args, true),
         Some(Command::Levels) => list_levels(),
+        Some(Command::Diff(args)) => return diff(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -145,6 +173,20 @@ fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
 }
 
 fn run(args: &RunArgs, write: bool) -> Result<()> {
+    if !args.bless {
+        let same = |a: &std::path::Path, b: &std::path::Path| {
+            a.canonicalize()
+                .ok()
+                .zip(b.canonicalize().ok())
+                .is_some_and(|(a, b)| a == b)
+        };
+        if write && same(&args.out, &baseline_dir()) {
+            bail!(
+                "--out {} is the committed baseline; it is replaced only on purpose, with `platbench run --bless`",
+                args.out.display()
+            );
+        }
+    }
     let mut levels = load_levels(&args.levels)?;
     if let Some(dt) = args.dt {
         if !(dt.is_finite() && dt > 0.0 && dt <= 1.0) {
@@ -197,21 +239,26 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
         );
     }
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
-    println!("{}", summary_table(&metrics));
+    let mut text = summary_table(&metrics);
     for n in notes(&metrics) {
-        println!("- {n}");
+        text.push_str(&format!("\n- {n}"));
     }
+    out(&text);
     if args.detail {
-        println!();
-        println!("{}", detail_table(&metrics));
+        out(&format!("\n{}", detail_table(&metrics)));
     }
     if write {
-        output::write_run(&args.out, &traces, &metrics)?;
+        let out = if args.bless {
+            baseline_dir()
+        } else {
+            args.out.clone()
+        };
+        output::write_run(&out, &traces, &metrics)?;
         eprintln!(
             "wrote {} traces and {} metric rows to {}",
             traces.len(),
             metrics.len(),
-            args.out.display()
+            out.display()
         );
     } else {
         eprintln!("(worst case per metric over all scenarios; `platbench run --detail` lists every scenario, `--out DIR` writes the CSV files)");
@@ -219,14 +266,75 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
     Ok(())
 }
 
+/// Prints a block of text and a newline; a closed pipe (`platbench | head`) ends the output
+/// quietly instead of panicking.
+fn out(text: &str) {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    let _ = writeln!(stdout, "{text}");
+}
+
+/// The committed baseline directory (`PLATBENCH_BASELINE` overrides it, for tests).
+fn baseline_dir() -> PathBuf {
+    std::env::var_os("PLATBENCH_BASELINE")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("compare/baseline"))
+}
+
+fn diff(args: &DiffArgs) -> ExitCode {
+    use platbench::report::diff::{diff_runs, render, DiffFormat, Tolerance};
+    let mut tols = std::collections::BTreeMap::new();
+    for t in &args.tolerances {
+        let parsed = t.split_once('=').and_then(|(m, v)| {
+            let mut parts = v.split(',').map(|x| x.trim().parse::<f64>());
+            let abs = parts.next()?.ok()?;
+            let rel = match parts.next() {
+                Some(r) => r.ok()?,
+                None => 0.0,
+            };
+            (abs.is_finite() && abs >= 0.0 && rel.is_finite() && rel >= 0.0)
+                .then(|| (m.to_string(), Tolerance { abs, rel }))
+        });
+        match parsed {
+            Some((m, tol)) => {
+                tols.insert(m, tol);
+            }
+            None => {
+                eprintln!("error: --tol {t}: expected METRIC=ABS or METRIC=ABS,REL with non-negative numbers");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let format = match args.format.as_str() {
+        "md" => DiffFormat::Markdown,
+        "csv" => DiffFormat::Csv,
+        _ => DiffFormat::Text,
+    };
+    match diff_runs(&args.base, &args.new, &tols, args.position_tolerance) {
+        Ok(d) => {
+            out(render(&d, format).trim_end());
+            if d.regressed() {
+                eprintln!("regression: a metric got worse beyond its tolerance (or went missing)");
+                ExitCode::from(1)
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
 fn list_levels() -> Result<()> {
     for level in builtin_levels()? {
-        println!(
+        out(&format!(
             "{} ({} x {} tiles): {}",
             level.name, level.width, level.height, level.description
-        );
+        ));
         for s in &level.scenarios {
-            println!("    {}  ({} s)", s.name, s.duration);
+            out(&format!("    {}  ({} s)", s.name, s.duration));
         }
     }
     Ok(())

@@ -100,3 +100,89 @@ fn levels_lists_the_builtins() {
         assert!(s.contains(l), "{s}");
     }
 }
+
+#[test]
+fn an_unchanged_run_diffs_clean_and_a_changed_constant_is_named() {
+    let baseline = concat!(env!("CARGO_MANIFEST_DIR"), "/compare/baseline");
+    let dir = tempfile::tempdir().unwrap();
+    let same = dir.path().join("same");
+    let run = platbench()
+        .args(["run", "--out"])
+        .arg(&same)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let d = platbench()
+        .arg("diff")
+        .arg(baseline)
+        .arg(&same)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&d.stdout);
+    // The committed baseline is this build's behaviour: a run diffs clean, bit for bit.
+    assert_eq!(d.status.code(), Some(0), "{text}");
+    assert!(
+        text.contains("0 worse, 0 better, 0 missing, 0 added"),
+        "{text}"
+    );
+    assert!(text.contains("0 diverge"), "{text}");
+
+    // One constant of the sweep controller changed through its config: the epsilon.
+    let changed = dir.path().join("changed");
+    let run = platbench()
+        .args(["run", "--epsilon", "0.05", "--out"])
+        .arg(&changed)
+        .output()
+        .unwrap();
+    assert!(run.status.success());
+    let d = platbench()
+        .arg("diff")
+        .arg(baseline)
+        .arg(&changed)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&d.stdout);
+    assert_eq!(d.status.code(), Some(1), "{text}");
+    // The metric that got worse is named, with the configuration and both values...
+    assert!(text.contains("| worse  | drops.drop_0_1"), "{text}");
+    assert!(text.contains("land_frame_error"), "{text}");
+    // ...and the first divergent frame of a trace, with both positions.
+    assert!(
+        text.contains("| corridor.jump_into_ceiling.sweep.csv") && text.contains("| 18 "),
+        "{text}"
+    );
+}
+
+#[test]
+fn the_baseline_is_written_only_with_bless() {
+    // A stand-in baseline, so that a broken guard cannot touch the committed one.
+    let dir = tempfile::tempdir().unwrap();
+    let baseline = dir.path().join("baseline");
+    std::fs::create_dir(&baseline).unwrap();
+    std::fs::write(baseline.join("marker"), "keep").unwrap();
+    let out = platbench()
+        .env("PLATBENCH_BASELINE", &baseline)
+        .args(["run", "--out"])
+        .arg(&baseline)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--bless"));
+    assert!(
+        baseline.join("marker").exists(),
+        "the baseline was replaced"
+    );
+    // --bless is the way: it replaces the baseline with a full run.
+    let out = platbench()
+        .env("PLATBENCH_BASELINE", &baseline)
+        .args(["run", "--bless"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(!baseline.join("marker").exists());
+    assert!(baseline.join("metrics.csv").exists());
+}

@@ -2,6 +2,8 @@
 //! configuration, side by side, with the better one named) and a per-scenario detail table.
 //! Tables are Markdown-style ASCII so they read the same in a terminal, a CI log and a PR.
 
+pub mod diff;
+
 use comfy_table::{presets, CellAlignment, Table};
 
 use crate::metrics::MetricRow;

@@ -1,0 +1,456 @@
+//! Regression compare of two run directories (DESIGN.md, "Regression compare"): every metric's
+//! change against its tolerance, and for every trace the first frame where a character's
+//! position differs by more than a position tolerance.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::trace::{Trace, TraceRow};
+
+/// A row of `metrics.csv` as read back (owned strings).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+pub struct MetricRecord {
+    /// Level name.
+    pub level: String,
+    /// Scenario name.
+    pub scenario: String,
+    /// Backend name.
+    pub backend: String,
+    /// Configuration label.
+    pub config: String,
+    /// Metric name.
+    pub metric: String,
+    /// Measured value.
+    pub value: f64,
+    /// Unit.
+    pub unit: String,
+    /// Ideal value.
+    pub reference: f64,
+    /// `value - reference`.
+    pub error: f64,
+}
+
+impl MetricRecord {
+    fn key(&self) -> (String, String, String, String, String) {
+        (
+            self.level.clone(),
+            self.scenario.clone(),
+            self.backend.clone(),
+            self.config.clone(),
+            self.metric.clone(),
+        )
+    }
+}
+
+/// How much a metric may move before the move counts: `abs + rel * |base distance from ideal|`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerance {
+    /// Absolute tolerance, in the metric's unit.
+    pub abs: f64,
+    /// Relative tolerance, as a fraction of the baseline's distance from ideal.
+    pub rel: f64,
+}
+
+/// Default tolerance by unit: lengths in tiles and ratios move with f32 rounding (1e-5 and 1%
+/// of the distance from ideal); counts, frames and booleans are exact.
+pub fn default_tolerance(unit: &str) -> Tolerance {
+    match unit {
+        "tiles" | "ratio" | "tiles/s" => Tolerance {
+            abs: 1e-5,
+            rel: 0.01,
+        },
+        _ => Tolerance { abs: 0.0, rel: 0.0 },
+    }
+}
+
+/// What happened to one metric.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Change {
+    /// Within tolerance.
+    Same,
+    /// Closer to ideal beyond tolerance.
+    Better,
+    /// Farther from ideal beyond tolerance.
+    Worse,
+    /// In the new run only.
+    Added,
+    /// In the baseline only.
+    Missing,
+}
+
+/// One metric's comparison.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MetricDiff {
+    /// `level.scenario`.
+    pub scenario: String,
+    /// `backend config`.
+    pub config: String,
+    /// Metric name.
+    pub metric: String,
+    /// Baseline value.
+    pub base: Option<f64>,
+    /// New value.
+    pub new: Option<f64>,
+    /// The verdict.
+    pub change: Change,
+}
+
+/// One trace's comparison.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TraceDiff {
+    /// Trace file name.
+    pub file: String,
+    /// First frame whose position differs beyond the tolerance (or where one trace ends), if
+    /// any.
+    pub frame: Option<u32>,
+    /// Baseline feet position at that frame.
+    pub base: Option<(f32, f32)>,
+    /// New feet position at that frame.
+    pub new: Option<(f32, f32)>,
+}
+
+/// The comparison of two runs.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct RunDiff {
+    /// Every metric that is not `Same`.
+    pub metrics: Vec<MetricDiff>,
+    /// How many metrics were compared.
+    pub compared: usize,
+    /// Every trace that diverges, is missing or was added.
+    pub traces: Vec<TraceDiff>,
+    /// How many traces were compared.
+    pub traces_compared: usize,
+}
+
+impl RunDiff {
+    /// Whether a metric got worse (or went missing): the regression that fails CI.
+    pub fn regressed(&self) -> bool {
+        self.metrics
+            .iter()
+            .any(|m| matches!(m.change, Change::Worse | Change::Missing))
+    }
+}
+
+/// Why a run directory could not be compared.
+#[derive(Debug, thiserror::Error)]
+pub enum DiffError {
+    /// A file could not be read.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A CSV file is malformed.
+    #[error("{path}: {source}")]
+    Csv {
+        /// The file.
+        path: PathBuf,
+        /// The cause, with its line.
+        source: csv::Error,
+    },
+}
+
+/// Reads `DIR/metrics.csv`.
+pub fn read_metrics(dir: &Path) -> Result<Vec<MetricRecord>, DiffError> {
+    let path = dir.join("metrics.csv");
+    let file = std::fs::File::open(&path).map_err(|source| DiffError::Io {
+        path: path.clone(),
+        source,
+    })?;
+    csv::Reader::from_reader(file)
+        .deserialize()
+        .collect::<Result<_, _>>()
+        .map_err(|source| DiffError::Csv { path, source })
+}
+
+fn read_trace(path: &Path) -> Result<Vec<TraceRow>, DiffError> {
+    let file = std::fs::File::open(path).map_err(|source| DiffError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Trace::read_rows(file).map_err(|source| DiffError::Csv {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+fn trace_files(dir: &Path) -> Result<Vec<String>, DiffError> {
+    let tdir = dir.join("traces");
+    let entries = std::fs::read_dir(&tdir).map_err(|source| DiffError::Io {
+        path: tdir.clone(),
+        source,
+    })?;
+    let mut names: Vec<String> = entries
+        .filter_map(|e| e.ok())
+        .filter_map(|e| e.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".csv"))
+        .collect();
+    names.sort();
+    Ok(names)
+}
+
+/// Compares run `new` against baseline `base`. `tolerances` overrides the per-unit defaults by
+/// metric name; `position_tolerance` (tiles) decides where a trace diverges.
+pub fn diff_runs(
+    base: &Path,
+    new: &Path,
+    tolerances: &BTreeMap<String, Tolerance>,
+    position_tolerance: f32,
+) -> Result<RunDiff, DiffError> {
+    let b = read_metrics(base)?;
+    let n = read_metrics(new)?;
+    let new_by_key: BTreeMap<_, _> = n.iter().map(|r| (r.key(), r)).collect();
+    let base_keys: std::collections::BTreeSet<_> = b.iter().map(|r| r.key()).collect();
+    let mut out = RunDiff::default();
+    for br in &b {
+        let tol = tolerances
+            .get(&br.metric)
+            .copied()
+            .unwrap_or_else(|| default_tolerance(&br.unit));
+        let label = |r: &MetricRecord| {
+            (
+                format!("{}.{}", r.level, r.scenario),
+                format!("{} {}", r.backend, r.config),
+            )
+        };
+        let (scenario, config) = label(br);
+        out.compared += 1;
+        let change = match new_by_key.get(&br.key()) {
+            None => Change::Missing,
+            Some(nr) => classify(br.value, nr.value, br.reference, tol),
+        };
+        if change != Change::Same {
+            out.metrics.push(MetricDiff {
+                scenario,
+                config,
+                metric: br.metric.clone(),
+                base: Some(br.value),
+                new: new_by_key.get(&br.key()).map(|r| r.value),
+                change,
+            });
+        }
+    }
+    for nr in n.iter().filter(|r| !base_keys.contains(&r.key())) {
+        out.metrics.push(MetricDiff {
+            scenario: format!("{}.{}", nr.level, nr.scenario),
+            config: format!("{} {}", nr.backend, nr.config),
+            metric: nr.metric.clone(),
+            base: None,
+            new: Some(nr.value),
+            change: Change::Added,
+        });
+    }
+    let (bt, nt) = (trace_files(base)?, trace_files(new)?);
+    for name in bt.iter().chain(nt.iter().filter(|n| !bt.contains(n))) {
+        let (in_b, in_n) = (bt.contains(name), nt.contains(name));
+        if !(in_b && in_n) {
+            out.traces.push(TraceDiff {
+                file: name.clone(),
+                frame: None,
+                base: None,
+                new: None,
+            });
+            continue;
+        }
+        out.traces_compared += 1;
+        let rb = read_trace(&base.join("traces").join(name))?;
+        let rn = read_trace(&new.join("traces").join(name))?;
+        if let Some(d) = first_divergence(&rb, &rn, position_tolerance) {
+            out.traces.push(TraceDiff {
+                file: name.clone(),
+                ..d
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// Whether `new` is better, worse or the same as `base`, by distance from `reference`.
+fn classify(base: f64, new: f64, reference: f64, tol: Tolerance) -> Change {
+    let (db, dn) = ((base - reference).abs(), (new - reference).abs());
+    if base.to_bits() == new.to_bits() || (db.is_infinite() && dn.is_infinite()) {
+        return Change::Same;
+    }
+    if dn.is_nan() && !db.is_nan() {
+        return Change::Worse;
+    }
+    let allowed = tol.abs + tol.rel * if db.is_finite() { db } else { 0.0 };
+    if dn > db + allowed {
+        Change::Worse
+    } else if dn < db - allowed {
+        Change::Better
+    } else {
+        Change::Same
+    }
+}
+
+/// The first frame where the two traces' positions differ by more than `tol` (or one ends).
+fn first_divergence(b: &[TraceRow], n: &[TraceRow], tol: f32) -> Option<TraceDiff> {
+    let at = |r: &TraceRow| (r.x, r.y);
+    for (rb, rn) in b.iter().zip(n) {
+        if (rb.x - rn.x).abs() > tol || (rb.y - rn.y).abs() > tol || rb.frame != rn.frame {
+            return Some(TraceDiff {
+                file: String::new(),
+                frame: Some(rb.frame),
+                base: Some(at(rb)),
+                new: Some(at(rn)),
+            });
+        }
+    }
+    (b.len() != n.len()).then(|| {
+        let k = b.len().min(n.len());
+        TraceDiff {
+            file: String::new(),
+            frame: Some(k as u32),
+            base: b.get(k).map(at),
+            new: n.get(k).map(at),
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn classify_by_distance_from_ideal() {
+        let exact = Tolerance { abs: 0.0, rel: 0.0 };
+        assert_eq!(classify(0.0, 0.0, 0.0, exact), Change::Same);
+        assert_eq!(classify(0.0, 1.0, 0.0, exact), Change::Worse);
+        assert_eq!(classify(2.0, 1.0, 0.0, exact), Change::Better);
+        // A ratio getting closer to its ideal 1 is better.
+        assert_eq!(classify(0.9, 0.95, 1.0, exact), Change::Better);
+        let loose = Tolerance {
+            abs: 1e-5,
+            rel: 0.01,
+        };
+        assert_eq!(classify(0.1, 0.1005, 0.0, loose), Change::Same);
+        assert_eq!(classify(0.1, 0.102, 0.0, loose), Change::Worse);
+        assert_eq!(
+            classify(f64::INFINITY, f64::INFINITY, 0.0, exact),
+            Change::Same
+        );
+    }
+}
+
+/// Output format of a diff.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DiffFormat {
+    /// Tables for a terminal or a CI log.
+    Text,
+    /// Markdown, for a pull request (the same tables, which are Markdown already).
+    Markdown,
+    /// CSV of the metric changes, for machines.
+    Csv,
+}
+
+fn fmt_opt(v: Option<f64>) -> String {
+    v.map_or("-".into(), super::format_value)
+}
+
+fn fmt_pos(p: Option<(f32, f32)>) -> String {
+    p.map_or("-".into(), |(x, y)| format!("({x}, {y})"))
+}
+
+/// Renders a diff.
+pub fn render(d: &RunDiff, format: DiffFormat) -> String {
+    if format == DiffFormat::Csv {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        for m in &d.metrics {
+            let _ = w.serialize(m);
+        }
+        return w
+            .into_inner()
+            .ok()
+            .and_then(|b| String::from_utf8(b).ok())
+            .unwrap_or_default();
+    }
+    let mut out = String::new();
+    let worse = d
+        .metrics
+        .iter()
+        .filter(|m| m.change == Change::Worse)
+        .count();
+    let better = d
+        .metrics
+        .iter()
+        .filter(|m| m.change == Change::Better)
+        .count();
+    let missing = d
+        .metrics
+        .iter()
+        .filter(|m| m.change == Change::Missing)
+        .count();
+    let added = d
+        .metrics
+        .iter()
+        .filter(|m| m.change == Change::Added)
+        .count();
+    out.push_str(&format!(
+        "{} metrics compared: {worse} worse, {better} better, {missing} missing, {added} added; {} traces compared, {} diverge or differ in presence\n",
+        d.compared,
+        d.traces_compared,
+        d.traces.len()
+    ));
+    if !d.metrics.is_empty() {
+        let mut t = comfy_table::Table::new();
+        // Markdown-style ASCII reads the same in a terminal, a CI log and a pull request.
+        t.load_style(comfy_table::presets::ASCII_MARKDOWN);
+        t.set_header(vec![
+            "change",
+            "scenario",
+            "configuration",
+            "metric",
+            "base",
+            "new",
+        ]);
+        let mut rows: Vec<&MetricDiff> = d.metrics.iter().collect();
+        rows.sort_by_key(|m| {
+            (
+                m.change != Change::Worse && m.change != Change::Missing,
+                m.scenario.clone(),
+            )
+        });
+        for m in rows {
+            let change = format!("{:?}", m.change).to_lowercase();
+            t.add_row(vec![
+                change,
+                m.scenario.clone(),
+                m.config.clone(),
+                m.metric.clone(),
+                fmt_opt(m.base),
+                fmt_opt(m.new),
+            ]);
+        }
+        out.push('\n');
+        out.push_str(&t.to_string());
+        out.push('\n');
+    }
+    if !d.traces.is_empty() {
+        let mut t = comfy_table::Table::new();
+        t.load_style(comfy_table::presets::ASCII_MARKDOWN);
+        t.set_header(vec![
+            "trace",
+            "first divergent frame",
+            "base (x, y)",
+            "new (x, y)",
+        ]);
+        for tr in &d.traces {
+            t.add_row(vec![
+                tr.file.clone(),
+                tr.frame.map_or("only in one run".into(), |f| f.to_string()),
+                fmt_pos(tr.base),
+                fmt_pos(tr.new),
+            ]);
+        }
+        out.push('\n');
+        out.push_str(&t.to_string());
+        out.push('\n');
+    }
+    out
+}
