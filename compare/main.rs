@@ -44,6 +44,10 @@ enum Command {
     Run(RunArgs),
     /// List the built-in levels and their scenarios.
     Levels,
+    /// Run level files (the built-in set when none is given) and write the "pick a backend"
+    /// report: DIR/report.html (self-contained: inline pictures, no scripts, no network) and its
+    /// Markdown twin DIR/report.md.
+    Report(RunArgs),
     /// Compare a run directory against a baseline: metrics beyond tolerance, first divergent
     /// trace frames. Exits 1 when a metric got worse (or went missing), 0 otherwise.
     Diff(DiffArgs),
@@ -104,6 +108,7 @@ fn main() -> ExitCode {
         None => run(&RunArgs::default(), false),
         Some(Command::Run(args)) => run(&args, true),
         Some(Command::Levels) => list_levels(),
+        Some(Command::Report(args)) => report(&args),
         Some(Command::Diff(args)) => return diff(&args),
     };
     match result {
@@ -325,6 +330,48 @@ fn diff(args: &DiffArgs) -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+fn report(args: &RunArgs) -> Result<()> {
+    use platbench::report::html::{render_report, ScenarioTraces};
+    let levels = load_levels(&args.levels)?;
+    let configs = configs(args)?;
+    let mut metrics: Vec<MetricRow> = Vec::new();
+    let mut per_scenario: Vec<(usize, usize, Vec<Trace>)> = Vec::new();
+    for (li, level) in levels.iter().enumerate() {
+        let mut runner = Runner::new(level);
+        for (si, spec) in level.scenarios.iter().enumerate() {
+            let mut traces = Vec::new();
+            for run in &configs {
+                let e = evaluate_with(&mut runner, spec, run)?;
+                metrics.extend(e.metrics);
+                traces.push(e.trace);
+            }
+            per_scenario.push((li, si, traces));
+        }
+        eprintln!("  {}", level.name);
+    }
+    let scenarios: Vec<ScenarioTraces> = per_scenario
+        .iter()
+        .map(|(li, si, traces)| ScenarioTraces {
+            level: &levels[*li],
+            spec: &levels[*li].scenarios[*si],
+            traces: traces.iter().collect(),
+        })
+        .collect();
+    let (html, md) = render_report(&metrics, &scenarios);
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    for (name, text) in [("report.html", &html), ("report.md", &md)] {
+        let path = args.out.join(name);
+        let mut tmp = tempfile::NamedTempFile::new_in(&args.out)
+            .with_context(|| format!("cannot write in {}", args.out.display()))?;
+        std::io::Write::write_all(&mut tmp, text.as_bytes())?;
+        tmp.persist(&path)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        eprintln!("wrote {} ({} KB)", path.display(), text.len() / 1024);
+    }
+    Ok(())
 }
 
 fn list_levels() -> Result<()> {

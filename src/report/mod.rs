@@ -3,6 +3,7 @@
 //! Tables are Markdown-style ASCII so they read the same in a terminal, a CI log and a PR.
 
 pub mod diff;
+pub mod html;
 
 use comfy_table::{presets, CellAlignment, Table};
 
@@ -88,14 +89,26 @@ pub fn summary_table(rows: &[MetricRow]) -> String {
     out
 }
 
-/// One summary table over `rows`.
-fn group_table(rows: &[MetricRow]) -> String {
-    let mut columns: Vec<String> = Vec::new();
+/// The worst value of each metric for each configuration: what the summary and the report's
+/// tables show.
+pub struct WorstMatrix {
+    /// Configuration labels (`backend config`), in first-seen order.
+    pub configs: Vec<String>,
+    /// Metrics in catalog order: name, unit, ideal value.
+    pub metrics: Vec<(&'static str, &'static str, f64)>,
+    /// `cells[config][metric]`: the worst value, and whether it is the best of its metric
+    /// (marked only when the configurations do not all tie).
+    pub cells: Vec<Vec<Option<(f64, bool)>>>,
+}
+
+/// Computes the worst-per-configuration matrix over `rows`.
+pub fn worst_matrix(rows: &[MetricRow]) -> WorstMatrix {
+    let mut configs: Vec<String> = Vec::new();
     let mut metrics: Vec<(&'static str, &'static str, f64)> = Vec::new();
     for r in rows {
         let c = column(r);
-        if !columns.contains(&c) {
-            columns.push(c);
+        if !configs.contains(&c) {
+            configs.push(c);
         }
         if !metrics.iter().any(|(m, _, _)| *m == r.metric) {
             metrics.push((r.metric, r.unit, r.reference));
@@ -108,12 +121,11 @@ fn group_table(rows: &[MetricRow]) -> String {
             .unwrap_or(usize::MAX)
     };
     metrics.sort_by_key(|(m, _, _)| order(m));
-
     // worst[metric][config]
     let worst: Vec<Vec<Option<&MetricRow>>> = metrics
         .iter()
         .map(|(m, _, _)| {
-            columns
+            configs
                 .iter()
                 .map(|c| {
                     rows.iter()
@@ -123,43 +135,55 @@ fn group_table(rows: &[MetricRow]) -> String {
                 .collect()
         })
         .collect();
+    let cells = (0..configs.len())
+        .map(|ci| {
+            worst
+                .iter()
+                .map(|per_metric| {
+                    let best = per_metric
+                        .iter()
+                        .flatten()
+                        .map(|r| badness(r))
+                        .fold(f64::INFINITY, f64::min);
+                    let all_tie = per_metric
+                        .iter()
+                        .flatten()
+                        .all(|r| badness(r) <= best + TIE_TOLERANCE);
+                    per_metric[ci]
+                        .map(|r| (r.value, !all_tie && badness(r) <= best + TIE_TOLERANCE))
+                })
+                .collect()
+        })
+        .collect();
+    WorstMatrix {
+        configs,
+        metrics,
+        cells,
+    }
+}
 
+/// One summary table over `rows`.
+fn group_table(rows: &[MetricRow]) -> String {
+    let m = worst_matrix(rows);
     let mut header = vec!["configuration".to_string()];
     header.extend(
-        metrics
+        m.metrics
             .iter()
-            .map(|(m, unit, _)| format!("{}\n({unit})", m.replace('_', "\n"))),
+            .map(|(name, unit, _)| format!("{}\n({unit})", name.replace('_', "\n"))),
     );
     let mut table = new_table(header);
     let mut ideal = vec!["ideal".to_string()];
-    ideal.extend(metrics.iter().map(|(_, _, r)| format_value(*r)));
+    ideal.extend(m.metrics.iter().map(|(_, _, r)| format_value(*r)));
     table.add_row(ideal);
-    for (ci, c) in columns.iter().enumerate() {
+    for (c, row) in m.configs.iter().zip(&m.cells) {
         let mut cells = vec![c.clone()];
-        for per_metric in &worst {
-            let best = per_metric
-                .iter()
-                .flatten()
-                .map(|r| badness(r))
-                .fold(f64::INFINITY, f64::min);
-            let all_tie = per_metric
-                .iter()
-                .flatten()
-                .all(|r| badness(r) <= best + TIE_TOLERANCE);
-            cells.push(match per_metric[ci] {
-                None => "-".into(),
-                Some(r) => {
-                    let mark = if !all_tie && badness(r) <= best + TIE_TOLERANCE {
-                        "*"
-                    } else {
-                        ""
-                    };
-                    format!("{}{mark}", format_value(r.value))
-                }
-            });
-        }
+        cells.extend(row.iter().map(|cell| match cell {
+            None => "-".into(),
+            Some((v, best)) => format!("{}{}", format_value(*v), if *best { "*" } else { "" }),
+        }));
         table.add_row(cells);
     }
+    let metrics = &m.metrics;
     for i in 1..=metrics.len() {
         if let Some(c) = table.column_mut(i) {
             c.set_cell_alignment(CellAlignment::Right);

@@ -1,0 +1,405 @@
+//! The "pick a backend" report: one self-contained HTML file (inline SVG and CSS, no script, no
+//! network) and a Markdown twin. Per behaviour, a table of every configuration's worst value
+//! with the best marked and the measured reasons; per scenario, a drawing of the level with each
+//! drawn configuration's trajectory; and a closing "which backend for which game" derived from
+//! the numbers.
+
+use std::fmt::Write as _;
+
+use glam::Vec2;
+use svg::node::element::{Circle, Group, Polygon, Polyline, Rectangle, Title};
+use svg::Document;
+
+use super::{format_value, notes, worst_matrix};
+use crate::level::{Level, ScenarioSpec, Tile};
+use crate::metrics::MetricRow;
+use crate::trace::Trace;
+
+/// The behaviours the report is organised by, with their metrics.
+pub const BEHAVIOURS: &[(&str, &[&str])] = &[
+    (
+        "Landing and resting",
+        &[
+            "land_frame_error",
+            "rest_gap",
+            "max_penetration",
+            "rest_jitter",
+            "grounded_flicker",
+            "false_grounded",
+        ],
+    ),
+    ("Jumping", &["apex_error"]),
+    (
+        "Walking over tile seams",
+        &["progress_ratio", "stuck_frames"],
+    ),
+    (
+        "Slopes",
+        &[
+            "slope_airborne_frames",
+            "slope_gap_max",
+            "slope_speed_ratio",
+            "steep_blocked",
+        ],
+    ),
+    ("One-way platforms", &["oneway_result"]),
+    ("Ladders", &["ladder_speed_error", "ladder_result"]),
+    (
+        "Moving platforms",
+        &[
+            "carry_drift",
+            "carry_airborne_frames",
+            "push_penetration",
+            "crush_count",
+        ],
+    ),
+    ("Walls at speed", &["tunneled"]),
+];
+
+/// The configurations drawn in the scenario pictures, with their colours: the sweep and Rapier's
+/// two most telling shapes on both collider buildings.
+pub const DRAWN: &[(&str, &str, &str)] = &[
+    ("sweep", "default", "#1565c0"),
+    ("rapier", "per-tile capsule", "#2e7d32"),
+    ("rapier", "merged capsule", "#9e9d24"),
+    ("rapier", "per-tile cuboid", "#c62828"),
+    ("rapier", "merged cuboid", "#ef6c00"),
+];
+
+/// One scenario and its traces (any configurations; those in [`DRAWN`] are drawn).
+pub struct ScenarioTraces<'a> {
+    /// The level.
+    pub level: &'a Level,
+    /// The scenario.
+    pub spec: &'a ScenarioSpec,
+    /// Its traces.
+    pub traces: Vec<&'a Trace>,
+}
+
+/// Pixels per tile in the pictures.
+const SCALE: f32 = 16.0;
+/// Largest picture width, in tiles: long levels are cropped around the trajectories.
+const MAX_TILES: f32 = 60.0;
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// The level around the scenario with each drawn configuration's path. Airborne frames are
+/// hollow dots, frames overlapping a solid tile red dots.
+pub fn scenario_svg(s: &ScenarioTraces) -> String {
+    let level = s.level;
+    let size = s.spec.size;
+    let drawn: Vec<(&Trace, &str)> = DRAWN
+        .iter()
+        .filter_map(|(b, c, colour)| {
+            s.traces
+                .iter()
+                .find(|t| t.backend == *b && t.config == *c)
+                .map(|t| (*t, *colour))
+        })
+        .collect();
+    // The area to draw: the paths and the spawn, padded, within the level.
+    let (mut lo, mut hi) = (s.spec.spawn, s.spec.spawn + size);
+    for (t, _) in &drawn {
+        for r in &t.rows {
+            if r.x.is_finite() && r.y.is_finite() {
+                lo = lo.min(Vec2::new(r.x - size.x, r.y));
+                hi = hi.max(Vec2::new(r.x + size.x, r.y + size.y));
+            }
+        }
+    }
+    let lo = (lo - Vec2::splat(3.0)).max(Vec2::ZERO).floor();
+    let mut hi = (hi + Vec2::splat(3.0))
+        .min(Vec2::new(level.width as f32, level.height as f32))
+        .ceil();
+    hi.x = hi.x.min(lo.x + MAX_TILES);
+    let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+    let to_px = |p: Vec2| ((p.x - lo.x) * SCALE, (hi.y - p.y) * SCALE);
+    let mut doc = Document::new()
+        .set("width", w * SCALE)
+        .set("height", h * SCALE)
+        .set("viewBox", (0, 0, w * SCALE, h * SCALE))
+        .set("class", "scenario");
+    let mut tiles = Group::new().set("class", "tiles");
+    for r in level.merged_solid_rects() {
+        if r.maxs.x <= lo.x || r.mins.x >= hi.x || r.maxs.y <= lo.y || r.mins.y >= hi.y {
+            continue;
+        }
+        let (x, y) = to_px(Vec2::new(r.mins.x, r.maxs.y));
+        tiles = tiles.add(
+            Rectangle::new()
+                .set("x", x)
+                .set("y", y)
+                .set("width", (r.maxs.x - r.mins.x) * SCALE)
+                .set("height", (r.maxs.y - r.mins.y) * SCALE)
+                .set("fill", "#8d8d8d"),
+        );
+    }
+    for j in lo.y as i64..hi.y as i64 {
+        for i in lo.x as i64..hi.x as i64 {
+            let o = Vec2::new(i as f32, j as f32);
+            match level.tile(i, j) {
+                Tile::Slope(slope) => {
+                    let pts: Vec<(f32, f32)> =
+                        slope.outline().iter().map(|p| to_px(*p + o)).collect();
+                    tiles = tiles.add(Polygon::new().set("points", pts).set("fill", "#a1887f"));
+                }
+                Tile::OneWay => {
+                    let (x, y) = to_px(o + Vec2::Y);
+                    tiles = tiles.add(
+                        Rectangle::new()
+                            .set("x", x)
+                            .set("y", y)
+                            .set("width", SCALE)
+                            .set("height", SCALE * 0.2)
+                            .set("fill", "#6d4c41"),
+                    );
+                }
+                Tile::Ladder => {
+                    let (x, y) = to_px(o + Vec2::new(0.25, 1.0));
+                    tiles = tiles.add(
+                        Rectangle::new()
+                            .set("x", x)
+                            .set("y", y)
+                            .set("width", SCALE * 0.5)
+                            .set("height", SCALE)
+                            .set("fill", "none")
+                            .set("stroke", "#795548"),
+                    );
+                }
+                _ => {}
+            }
+        }
+    }
+    for p in &level.platforms {
+        let b = p.aabb(0.0);
+        let (x, y) = to_px(Vec2::new(b.mins.x, b.maxs.y));
+        tiles = tiles.add(
+            Rectangle::new()
+                .set("x", x)
+                .set("y", y)
+                .set("width", p.size.x * SCALE)
+                .set("height", p.size.y * SCALE)
+                .set("fill", "#cfd8dc")
+                .set("stroke", "#455a64")
+                .set("stroke-dasharray", "3,2"),
+        );
+    }
+    doc = doc.add(tiles);
+    for (t, colour) in &drawn {
+        let pts: Vec<(f32, f32)> = t
+            .rows
+            .iter()
+            .map(|r| to_px(Vec2::new(r.x, r.y + size.y * 0.5)))
+            .collect();
+        let mut g = Group::new()
+            .set("class", format!("path backend-{}", t.backend))
+            .set("data-config", t.config.clone())
+            .add(Title::new(format!("{} {}", t.backend, t.config)))
+            .add(
+                Polyline::new()
+                    .set("points", pts)
+                    .set("fill", "none")
+                    .set("stroke", *colour)
+                    .set("stroke-width", 1.5),
+            );
+        for (k, r) in t.rows.iter().enumerate() {
+            let centre = Vec2::new(r.x, r.y + size.y * 0.5);
+            let inside = level
+                .solids_overlapping(&crate::level::character_box(Vec2::new(r.x, r.y), size))
+                .next()
+                .is_some();
+            if inside || (!r.is_grounded() && k % 4 == 0) {
+                let (x, y) = to_px(centre);
+                g = g.add(
+                    Circle::new()
+                        .set("cx", x)
+                        .set("cy", y)
+                        .set("r", 1.8)
+                        .set("fill", if inside { "#d50000" } else { "none" })
+                        .set("stroke", if inside { "#d50000" } else { *colour }),
+                );
+            }
+        }
+        doc = doc.add(g);
+    }
+    doc.to_string()
+}
+
+/// The metric table of one behaviour, as HTML rows and as Markdown.
+fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, String)> {
+    let subset: Vec<MetricRow> = rows
+        .iter()
+        .filter(|r| metrics.contains(&r.metric))
+        .cloned()
+        .collect();
+    if subset.is_empty() {
+        return None;
+    }
+    let m = worst_matrix(&subset);
+    let mut html = String::from("<table><thead><tr><th>configuration</th>");
+    let mut md = String::from("| configuration |");
+    for (name, unit, _) in &m.metrics {
+        let _ = write!(html, "<th>{name}<br><small>{unit}</small></th>");
+        let _ = write!(md, " {name} ({unit}) |");
+    }
+    html.push_str("</tr></thead><tbody><tr class=\"ideal\"><td>ideal</td>");
+    md.push_str("\n|---|");
+    md.push_str(&"---|".repeat(m.metrics.len()));
+    md.push_str("\n| ideal |");
+    for (_, _, ideal) in &m.metrics {
+        let _ = write!(html, "<td>{}</td>", format_value(*ideal));
+        let _ = write!(md, " {} |", format_value(*ideal));
+    }
+    html.push_str("</tr>");
+    for (c, row) in m.configs.iter().zip(&m.cells) {
+        let _ = write!(html, "<tr><td>{}</td>", escape(c));
+        let _ = write!(md, "\n| {c} |");
+        for cell in row {
+            match cell {
+                None => {
+                    html.push_str("<td>-</td>");
+                    md.push_str(" - |");
+                }
+                Some((v, best)) => {
+                    let class = if *best { " class=\"best\"" } else { "" };
+                    let _ = write!(html, "<td{class}>{}</td>", format_value(*v));
+                    let _ = write!(
+                        md,
+                        " {}{} |",
+                        format_value(*v),
+                        if *best { " **best**" } else { "" }
+                    );
+                }
+            }
+        }
+        html.push_str("</tr>");
+    }
+    html.push_str("</tbody></table>");
+    Some((html, md))
+}
+
+/// The worst value of `metric` over all scenarios for configurations whose label starts with
+/// `prefix`, by distance from the ideal.
+fn worst(rows: &[MetricRow], prefix: &str, metric: &str) -> Option<f64> {
+    rows.iter()
+        .filter(|r| r.metric == metric && format!("{} {}", r.backend, r.config).starts_with(prefix))
+        .max_by(|a, b| a.error.abs().total_cmp(&b.error.abs()))
+        .map(|r| r.value)
+}
+
+/// "Which backend for which game": statements derived from the measured worst values, each
+/// with its numbers; only those the measurements support are made.
+pub fn recommendations(rows: &[MetricRow]) -> Vec<String> {
+    let mut out = Vec::new();
+    let v = |p: &str, m: &str| worst(rows, p, m);
+    if let (Some(sg), Some(rg)) = (v("sweep default", "rest_gap"), v("rapier", "rest_gap")) {
+        if sg.abs() <= 1e-4 && rg.abs() > 1e-3 {
+            out.push(format!("Flush, pixel-exact contact (tile games whose sprites must touch the ground): sweep rests at {} tiles from the ground, Rapier up to {} (its offset along the surface normal, by design).", format_value(sg), format_value(rg)));
+        }
+    }
+    if let (Some(s), Some(c)) = (
+        v("sweep default", "progress_ratio"),
+        v("rapier merged cuboid", "progress_ratio"),
+    ) {
+        if c < 0.5 {
+            out.push(format!("A box-shaped hero on Rapier needs per-tile colliders or a rounded shape: on one long merged floor the cuboid covers as little as {} of the commanded walk (sweep {}).", format_value(c), format_value(s)));
+        }
+    }
+    if let Some(c) = v("rapier merged capsule", "progress_ratio") {
+        out.push(format!("Rounded characters on Rapier: the capsule walks merged floors (worst {} of the commanded walk), but keep merged boxes short: on a 2,000-tile box rounded shapes sink (max_penetration {}).", format_value(c), format_value(v("rapier merged capsule", "max_penetration").unwrap_or(0.0))));
+    }
+    if let (Some(s), Some(r)) = (
+        v("sweep default", "slope_airborne_frames"),
+        v("rapier", "steep_blocked"),
+    ) {
+        if r < 1.0 {
+            out.push(format!("Slopes with a strict climb limit: sweep ({} airborne frames walking slopes, every too-steep slope blocked); Rapier on merged colliders climbs too-steep slopes that rise to the left.", format_value(s)));
+        }
+    }
+    let turning = |prefix: &str| {
+        rows.iter()
+            .filter(|r| {
+                r.metric == "carry_airborne_frames"
+                    && (r.scenario == "diagonal" || r.scenario == "circle")
+                    && format!("{} {}", r.backend, r.config).starts_with(prefix)
+            })
+            .map(|r| r.value)
+            .fold(None, |a: Option<f64>, v| Some(a.map_or(v, |a| a.max(v))))
+    };
+    if let (Some(s), Some(r)) = (turning("sweep default"), turning("rapier")) {
+        if r > s {
+            out.push(format!("Moving platforms on diagonal or circular paths: the sweep keeps its rider on ({} airborne frames); Rapier's controller loses it (up to {} airborne frames).", format_value(s), format_value(r)));
+        }
+    }
+    out
+}
+
+/// Renders the report: (HTML, Markdown).
+pub fn render_report(rows: &[MetricRow], scenarios: &[ScenarioTraces]) -> (String, String) {
+    let mut html = String::new();
+    let mut md = String::new();
+    html.push_str("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>platbench report</title><style>\nbody{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\ntable{border-collapse:collapse;margin:0.5em 0 1em;font-size:13px}\nth,td{border:1px solid #ccc;padding:3px 6px;text-align:right}\nth:first-child,td:first-child{text-align:left}\ntd.best{background:#c8e6c9;font-weight:bold}\ntr.ideal td{color:#777;font-style:italic}\nsvg.scenario{background:#fafafa;border:1px solid #ddd;max-width:100%;height:auto}\n.legend span{display:inline-block;margin-right:1em}\n.legend i{display:inline-block;width:1.5em;height:3px;vertical-align:middle;margin-right:0.3em}\n</style></head><body>\n");
+    let configs = worst_matrix(rows).configs.len();
+    let _ = write!(html, "<h1>platbench report</h1><p>{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; the best is highlighted.</p>", scenarios.len());
+    let _ = write!(md, "# platbench report\n\n{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; **best** marks the best.\n", scenarios.len());
+    html.push_str("<h2 id=\"which\">Which backend for which game</h2><ul>");
+    md.push_str("\n## Which backend for which game\n\n");
+    for r in recommendations(rows) {
+        let _ = write!(html, "<li>{}</li>", escape(&r));
+        let _ = writeln!(md, "- {r}");
+    }
+    html.push_str("</ul><h2>By behaviour</h2>");
+    md.push_str("\n## By behaviour\n");
+    let all_notes = notes(rows);
+    for (title, metrics) in BEHAVIOURS {
+        if let Some((t_html, t_md)) = behaviour_tables(rows, metrics) {
+            let _ = write!(html, "<h3>{title}</h3>{t_html}");
+            let _ = write!(md, "\n### {title}\n\n{t_md}\n");
+            for n in all_notes
+                .iter()
+                .filter(|n| metrics.iter().any(|m| note_is_about(n, m)))
+            {
+                let _ = write!(html, "<p class=\"why\">{}</p>", escape(n));
+                let _ = writeln!(md, "\n{n}");
+            }
+        }
+    }
+    html.push_str("<h2>Scenarios</h2><p class=\"legend\">");
+    md.push_str("\n## Scenarios\n\nPictures are in the HTML report. Paths:");
+    for (b, c, colour) in DRAWN {
+        let _ = write!(
+            html,
+            "<span><i style=\"background:{colour}\"></i>{b} {c}</span>"
+        );
+        let _ = write!(md, " {b} {c} ({colour});");
+    }
+    html.push_str("<span>hollow dots: airborne; red dots: inside a solid tile</span></p>");
+    md.push('\n');
+    for s in scenarios {
+        let id = format!("{}.{}", s.level.name, s.spec.name);
+        let _ = write!(html, "<h3 id=\"{id}\">{id}</h3>{}", scenario_svg(s));
+        let _ = writeln!(md, "- {id}");
+    }
+    html.push_str("\n</body></html>\n");
+    (html, md)
+}
+
+/// Whether a summary note explains `metric` (the notes name the metrics they explain).
+fn note_is_about(note: &str, metric: &str) -> bool {
+    let key = match metric {
+        "rest_gap" => "rest_gap",
+        "land_frame_error" => "lands early",
+        "max_penetration" => "sinks into",
+        "false_grounded" => "false_grounded",
+        "progress_ratio" => "progress",
+        "steep_blocked" => "too-steep",
+        "carry_airborne_frames" => "riders",
+        "apex_error" => "jump=continuous",
+        _ => return false,
+    };
+    note.contains(key)
+}
