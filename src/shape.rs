@@ -55,6 +55,12 @@ impl CharacterShape {
         }
     }
 
+    /// The shape a label of [`CharacterShape::label`] names (default border for the round
+    /// cuboid), if any.
+    pub fn from_label(label: &str) -> Option<CharacterShape> {
+        Self::ALL.into_iter().find(|s| s.label() == label)
+    }
+
     /// The pose of the shape's centre for a character whose feet (bottom centre) are at `feet`.
     pub fn pose(feet: Vec2, size: Vec2) -> Pose {
         Pose::from_translation(feet + Vec2::new(0.0, size.y * 0.5))

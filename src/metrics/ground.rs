@@ -109,8 +109,10 @@ impl<'a> Ground<'a> {
         let half = self.size.x * 0.5;
         for p in &self.level.platforms {
             let b = p.aabb(t);
-            // Under the shape, and (for a one-way platform) not above the feet.
-            if b.maxs.x <= feet.x - half || b.mins.x >= feet.x + half || b.maxs.y > feet.y + 1e-3 {
+            // Under the shape: its top at most half the character's height above the feet (a
+            // rider that sank into it stands on it; one whose middle it reaches is beside it).
+            let top_limit = feet.y + self.size.y * 0.5;
+            if b.maxs.x <= feet.x - half || b.mins.x >= feet.x + half || b.maxs.y > top_limit {
                 continue;
             }
             let half_extents = b.half_extents();

@@ -12,7 +12,9 @@ use svg::Document;
 
 use super::{format_value, notes, worst_matrix};
 use crate::level::{Level, ScenarioSpec, Tile};
+use crate::metrics::ground::Ground;
 use crate::metrics::MetricRow;
+use crate::shape::CharacterShape;
 use crate::trace::Trace;
 
 /// The behaviours the report is organised by, with their metrics.
@@ -77,7 +79,7 @@ pub struct ScenarioTraces<'a> {
 }
 
 /// Pixels per tile in the pictures.
-const SCALE: f32 = 16.0;
+const SCALE: f32 = 22.0;
 /// Largest picture width, in tiles: long levels are cropped around the trajectories.
 const MAX_TILES: f32 = 60.0;
 
@@ -88,7 +90,8 @@ fn escape(s: &str) -> String {
 }
 
 /// The level around the scenario with each drawn configuration's path. Airborne frames are
-/// hollow dots, frames overlapping a solid tile red dots.
+/// hollow dots; frames where the character's shape is inside a solid tile (as `max_penetration`
+/// measures it, more than 1e-3 tiles) are red dots.
 pub fn scenario_svg(s: &ScenarioTraces) -> String {
     let level = s.level;
     let size = s.spec.size;
@@ -190,6 +193,14 @@ pub fn scenario_svg(s: &ScenarioTraces) -> String {
     }
     doc = doc.add(tiles);
     for (t, colour) in &drawn {
+        // The configuration's shape: the sweep's box, or the shape its Rapier label names.
+        let shape = t
+            .config
+            .rsplit(' ')
+            .next()
+            .and_then(CharacterShape::from_label)
+            .unwrap_or(CharacterShape::Cuboid);
+        let ground = Ground::new(level, shape, size, std::f32::consts::FRAC_PI_4);
         let pts: Vec<(f32, f32)> = t
             .rows
             .iter()
@@ -204,14 +215,12 @@ pub fn scenario_svg(s: &ScenarioTraces) -> String {
                     .set("points", pts)
                     .set("fill", "none")
                     .set("stroke", *colour)
-                    .set("stroke-width", 1.5),
+                    .set("stroke-opacity", 0.75)
+                    .set("stroke-width", 2),
             );
         for (k, r) in t.rows.iter().enumerate() {
             let centre = Vec2::new(r.x, r.y + size.y * 0.5);
-            let inside = level
-                .solids_overlapping(&crate::level::character_box(Vec2::new(r.x, r.y), size))
-                .next()
-                .is_some();
+            let inside = ground.solid_penetration(Vec2::new(r.x, r.y)) > 1e-3;
             if inside || (!r.is_grounded() && k % 4 == 0) {
                 let (x, y) = to_px(centre);
                 g = g.add(
