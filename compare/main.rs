@@ -47,10 +47,25 @@ enum Command {
     /// Run level files (the built-in set when none is given) and write the "pick a backend"
     /// report: DIR/report.html (self-contained: inline pictures, no scripts, no network) and its
     /// Markdown twin DIR/report.md.
-    Report(RunArgs),
+    Report(ReportArgs),
     /// Compare a run directory against a baseline: metrics beyond tolerance, first divergent
     /// trace frames. Exits 1 when a metric got worse (or went missing), 0 otherwise.
     Diff(DiffArgs),
+}
+
+#[derive(Args)]
+struct ReportArgs {
+    /// Level files (TOML); the built-in set when none is given.
+    levels: Vec<PathBuf>,
+    /// Directory for report.html and report.md.
+    #[arg(long, default_value = "platbench-report")]
+    out: PathBuf,
+    /// Backends to run (repeat or comma-separate); both by default.
+    #[arg(long = "backend", value_name = "BACKEND", value_delimiter = ',', value_parser = ["sweep", "rapier"])]
+    backends: Vec<String>,
+    /// Rapier character shapes to run (repeat or comma-separate); all of them by default.
+    #[arg(long = "shape", value_name = "SHAPE", value_delimiter = ',', value_parser = ["capsule", "cuboid", "ball", "round-cuboid"])]
+    shapes: Vec<String>,
 }
 
 #[derive(Args)]
@@ -332,10 +347,14 @@ fn diff(args: &DiffArgs) -> ExitCode {
     }
 }
 
-fn report(args: &RunArgs) -> Result<()> {
+fn report(args: &ReportArgs) -> Result<()> {
     use platbench::report::html::{render_report, ScenarioTraces};
     let levels = load_levels(&args.levels)?;
-    let configs = configs(args)?;
+    let configs = configs(&RunArgs {
+        backends: args.backends.clone(),
+        shapes: args.shapes.clone(),
+        ..RunArgs::default()
+    })?;
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut per_scenario: Vec<(usize, usize, Vec<Trace>)> = Vec::new();
     for (li, level) in levels.iter().enumerate() {
