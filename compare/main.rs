@@ -86,6 +86,10 @@ struct DiffArgs {
     /// Output format.
     #[arg(long, default_value = "text", value_parser = ["text", "md", "csv"])]
     format: String,
+    /// Fail (exit 1) when a timing got worse beyond its tolerance too; by default timings are
+    /// reported but never fail.
+    #[arg(long)]
+    fail_on_timing: bool,
 }
 
 #[derive(Args, Default)]
@@ -101,7 +105,7 @@ struct RunArgs {
     detail: bool,
     /// Replace the committed baseline (compare/baseline) with this run: the only way it is
     /// written. Runs the built-in set with every configuration.
-    #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes"])]
+    #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing"])]
     bless: bool,
     /// Override every scenario's time step, in seconds.
     #[arg(long, value_name = "SECONDS")]
@@ -109,6 +113,10 @@ struct RunArgs {
     /// The sweep controller's overlap tolerance, in tiles.
     #[arg(long, value_name = "TILES")]
     epsilon: Option<f32>,
+    /// Also time each scenario on each configuration (in process, minimum of 5 repeats) and
+    /// add an ns_per_character_step row per scenario and configuration to metrics.csv.
+    #[arg(long)]
+    timing: bool,
     /// Backends to run (repeat or comma-separate); both by default.
     #[arg(long = "backend", value_name = "BACKEND", value_delimiter = ',', value_parser = ["sweep", "rapier"])]
     backends: Vec<String>,
@@ -244,6 +252,10 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
                         run.label
                     )
                 })?;
+                if args.timing {
+                    let ns = platbench::scenario::time_scenario(&mut runner, spec, run, 5)?;
+                    metrics.push(platbench::metrics::timing_row(level, spec, run, ns));
+                }
                 metrics.extend(e.metrics);
                 if write {
                     traces.push(e.trace);
@@ -333,7 +345,7 @@ fn diff(args: &DiffArgs) -> ExitCode {
     match diff_runs(&args.base, &args.new, &tols, args.position_tolerance) {
         Ok(d) => {
             out(render(&d, format).trim_end());
-            if d.regressed() {
+            if d.regressed(args.fail_on_timing) {
                 eprintln!("regression: a metric got worse beyond its tolerance (or went missing)");
                 ExitCode::from(1)
             } else {

@@ -224,6 +224,37 @@ impl<'a> Runner<'a> {
     }
 }
 
+/// Cost of one character-step of `spec` on `run`, in nanoseconds: the scenario's steps timed in
+/// process (building the backend and recording the trace are not timed), the minimum over
+/// `repeats` runs, which is the least disturbed by the rest of the machine.
+pub fn time_scenario(
+    runner: &mut Runner,
+    spec: &ScenarioSpec,
+    run: &RunConfig,
+    repeats: usize,
+) -> Result<f64, BackendError> {
+    let params = effective_params(&run.params, spec);
+    let script = input_script(spec);
+    let mut best = f64::INFINITY;
+    for _ in 0..repeats.max(1) {
+        let mut backend = runner.build(run, &params)?;
+        backend.add_character(CharacterSpec {
+            spawn: spec.spawn,
+            size: spec.size,
+            velocity: spec.velocity,
+        });
+        let mut input = [Input::default()];
+        let start = std::time::Instant::now();
+        for i in &script {
+            input[0] = *i;
+            backend.step(&input, spec.dt);
+        }
+        let ns = start.elapsed().as_nanos() as f64 / script.len().max(1) as f64;
+        best = best.min(ns);
+    }
+    Ok(best)
+}
+
 /// Runs one scenario on one configuration. Row 0 of the trace is the spawn state; row `k` is
 /// the state after `k` steps.
 pub fn run_scenario(

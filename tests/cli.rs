@@ -186,3 +186,37 @@ fn the_baseline_is_written_only_with_bless() {
     assert!(!baseline.join("marker").exists());
     assert!(baseline.join("metrics.csv").exists());
 }
+
+#[test]
+fn timing_adds_a_cost_row_per_scenario_and_configuration() {
+    let dir = tempfile::tempdir().unwrap();
+    let level = dir.path().join("t.toml");
+    std::fs::write(
+        &level,
+        "name = \"t\"\nmap = \"\"\"\n....\n####\n\"\"\"\n[[scenario]]\nname = \"stand\"\nspawn = [1.5, 1.0]\nduration = 0.5\n",
+    )
+    .unwrap();
+    let out_dir = dir.path().join("out");
+    let out = platbench()
+        .args(["run", "--timing", "--out"])
+        .arg(&out_dir)
+        .arg(&level)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
+    let timing: Vec<&str> = metrics
+        .lines()
+        .filter(|l| l.contains(",ns_per_character_step,"))
+        .collect();
+    // One scenario on the 10 configurations of the built-in comparison.
+    assert_eq!(timing.len(), 10, "{metrics}");
+    for l in timing {
+        let value: f64 = l.split(',').nth(5).unwrap().parse().unwrap();
+        assert!(value.is_finite() && value > 0.0, "{l}");
+    }
+}

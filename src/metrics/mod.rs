@@ -55,6 +55,7 @@ pub const CATALOG: &[&str] = &[
     "push_penetration",
     "crush_count",
     "tunneled",
+    "ns_per_character_step",
 ];
 
 /// How far above a floor a walker may spawn for `progress_ratio` to apply, in tiles: enough
@@ -99,6 +100,7 @@ pub const GROUPS: &[(&str, &[&str])] = &[
             "crush_count",
         ],
     ),
+    ("cost (run --timing)", &["ns_per_character_step"]),
 ];
 
 /// One row of `metrics.csv`.
@@ -916,6 +918,26 @@ fn passed_through(level: &Level, a: &Aabb, b: &Aabb, axis: usize) -> bool {
     level
         .solids_overlapping(&area)
         .any(|t| t.mins[axis] >= gap_lo && t.maxs[axis] <= gap_hi)
+}
+
+/// The `ns_per_character_step` row of a timed scenario (see [`crate::scenario::time_scenario`]).
+pub fn timing_row(
+    level: &Level,
+    spec: &ScenarioSpec,
+    run: &crate::scenario::RunConfig,
+    ns: f64,
+) -> MetricRow {
+    MetricRow {
+        level: level.name.clone(),
+        scenario: spec.name.clone(),
+        backend: run.backend.name().to_string(),
+        config: run.label.clone(),
+        metric: "ns_per_character_step",
+        value: ns,
+        unit: "ns",
+        reference: 0.0,
+        error: ns,
+    }
 }
 
 /// A scenario's trace and its metrics on one configuration.
