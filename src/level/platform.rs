@@ -58,8 +58,9 @@ impl Platform {
                 start + *radius as f64 * DVec2::new(a.cos() - 1.0, a.sin())
             }
             PlatformMotion::Waypoints { points, speed } => {
-                let pts: Vec<DVec2> = points.iter().map(|p| p.as_dvec2()).collect();
-                let length: f64 = pts.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+                // No allocation: this runs every step.
+                let seg = |w: &[Vec2]| (w[1].as_dvec2() - w[0].as_dvec2()).length();
+                let length: f64 = points.windows(2).map(seg).sum();
                 if length <= 0.0 {
                     return self.start;
                 }
@@ -67,15 +68,16 @@ impl Platform {
                 if s > length {
                     s = 2.0 * length - s;
                 }
-                let mut at = pts[0];
-                for w in pts.windows(2) {
-                    let seg = (w[1] - w[0]).length();
-                    if s <= seg {
-                        at = w[0] + (w[1] - w[0]) * (s / seg);
+                let mut at = start;
+                for w in points.windows(2) {
+                    let (a, b) = (w[0].as_dvec2(), w[1].as_dvec2());
+                    let len = (b - a).length();
+                    if s <= len {
+                        at = a + (b - a) * (s / len);
                         break;
                     }
-                    s -= seg;
-                    at = w[1];
+                    s -= len;
+                    at = b;
                 }
                 at
             }

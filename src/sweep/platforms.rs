@@ -65,13 +65,11 @@ impl SweepBackend {
     pub(super) fn move_platforms(&mut self, dt: f32) {
         let eps = self.config.epsilon;
         let g = self.params.gravity;
-        let (t0, t1) = (
-            self.frame as f64 * dt as f64,
-            (self.frame + 1) as f64 * dt as f64,
-        );
+        let t1 = (self.frame + 1) as f64 * dt as f64;
         for (i, p) in self.platforms.iter_mut().enumerate() {
             self.stats.platform_moves += 1;
-            let (old, new) = (p.aabb(t0), p.aabb(t1));
+            // Its box now is the one the characters just moved against.
+            let (old, new) = (self.platform_boxes[i].0, p.aabb(t1));
             let delta = new.mins - old.mins;
             // How far a rider can follow downward in one step: from the platform's last speed,
             // under gravity.
