@@ -80,6 +80,8 @@ pub struct SweepBackend {
     platform_boxes: Vec<(Aabb, BoxKind)>,
     /// Steps taken, for the platforms' time.
     frame: u64,
+    /// `tan(max_climb_angle)`: the steepest walkable rise per unit of horizontal move.
+    climb_gradient: f32,
     /// The level's grid, for the per-column feature rules (slopes).
     level: Level,
     stats: SweepStats,
@@ -140,6 +142,7 @@ impl SweepBackend {
                 })
                 .collect(),
             frame: 0,
+            climb_gradient: params.max_climb_angle.tan(),
             level: level.geometry(),
             stats: SweepStats::default(),
             origin: level.origin,
@@ -179,7 +182,7 @@ impl SweepBackend {
         // climb gradient: solids within that height above the slope under the centre are the
         // slope rules' business, not obstacles (the seed's centre model), and so is the mass
         // under a ramp along x.
-        let overhang = c.size.x * 0.5 * p.max_climb_angle.tan() + eps;
+        let overhang = c.size.x * 0.5 * self.climb_gradient + eps;
         let under = |pos: Vec2| {
             if slopes {
                 slopes::slope_under(&self.level, self.origin, pos, overhang)
@@ -206,7 +209,7 @@ impl SweepBackend {
         )
         .is_some();
         // How far the ground under the centre may rise during this x move (the climb limit).
-        let rise_allow = p.max_climb_angle.tan() * (c.pos.x - start.x).abs() + eps;
+        let rise_allow = self.climb_gradient * (c.pos.x - start.x).abs() + eps;
         if slopes {
             self.stats.slope_steps += 1;
             if slopes::climb_blocked(&self.level, self.origin, c.pos.x, c.pos.y, rise_allow) {
