@@ -89,7 +89,8 @@ fn bench_steps(c: &mut Criterion, group: &str, name: &str, id: usize, level: &Le
                         spawn: Vec2::new(x, 1.01),
                         size: Vec2::new(0.8, 0.9),
                         velocity: Vec2::ZERO,
-                    });
+                    })
+                    .expect("valid character");
                 }
                 // Up to 300 steps (5 s) per build: the walkers stay on the floor.
                 let steps = left.min(300);

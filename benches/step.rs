@@ -19,7 +19,8 @@ fn fresh(level: &Level, spec: &ScenarioSpec, run: &RunConfig) -> Box<dyn Backend
         spawn: spec.spawn,
         size: spec.size,
         velocity: spec.velocity,
-    });
+    })
+    .expect("valid character");
     b
 }
 

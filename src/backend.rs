@@ -26,6 +26,44 @@ pub struct CharacterSpec {
     pub velocity: Vec2,
 }
 
+impl CharacterSpec {
+    /// Checks that the spawn and velocity are finite and the size positive.
+    pub fn validate(&self) -> Result<(), BackendError> {
+        let finite = |v: Vec2| v.is_finite();
+        if !finite(self.spawn) {
+            return Err(invalid("spawn", self.spawn, "finite coordinates (tiles)"));
+        }
+        if !(finite(self.size) && self.size.min_element() > 0.0) {
+            return Err(invalid(
+                "size",
+                self.size,
+                "a finite width and height > 0 (tiles)",
+            ));
+        }
+        if !finite(self.velocity) {
+            return Err(invalid(
+                "velocity",
+                self.velocity,
+                "finite components (tiles/s)",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// An [`BackendError::InvalidParameter`].
+pub fn invalid(
+    name: &'static str,
+    value: impl std::fmt::Debug,
+    expected: &'static str,
+) -> BackendError {
+    BackendError::InvalidParameter {
+        name,
+        value: format!("{value:?}"),
+        expected,
+    }
+}
+
 /// A character's state after a step.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CharacterState {
@@ -100,8 +138,9 @@ pub fn require_supported(
 pub trait Backend {
     /// Short backend name, as in CSV files (`sweep`, `rapier`).
     fn name(&self) -> &'static str;
-    /// Adds a character and returns its id.
-    fn add_character(&mut self, spec: CharacterSpec) -> CharacterId;
+    /// Adds a character and returns its id; refuses a non-finite spawn or velocity, or a size
+    /// that is not positive.
+    fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError>;
     /// Advances every character by `dt` seconds; `inputs[id]` is character `id`'s input.
     fn step(&mut self, inputs: &[Input], dt: f32);
     /// The state of character `id` after the last step.

@@ -78,6 +78,42 @@ impl Default for MotionParams {
     }
 }
 
+impl MotionParams {
+    /// Checks every parameter against its meaning: finite, not negative, frictions within
+    /// 0..=1, the climb angle within 0..90 degrees.
+    pub fn validate(&self) -> Result<(), crate::backend::BackendError> {
+        use crate::backend::invalid;
+        let non_negative = [
+            ("gravity", self.gravity),
+            ("run_speed", self.run_speed),
+            ("run_accel", self.run_accel),
+            ("jump_height", self.jump_height),
+            ("ladder_speed", self.ladder_speed),
+        ];
+        for (name, v) in non_negative {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(invalid(name, v, "a finite number >= 0"));
+            }
+        }
+        for (name, v) in [
+            ("ground_friction", self.ground_friction),
+            ("wall_friction", self.wall_friction),
+        ] {
+            if !(0.0..=1.0).contains(&v) {
+                return Err(invalid(name, v, "a factor between 0 and 1"));
+            }
+        }
+        if !(self.max_climb_angle >= 0.0 && self.max_climb_angle < std::f32::consts::FRAC_PI_2) {
+            return Err(invalid(
+                "max_climb_angle",
+                self.max_climb_angle,
+                "an angle in radians, 0 <= angle < pi/2",
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The buttons held during one frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Input {

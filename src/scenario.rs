@@ -220,7 +220,7 @@ impl<'a> Runner<'a> {
     pub fn run(&mut self, spec: &ScenarioSpec, run: &RunConfig) -> Result<Trace, BackendError> {
         let params = effective_params(&run.params, spec);
         let backend = self.build(run, &params)?;
-        Ok(drive(self.level, spec, run, backend))
+        drive(self.level, spec, run, backend)
     }
 }
 
@@ -233,6 +233,7 @@ pub fn time_scenario(
     run: &RunConfig,
     repeats: usize,
 ) -> Result<f64, BackendError> {
+    check_dt(spec.dt)?;
     let params = effective_params(&run.params, spec);
     let script = input_script(spec);
     let mut best = f64::INFINITY;
@@ -242,7 +243,7 @@ pub fn time_scenario(
             spawn: spec.spawn,
             size: spec.size,
             velocity: spec.velocity,
-        });
+        })?;
         let mut input = [Input::default()];
         let start = std::time::Instant::now();
         for i in &script {
@@ -271,12 +272,13 @@ fn drive(
     spec: &ScenarioSpec,
     run: &RunConfig,
     mut backend: Box<dyn Backend>,
-) -> Trace {
+) -> Result<Trace, BackendError> {
+    check_dt(spec.dt)?;
     let id = backend.add_character(CharacterSpec {
         spawn: spec.spawn,
         size: spec.size,
         velocity: spec.velocity,
-    });
+    })?;
     let script = input_script(spec);
     let mut rows = Vec::with_capacity(script.len() + 1);
     let initial = crate::backend::CharacterState {
@@ -297,12 +299,25 @@ fn drive(
             &backend.state(id),
         ));
     }
-    Trace {
+    Ok(Trace {
         level: level.name.clone(),
         scenario: spec.name.clone(),
         backend: backend.name().to_string(),
         config: run.label.clone(),
         rows,
+    })
+}
+
+/// Refuses a time step that is not a finite number > 0.
+fn check_dt(dt: f32) -> Result<(), BackendError> {
+    if dt.is_finite() && dt > 0.0 {
+        Ok(())
+    } else {
+        Err(crate::backend::invalid(
+            "dt",
+            dt,
+            "a finite time step > 0 (seconds)",
+        ))
     }
 }
 

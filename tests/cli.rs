@@ -220,3 +220,23 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
         assert!(value.is_finite() && value > 0.0, "{l}");
     }
 }
+
+#[test]
+fn bad_command_line_values_are_named() {
+    for (args, needle) in [
+        (vec!["run", "--dt", "nan"], "--dt"),
+        (vec!["run", "--dt", "0"], "--dt"),
+        (vec!["run", "--epsilon", "-1"], "--epsilon"),
+        (vec!["diff", "a", "b", "--tol", "rest_gap=x"], "--tol"),
+        (
+            vec!["diff", "/nonexistent/a", "/nonexistent/b"],
+            "cannot read",
+        ),
+    ] {
+        let out = platbench().args(&args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}

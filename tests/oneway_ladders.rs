@@ -112,7 +112,8 @@ fn a_level_without_one_way_platforms_or_ladders_runs_none_of_their_code() {
             spawn: l.scenarios[0].spawn,
             size: Vec2::new(0.8, 0.9),
             velocity: Vec2::ZERO,
-        });
+        })
+        .expect("valid character");
         for _ in 0..120 {
             b.step(&[right], 1.0 / 60.0);
         }

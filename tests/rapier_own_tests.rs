@@ -29,11 +29,13 @@ fn ground_detection(colliders: ColliderBuilding, snap: bool) -> (f32, u32) {
     };
     let mut b = RapierBackend::new(&level, MotionParams::default(), config).unwrap();
     let spawn = Vec2::new(1001.6, 1.0);
-    let id = b.add_character(CharacterSpec {
-        spawn,
-        size: Vec2::ONE,
-        velocity: Vec2::ZERO,
-    });
+    let id = b
+        .add_character(CharacterSpec {
+            spawn,
+            size: Vec2::ONE,
+            velocity: Vec2::ZERO,
+        })
+        .expect("valid character");
     let mut grounded = 0;
     for _ in 0..10_000 {
         grounded += b.move_raw(id, Vec2::new(0.1, -0.1), DT).grounded as u32;
@@ -103,11 +105,13 @@ fn climb(max_climb: f32) -> (Vec2, u32, u32) {
             .build(),
     );
     // Feet at y = 0: the ball's centre at (0.6, 0.5) as in Rapier's test.
-    let id = b.add_character(CharacterSpec {
-        spawn: Vec2::new(0.6, 0.0),
-        size: Vec2::ONE,
-        velocity: Vec2::ZERO,
-    });
+    let id = b
+        .add_character(CharacterSpec {
+            spawn: Vec2::new(0.6, 0.0),
+            size: Vec2::ONE,
+            velocity: Vec2::ZERO,
+        })
+        .expect("valid character");
     let (mut total, mut run, mut longest) = (0, 0, 0);
     for _ in 0..200 {
         if b.move_raw(id, Vec2::new(0.1, -0.1), DT).grounded {

@@ -47,11 +47,13 @@ fn walk(level: &Level, config: RapierConfig, x: f32, speed: f32) -> Walk {
 fn walk_from(level: &Level, config: RapierConfig, x: f32, h: f32, speed: f32) -> Walk {
     let mut b = RapierBackend::new(level, MotionParams::default(), config).unwrap();
     let spawn = Vec2::new(x - level.origin.x, 1.0 + h);
-    let id = b.add_character(CharacterSpec {
-        spawn,
-        size: SIZE,
-        velocity: Vec2::ZERO,
-    });
+    let id = b
+        .add_character(CharacterSpec {
+            spawn,
+            size: SIZE,
+            velocity: Vec2::ZERO,
+        })
+        .expect("valid character");
     let (mut vy, mut sink, mut still) = (0.0f32, 0.0f32, 0u32);
     for _ in 0..600 {
         vy -= 30.0 * DT;

@@ -177,7 +177,7 @@ fn a_level_without_slopes_runs_none_of_the_slope_code() {
     let flat = level("flat_seams");
     assert!(!flat.features.slopes);
     let mut b = SweepBackend::new(&flat, params.clone(), SweepConfig::default()).unwrap();
-    b.add_character(spec(3.5, 1.0));
+    b.add_character(spec(3.5, 1.0)).expect("valid character");
     for _ in 0..600 {
         b.step(&[right], 1.0 / 60.0);
     }
@@ -189,7 +189,7 @@ fn a_level_without_slopes_runs_none_of_the_slope_code() {
     let hill = level("slope_45");
     assert!(hill.features.slopes);
     let mut b = SweepBackend::new(&hill, params, SweepConfig::default()).unwrap();
-    b.add_character(spec(2.5, 1.0));
+    b.add_character(spec(2.5, 1.0)).expect("valid character");
     for _ in 0..600 {
         b.step(&[right], 1.0 / 60.0);
     }

@@ -223,6 +223,7 @@ impl RapierBackend {
         config: RapierConfig,
     ) -> Result<Self, BackendError> {
         require_supported("rapier", &level.name, level.features, Self::SUPPORTED)?;
+        params.validate()?;
         let controller = config.controller(&params);
         let mut world = world;
         let platforms =
@@ -377,7 +378,8 @@ impl Backend for RapierBackend {
         "rapier"
     }
 
-    fn add_character(&mut self, spec: CharacterSpec) -> CharacterId {
+    fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
+        spec.validate()?;
         self.characters.push(Character {
             pos: spec.spawn + self.origin,
             riding: None,
@@ -388,7 +390,7 @@ impl Backend for RapierBackend {
             motion: MotionState::with_velocity(spec.velocity),
             ground_normal: Vec2::ZERO,
         });
-        self.characters.len() - 1
+        Ok(self.characters.len() - 1)
     }
 
     fn step(&mut self, inputs: &[Input], dt: f32) {

@@ -108,6 +108,7 @@ impl SweepBackend {
         config: SweepConfig,
     ) -> Result<Self, BackendError> {
         require_supported("sweep", &level.name, level.features, Self::SUPPORTED)?;
+        params.validate()?;
         if !(config.snap_down.is_finite() && config.snap_down >= 0.0) {
             return Err(BackendError::InvalidParameter {
                 name: "snap_down",
@@ -297,7 +298,8 @@ impl Backend for SweepBackend {
         "sweep"
     }
 
-    fn add_character(&mut self, spec: CharacterSpec) -> CharacterId {
+    fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
+        spec.validate()?;
         self.characters.push(Character {
             pos: spec.spawn + self.origin,
             size: spec.size,
@@ -306,7 +308,7 @@ impl Backend for SweepBackend {
             riding: None,
             crushed: false,
         });
-        self.characters.len() - 1
+        Ok(self.characters.len() - 1)
     }
 
     fn step(&mut self, inputs: &[Input], dt: f32) {
