@@ -240,3 +240,44 @@ fn bad_command_line_values_are_named() {
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn killing_a_run_midway_leaves_the_previous_output_as_it_was() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("out");
+    // A first, complete run (one level, quick).
+    let level = dir.path().join("k.toml");
+    std::fs::write(
+        &level,
+        "name = \"k\"\nmap = \"\"\"\n....\n####\n\"\"\"\n[[scenario]]\nname = \"s\"\nspawn = [1.5, 1.0]\nduration = 0.5\n",
+    )
+    .unwrap();
+    let first = platbench()
+        .args(["run", "--out"])
+        .arg(&out_dir)
+        .arg(&level)
+        .output()
+        .unwrap();
+    assert!(first.status.success());
+    let before = std::fs::read(out_dir.join("metrics.csv")).unwrap();
+    let traces_before = std::fs::read_dir(out_dir.join("traces")).unwrap().count();
+    // A second, long run into the same directory (the built-in set), killed while it runs.
+    let mut child = platbench()
+        .args(["run", "--timing", "--out"])
+        .arg(&out_dir)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(400));
+    let still_running = child.try_wait().unwrap().is_none();
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(
+        still_running,
+        "the second run ended before it could be killed"
+    );
+    assert_eq!(std::fs::read(out_dir.join("metrics.csv")).unwrap(), before);
+    let traces_after = std::fs::read_dir(out_dir.join("traces")).unwrap().count();
+    assert_eq!(traces_after, traces_before);
+}
