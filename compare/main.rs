@@ -44,6 +44,16 @@ enum Command {
     Run(RunArgs),
     /// List the built-in levels and their scenarios.
     Levels,
+    /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
+    /// tunneling, stable rest, no grounded flicker) at the extremes, one dimension at a time:
+    /// offsets 0 to 1e7 tiles, dt 1e-4 to 0.2 s, speeds to 1000 tiles/s, widths 0.01 to 10
+    /// tiles, and the sweep's epsilon 1e-1 to 1e-9. Writes DIR/stability.csv and prints each
+    /// configuration's envelope.
+    Stress {
+        /// Output directory for stability.csv.
+        #[arg(long, default_value = "platbench-stress")]
+        out: PathBuf,
+    },
     /// Run level files (the built-in set when none is given) and write the "pick a backend"
     /// report: DIR/report.html (self-contained: inline pictures, no scripts, no network) and its
     /// Markdown twin DIR/report.md.
@@ -131,6 +141,7 @@ fn main() -> ExitCode {
         None => run(&RunArgs::default(), false),
         Some(Command::Run(args)) => run(&args, true),
         Some(Command::Levels) => list_levels(),
+        Some(Command::Stress { out }) => stress(&out),
         Some(Command::Report(args)) => report(&args),
         Some(Command::Diff(args)) => return diff(&args),
     };
@@ -402,6 +413,51 @@ fn report(args: &ReportArgs) -> Result<()> {
             .with_context(|| format!("cannot write {}", path.display()))?;
         eprintln!("wrote {} ({} KB)", path.display(), text.len() / 1024);
     }
+    Ok(())
+}
+
+fn stress(out_dir: &std::path::Path) -> Result<()> {
+    use platbench::rapier::{CharacterShape, ColliderBuilding};
+    use platbench::stress::{envelope, stress_matrix};
+    let runs = [
+        RunConfig::sweep_default(),
+        RunConfig::rapier(ColliderBuilding::PerTile, CharacterShape::Capsule),
+        RunConfig::rapier(ColliderBuilding::Merged, CharacterShape::Capsule),
+    ];
+    let started = Instant::now();
+    let rows = stress_matrix(&runs, |what| eprintln!("  {what}"))?;
+    eprintln!("ran in {:.1} s", started.elapsed().as_secs_f64());
+    let mut t = comfy_table::Table::new();
+    t.load_style(comfy_table::presets::ASCII_MARKDOWN);
+    t.set_header(vec![
+        "configuration",
+        "dimension",
+        "every invariant holds at",
+        "breaks at",
+    ]);
+    let fmt = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    for (config, dim, ok, bad) in envelope(&rows) {
+        t.add_row(vec![config, dim.to_string(), fmt(&ok), fmt(&bad)]);
+    }
+    out(&t.to_string());
+    std::fs::create_dir_all(out_dir)
+        .with_context(|| format!("cannot create {}", out_dir.display()))?;
+    let path = out_dir.join("stability.csv");
+    let tmp = tempfile::NamedTempFile::new_in(out_dir)?;
+    let mut w = csv::Writer::from_writer(tmp.as_file());
+    for r in &rows {
+        w.serialize(r)?;
+    }
+    w.flush()?;
+    drop(w);
+    tmp.persist(&path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    eprintln!("wrote {}", path.display());
     Ok(())
 }
 

@@ -16,5 +16,6 @@ pub mod rapier;
 pub mod report;
 pub mod scenario;
 pub mod shape;
+pub mod stress;
 pub mod sweep;
 pub mod trace;
