@@ -49,6 +49,17 @@ enum Command {
     /// offsets 0 to 1e7 tiles, dt 1e-4 to 0.2 s, speeds to 1000 tiles/s, widths 0.01 to 10
     /// tiles, and the sweep's epsilon 1e-1 to 1e-9. Writes DIR/stability.csv and prints each
     /// configuration's envelope.
+    /// Speed versus accuracy: run the scenario set over a grid of settings (dt, substeps, the
+    /// sweep's epsilon and jump mode, Rapier's offset, snap distance, collider building and
+    /// shape) and write each setting's cost and error score to DIR/tradeoff.csv, with the
+    /// Pareto front marked, and the chart DIR/tradeoff.svg.
+    Sweep {
+        /// Output directory for tradeoff.csv and tradeoff.svg.
+        #[arg(long, default_value = "platbench-sweep")]
+        out: PathBuf,
+        /// Level files (TOML); the built-in set when none is given.
+        levels: Vec<PathBuf>,
+    },
     Stress {
         /// Output directory for stability.csv.
         #[arg(long, default_value = "platbench-stress")]
@@ -142,6 +153,7 @@ fn main() -> ExitCode {
         Some(Command::Run(args)) => run(&args, true),
         Some(Command::Levels) => list_levels(),
         Some(Command::Stress { out }) => stress(&out),
+        Some(Command::Sweep { out, levels }) => sweep_settings(&out, &levels),
         Some(Command::Report(args)) => report(&args),
         Some(Command::Diff(args)) => return diff(&args),
     };
@@ -413,6 +425,60 @@ fn report(args: &ReportArgs) -> Result<()> {
             .with_context(|| format!("cannot write {}", path.display()))?;
         eprintln!("wrote {} ({} KB)", path.display(), text.len() / 1024);
     }
+    Ok(())
+}
+
+fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<()> {
+    use platbench::tradeoff::{chart_svg, grid, run_tradeoff};
+    let levels = load_levels(level_files)?;
+    let settings = grid();
+    let started = Instant::now();
+    let rows = run_tradeoff(&levels, &settings, |done, total, label| {
+        let width = 30;
+        let filled = done * width / total.max(1);
+        eprintln!(
+            "  [{}{}] {done}/{total} {label} ({:.0} s)",
+            "#".repeat(filled),
+            ".".repeat(width - filled),
+            started.elapsed().as_secs_f64()
+        );
+    })?;
+    let mut t = comfy_table::Table::new();
+    t.load_style(comfy_table::presets::ASCII_MARKDOWN);
+    t.set_header(vec![
+        "backend",
+        "setting",
+        "us per character per game second",
+        "error score",
+        "Pareto",
+    ]);
+    for r in &rows {
+        t.add_row(vec![
+            r.backend.clone(),
+            r.setting.clone(),
+            format!("{:.1}", r.cost_us),
+            format!("{:.4}", r.error),
+            if r.pareto { "*".into() } else { String::new() },
+        ]);
+    }
+    out(&t.to_string());
+    std::fs::create_dir_all(out_dir)
+        .with_context(|| format!("cannot create {}", out_dir.display()))?;
+    let csv_tmp = tempfile::NamedTempFile::new_in(out_dir)?;
+    let mut w = csv::Writer::from_writer(csv_tmp.as_file());
+    for r in &rows {
+        w.serialize(r)?;
+    }
+    w.flush()?;
+    drop(w);
+    csv_tmp.persist(out_dir.join("tradeoff.csv"))?;
+    let mut svg_tmp = tempfile::NamedTempFile::new_in(out_dir)?;
+    std::io::Write::write_all(&mut svg_tmp, chart_svg(&rows).as_bytes())?;
+    svg_tmp.persist(out_dir.join("tradeoff.svg"))?;
+    eprintln!(
+        "wrote tradeoff.csv and tradeoff.svg to {}",
+        out_dir.display()
+    );
     Ok(())
 }
 

@@ -19,3 +19,4 @@ pub mod shape;
 pub mod stress;
 pub mod sweep;
 pub mod trace;
+pub mod tradeoff;

@@ -67,6 +67,9 @@ pub struct RunConfig {
     pub backend: BackendConfig,
     /// Motion parameters (scenarios may override some of them).
     pub params: MotionParams,
+    /// Steps the backend takes per frame, each of `dt / substeps` (1: one step per frame).
+    /// Traces keep one row per frame.
+    pub substeps: u32,
 }
 
 impl RunConfig {
@@ -76,6 +79,7 @@ impl RunConfig {
             label: "default".into(),
             backend: BackendConfig::Sweep(SweepConfig::default()),
             params: MotionParams::default(),
+            substeps: 1,
         }
     }
 
@@ -95,6 +99,7 @@ impl RunConfig {
             label: config.label(),
             backend: BackendConfig::Rapier(config),
             params: MotionParams::default(),
+            substeps: 1,
         }
     }
 
@@ -248,7 +253,9 @@ pub fn time_scenario(
         let start = std::time::Instant::now();
         for i in &script {
             input[0] = *i;
-            backend.step(&input, spec.dt);
+            for _ in 0..run.substeps.max(1) {
+                backend.step(&input, spec.dt / run.substeps.max(1) as f32);
+            }
         }
         let ns = start.elapsed().as_nanos() as f64 / script.len().max(1) as f64;
         best = best.min(ns);
@@ -290,7 +297,9 @@ fn drive(
     let mut input = [Input::default()];
     for (k, step_input) in script.iter().enumerate() {
         input[0] = *step_input;
-        backend.step(&input, spec.dt);
+        for _ in 0..run.substeps.max(1) {
+            backend.step(&input, spec.dt / run.substeps.max(1) as f32);
+        }
         let frame = (k + 1) as u32;
         rows.push(TraceRow::from_state(
             frame,

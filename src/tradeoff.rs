@@ -1,0 +1,442 @@
+//! Speed versus accuracy: the scenario set run over a grid of settings, each setting's cost and
+//! error, and the Pareto front of the settings no other beats on both.
+//!
+//! - **Cost**: microseconds of computation per character per second of game time (so a smaller
+//!   dt or more substeps cost what they really cost), timed in process as the minimum of 3
+//!   repeats of each scenario, averaged over the scenarios.
+//! - **Error**: the mean over every (scenario, metric) row of `min(1, |error| / scale)`, where
+//!   `scale` is the metric unit's "clearly wrong" size: 0.01 tiles, 0.01 for ratios, 0.01
+//!   tiles/s, one frame, one count, one boolean. 0 is every metric ideal; 1 is every metric
+//!   clearly wrong. Timing rows are not part of it.
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+use svg::node::element::{Circle, Line, Polyline, Text, Title};
+use svg::Document;
+
+use crate::backend::BackendError;
+use crate::level::Level;
+use crate::metrics::{evaluate_with, MetricRow};
+use crate::motion::{JumpMode, MotionParams};
+use crate::rapier::{CharacterShape, ColliderBuilding, Length, RapierConfig};
+use crate::scenario::{time_scenario, BackendConfig, RunConfig, Runner};
+use crate::sweep::SweepConfig;
+
+/// One setting of the grid: a configuration and, optionally, a time step for every scenario.
+#[derive(Clone, Debug)]
+pub struct Setting {
+    /// Label in `tradeoff.csv`.
+    pub label: String,
+    /// The configuration.
+    pub run: RunConfig,
+    /// The time step (seconds) every scenario runs with, if not its own.
+    pub dt: Option<f32>,
+}
+
+fn sweep(
+    label: &str,
+    config: SweepConfig,
+    params: MotionParams,
+    substeps: u32,
+    dt: Option<f32>,
+) -> Setting {
+    Setting {
+        label: label.into(),
+        run: RunConfig {
+            label: label.into(),
+            backend: BackendConfig::Sweep(config),
+            params,
+            substeps,
+        },
+        dt,
+    }
+}
+
+fn rapier(label: &str, config: RapierConfig, substeps: u32, dt: Option<f32>) -> Setting {
+    Setting {
+        label: label.into(),
+        run: RunConfig {
+            label: label.into(),
+            backend: BackendConfig::Rapier(config),
+            params: MotionParams::default(),
+            substeps,
+        },
+        dt,
+    }
+}
+
+/// The grid: each setting varies one thing from the defaults (dt from 1/30 to 1/480 s,
+/// substeps, the sweep's epsilon and jump mode, Rapier's offset, snap distance, collider
+/// building and shape).
+pub fn grid() -> Vec<Setting> {
+    let p = MotionParams::default;
+    let s = SweepConfig::default;
+    let r = RapierConfig::default;
+    let mut g = Vec::new();
+    for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
+        g.push(sweep(&format!("dt=1/{hz}"), s(), p(), 1, Some(1.0 / hz)));
+    }
+    for k in [2, 4] {
+        g.push(sweep(
+            &format!("substeps={k}"),
+            s(),
+            p(),
+            k,
+            Some(1.0 / 60.0),
+        ));
+    }
+    for eps in [1e-2f32, 1e-4, 1e-6] {
+        let c = SweepConfig {
+            epsilon: eps,
+            ..s()
+        };
+        g.push(sweep(
+            &format!("epsilon={eps}"),
+            c,
+            p(),
+            1,
+            Some(1.0 / 60.0),
+        ));
+    }
+    let continuous = MotionParams {
+        jump_mode: JumpMode::Continuous,
+        ..p()
+    };
+    g.push(sweep(
+        "jump=continuous",
+        s(),
+        continuous,
+        1,
+        Some(1.0 / 60.0),
+    ));
+    for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
+        g.push(rapier(
+            &format!("per-tile capsule dt=1/{hz}"),
+            r(),
+            1,
+            Some(1.0 / hz),
+        ));
+    }
+    for k in [2, 4] {
+        g.push(rapier(
+            &format!("per-tile capsule substeps={k}"),
+            r(),
+            k,
+            Some(1.0 / 60.0),
+        ));
+    }
+    for off in [0.005f32, 0.02] {
+        let c = RapierConfig {
+            offset: Length::Relative(off),
+            ..r()
+        };
+        g.push(rapier(
+            &format!("per-tile capsule offset={off}h"),
+            c,
+            1,
+            Some(1.0 / 60.0),
+        ));
+    }
+    for (name, snap) in [("none", None), ("0.4h", Some(Length::Relative(0.4)))] {
+        let c = RapierConfig {
+            snap_to_ground: snap,
+            ..r()
+        };
+        g.push(rapier(
+            &format!("per-tile capsule snap={name}"),
+            c,
+            1,
+            Some(1.0 / 60.0),
+        ));
+    }
+    for (name, colliders, shape) in [
+        (
+            "merged capsule",
+            ColliderBuilding::Merged,
+            CharacterShape::Capsule,
+        ),
+        (
+            "per-tile cuboid",
+            ColliderBuilding::PerTile,
+            CharacterShape::Cuboid,
+        ),
+        (
+            "merged cuboid",
+            ColliderBuilding::Merged,
+            CharacterShape::Cuboid,
+        ),
+    ] {
+        let c = RapierConfig {
+            colliders,
+            shape,
+            ..r()
+        };
+        g.push(rapier(name, c, 1, Some(1.0 / 60.0)));
+    }
+    g
+}
+
+/// The unit's "clearly wrong" size (see the module docs).
+fn scale(unit: &str) -> f64 {
+    match unit {
+        "tiles" | "ratio" | "tiles/s" => 0.01,
+        _ => 1.0,
+    }
+}
+
+/// The aggregate error of a setting's metric rows, in 0..=1 (see the module docs).
+pub fn error_score(rows: &[MetricRow]) -> f64 {
+    let scored: Vec<f64> = rows
+        .iter()
+        .filter(|r| r.metric != "ns_per_character_step")
+        .map(|r| {
+            let e = r.error.abs() / scale(r.unit);
+            if e.is_finite() {
+                e.min(1.0)
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    if scored.is_empty() {
+        0.0
+    } else {
+        scored.iter().sum::<f64>() / scored.len() as f64
+    }
+}
+
+/// One row of `tradeoff.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TradeoffRow {
+    /// Backend name.
+    pub backend: String,
+    /// Setting label.
+    pub setting: String,
+    /// Microseconds per character per second of game time (mean over the scenarios of the
+    /// minimum of 3 repeats).
+    pub cost_us: f64,
+    /// Aggregate error in 0..=1.
+    pub error: f64,
+    /// Whether no other setting is at least as cheap and as accurate, and better in one.
+    pub pareto: bool,
+}
+
+/// Runs every setting over the levels' scenarios; `progress` gets `(done, total, label)`.
+pub fn run_tradeoff(
+    levels: &[Level],
+    settings: &[Setting],
+    mut progress: impl FnMut(usize, usize, &str),
+) -> Result<Vec<TradeoffRow>, BackendError> {
+    let mut out = Vec::new();
+    for (k, s) in settings.iter().enumerate() {
+        progress(k, settings.len(), &s.label);
+        let mut rows = Vec::new();
+        let (mut cost, mut n) = (0.0, 0usize);
+        for level in levels {
+            let mut runner = Runner::new(level);
+            for spec in &level.scenarios {
+                let mut spec = spec.clone();
+                if let Some(dt) = s.dt {
+                    spec.dt = dt;
+                }
+                rows.extend(evaluate_with(&mut runner, &spec, &s.run)?.metrics);
+                // ns per frame (its substeps included) over seconds per frame, in microseconds.
+                cost += time_scenario(&mut runner, &spec, &s.run, 3)? / spec.dt as f64 / 1000.0;
+                n += 1;
+            }
+        }
+        out.push(TradeoffRow {
+            backend: s.run.backend.name().to_string(),
+            setting: s.label.clone(),
+            cost_us: cost / n.max(1) as f64,
+            error: error_score(&rows),
+            pareto: false,
+        });
+    }
+    progress(settings.len(), settings.len(), "done");
+    mark_pareto(&mut out);
+    Ok(out)
+}
+
+/// Marks the rows no other row dominates (as cheap or cheaper and as accurate or more, and
+/// strictly better in one).
+pub fn mark_pareto(rows: &mut [TradeoffRow]) {
+    let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.cost_us, r.error)).collect();
+    for (i, r) in rows.iter_mut().enumerate() {
+        let (c, e) = points[i];
+        r.pareto = !points
+            .iter()
+            .enumerate()
+            .any(|(j, &(cj, ej))| j != i && cj <= c && ej <= e && (cj < c || ej < e));
+    }
+}
+
+/// Cost (log scale) against error, one dot per setting, the Pareto front joined.
+pub fn chart_svg(rows: &[TradeoffRow]) -> String {
+    let (w, h, m) = (720.0f64, 420.0f64, 60.0f64);
+    let costs: Vec<f64> = rows.iter().map(|r| r.cost_us.max(1e-3).log10()).collect();
+    let (c0, c1) = costs.iter().fold((f64::MAX, f64::MIN), |(a, b), &c| {
+        (a.min(c.floor()), b.max(c.ceil()))
+    });
+    let e1 = rows
+        .iter()
+        .map(|r| r.error)
+        .fold(0.0f64, f64::max)
+        .max(1e-3)
+        * 1.1;
+    let x = |c: f64| m + (c - c0) / (c1 - c0).max(1e-9) * (w - 2.0 * m);
+    let y = |e: f64| h - m - e / e1 * (h - 2.0 * m);
+    let mut doc = Document::new()
+        .set("width", w)
+        .set("height", h)
+        .set("viewBox", (0, 0, w, h))
+        .set("class", "tradeoff");
+    doc = doc
+        .add(
+            Line::new()
+                .set("x1", m)
+                .set("y1", h - m)
+                .set("x2", w - m)
+                .set("y2", h - m)
+                .set("stroke", "#444"),
+        )
+        .add(
+            Line::new()
+                .set("x1", m)
+                .set("y1", m)
+                .set("x2", m)
+                .set("y2", h - m)
+                .set("stroke", "#444"),
+        )
+        .add(
+            Text::new("microseconds per character per game second (log)")
+                .set("x", w / 2.0 - 80.0)
+                .set("y", h - 15.0)
+                .set("font-size", 12),
+        )
+        .add(
+            Text::new("error score")
+                .set("x", 8)
+                .set("y", m - 20.0)
+                .set("font-size", 12),
+        );
+    for k in 0..=4 {
+        let e = e1 * k as f64 / 4.0;
+        doc = doc.add(
+            Text::new(format!("{e:.3}"))
+                .set("x", 18)
+                .set("y", y(e) + 4.0)
+                .set("font-size", 10),
+        );
+    }
+    for (i, (name, colour)) in [("sweep", "#1565c0"), ("rapier", "#2e7d32")]
+        .iter()
+        .enumerate()
+    {
+        let ly = 20.0 + 16.0 * i as f64;
+        doc = doc
+            .add(
+                Circle::new()
+                    .set("cx", w - 150.0)
+                    .set("cy", ly)
+                    .set("r", 4.0)
+                    .set("fill", *colour),
+            )
+            .add(
+                Text::new(*name)
+                    .set("x", w - 140.0)
+                    .set("y", ly + 4.0)
+                    .set("font-size", 11),
+            );
+    }
+    doc = doc.add(
+        Text::new("filled: Pareto front (dashed)")
+            .set("x", w - 150.0)
+            .set("y", 56.0)
+            .set("font-size", 10),
+    );
+    let mut decade = c0;
+    while decade <= c1 + 1e-9 {
+        doc = doc.add(
+            Text::new(format!("{}", 10f64.powf(decade)))
+                .set("x", x(decade) - 10.0)
+                .set("y", h - m + 16.0)
+                .set("font-size", 10),
+        );
+        decade += 1.0;
+    }
+    let mut front: Vec<(f64, f64)> = rows
+        .iter()
+        .zip(&costs)
+        .filter(|(r, _)| r.pareto)
+        .map(|(r, c)| (x(*c), y(r.error)))
+        .collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    doc = doc.add(
+        Polyline::new()
+            .set("points", front)
+            .set("fill", "none")
+            .set("stroke", "#888")
+            .set("stroke-dasharray", "4,3"),
+    );
+    for (r, c) in rows.iter().zip(&costs) {
+        let colour = if r.backend == "sweep" {
+            "#1565c0"
+        } else {
+            "#2e7d32"
+        };
+        let mut label = String::new();
+        let _ = write!(
+            label,
+            "{} {}: {:.1} us/s, error {:.4}",
+            r.backend, r.setting, r.cost_us, r.error
+        );
+        doc = doc.add(
+            Circle::new()
+                .set("cx", x(*c))
+                .set("cy", y(r.error))
+                .set("r", if r.pareto { 5.0 } else { 3.5 })
+                .set("fill", if r.pareto { colour } else { "white" })
+                .set("stroke", colour)
+                .add(Title::new(label)),
+        );
+        if r.pareto {
+            doc = doc.add(
+                Text::new(format!("{} {}", r.backend, r.setting))
+                    .set("x", x(*c) + 7.0)
+                    .set("y", y(r.error) - 6.0)
+                    .set("font-size", 10),
+            );
+        }
+    }
+    doc.to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(cost: f64, error: f64) -> TradeoffRow {
+        TradeoffRow {
+            backend: "sweep".into(),
+            setting: format!("{cost}/{error}"),
+            cost_us: cost,
+            error,
+            pareto: false,
+        }
+    }
+
+    #[test]
+    fn pareto_front_keeps_the_undominated() {
+        let mut rows = vec![
+            row(100.0, 0.1),
+            row(200.0, 0.05),
+            row(300.0, 0.2),
+            row(100.0, 0.2),
+        ];
+        mark_pareto(&mut rows);
+        let front: Vec<bool> = rows.iter().map(|r| r.pareto).collect();
+        assert_eq!(front, vec![true, true, false, false]);
+    }
+}
