@@ -87,6 +87,13 @@ struct ReportArgs {
     /// Rapier character shapes to run (repeat or comma-separate); all of them by default.
     #[arg(long = "shape", value_name = "SHAPE", value_delimiter = ',', value_parser = ["capsule", "cuboid", "ball", "round-cuboid"])]
     shapes: Vec<String>,
+    /// Include the speed-against-accuracy chart from this tradeoff.csv (written by
+    /// `platbench sweep`).
+    #[arg(long, value_name = "FILE")]
+    tradeoff: Option<PathBuf>,
+    /// Include the stability table from this stability.csv (written by `platbench stress`).
+    #[arg(long, value_name = "FILE")]
+    stability: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -382,8 +389,27 @@ fn diff(args: &DiffArgs) -> ExitCode {
     }
 }
 
+/// Reads every row of a CSV file written by `platbench sweep` or `platbench stress`.
+fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) -> Result<Vec<T>> {
+    let mut r =
+        csv::Reader::from_path(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let rows = r
+        .deserialize()
+        .collect::<Result<Vec<T>, _>>()
+        .with_context(|| format!("{}: not the CSV this option expects", path.display()))?;
+    if rows.is_empty() {
+        anyhow::bail!("{}: no rows", path.display());
+    }
+    Ok(rows)
+}
+
 fn report(args: &ReportArgs) -> Result<()> {
-    use platbench::report::html::{render_report, ScenarioTraces};
+    use platbench::report::html::{render_report, Extras, ScenarioTraces};
+    // The extra files first: a bad one fails before the long run.
+    let extras = Extras {
+        tradeoff: args.tradeoff.as_deref().map(read_rows).transpose()?,
+        stability: args.stability.as_deref().map(read_rows).transpose()?,
+    };
     let levels = load_levels(&args.levels)?;
     let configs = configs(&RunArgs {
         backends: args.backends.clone(),
@@ -413,7 +439,7 @@ fn report(args: &ReportArgs) -> Result<()> {
             traces: traces.iter().collect(),
         })
         .collect();
-    let (html, md) = render_report(&metrics, &scenarios);
+    let (html, md) = render_report(&metrics, &scenarios, &extras);
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     for (name, text) in [("report.html", &html), ("report.md", &md)] {
@@ -484,6 +510,7 @@ fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<
 
 fn stress(out_dir: &std::path::Path) -> Result<()> {
     use platbench::rapier::{CharacterShape, ColliderBuilding};
+    use platbench::report::html::value_list;
     use platbench::stress::{envelope, stress_matrix};
     let runs = [
         RunConfig::sweep_default(),
@@ -501,14 +528,8 @@ fn stress(out_dir: &std::path::Path) -> Result<()> {
         "every invariant holds at",
         "breaks at",
     ]);
-    let fmt = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
     for (config, dim, ok, bad) in envelope(&rows) {
-        t.add_row(vec![config, dim.to_string(), fmt(&ok), fmt(&bad)]);
+        t.add_row(vec![config, dim, value_list(&ok), value_list(&bad)]);
     }
     out(&t.to_string());
     std::fs::create_dir_all(out_dir)

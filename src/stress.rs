@@ -5,7 +5,7 @@
 //! (the seed: "try 0.001, and lower until unstable").
 
 use glam::Vec2;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::backend::BackendError;
 use crate::level::{InputEvent, Level, ScenarioSpec, Tile};
@@ -49,18 +49,18 @@ pub fn dimensions() -> Vec<Dimension> {
 }
 
 /// One checked invariant.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StressRow {
     /// Backend name.
     pub backend: String,
     /// Configuration label.
     pub config: String,
     /// Dimension name.
-    pub dimension: &'static str,
+    pub dimension: String,
     /// Its value.
     pub value: f64,
     /// The invariant.
-    pub invariant: &'static str,
+    pub invariant: String,
     /// Whether it held on every probe.
     pub holds: bool,
     /// The worst measured value over the probes (for `finite`, 0 or 1).
@@ -198,12 +198,12 @@ pub fn stress_matrix(
                     flicker = flicker.max(get("grounded_flicker").unwrap_or(0.0));
                 }
                 let pen = if pen.is_nan() { f64::INFINITY } else { pen };
-                let row = |invariant, holds, measured, tolerance| StressRow {
+                let row = |invariant: &str, holds, measured, tolerance| StressRow {
                     backend: run.backend.name().to_string(),
                     config: run.label.clone(),
-                    dimension: d.name,
+                    dimension: d.name.to_string(),
                     value: v,
-                    invariant,
+                    invariant: invariant.to_string(),
                     holds,
                     measured,
                     tolerance,
@@ -225,14 +225,14 @@ pub fn stress_matrix(
 }
 
 /// For each configuration and dimension, the values at which every invariant held.
-pub fn envelope(rows: &[StressRow]) -> Vec<(String, &'static str, Vec<f64>, Vec<f64>)> {
-    let mut out: Vec<(String, &'static str, Vec<f64>, Vec<f64>)> = Vec::new();
+pub fn envelope(rows: &[StressRow]) -> Vec<(String, String, Vec<f64>, Vec<f64>)> {
+    let mut out: Vec<(String, String, Vec<f64>, Vec<f64>)> = Vec::new();
     for r in rows {
         let key = format!("{} {}", r.backend, r.config);
         let entry = match out.iter_mut().find(|e| e.0 == key && e.1 == r.dimension) {
             Some(e) => e,
             None => {
-                out.push((key, r.dimension, Vec::new(), Vec::new()));
+                out.push((key, r.dimension.clone(), Vec::new(), Vec::new()));
                 out.last_mut().expect("just pushed")
             }
         };

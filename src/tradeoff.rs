@@ -11,7 +11,7 @@
 
 use std::fmt::Write as _;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use svg::node::element::{Circle, Line, Polyline, Text, Title};
 use svg::Document;
 
@@ -207,7 +207,7 @@ pub fn error_score(rows: &[MetricRow]) -> f64 {
 }
 
 /// One row of `tradeoff.csv`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TradeoffRow {
     /// Backend name.
     pub backend: String,

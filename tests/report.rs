@@ -48,3 +48,98 @@ fn report_is_self_contained_with_one_picture_per_scenario() {
         assert!(html.contains(section) && md.contains(section), "{section}");
     }
 }
+
+/// `platbench report` on one small level, writing into `dir`, with `extra` arguments.
+fn report_on_flat_seams(dir: &std::path::Path, extra: &[&std::ffi::OsStr]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_platbench"))
+        .args(["report", "compare/levels/flat_seams.toml", "--out"])
+        .arg(dir)
+        .args(extra)
+        .output()
+        .unwrap()
+}
+
+/// Writes `rows` as a CSV file the way `platbench sweep` and `platbench stress` do.
+fn write_csv<T: serde::Serialize>(path: &std::path::Path, rows: &[T]) {
+    let mut w = csv::Writer::from_path(path).unwrap();
+    for r in rows {
+        w.serialize(r).unwrap();
+    }
+    w.flush().unwrap();
+}
+
+#[test]
+fn report_includes_the_tradeoff_chart_and_the_stability_table_when_given() {
+    use platbench::stress::StressRow;
+    use platbench::tradeoff::TradeoffRow;
+    let dir = tempfile::tempdir().unwrap();
+    let trade =
+        |backend: &str, setting: &str, cost_us: f64, error: f64, pareto: bool| TradeoffRow {
+            backend: backend.into(),
+            setting: setting.into(),
+            cost_us,
+            error,
+            pareto,
+        };
+    write_csv(
+        &dir.path().join("tradeoff.csv"),
+        &[
+            trade("sweep", "dt=1/60", 20.0, 0.010, true),
+            trade("rapier", "per-tile", 400.0, 0.012, false),
+            trade("sweep", "dt=1/480", 150.0, 0.009, true),
+        ],
+    );
+    let stress = |value: f64, holds: bool| StressRow {
+        backend: "sweep".into(),
+        config: "default".into(),
+        dimension: "offset".into(),
+        value,
+        invariant: "penetration".into(),
+        holds,
+        measured: 0.0,
+        tolerance: 0.0,
+    };
+    write_csv(
+        &dir.path().join("stability.csv"),
+        &[stress(0.0, true), stress(1e6, true), stress(1e7, false)],
+    );
+    let out = report_on_flat_seams(
+        dir.path(),
+        &[
+            "--tradeoff".as_ref(),
+            dir.path().join("tradeoff.csv").as_os_str(),
+            "--stability".as_ref(),
+            dir.path().join("stability.csv").as_os_str(),
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
+    let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
+    assert!(html.contains("class=\"tradeoff\""), "the chart is drawn");
+    // The Pareto front is listed cheapest first, and only the front.
+    let (a, b) = (
+        md.find("| sweep | dt=1/60 |").unwrap(),
+        md.find("| sweep | dt=1/480 |").unwrap(),
+    );
+    assert!(a < b);
+    assert!(!md.contains("| rapier | per-tile |"));
+    // The stability table gives the envelope: where every invariant held and where one broke.
+    assert!(md.contains("| sweep default | offset | 0, 1e6 | 1e7 |"));
+    assert!(html.contains("Stability at the extremes"));
+}
+
+#[test]
+fn report_names_a_bad_tradeoff_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("tradeoff.csv");
+    std::fs::write(&bad, "level,scenario\nflat,walk\n").unwrap();
+    let out = report_on_flat_seams(dir.path(), &["--tradeoff".as_ref(), bad.as_os_str()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("tradeoff.csv"), "{err}");
+    assert!(!dir.path().join("report.html").exists(), "nothing written");
+}

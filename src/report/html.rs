@@ -10,12 +10,14 @@ use glam::Vec2;
 use svg::node::element::{Circle, Group, Polygon, Polyline, Rectangle, Title};
 use svg::Document;
 
-use super::{format_value, notes, worst_matrix};
+use super::{format_setting, format_value, notes, worst_matrix};
 use crate::level::{Level, ScenarioSpec, Tile};
 use crate::metrics::ground::Ground;
 use crate::metrics::MetricRow;
 use crate::shape::CharacterShape;
+use crate::stress::{envelope, StressRow};
 use crate::trace::Trace;
+use crate::tradeoff::{chart_svg, TradeoffRow};
 
 /// The behaviours the report is organised by, with their metrics.
 pub const BEHAVIOURS: &[(&str, &[&str])] = &[
@@ -347,8 +349,77 @@ pub fn recommendations(rows: &[MetricRow]) -> Vec<String> {
     out
 }
 
+/// Results of the slower commands the report can include: `platbench sweep`'s `tradeoff.csv`
+/// and `platbench stress`'s `stability.csv`, read back from their files.
+#[derive(Clone, Debug, Default)]
+pub struct Extras {
+    /// Rows of `tradeoff.csv`: drawn as the cost-against-error chart with the Pareto front listed.
+    pub tradeoff: Option<Vec<TradeoffRow>>,
+    /// Rows of `stability.csv`: summarised as each configuration's envelope per dimension.
+    pub stability: Option<Vec<StressRow>>,
+}
+
+/// Setting values as a short comma-separated list ("-" when empty).
+pub fn value_list(v: &[f64]) -> String {
+    if v.is_empty() {
+        return "-".into();
+    }
+    v.iter()
+        .map(|&x| format_setting(x))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The speed-against-accuracy section: the chart and the settings on the Pareto front.
+fn tradeoff_section(rows: &[TradeoffRow]) -> (String, String) {
+    let mut html = String::from("<h2 id=\"tradeoff\">Speed against accuracy</h2><p>Each dot is one setting of <code>platbench sweep</code>: its cost (microseconds per character per second of game time) against its error score (0 is ideal); the line joins the Pareto front, the settings no other setting beats on both.</p>");
+    let mut md = String::from("\n## Speed against accuracy\n\nThe chart is in the HTML report. Settings on the Pareto front (no other setting is both cheaper and more accurate):\n\n| backend | setting | us per character per game second | error score |\n|---|---|---:|---:|\n");
+    html.push_str(&chart_svg(rows));
+    html.push_str("<table><thead><tr><th>backend</th><th>setting</th><th>us per character per game second</th><th>error score</th></tr></thead><tbody>");
+    let mut front: Vec<&TradeoffRow> = rows.iter().filter(|r| r.pareto).collect();
+    front.sort_by(|a, b| a.cost_us.total_cmp(&b.cost_us));
+    for r in front {
+        let (b, s) = (escape(&r.backend), escape(&r.setting));
+        let _ = write!(
+            html,
+            "<tr><td>{b}</td><td>{s}</td><td>{:.1}</td><td>{:.4}</td></tr>",
+            r.cost_us, r.error
+        );
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.1} | {:.4} |",
+            r.backend, r.setting, r.cost_us, r.error
+        );
+    }
+    html.push_str("</tbody></table>");
+    (html, md)
+}
+
+/// The stability section: per configuration and dimension, the values at which every invariant
+/// held and those at which one broke.
+fn stability_section(rows: &[StressRow]) -> (String, String) {
+    let mut html = String::from("<h2 id=\"stability\">Stability at the extremes</h2><p>From <code>platbench stress</code>: each dimension is pushed away from the base case alone; a value holds when every invariant (finite, penetration, no tunneling, stable rest, no flicker) held there.</p><table><thead><tr><th>configuration</th><th>dimension</th><th>every invariant holds at</th><th>breaks at</th></tr></thead><tbody>");
+    let mut md = String::from("\n## Stability at the extremes\n\n| configuration | dimension | every invariant holds at | breaks at |\n|---|---|---|---|\n");
+    for (config, dim, ok, bad) in envelope(rows) {
+        let (ok, bad) = (value_list(&ok), value_list(&bad));
+        let _ = write!(
+            html,
+            "<tr><td>{}</td><td>{}</td><td>{ok}</td><td>{bad}</td></tr>",
+            escape(&config),
+            escape(&dim)
+        );
+        let _ = writeln!(md, "| {config} | {dim} | {ok} | {bad} |");
+    }
+    html.push_str("</tbody></table>");
+    (html, md)
+}
+
 /// Renders the report: (HTML, Markdown).
-pub fn render_report(rows: &[MetricRow], scenarios: &[ScenarioTraces]) -> (String, String) {
+pub fn render_report(
+    rows: &[MetricRow],
+    scenarios: &[ScenarioTraces],
+    extras: &Extras,
+) -> (String, String) {
     let mut html = String::new();
     let mut md = String::new();
     html.push_str("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>platbench report</title><style>\nbody{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\ntable{border-collapse:collapse;margin:0.5em 0 1em;font-size:13px}\nth,td{border:1px solid #ccc;padding:3px 6px;text-align:right}\nth:first-child,td:first-child{text-align:left}\ntd.best{background:#c8e6c9;font-weight:bold}\ntr.ideal td{color:#777;font-style:italic}\nsvg.scenario{background:#fafafa;border:1px solid #ddd;max-width:100%;height:auto}\n.legend span{display:inline-block;margin-right:1em}\n.legend i{display:inline-block;width:1.5em;height:3px;vertical-align:middle;margin-right:0.3em}\n</style></head><body>\n");
@@ -376,6 +447,16 @@ pub fn render_report(rows: &[MetricRow], scenarios: &[ScenarioTraces]) -> (Strin
                 let _ = writeln!(md, "\n{n}");
             }
         }
+    }
+    for (h, m) in [
+        extras.tradeoff.as_deref().map(tradeoff_section),
+        extras.stability.as_deref().map(stability_section),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        html.push_str(&h);
+        md.push_str(&m);
     }
     html.push_str("<h2>Scenarios</h2><p class=\"legend\">");
     md.push_str("\n## Scenarios\n\nPictures are in the HTML report. Paths:");
