@@ -3,7 +3,7 @@
 //! A step asks for the tiles that touch the box swept along one axis; the narrow test is the
 //! seed's AABB-vs-AABB, done by the resolve stage on the boxes returned here.
 
-use parry2d::bounding_volume::Aabb;
+use parry2d::bounding_volume::{Aabb, BoundingVolume};
 use parry2d::partitioning::{Bvh, BvhBuildStrategy};
 
 use crate::level::Level;
@@ -24,6 +24,56 @@ pub enum BoxKind {
         /// Whether it blocks only from above.
         one_way: bool,
     },
+}
+
+/// How far beyond a query the near cache reaches, in tiles: about one tile of travel before it
+/// must refill, while the scan over it stays a dozen boxes for a one-tile character.
+const NEAR_MARGIN: f32 = 1.0;
+
+/// The static boxes around one character, kept between steps (temporal coherence): a query
+/// inside the cached region scans the few boxes kept here instead of descending the BVH from its
+/// root, so a step's cost does not grow with the level's size. The region is refilled, from one
+/// BVH query reaching `NEAR_MARGIN` beyond the asked area, only when a query leaves it.
+///
+/// The answers are exactly the BVH's: the boxes kept are those touching the region, so those
+/// touching an area inside it are among them, found by the same inclusive test and in the same
+/// (depth-first) order.
+#[derive(Clone, Debug)]
+pub struct NearCache {
+    region: Aabb,
+    items: Vec<(Aabb, BoxKind)>,
+}
+
+impl Default for NearCache {
+    fn default() -> Self {
+        NearCache {
+            region: Aabb::new_invalid(),
+            // Room for the neighbourhood of a character a few tiles tall; it grows (once) only
+            // for bigger characters or very fast moves.
+            items: Vec::with_capacity(64),
+        }
+    }
+}
+
+impl NearCache {
+    /// The static boxes touching `area` (inclusive), with their kind, in the BVH's order.
+    pub fn query<'a>(
+        &'a mut self,
+        tiles: &StaticTiles,
+        area: &'a Aabb,
+    ) -> impl Iterator<Item = (&'a Aabb, BoxKind)> + 'a {
+        if !self.region.contains(area) {
+            self.region = area.loosened(NEAR_MARGIN);
+            self.items.clear();
+            let region = self.region;
+            self.items
+                .extend(tiles.query(&region).map(|(b, k)| (*b, k)));
+        }
+        self.items
+            .iter()
+            .filter(move |(b, _)| b.intersects(area))
+            .map(|(b, k)| (b, *k))
+    }
 }
 
 /// Static boxes (solid tiles, and one-way tiles when the level has them) and a BVH over them.
@@ -92,5 +142,35 @@ mod tests {
         let mut found: Vec<f32> = tiles.query(&area).map(|(b, _)| b.mins.x).collect();
         found.sort_by(f32::total_cmp);
         assert_eq!(found, vec![10.0, 11.0]);
+    }
+
+    #[test]
+    fn near_cache_answers_as_the_bvh_does() {
+        // A floor with gaps and a wall, queried along a walk: every answer, refilled or cached,
+        // is the BVH's own, in its order.
+        let mut t = vec![Tile::Empty; 200 * 4];
+        for i in 0..200 {
+            if i % 7 != 3 {
+                t[i] = Tile::Solid;
+            }
+            if i % 13 == 0 {
+                t[200 * 2 + i] = Tile::Solid;
+            }
+        }
+        let tiles = StaticTiles::new(&Level::from_tiles("walk", 200, 4, t));
+        let mut near = NearCache::default();
+        let mut refills = 0;
+        for k in 0..2000 {
+            let x = k as f32 * 0.093;
+            let area = Aabb::new(Vec2::new(x, 0.9), Vec2::new(x + 0.8, 2.05));
+            let before = near.region;
+            let cached: Vec<(Aabb, BoxKind)> =
+                near.query(&tiles, &area).map(|(b, k)| (*b, k)).collect();
+            refills += (near.region != before) as usize;
+            let direct: Vec<(Aabb, BoxKind)> = tiles.query(&area).map(|(b, k)| (*b, k)).collect();
+            assert_eq!(cached, direct, "at x = {x}");
+        }
+        // 186 tiles walked with a one-tile margin: a refill about every tile, not every query.
+        assert!(refills < 300, "{refills} refills for 2000 queries");
     }
 }

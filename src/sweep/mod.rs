@@ -20,7 +20,7 @@ use crate::backend::{
 };
 use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
-use broadphase::{BoxKind, StaticTiles};
+use broadphase::{BoxKind, NearCache, StaticTiles};
 use resolve::{move_axis, Axis};
 
 /// Settings of the sweep controller.
@@ -57,6 +57,8 @@ struct Character {
     size: Vec2,
     motion: MotionState,
     ground_normal: Vec2,
+    /// The static boxes around it, kept between steps.
+    near: NearCache,
 }
 
 /// How often each feature's code ran: evidence that a step costs only what the level contains.
@@ -200,6 +202,7 @@ impl SweepBackend {
         };
         let mut wall = move_axis(
             &self.tiles,
+            &mut c.near,
             &self.platform_boxes,
             &mut c.pos,
             c.size,
@@ -238,6 +241,7 @@ impl SweepBackend {
         };
         let hit_y = move_axis(
             &self.tiles,
+            &mut c.near,
             &self.platform_boxes,
             &mut c.pos,
             c.size,
@@ -307,6 +311,7 @@ impl Backend for SweepBackend {
             ground_normal: Vec2::ZERO,
             riding: None,
             crushed: false,
+            near: NearCache::default(),
         });
         Ok(self.characters.len() - 1)
     }

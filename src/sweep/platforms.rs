@@ -50,8 +50,19 @@ impl PlatformState {
 fn shove(tiles: &StaticTiles, c: &mut Character, delta: Vec2, eps: f32) -> bool {
     let skip = |_: &Aabb, k: BoxKind| matches!(k, BoxKind::OneWay | BoxKind::Platform { .. });
     let start = c.pos;
-    move_axis(tiles, &[], &mut c.pos, c.size, Axis::X, delta.x, eps, skip);
-    move_axis(tiles, &[], &mut c.pos, c.size, Axis::Y, delta.y, eps, skip);
+    for (axis, d) in [(Axis::X, delta.x), (Axis::Y, delta.y)] {
+        move_axis(
+            tiles,
+            &mut c.near,
+            &[],
+            &mut c.pos,
+            c.size,
+            axis,
+            d,
+            eps,
+            skip,
+        );
+    }
     (c.pos - start - delta).length() > eps
 }
 

@@ -16,7 +16,7 @@
 use glam::Vec2;
 use parry2d::bounding_volume::{Aabb, BoundingVolume};
 
-use super::broadphase::{BoxKind, StaticTiles};
+use super::broadphase::{BoxKind, NearCache, StaticTiles};
 
 /// The axis of a move.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,12 +37,13 @@ impl Axis {
 }
 
 /// Moves the box whose feet are at `pos` by `delta` along `axis`, stopping flush at the
-/// closest obstacle among the static tiles and the `extra` boxes (moving platforms at their
-/// current place). `skip` tells which boxes are not obstacles for this move (it gets the box
+/// closest obstacle among the static tiles (found through the mover's `near` cache) and the
+/// `extra` boxes (moving platforms at their current place). `skip` tells which boxes are not obstacles for this move (it gets the box
 /// and its kind). Returns the kind of the obstacle that stopped the move, if one did.
 #[allow(clippy::too_many_arguments)]
 pub fn move_axis(
     tiles: &StaticTiles,
+    near: &mut NearCache,
     extra: &[(Aabb, BoxKind)],
     pos: &mut Vec2,
     size: Vec2,
@@ -75,7 +76,7 @@ pub fn move_axis(
         .iter()
         .filter(|(t, _)| t.intersects(&swept))
         .map(|(t, k)| (t, *k));
-    for (t, kind) in tiles.query(&swept).chain(moving) {
+    for (t, kind) in near.query(tiles, &swept).chain(moving) {
         if skip(t, kind) || !overlaps_across(&b, t, o, epsilon) {
             continue;
         }
@@ -149,7 +150,18 @@ mod tests {
         eps: f32,
         skip: impl Fn(&Aabb, BoxKind) -> bool,
     ) -> bool {
-        move_axis(tiles, &[], p, size, axis, delta, eps, skip).is_some()
+        move_axis(
+            tiles,
+            &mut NearCache::default(),
+            &[],
+            p,
+            size,
+            axis,
+            delta,
+            eps,
+            skip,
+        )
+        .is_some()
     }
     const EPS: f32 = 0.001;
 
