@@ -1,5 +1,5 @@
-//! Cost of one character step for each configuration of the built-in comparison on each
-//! built-in level's first scenario (criterion). Benches measure; no test asserts a time.
+//! Cost of one character step for each configuration of the built-in comparison on every
+//! built-in scenario (criterion; `-- LEVEL` filters, e.g. `cargo bench --bench step -- ladders`). Benches measure; no test asserts a time.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -27,32 +27,33 @@ fn fresh(level: &Level, spec: &ScenarioSpec, run: &RunConfig) -> Box<dyn Backend
 fn step_cost(c: &mut Criterion) {
     for (file, text) in builtin::LEVELS {
         let level = parse_level(text, file).expect("built-in level parses");
-        let spec = &level.scenarios[0];
-        let script = input_script(spec);
-        let mut group = c.benchmark_group(format!("step/{}.{}", level.name, spec.name));
-        for run in RunConfig::builtin_set() {
-            let name = format!("{}/{}", run.backend.name(), run.label);
-            group.bench_function(name, |b| {
-                // One iteration is one step of the scenario's script; when the script ends the
-                // backend is rebuilt outside the timed region, so only steps are measured.
-                b.iter_custom(|iters| {
-                    let mut total = Duration::ZERO;
-                    let mut left = iters as usize;
-                    while left > 0 {
-                        let mut backend = fresh(&level, spec, &run);
-                        let n = left.min(script.len());
-                        let start = Instant::now();
-                        for input in &script[..n] {
-                            backend.step(std::slice::from_ref(black_box(input)), spec.dt);
+        for spec in &level.scenarios {
+            let script = input_script(spec);
+            let mut group = c.benchmark_group(format!("step/{}.{}", level.name, spec.name));
+            for run in RunConfig::builtin_set() {
+                let name = format!("{}/{}", run.backend.name(), run.label);
+                group.bench_function(name, |b| {
+                    // One iteration is one step of the scenario's script; when the script ends the
+                    // backend is rebuilt outside the timed region, so only steps are measured.
+                    b.iter_custom(|iters| {
+                        let mut total = Duration::ZERO;
+                        let mut left = iters as usize;
+                        while left > 0 {
+                            let mut backend = fresh(&level, spec, &run);
+                            let n = left.min(script.len());
+                            let start = Instant::now();
+                            for input in &script[..n] {
+                                backend.step(std::slice::from_ref(black_box(input)), spec.dt);
+                            }
+                            total += start.elapsed();
+                            left -= n;
                         }
-                        total += start.elapsed();
-                        left -= n;
-                    }
-                    total
+                        total
+                    });
                 });
-            });
+            }
+            group.finish();
         }
-        group.finish();
     }
 }
 
