@@ -131,6 +131,14 @@ impl Features {
         moving_platforms: false,
     };
 
+    /// Every feature the level format has.
+    pub const ALL: Features = Features {
+        slopes: true,
+        one_way: true,
+        ladders: true,
+        moving_platforms: true,
+    };
+
     /// Names of the features that are set, for messages.
     pub fn names(&self) -> Vec<&'static str> {
         let mut v = Vec::new();

@@ -197,12 +197,7 @@ pub struct RapierBackend {
 
 impl RapierBackend {
     /// What this backend models today.
-    pub const SUPPORTED: Features = Features {
-        slopes: true,
-        one_way: true,
-        ladders: true,
-        moving_platforms: true,
-    };
+    pub const SUPPORTED: Features = Features::ALL;
 
     /// Builds the colliders for `level`; refuses levels with features it does not model.
     pub fn new(

@@ -493,3 +493,35 @@ fn note_is_about(note: &str, metric: &str) -> bool {
     };
     note.contains(key)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metrics::{CATALOG, GROUPS};
+
+    #[test]
+    fn every_behaviour_metric_is_in_the_catalog_once_and_in_one_summary_group() {
+        // The report's behaviours and the summary's groups are two partitions of the same
+        // catalog (timing aside, which has its own table): a metric added to one list and not to
+        // the others would silently vanish from a table.
+        let behaviour: Vec<&str> = BEHAVIOURS
+            .iter()
+            .flat_map(|(_, m)| m.iter().copied())
+            .collect();
+        let grouped: Vec<&str> = GROUPS.iter().flat_map(|(_, m)| m.iter().copied()).collect();
+        for m in CATALOG.iter().filter(|m| **m != "ns_per_character_step") {
+            assert_eq!(
+                behaviour.iter().filter(|b| *b == m).count(),
+                1,
+                "{m} in behaviours"
+            );
+            assert_eq!(
+                grouped.iter().filter(|g| *g == m).count(),
+                1,
+                "{m} in groups"
+            );
+        }
+        assert!(behaviour.iter().all(|b| CATALOG.contains(b)));
+        assert!(grouped.iter().all(|g| CATALOG.contains(g)));
+    }
+}

@@ -96,12 +96,7 @@ pub struct SweepBackend {
 
 impl SweepBackend {
     /// What this backend models today.
-    pub const SUPPORTED: Features = Features {
-        slopes: true,
-        one_way: true,
-        ladders: true,
-        moving_platforms: true,
-    };
+    pub const SUPPORTED: Features = Features::ALL;
 
     /// Builds the backend for `level`; refuses levels with features it does not model.
     pub fn new(
