@@ -1,14 +1,15 @@
 //! Stability at the extremes: the invariants every controller should keep (nothing non-finite,
 //! no penetration beyond its tolerance, no tunneling, a stable rest, no grounded flicker), checked
-//! one dimension at a time away from a base case: far from the origin, tiny and huge time steps,
-//! fast movers, tiny and huge characters, and (for the sweep) its epsilon down to where it breaks
-//! (the seed: "try 0.001, and lower until unstable").
+//! no penetration beyond its tolerance, no tunneling, a stable rest, no grounded flicker, carry
+//! without drift), checked one dimension at a time away from a base case: far from the origin,
+//! tiny and huge time steps, fast movers, tiny and huge characters, and (for the sweep) its epsilon
+//! down to where it breaks (the seed: "try 0.001, and lower until unstable").
 
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
 use crate::backend::BackendError;
-use crate::level::{InputEvent, Level, ScenarioSpec, Tile};
+use crate::level::{InputEvent, Level, Platform, PlatformMotion, ScenarioSpec, Tile};
 use crate::metrics::{evaluate, MetricRow};
 use crate::scenario::{BackendConfig, RunConfig};
 
@@ -69,9 +70,18 @@ pub struct StressRow {
     pub tolerance: f64,
 }
 
+/// Period of the probe level's moving platforms, in seconds.
+const RIDE_PERIOD: f32 = 4.0;
+
 /// The probe level: a floor 300 tiles long with a one-tile wall at x = 250, 40 tiles high (room
-/// for a 10-tile character). Merged, the floor is one 300-tile box: long enough to matter, short
-/// of the thousands of tiles on which Rapier's rounded shapes sink (a separate finding).
+/// for a 10-tile character), and two 12-tile platforms swaying on sines of period [`RIDE_PERIOD`]:
+/// platform 0 across x = 8..28 (amplitude 4 tiles, up to 6.3 tiles/s), platform 1 up and down
+/// y = 4..8 (amplitude 2 tiles, up to 3.1 tiles/s, its largest downward acceleration 4.9 tiles/s²,
+/// well under gravity, so a rider can stay on). Rides along one axis at a time: on a diagonal or
+/// circular path Rapier's controller loses its platform even at the base case (the built-in
+/// `platforms` level measures that), which would hide every extreme behind it.
+/// Merged, the floor is one 300-tile box: long enough to matter, short of the thousands of tiles
+/// on which Rapier's rounded shapes sink (a separate finding).
 fn probe_level(offset: f32) -> Level {
     let (w, h) = (300u32, 40u32);
     let mut tiles = vec![Tile::Empty; (w * h) as usize];
@@ -83,11 +93,23 @@ fn probe_level(offset: f32) -> Level {
     }
     let mut l = Level::from_tiles("stress", w, h, tiles);
     l.origin = Vec2::splat(offset);
+    for (x, amplitude) in [(12.0, Vec2::new(4.0, 0.0)), (30.0, Vec2::new(0.0, 2.0))] {
+        l.platforms.push(Platform {
+            start: Vec2::new(x, 6.0),
+            size: Vec2::new(12.0, 0.5),
+            motion: PlatformMotion::Sine {
+                amplitude,
+                period: RIDE_PERIOD,
+            },
+            one_way: false,
+        });
+    }
+    l.features.moving_platforms = true;
     l
 }
 
-/// The probes: a drop onto the floor then rest, a walk along the floor, and a fast mover aimed
-/// at the wall.
+/// The probes: a drop onto the floor then rest, a walk along the floor, a fast mover aimed at the
+/// wall, and a rider standing on each moving platform for two of its periods and a half.
 fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
     let spec = |name: &str, spawn: Vec2, velocity: Vec2, duration: f32, inputs: Vec<InputEvent>| {
         ScenarioSpec {
@@ -100,7 +122,11 @@ fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
             inputs,
             motion: Default::default(),
             expect_y: None,
-            ride: None,
+            ride: match name {
+                "ride_across" => Some(0),
+                "ride_up_down" => Some(1),
+                _ => None,
+            },
         }
     };
     let right = InputEvent {
@@ -129,7 +155,56 @@ fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
             2.0,
             vec![],
         ),
+        spec(
+            "ride_across",
+            Vec2::new(18.0, 6.5),
+            Vec2::ZERO,
+            2.5 * RIDE_PERIOD,
+            vec![],
+        ),
+        spec(
+            "ride_up_down",
+            Vec2::new(36.0, 6.5),
+            Vec2::ZERO,
+            2.5 * RIDE_PERIOD,
+            vec![],
+        ),
     ]
+}
+
+/// How far a rider moved on its platform, and the lag a carry may show without drifting, in tiles.
+///
+/// The drift is the largest change of the rider's position relative to the platform from the
+/// first step on (the spawn row has no contact yet). A controller that carries its rider with the
+/// platform's velocity of the step before (Rapier's controller does) trails by the difference of
+/// two steps' displacements, which sums to at most twice the platform's largest displacement in
+/// one step, however long the ride: that is the allowance returned, computed from the platform's
+/// motion over the run (as the backends place it, so far from the origin a step is a multiple of
+/// the f32 spacing). More than the allowance (plus a rest's tolerance) is a rider that slips,
+/// bounces or falls off.
+fn carry_drift(p: &Platform, origin: Vec2, trace: &crate::trace::Trace, dt: f32) -> (f64, f64) {
+    // The platform where the backends put it: placed in the world in f32 (at 1e6 tiles from the
+    // origin, on a grid of 1/16 tile) and brought back to level coordinates, as the trace is.
+    let at = |k: usize| ((p.position(k as f64 * dt as f64) + origin) - origin).as_dvec2();
+    let rel = |k: usize| {
+        let r = &trace.rows[k];
+        glam::DVec2::new(r.x as f64, r.y as f64) - at(k)
+    };
+    let n = trace.rows.len();
+    if n < 2 {
+        return (0.0, 0.0);
+    }
+    let first = rel(1);
+    let drift = (1..n)
+        .map(|k| (rel(k) - first).length())
+        .fold(
+            0.0,
+            |a: f64, d| if d.is_nan() { f64::INFINITY } else { a.max(d) },
+        );
+    let step = (1..n)
+        .map(|k| (at(k) - at(k - 1)).length())
+        .fold(0.0, f64::max);
+    (drift, 2.0 * step)
 }
 
 /// The penetration a backend is held to: the sweep's epsilon, Rapier's offset (1% of the
@@ -170,6 +245,8 @@ pub fn stress_matrix(
                 let tol_rest = 1e-3 * size.y as f64;
                 let (mut finite, mut pen, mut tunnel, mut jitter, mut flicker) =
                     (true, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+                // The carry's worst excess over its allowance, and that ride's figures.
+                let (mut drift, mut drift_tol) = (0.0f64, 0.0f64);
                 for spec in probes(size, dt, speed) {
                     let e = evaluate(&level, &spec, &run)?;
                     let get = |m: &str| -> Option<f64> {
@@ -183,6 +260,16 @@ pub fn stress_matrix(
                         .rows
                         .iter()
                         .all(|r| [r.x, r.y, r.vx, r.vy].iter().all(|v| v.is_finite()));
+                    if let Some(p) = spec.ride.and_then(|i| level.platforms.get(i as usize)) {
+                        // A ride feeds only its own invariant (and `finite`): the others keep
+                        // the meaning they have on the static floor.
+                        let (d, lag) = carry_drift(p, level.origin, &e.trace, dt);
+                        let tol = lag + tol_rest;
+                        if drift_tol == 0.0 || d - tol > drift - drift_tol {
+                            (drift, drift_tol) = (d, tol);
+                        }
+                        continue;
+                    }
                     pen = pen.max(get("max_penetration").unwrap_or(0.0));
                     tunnel = tunnel.max(get("tunneled").unwrap_or(0.0));
                     if spec.name == "drop" {
@@ -218,33 +305,127 @@ pub fn stress_matrix(
                     tol_rest,
                 ));
                 out.push(row("no_flicker", finite && flicker == 0.0, flicker, 0.0));
+                // A rider is at rest on its platform: held to the stable rest's bound plus the lag
+                // a carry may show (see `carry_drift`).
+                out.push(row(
+                    "carry_no_drift",
+                    finite && drift <= drift_tol,
+                    drift,
+                    drift_tol,
+                ));
             }
         }
     }
     Ok(out)
 }
 
-/// For each configuration and dimension, the values at which every invariant held.
-pub fn envelope(rows: &[StressRow]) -> Vec<(String, String, Vec<f64>, Vec<f64>)> {
-    let mut out: Vec<(String, String, Vec<f64>, Vec<f64>)> = Vec::new();
+/// One configuration's results along one dimension of the matrix.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Envelope {
+    /// Backend and configuration label.
+    pub config: String,
+    /// Dimension name.
+    pub dimension: String,
+    /// The values at which every invariant held, in matrix order.
+    pub holds: Vec<f64>,
+    /// Each invariant that broke somewhere, with the values at which it broke, in matrix order.
+    pub breaks: Vec<(String, Vec<f64>)>,
+}
+
+impl Envelope {
+    /// The values at which some invariant broke, in matrix order.
+    pub fn broken_values(&self) -> Vec<f64> {
+        let mut v: Vec<f64> = Vec::new();
+        for (_, vs) in &self.breaks {
+            for x in vs {
+                if !v.contains(x) {
+                    v.push(*x);
+                }
+            }
+        }
+        v.sort_by(f64::total_cmp);
+        v
+    }
+}
+
+/// For each configuration and dimension, the values at which every invariant held and, per
+/// invariant, those at which it broke (so an invariant that breaks everywhere, such as a
+/// controller that cannot carry a rider at the base case, does not hide where the others hold).
+pub fn envelope(rows: &[StressRow]) -> Vec<Envelope> {
+    let mut out: Vec<Envelope> = Vec::new();
     for r in rows {
-        let key = format!("{} {}", r.backend, r.config);
-        let entry = match out.iter_mut().find(|e| e.0 == key && e.1 == r.dimension) {
-            Some(e) => e,
+        let config = format!("{} {}", r.backend, r.config);
+        let i = match out
+            .iter()
+            .position(|e| e.config == config && e.dimension == r.dimension)
+        {
+            Some(i) => i,
             None => {
-                out.push((key, r.dimension.clone(), Vec::new(), Vec::new()));
-                out.last_mut().expect("just pushed")
+                out.push(Envelope {
+                    config,
+                    dimension: r.dimension.clone(),
+                    holds: Vec::new(),
+                    breaks: Vec::new(),
+                });
+                out.len() - 1
             }
         };
-        let (ok, bad) = (&mut entry.2, &mut entry.3);
-        if !r.holds {
-            if !bad.contains(&r.value) {
-                bad.push(r.value);
+        let e = &mut out[i];
+        if r.holds {
+            if !e.holds.contains(&r.value) {
+                e.holds.push(r.value);
             }
-            ok.retain(|v| *v != r.value);
-        } else if !bad.contains(&r.value) && !ok.contains(&r.value) {
-            ok.push(r.value);
+        } else {
+            match e.breaks.iter_mut().find(|(inv, _)| *inv == r.invariant) {
+                Some((_, vs)) => vs.push(r.value),
+                None => e.breaks.push((r.invariant.clone(), vec![r.value])),
+            }
         }
     }
+    for e in &mut out {
+        let bad = e.broken_values();
+        e.holds.retain(|v| !bad.contains(v));
+    }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(value: f64, invariant: &str, holds: bool) -> StressRow {
+        StressRow {
+            backend: "b".into(),
+            config: "c".into(),
+            dimension: "offset".into(),
+            value,
+            invariant: invariant.into(),
+            holds,
+            measured: 0.0,
+            tolerance: 0.0,
+        }
+    }
+
+    #[test]
+    fn envelope_names_each_broken_invariant_and_keeps_only_values_where_all_held() {
+        let rows = [
+            row(0.0, "finite", true),
+            row(0.0, "carry_no_drift", false),
+            row(1.0, "finite", true),
+            row(1.0, "carry_no_drift", true),
+            row(2.0, "finite", false),
+            row(2.0, "carry_no_drift", false),
+        ];
+        let e = envelope(&rows);
+        assert_eq!(e.len(), 1);
+        assert_eq!(e[0].holds, vec![1.0]);
+        assert_eq!(
+            e[0].breaks,
+            vec![
+                ("carry_no_drift".to_string(), vec![0.0, 2.0]),
+                ("finite".to_string(), vec![2.0])
+            ]
+        );
+        assert_eq!(e[0].broken_values(), vec![0.0, 2.0]);
+    }
 }

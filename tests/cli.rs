@@ -281,3 +281,31 @@ fn killing_a_run_midway_leaves_the_previous_output_as_it_was() {
     let traces_after = std::fs::read_dir(out_dir.join("traces")).unwrap().count();
     assert_eq!(traces_after, traces_before);
 }
+
+#[test]
+fn help_describes_every_subcommand_under_its_own_name() {
+    let out = platbench().arg("--help").output().unwrap();
+    assert!(out.status.success());
+    let help = String::from_utf8_lossy(&out.stdout);
+    // Each subcommand's line starts with its own description (a doc comment attached to the
+    // wrong variant once put the stress text under `sweep` and left `stress` blank).
+    for (cmd, starts) in [
+        ("run", "Run level files"),
+        ("levels", "List the built-in levels"),
+        ("sweep", "Speed versus accuracy"),
+        ("stress", "Check the invariants"),
+        ("report", "Run level files"),
+        ("diff", "Compare a run directory"),
+    ] {
+        let line = help
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("{cmd} ")))
+            .unwrap_or_else(|| panic!("no line for {cmd}:\n{help}"));
+        assert!(
+            line[line.find(cmd).unwrap() + cmd.len()..]
+                .trim_start()
+                .starts_with(starts),
+            "{cmd}: {line}"
+        );
+    }
+}

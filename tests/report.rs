@@ -127,8 +127,12 @@ fn report_includes_the_tradeoff_chart_and_the_stability_table_when_given() {
     );
     assert!(a < b);
     assert!(!md.contains("| rapier | per-tile |"));
-    // The stability table gives the envelope: where every invariant held and where one broke.
-    assert!(md.contains("| sweep default | offset | 0, 1e6 | 1e7 |"));
+    // The stability table gives the envelope: where every invariant held, and which one broke
+    // where.
+    assert!(
+        md.contains("| sweep default | offset | 0, 1e6 | penetration at 1e7 |"),
+        "{md}"
+    );
     assert!(html.contains("Stability at the extremes"));
 }
 

@@ -15,7 +15,7 @@ use crate::level::{Level, ScenarioSpec, Tile};
 use crate::metrics::ground::Ground;
 use crate::metrics::MetricRow;
 use crate::shape::CharacterShape;
-use crate::stress::{envelope, StressRow};
+use crate::stress::{envelope, Envelope, StressRow};
 use crate::trace::Trace;
 use crate::tradeoff::{chart_svg, TradeoffRow};
 
@@ -395,18 +395,31 @@ fn tradeoff_section(rows: &[TradeoffRow]) -> (String, String) {
     (html, md)
 }
 
+/// What broke where, for a table cell: `carry_no_drift at 0, 1000; finite at 1e7`, or `-`.
+pub fn breaks_list(e: &Envelope) -> String {
+    if e.breaks.is_empty() {
+        return "-".into();
+    }
+    e.breaks
+        .iter()
+        .map(|(inv, vs)| format!("{inv} at {}", value_list(vs)))
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
 /// The stability section: per configuration and dimension, the values at which every invariant
-/// held and those at which one broke.
+/// held and, per invariant, those at which it broke.
 fn stability_section(rows: &[StressRow]) -> (String, String) {
-    let mut html = String::from("<h2 id=\"stability\">Stability at the extremes</h2><p>From <code>platbench stress</code>: each dimension is pushed away from the base case alone; a value holds when every invariant (finite, penetration, no tunneling, stable rest, no flicker) held there.</p><table><thead><tr><th>configuration</th><th>dimension</th><th>every invariant holds at</th><th>breaks at</th></tr></thead><tbody>");
+    let mut html = String::from("<h2 id=\"stability\">Stability at the extremes</h2><p>From <code>platbench stress</code>: each dimension is pushed away from the base case alone; a value holds when every invariant (finite, penetration, no tunneling, stable rest, no flicker, carry without drift) held there, and the last column names each invariant that broke and where.</p><table><thead><tr><th>configuration</th><th>dimension</th><th>every invariant holds at</th><th>breaks at</th></tr></thead><tbody>");
     let mut md = String::from("\n## Stability at the extremes\n\n| configuration | dimension | every invariant holds at | breaks at |\n|---|---|---|---|\n");
-    for (config, dim, ok, bad) in envelope(rows) {
-        let (ok, bad) = (value_list(&ok), value_list(&bad));
+    for e in envelope(rows) {
+        let (config, dim) = (&e.config, &e.dimension);
+        let (ok, bad) = (value_list(&e.holds), breaks_list(&e));
         let _ = write!(
             html,
             "<tr><td>{}</td><td>{}</td><td>{ok}</td><td>{bad}</td></tr>",
-            escape(&config),
-            escape(&dim)
+            escape(config),
+            escape(dim)
         );
         let _ = writeln!(md, "| {config} | {dim} | {ok} | {bad} |");
     }
