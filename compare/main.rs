@@ -230,6 +230,36 @@ fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
     Ok(set)
 }
 
+/// Runs one scenario on one configuration; a configuration that does not model something in the
+/// level is left out of that level, said once on stderr (never run on part of it).
+fn evaluate_or_skip(
+    runner: &mut Runner,
+    spec: &platbench::level::ScenarioSpec,
+    run: &RunConfig,
+    skipped: &mut Vec<String>,
+) -> Result<Option<platbench::metrics::Evaluation>> {
+    let level = runner.level();
+    match evaluate_with(runner, spec, run) {
+        Err(e @ platbench::backend::BackendError::Unsupported { .. }) => {
+            let note = format!("{} {}: {e}", run.backend.name(), run.label);
+            if !skipped.contains(&note) {
+                eprintln!("  skipped {note}");
+                skipped.push(note);
+            }
+            Ok(None)
+        }
+        e => e.map(Some).with_context(|| {
+            format!(
+                "running {}.{} on {}/{}",
+                level.name,
+                spec.name,
+                run.backend.name(),
+                run.label
+            )
+        }),
+    }
+}
+
 fn run(args: &RunArgs, write: bool) -> Result<()> {
     if !args.bless {
         let same = |a: &std::path::Path, b: &std::path::Path| {
@@ -268,20 +298,16 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
     let mut traces: Vec<Trace> = Vec::new();
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut done = 0;
+    let mut skipped: Vec<String> = Vec::new();
     for level in &levels {
         let level_start = Instant::now();
         let mut runner = Runner::new(level);
         for spec in &level.scenarios {
             for run in &configs {
-                let e = evaluate_with(&mut runner, spec, run).with_context(|| {
-                    format!(
-                        "running {}.{} on {}/{}",
-                        level.name,
-                        spec.name,
-                        run.backend.name(),
-                        run.label
-                    )
-                })?;
+                let Some(e) = evaluate_or_skip(&mut runner, spec, run, &mut skipped)? else {
+                    done += 1;
+                    continue;
+                };
                 if args.timing {
                     let ns = platbench::scenario::time_scenario(&mut runner, spec, run, 5)?;
                     metrics.push(platbench::metrics::timing_row(level, spec, run, ns));
@@ -418,12 +444,15 @@ fn report(args: &ReportArgs) -> Result<()> {
     })?;
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut per_scenario: Vec<(usize, usize, Vec<Trace>)> = Vec::new();
+    let mut skipped: Vec<String> = Vec::new();
     for (li, level) in levels.iter().enumerate() {
         let mut runner = Runner::new(level);
         for (si, spec) in level.scenarios.iter().enumerate() {
             let mut traces = Vec::new();
             for run in &configs {
-                let e = evaluate_with(&mut runner, spec, run)?;
+                let Some(e) = evaluate_or_skip(&mut runner, spec, run, &mut skipped)? else {
+                    continue;
+                };
                 metrics.extend(e.metrics);
                 traces.push(e.trace);
             }
@@ -514,6 +543,7 @@ fn stress(out_dir: &std::path::Path) -> Result<()> {
     use platbench::stress::{envelope, stress_matrix};
     let runs = [
         RunConfig::sweep_default(),
+        RunConfig::sweep_integer(32),
         RunConfig::rapier(ColliderBuilding::PerTile, CharacterShape::Capsule),
         RunConfig::rapier(ColliderBuilding::Merged, CharacterShape::Capsule),
     ];

@@ -83,6 +83,19 @@ impl RunConfig {
         }
     }
 
+    /// The sweep on integer positions, `per_tile` subpixels per tile.
+    pub fn sweep_integer(per_tile: u32) -> Self {
+        RunConfig {
+            label: format!("positions=integer/{per_tile}"),
+            backend: BackendConfig::Sweep(SweepConfig {
+                positions: crate::sweep::Positions::Integer { per_tile },
+                ..Default::default()
+            }),
+            params: MotionParams::default(),
+            substeps: 1,
+        }
+    }
+
     /// The character's collision shape in this configuration.
     pub fn shape(&self) -> CharacterShape {
         self.backend.shape()
@@ -104,7 +117,8 @@ impl RunConfig {
     }
 
     /// The built-in comparison set: the default sweep; the sweep with the seed's continuous
-    /// jump formula, so the two jump modes' apex errors stand side by side; and Rapier with
+    /// jump formula, so the two jump modes' apex errors stand side by side; the sweep on integer
+    /// positions (32 subpixels per tile; levels it does not model are skipped); and Rapier with
     /// every character shape its users pick, each on one collider per tile and on merged
     /// colliders.
     pub fn builtin_set() -> Vec<RunConfig> {
@@ -116,7 +130,7 @@ impl RunConfig {
             },
             ..Self::sweep_default()
         };
-        let mut set = vec![Self::sweep_default(), continuous];
+        let mut set = vec![Self::sweep_default(), continuous, Self::sweep_integer(32)];
         for shape in CharacterShape::ALL {
             for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
                 set.push(Self::rapier(building, shape));

@@ -213,8 +213,13 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
         .lines()
         .filter(|l| l.contains(",ns_per_character_step,"))
         .collect();
-    // One scenario on the 10 configurations of the built-in comparison.
-    assert_eq!(timing.len(), 10, "{metrics}");
+    // One scenario on the 11 configurations of the built-in comparison.
+    assert_eq!(
+        timing.len(),
+        platbench::scenario::RunConfig::builtin_set().len(),
+        "{metrics}"
+    );
+    assert_eq!(timing.len(), 11);
     for l in timing {
         let value: f64 = l.split(',').nth(5).unwrap().parse().unwrap();
         assert!(value.is_finite() && value > 0.0, "{l}");

@@ -81,3 +81,26 @@ fn the_sweep_carries_its_riders_at_the_base_case_far_inside_the_allowance() {
     assert!(carry.measured < 1e-4, "drift {}", carry.measured);
     assert!(carry.tolerance > 0.1, "allowance {}", carry.tolerance);
 }
+
+#[test]
+fn the_integer_mode_keeps_every_invariant_it_models_up_to_1e7_tiles() {
+    let rows = stress_matrix(&[RunConfig::sweep_integer(32)], |_| {}).unwrap();
+    // Issue 12: offsets up to 1e7 tiles (3.2e8 subpixels: an i64 holds 2.9e17 tiles at 32 per
+    // tile; the bound is the broadphase's f32 tile boxes, exact to 2^24 = 1.7e7 tiles), where
+    // the float mode breaks (the test above). Every dimension at its extremes too. No carry rows:
+    // the mode refuses moving platforms.
+    for v in [0.0, 1e3, 1e4, 1e5, 1e6, 1e7] {
+        assert!(holds(&rows, "offset", v, &[]), "offset {v}");
+    }
+    for (dim, vs) in [
+        ("dt", vec![1e-4, 0.2]),
+        ("speed", vec![10.0, 1000.0]),
+        ("width", vec![0.01, 10.0]),
+    ] {
+        for v in vs {
+            assert!(holds(&rows, dim, v, &[]), "{dim} {v}");
+        }
+    }
+    assert!(rows.iter().all(|r| r.invariant != "carry_no_drift"));
+    assert!(rows.iter().all(|r| r.dimension != "epsilon"));
+}

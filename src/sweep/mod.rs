@@ -8,6 +8,7 @@
 //! that code ([`SweepStats`] counts it).
 
 pub mod broadphase;
+pub mod grid;
 pub mod platforms;
 pub mod resolve;
 pub mod slopes;
@@ -21,7 +22,30 @@ use crate::backend::{
 use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
 use broadphase::{BoxKind, NearCache, StaticTiles};
+use grid::{move_axis_grid, Grid, GridBox, GridPos};
 use resolve::{move_axis, Axis};
+
+/// How the sweep stores positions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Positions {
+    /// f32 world coordinates with the seed's epsilon tolerance.
+    Float,
+    /// Whole subpixels (`per_tile` per tile) with the fractions carried between steps, snapping
+    /// flush in exact integer arithmetic ([`grid`]). Levels with slopes or moving platforms are
+    /// refused in this mode for now.
+    Integer {
+        /// Subpixels per tile (16 and 32 are what pixel-art platformers use).
+        per_tile: u32,
+    },
+}
+
+/// The features the integer mode models.
+pub const INTEGER_SUPPORTED: Features = Features {
+    slopes: false,
+    one_way: true,
+    ladders: true,
+    moving_platforms: false,
+};
 
 /// Settings of the sweep controller.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,6 +59,9 @@ pub struct SweepConfig {
     /// drop in steps (the seed's tile drops 2/16 of a tile between two columns), so following
     /// them at run speed needs a little more than the walkable gradient. Default: 1/8 tile.
     pub snap_down: f32,
+    /// How positions are stored: f32 tiles with the epsilon tolerance (default), or whole
+    /// subpixels, where `epsilon` and `snap_down` play no part.
+    pub positions: Positions,
 }
 
 impl Default for SweepConfig {
@@ -42,6 +69,7 @@ impl Default for SweepConfig {
         SweepConfig {
             epsilon: 0.001,
             snap_down: 0.125,
+            positions: Positions::Float,
         }
     }
 }
@@ -59,6 +87,8 @@ struct Character {
     ground_normal: Vec2,
     /// The static boxes around it, kept between steps.
     near: NearCache,
+    /// Its box on the subpixel grid, in integer mode (unused otherwise).
+    on_grid: GridPos,
 }
 
 /// How often each feature's code ran: evidence that a step costs only what the level contains.
@@ -91,6 +121,8 @@ pub struct SweepBackend {
     origin: Vec2,
     params: MotionParams,
     config: SweepConfig,
+    /// The subpixel grid, in integer mode.
+    grid: Option<Grid>,
     characters: Vec<Character>,
 }
 
@@ -105,6 +137,18 @@ impl SweepBackend {
         config: SweepConfig,
     ) -> Result<Self, BackendError> {
         require_supported("sweep", &level.name, level.features, Self::SUPPORTED)?;
+        let grid = match config.positions {
+            Positions::Float => None,
+            Positions::Integer { per_tile } => {
+                require_supported(
+                    "sweep (integer positions)",
+                    &level.name,
+                    level.features,
+                    INTEGER_SUPPORTED,
+                )?;
+                Some(Grid::new(per_tile, level.origin, &level.name)?)
+            }
+        };
         params.validate()?;
         if !(config.snap_down.is_finite() && config.snap_down >= 0.0) {
             return Err(BackendError::InvalidParameter {
@@ -146,6 +190,7 @@ impl SweepBackend {
             origin: level.origin,
             params,
             config,
+            grid,
             characters: Vec::new(),
         })
     }
@@ -292,6 +337,119 @@ impl SweepBackend {
     }
 }
 
+impl SweepBackend {
+    /// Moves one character by one step on the subpixel grid: the same motion and contact rules
+    /// as [`Self::step_character`], with the moves made in whole subpixels ([`grid`]).
+    fn step_on_grid(&mut self, grid: &Grid, id: usize, input: &Input, dt: f32) {
+        let p = &self.params;
+        let features = self.level.features;
+        let c = &mut self.characters[id];
+        if features.ladders {
+            self.stats.ladder_steps += 1;
+            // The ladder rules work in level coordinates, exact for the feet on the grid.
+            let mut feet = grid.feet(&c.on_grid.b);
+            let before = feet;
+            crate::ladder::enter(
+                &self.level,
+                Vec2::ZERO,
+                &mut c.motion,
+                &mut feet,
+                c.size,
+                input,
+            );
+            if feet != before {
+                let size = c.on_grid.b.max - c.on_grid.b.min;
+                c.on_grid.b = grid.place(feet, size);
+                c.on_grid.remainder = Vec2::ZERO;
+            }
+        }
+        let delta = c.motion.integrate(p, input, dt);
+
+        let n = c.on_grid.whole_move(grid, Axis::X, delta.x);
+        // One-way platforms never block along x.
+        let skip_x = |_: &GridBox, kind: BoxKind| kind == BoxKind::OneWay;
+        let wall = move_axis_grid(
+            &self.tiles,
+            &mut c.near,
+            grid,
+            &mut c.on_grid,
+            Axis::X,
+            n,
+            true,
+            skip_x,
+        )
+        .is_some();
+        if wall {
+            c.on_grid.remainder.x = 0.0;
+        }
+
+        if features.one_way || features.ladders {
+            self.stats.one_way_steps += 1;
+        }
+        let bottom = c.on_grid.b.min.y;
+        let dropping = c.motion.drop_through || c.motion.on_ladder;
+        // A one-way platform blocks only a fall that started entirely above it: in whole
+        // subpixels, feet at or above its top.
+        let skip_y = |t: &GridBox, kind: BoxKind| match kind {
+            BoxKind::OneWay => dropping || delta.y >= 0.0 || bottom < t.max.y,
+            _ => false,
+        };
+        let mut n = c.on_grid.whole_move(grid, Axis::Y, delta.y);
+        if c.motion.drop_through && n == 0 {
+            // The first step of a drop through a one-way platform falls less than a subpixel;
+            // it must still leave the top, or the next step (no longer dropping) lands on it.
+            n = -1;
+            c.on_grid.remainder.y = 0.0;
+        }
+        let mut hit_y = move_axis_grid(
+            &self.tiles,
+            &mut c.near,
+            grid,
+            &mut c.on_grid,
+            Axis::Y,
+            n,
+            true,
+            skip_y,
+        );
+        if hit_y.is_none() && delta.y < 0.0 {
+            // A fall of less than a subpixel this step moves nothing: the ground is there if
+            // the box rests on it (Celeste's "collide check one pixel down").
+            hit_y = move_axis_grid(
+                &self.tiles,
+                &mut c.near,
+                grid,
+                &mut c.on_grid,
+                Axis::Y,
+                -1,
+                false,
+                skip_y,
+            );
+        }
+        if hit_y.is_some() {
+            c.on_grid.remainder.y = 0.0;
+        }
+        let ground = hit_y.is_some() && delta.y < 0.0;
+        let contacts = Contacts {
+            wall,
+            ground,
+            ceiling: hit_y.is_some() && delta.y > 0.0,
+            one_way: hit_y == Some(BoxKind::OneWay),
+        };
+        c.motion.apply_contacts(p, input, contacts);
+        if features.ladders {
+            crate::ladder::leave(
+                &self.level,
+                Vec2::ZERO,
+                &mut c.motion,
+                grid.feet(&c.on_grid.b),
+                c.size,
+                input,
+            );
+        }
+        c.ground_normal = if ground { Vec2::Y } else { Vec2::ZERO };
+    }
+}
+
 impl Backend for SweepBackend {
     fn name(&self) -> &'static str {
         "sweep"
@@ -299,7 +457,21 @@ impl Backend for SweepBackend {
 
     fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
         spec.validate()?;
+        let on_grid = match &self.grid {
+            Some(g) => GridPos {
+                b: g.place(spec.spawn, g.size(spec.size)),
+                remainder: Vec2::ZERO,
+            },
+            None => GridPos {
+                b: GridBox {
+                    min: glam::I64Vec2::ZERO,
+                    max: glam::I64Vec2::ZERO,
+                },
+                remainder: Vec2::ZERO,
+            },
+        };
         self.characters.push(Character {
+            on_grid,
             pos: spec.spawn + self.origin,
             size: spec.size,
             motion: MotionState::with_velocity(spec.velocity),
@@ -315,7 +487,10 @@ impl Backend for SweepBackend {
         for id in 0..self.characters.len() {
             let input = inputs.get(id).copied().unwrap_or_default();
             self.characters[id].crushed = false;
-            self.step_character(id, &input, dt);
+            match self.grid {
+                Some(grid) => self.step_on_grid(&grid, id, &input, dt),
+                None => self.step_character(id, &input, dt),
+            }
         }
         // The seed's order: platforms move after every character has moved.
         if !self.platforms.is_empty() {
@@ -327,7 +502,10 @@ impl Backend for SweepBackend {
     fn state(&self, id: CharacterId) -> CharacterState {
         let c = &self.characters[id];
         CharacterState {
-            pos: c.pos - self.origin,
+            pos: match &self.grid {
+                Some(g) => g.feet(&c.on_grid.b),
+                None => c.pos - self.origin,
+            },
             vel: c.motion.vel,
             grounded: c.motion.grounded,
             ground_normal: if c.motion.grounded {

@@ -1,0 +1,110 @@
+//! The sweep on integer positions (issue 12), asserted from the traces and metrics of the
+//! built-in set: exact rest, no penetration, no jitter, also far from the origin where the float
+//! mode breaks.
+
+mod common;
+
+use common::{builtin_levels, evaluate_all, level, rows};
+use platbench::backend::BackendError;
+use platbench::metrics::evaluate;
+use platbench::scenario::RunConfig;
+use platbench::sweep::INTEGER_SUPPORTED;
+
+const PER_TILE: u32 = 32;
+
+/// The built-in levels the integer mode models (it refuses slopes and moving platforms).
+fn integer_levels() -> Vec<platbench::level::Level> {
+    builtin_levels()
+        .into_iter()
+        .filter(|l| {
+            let f = l.features;
+            (INTEGER_SUPPORTED.slopes || !f.slopes)
+                && (INTEGER_SUPPORTED.moving_platforms || !f.moving_platforms)
+        })
+        .collect()
+}
+
+#[test]
+fn rest_gap_penetration_and_jitter_are_exactly_zero_on_every_scenario_it_runs() {
+    let levels = integer_levels();
+    // flat_seams, drops, jumps, corridor, thin_wall, oneway, ladders, long_floor,
+    // very_long_floor: nine of the fifteen built-in levels.
+    assert_eq!(levels.len(), 9, "levels run");
+    let evals = evaluate_all(&levels, &RunConfig::sweep_integer(PER_TILE));
+    // Issue 12: exactly 0, no tolerance: the grid snaps flush in integers.
+    for m in ["rest_gap", "max_penetration", "rest_jitter"] {
+        let rs = rows(&evals, m);
+        assert!(rs.len() >= 20, "{m} measured on {} scenarios", rs.len());
+        for r in rs {
+            assert_eq!(r.value, 0.0, "{}.{}: {m} {}", r.level, r.scenario, r.value);
+        }
+    }
+}
+
+#[test]
+fn far_from_the_origin_the_integer_mode_rests_exactly_where_the_float_mode_sinks() {
+    // drops.drop_1 placed 1e7 tiles from the origin, where f32 positions are whole tiles apart.
+    let mut l = level("drops");
+    l.origin = glam::Vec2::splat(1e7);
+    let spec = l
+        .scenarios
+        .iter()
+        .find(|s| s.name == "drop_1")
+        .expect("drops.drop_1")
+        .clone();
+    let value = |run: &RunConfig, m: &str| {
+        evaluate(&l, &spec, run)
+            .unwrap()
+            .metrics
+            .iter()
+            .find(|r| r.metric == m)
+            .map(|r| r.value)
+            .unwrap_or_else(|| panic!("no {m}"))
+    };
+    let float = RunConfig::sweep_default();
+    let int = RunConfig::sweep_integer(PER_TILE);
+    // The float mode breaks there: its feet land a rounding of a whole tile off the floor's top
+    // (`platbench stress`: it sinks 0.4 tiles). Its tolerance is its epsilon, 0.001.
+    assert!(
+        value(&float, "max_penetration") > 0.001 || value(&float, "rest_gap").abs() > 0.001,
+        "the float mode was expected to break at 1e7 tiles"
+    );
+    for m in ["rest_gap", "max_penetration", "rest_jitter"] {
+        assert_eq!(value(&int, m), 0.0, "integer mode {m} at 1e7 tiles");
+    }
+}
+
+#[test]
+fn the_exact_discrete_jump_reaches_its_height_to_the_subpixel() {
+    let evals = evaluate_all(&[level("jumps")], &RunConfig::sweep_integer(PER_TILE));
+    let apex = rows(&evals, "apex_error");
+    assert!(apex.len() >= 6, "apex measured on {} jumps", apex.len());
+    for r in apex {
+        // Issue 12: the apex lands on the requested height to the subdivision (1/32 tile): the
+        // moves are the float moves rounded with the remainder carried, so the position is never
+        // more than a subpixel from the float jump, whose discrete apex is exact.
+        assert!(
+            r.value.abs() <= 1.0 / PER_TILE as f64,
+            "{}: apex_error {}",
+            r.scenario,
+            r.value
+        );
+    }
+}
+
+#[test]
+fn a_level_with_slopes_or_moving_platforms_is_refused_naming_the_feature() {
+    for (name, feature) in [("slope_45", "slopes"), ("platforms", "moving platforms")] {
+        let l = level(name);
+        let err = evaluate(&l, &l.scenarios[0], &RunConfig::sweep_integer(PER_TILE))
+            .err()
+            .unwrap_or_else(|| panic!("{name} was expected to be refused"));
+        assert!(
+            matches!(&err, BackendError::Unsupported { feature: f, .. } if f.contains(feature)),
+            "{name}: {err}"
+        );
+        assert!(err.to_string().contains("integer positions"), "{err}");
+        // The float mode runs the same level.
+        assert!(evaluate(&l, &l.scenarios[0], &RunConfig::sweep_default()).is_ok());
+    }
+}
