@@ -515,3 +515,154 @@ fn unsupported_maps_and_layers_are_errors() {
         "{e}"
     );
 }
+
+#[test]
+fn the_showcase_runs_on_every_configuration_of_both_backends() {
+    use platbench::metrics::evaluate;
+    use platbench::scenario::RunConfig;
+    let (level, _) = load_tiled_map(&shipped("showcase.tmx")).unwrap();
+    let configs = RunConfig::builtin_set();
+    assert!(configs.iter().any(|c| c.backend.name() == "sweep"));
+    assert!(configs.iter().any(|c| c.backend.name() == "rapier"));
+    for run in &configs {
+        let who = format!("{}/{}", run.backend.name(), run.label);
+        for spec in &level.scenarios {
+            let e = evaluate(&level, spec, run).unwrap();
+            let rows = &e.trace.rows;
+            assert!(
+                rows.iter().all(|r| r.x.is_finite() && r.y.is_finite()),
+                "{who} {}: a position is not finite",
+                spec.name
+            );
+            assert!(
+                e.metrics.iter().all(|m| !m.value.is_nan()),
+                "{who} {}: a metric is NaN",
+                spec.name
+            );
+            if spec.name.ends_with("-ride") {
+                // The ride probe measures carrying on every configuration.
+                assert!(
+                    e.metrics.iter().any(|m| m.metric == "carry_drift"),
+                    "{who} {}: no carry_drift",
+                    spec.name
+                );
+            }
+            if run.backend.name() != "sweep" || run.label != RunConfig::sweep_default().label {
+                continue;
+            }
+            let last = rows.last().unwrap();
+            let metric = |name: &str| {
+                e.metrics
+                    .iter()
+                    .find(|m| m.metric == name)
+                    .unwrap_or_else(|| panic!("{} has no {name}", spec.name))
+                    .value
+            };
+            match spec.name.as_str() {
+                "start-walk_right" => {
+                    // Up the collision-editor ramp at i = 8 onto the plateau (top at y = 2,
+                    // i = 9..13), down its mirror at i = 13 and on: past x = 14, the mirror's
+                    // right edge, back on the floor (y = 1).
+                    let top = rows.iter().map(|r| r.y).fold(f32::MIN, f32::max);
+                    assert!((top - 2.0).abs() < 1e-3, "plateau top 2, got {top}");
+                    assert!(last.x > 14.0, "ended at x = {}", last.x);
+                    assert!((last.y - 1.0).abs() < 1e-3, "ended at y = {}", last.y);
+                }
+                "start-jump" => {
+                    // A 3-tile jump from the floor (y = 1) passes up through the one-way row at
+                    // j = 2 and lands on its top, y = 3.
+                    assert!((last.y - 3.0).abs() < 1e-3, "ended at y = {}", last.y);
+                    assert!(last.is_grounded(), "not grounded on the one-way top");
+                }
+                "start-ride" => {
+                    // Issue 5's bound for the sweep on horizontal rides (tests/platforms.rs).
+                    assert!(metric("carry_drift") <= 1e-4, "{}", metric("carry_drift"));
+                    assert_eq!(metric("carry_airborne_frames"), 0.0);
+                    assert_eq!(last.platform, Some(0));
+                }
+                "start-drop" => {
+                    // Spawned on the floor: at rest on it, no gap (issue 2's bound, 1e-4
+                    // tiles, as in tests/sweep_builtin.rs).
+                    assert!(metric("rest_gap").abs() <= 1e-4, "{}", metric("rest_gap"));
+                }
+                _ => {}
+            }
+        }
+    }
+}
+
+fn platbench() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_platbench"))
+}
+
+#[test]
+fn report_on_a_tiled_map_shows_it_like_a_built_in_level() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = platbench()
+        .arg("report")
+        .arg(shipped("showcase.tmx"))
+        .arg("--out")
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    for f in ["report.md", "report.html"] {
+        let text = std::fs::read_to_string(dir.path().join(f)).unwrap();
+        assert!(
+            text.contains("showcase"),
+            "{f} does not name the map's level"
+        );
+    }
+}
+
+#[test]
+fn run_mixes_toml_and_tiled_files_and_prints_warnings() {
+    let dir = tempfile::tempdir().unwrap();
+    // The showcase with one map property platbench does not read: one warning.
+    let tmx = std::fs::read_to_string(shipped("showcase.tmx"))
+        .unwrap()
+        .replace(
+            "<properties>",
+            "<properties>\n  <property name=\"music\" value=\"theme.ogg\"/>",
+        );
+    std::fs::write(dir.path().join("mine.tmx"), tmx).unwrap();
+    std::fs::copy(shipped("terrain.tsx"), dir.path().join("terrain.tsx")).unwrap();
+    std::fs::write(
+        dir.path().join("small.toml"),
+        "map = \"\"\"\n....\n####\n\"\"\"\n[[scenario]]\nname = \"drop\"\nspawn = [1.5, 2.0]\nduration = 1.0\n",
+    )
+    .unwrap();
+    let out_dir = dir.path().join("out");
+    let out = platbench()
+        .args(["run", "--backend", "sweep", "--out"])
+        .arg(&out_dir)
+        .arg(dir.path().join("small.toml"))
+        .arg(dir.path().join("mine.tmx"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: ") && stderr.contains("mine.tmx: map: property \"music\""),
+        "{stderr}"
+    );
+    let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
+    assert!(metrics.contains("\nsmall,drop,sweep,"), "{metrics}");
+    assert!(metrics.contains("\nmine,start-ride,sweep,"), "{metrics}");
+    assert!(out_dir
+        .join("traces/mine.start-walk_right.sweep.csv")
+        .exists());
+    // A map with nothing to run is an error, named, with exit code 2.
+    let out = platbench()
+        .arg("run")
+        .arg(shipped("rules.tmx"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("rules.tmx") && stderr.contains("no spawn points"),
+        "{stderr}"
+    );
+}
