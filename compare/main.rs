@@ -11,7 +11,7 @@ use std::time::Instant;
 use anyhow::{bail, Context as _, Result};
 use clap::{Args, Parser, Subcommand};
 
-use platbench::level::{parse_level, Level};
+use platbench::level::{load_tiled_map, parse_level, Level};
 use platbench::metrics::{evaluate_with, MetricRow};
 use platbench::report::{detail_table, notes, summary_table};
 use platbench::scenario::{BackendConfig, RunConfig, Runner};
@@ -52,7 +52,7 @@ enum Command {
         /// Output directory for tradeoff.csv and tradeoff.svg.
         #[arg(long, default_value = "platbench-sweep")]
         out: PathBuf,
-        /// Level files (TOML); the built-in set when none is given.
+        /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
         levels: Vec<PathBuf>,
     },
     /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
@@ -76,7 +76,7 @@ enum Command {
 
 #[derive(Args)]
 struct ReportArgs {
-    /// Level files (TOML); the built-in set when none is given.
+    /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
     levels: Vec<PathBuf>,
     /// Directory for report.html and report.md.
     #[arg(long, default_value = "platbench-report")]
@@ -123,7 +123,7 @@ struct DiffArgs {
 #[derive(Args, Default)]
 #[command(allow_negative_numbers = true)]
 struct RunArgs {
-    /// Level files (TOML); the built-in set when none is given.
+    /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
     levels: Vec<PathBuf>,
     /// Output directory.
     #[arg(long, default_value = "platbench-out")]
@@ -190,9 +190,18 @@ fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
     }
     let mut levels: Vec<Level> = Vec::new();
     for p in paths {
-        let text = std::fs::read_to_string(p)
-            .with_context(|| format!("cannot read level file {}", p.display()))?;
-        let level = parse_level(&text, &p.display().to_string())?;
+        let is_tiled = p.extension().is_some_and(|e| e.eq_ignore_ascii_case("tmx"));
+        let level = if is_tiled {
+            let (level, warnings) = load_tiled_map(p)?;
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+            level
+        } else {
+            let text = std::fs::read_to_string(p)
+                .with_context(|| format!("cannot read level file {}", p.display()))?;
+            parse_level(&text, &p.display().to_string())?
+        };
         if let Some(other) = levels.iter().find(|l| l.name == level.name) {
             bail!(
                 "{} and {} both name their level {:?}; level names must be unique in a run (they name the trace files)",

@@ -1,6 +1,6 @@
 //! platbench: run 2D platformer character controllers over the same levels and compare them.
 //!
-//! The pieces, in dependency order: [`level`] (the tile model and its text format) ←
+//! The pieces, in dependency order: [`level`] (the tile model, its text format and the Tiled import) ←
 //! [`motion`] and [`backend`] (shared game rules and the controller interface) ← the
 //! controllers ([`sweep`], [`rapier`]) ← [`scenario`] (the runner) and [`trace`] ← [`metrics`] ←
 //! [`report`]. The `platbench` binary only wires these together.

@@ -2,13 +2,18 @@
 //! the scenarios that run on it. It knows nothing of backends.
 //!
 //! Coordinates: tile `(i, j)` covers `[i, i+1] x [j, j+1]`; `j = 0` is the bottom row and y
-//! points up. The text format ([`parse`]) lists map rows top to bottom.
+//! points up. The text format ([`parse`]) lists map rows top to bottom; Tiled maps
+//! ([`tiled`]) are imported into the same model.
 
 mod parse;
 mod platform;
+pub mod probes;
+pub mod tiled;
 
-pub use parse::{parse_level, LevelError};
+pub use parse::{parse_level, parse_scenarios, LevelError};
 pub use platform::{Platform, PlatformMotion};
+pub use probes::{probe_scenarios, ProbeConfig, SpawnPoint};
+pub use tiled::{import_tiled_map, load_tiled_map, TiledError, TiledImport, TiledWarning};
 
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;

@@ -166,7 +166,44 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
     for p in &raw.platform {
         level.platforms.push(parse_platform(&loc, p)?);
     }
-    for s in &raw.scenario {
+    level.features.moving_platforms = !level.platforms.is_empty();
+    level.scenarios = scenarios(&loc, &level, &raw.scenario)?;
+    Ok(level)
+}
+
+/// The `[[scenario]]` entries of a side file: scenarios for a level that was not read from TOML
+/// (an imported map). Nothing else may stand in the file.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScenarioFile {
+    #[serde(default)]
+    scenario: Vec<Spanned<RawScenario>>,
+}
+
+/// Parses the `[[scenario]]` entries of a TOML text against `level` (an imported map's side
+/// file): the same fields and checks as in a level file (unique names, `ride` naming one of the
+/// level's platforms, spawns outside solid tiles), with errors at the file's line and column.
+/// `file` names the text in errors.
+pub fn parse_scenarios(
+    text: &str,
+    file: &str,
+    level: &Level,
+) -> Result<Vec<ScenarioSpec>, LevelError> {
+    let loc = Locator { file, text };
+    let raw: RawScenarioFile = toml::from_str(text).map_err(|e| {
+        let offset = e.span().map_or(0, |s| s.start);
+        loc.err(offset, e.message().trim().to_string())
+    })?;
+    scenarios(&loc, level, &raw.scenario)
+}
+
+/// Checks and converts scenario entries against the level they run on.
+fn scenarios(
+    loc: &Locator,
+    level: &Level,
+    raw: &[Spanned<RawScenario>],
+) -> Result<Vec<ScenarioSpec>, LevelError> {
+    for s in raw {
         if let Some(r) = &s.get_ref().ride {
             if *r.get_ref() as usize >= level.platforms.len() {
                 return Err(loc.at(
@@ -180,10 +217,10 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
             }
         }
     }
-    level.features.moving_platforms = !level.platforms.is_empty();
     let mut seen = HashMap::new();
-    for s in &raw.scenario {
-        let spec = parse_scenario(&loc, s.get_ref())?;
+    let mut out = Vec::with_capacity(raw.len());
+    for s in raw {
+        let spec = parse_scenario(loc, s.get_ref())?;
         if let Some(prev) = seen.insert(spec.name.clone(), s.span()) {
             let first = loc.at(&prev, "");
             return Err(loc.at(
@@ -194,10 +231,10 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
                 ),
             ));
         }
-        check_spawn(&loc, &level, &spec, &s.get_ref().spawn.span())?;
-        level.scenarios.push(spec);
+        check_spawn(loc, level, &spec, &s.get_ref().spawn.span())?;
+        out.push(spec);
     }
-    Ok(level)
+    Ok(out)
 }
 
 fn parse_legend(

@@ -1,0 +1,213 @@
+//! The standard probes: scenarios for a level that comes with none (an imported map carries no
+//! scripts). At each spawn point the character drops, walks left, walks right and jumps; and it
+//! rides the platform nearest to the spawn, set down on the platform's top at t = 0 so that
+//! the whole run measures carrying.
+
+use glam::Vec2;
+
+use super::{character_box, InputEvent, Level, MotionOverrides, PlatformMotion, ScenarioSpec};
+use super::{DEFAULT_CHARACTER_SIZE, DEFAULT_DT};
+
+/// A place where a character starts, from a map's spawn object.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpawnPoint {
+    /// Name, the prefix of its probes' scenario names (the object's name, or `spawn<ID>`).
+    pub name: String,
+    /// Where the character's feet (bottom centre) start, in tiles.
+    pub position: Vec2,
+}
+
+/// The timing of the probes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProbeConfig {
+    /// Length of the drop probe, in seconds: time to fall and come to rest.
+    pub drop_duration: f32,
+    /// Time the character stands (or falls) before a walk or jump begins, in seconds, so that
+    /// it starts from the ground when the spawn is a little above it.
+    pub settle: f32,
+    /// How long a walk probe holds its direction, in seconds.
+    pub walk_time: f32,
+    /// Idle time after a walk or jump, in seconds: the rest metrics need 0.5 s at the end.
+    pub rest: f32,
+    /// How long the jump button is held, in seconds (the jump's height does not depend on it).
+    pub jump_hold: f32,
+    /// Length of the jump probe after the settle time, in seconds: up, down and rest.
+    pub jump_time: f32,
+    /// Shortest ride, in seconds.
+    pub ride_min: f32,
+    /// Longest ride, in seconds (a ride lasts one round trip of the platform's path within
+    /// these bounds).
+    pub ride_max: f32,
+}
+
+impl Default for ProbeConfig {
+    fn default() -> Self {
+        ProbeConfig {
+            drop_duration: 2.0,
+            settle: 1.0,
+            walk_time: 3.0,
+            rest: 1.0,
+            jump_hold: 0.2,
+            jump_time: 2.0,
+            ride_min: 2.0,
+            ride_max: 12.0,
+        }
+    }
+}
+
+fn spec(name: String, spawn: Vec2, duration: f32, inputs: Vec<InputEvent>) -> ScenarioSpec {
+    ScenarioSpec {
+        name,
+        spawn,
+        size: DEFAULT_CHARACTER_SIZE,
+        velocity: Vec2::ZERO,
+        duration,
+        dt: DEFAULT_DT,
+        inputs,
+        motion: MotionOverrides::default(),
+        expect_y: None,
+        ride: None,
+    }
+}
+
+/// The probes at every spawn point, named `<spawn>-drop`, `<spawn>-walk_left`,
+/// `<spawn>-walk_right`, `<spawn>-jump` and `<spawn>-ride`; the ride is left out, with a note,
+/// when the level has no platform or the platform's top has no room for the character. Returns
+/// the scenarios and the notes as (subject, message).
+pub fn probe_scenarios(
+    level: &Level,
+    spawns: &[SpawnPoint],
+    cfg: &ProbeConfig,
+) -> (Vec<ScenarioSpec>, Vec<(String, String)>) {
+    let mut out = Vec::new();
+    let mut notes = Vec::new();
+    for s in spawns {
+        let at = s.position;
+        let n = &s.name;
+        out.push(spec(format!("{n}-drop"), at, cfg.drop_duration, Vec::new()));
+        let walk_end = cfg.settle + cfg.walk_time;
+        for (dir, left) in [("left", true), ("right", false)] {
+            let press = |t: f32, on: bool| InputEvent {
+                t,
+                left: left.then_some(on),
+                right: (!left).then_some(on),
+                ..InputEvent::default()
+            };
+            out.push(spec(
+                format!("{n}-walk_{dir}"),
+                at,
+                walk_end + cfg.rest,
+                vec![press(cfg.settle, true), press(walk_end, false)],
+            ));
+        }
+        let jump = |t: f32, on: bool| InputEvent {
+            t,
+            jump: Some(on),
+            ..InputEvent::default()
+        };
+        out.push(spec(
+            format!("{n}-jump"),
+            at,
+            cfg.settle + cfg.jump_time,
+            vec![
+                jump(cfg.settle, true),
+                jump(cfg.settle + cfg.jump_hold, false),
+            ],
+        ));
+        match ride(level, at, cfg) {
+            Ok((index, spawn, duration)) => {
+                let mut r = spec(format!("{n}-ride"), spawn, duration, Vec::new());
+                r.ride = Some(index);
+                out.push(r);
+            }
+            Err(why) => notes.push((format!("spawn {n:?}"), format!("no ride probe: {why}"))),
+        }
+    }
+    (out, notes)
+}
+
+/// The platform nearest to `at` (by the distance to its box at t = 0), the spawn on the middle
+/// of its top, and the ride's length.
+fn ride(level: &Level, at: Vec2, cfg: &ProbeConfig) -> Result<(u32, Vec2, f32), String> {
+    let (index, p) = level
+        .platforms
+        .iter()
+        .enumerate()
+        .min_by(|(_, a), (_, b)| {
+            let d = |p: &super::Platform| {
+                let b = p.aabb(0.0);
+                (at.clamp(b.mins, b.maxs) - at).length()
+            };
+            d(a).total_cmp(&d(b))
+        })
+        .ok_or("the map has no moving platform")?;
+    let spawn = p.start + Vec2::new(p.size.x * 0.5, p.size.y);
+    if let Some(t) = level
+        .solids_overlapping(&character_box(spawn, DEFAULT_CHARACTER_SIZE))
+        .next()
+    {
+        return Err(format!(
+            "on top of platform {index} the character would stand inside the solid tile at ({}, {})",
+            t.mins.x, t.mins.y
+        ));
+    }
+    let round_trip = match &p.motion {
+        PlatformMotion::Waypoints { points, speed } => {
+            let len: f32 = points.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+            2.0 * len / speed
+        }
+        PlatformMotion::Sine { period, .. } | PlatformMotion::Circle { period, .. } => *period,
+    };
+    let duration = round_trip.clamp(cfg.ride_min, cfg.ride_max);
+    Ok((index as u32, spawn, duration))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::level::{Platform, Tile};
+
+    #[test]
+    fn five_probes_per_spawn_and_the_ride_starts_on_the_nearest_platform() {
+        let mut l = Level::from_tiles("t", 20, 10, {
+            let mut t = vec![Tile::Solid; 20];
+            t.extend(vec![Tile::Empty; 180]);
+            t
+        });
+        for x in [2.0, 12.0] {
+            l.platforms.push(Platform {
+                start: Vec2::new(x, 4.0),
+                size: Vec2::new(3.0, 0.5),
+                motion: PlatformMotion::Waypoints {
+                    points: vec![Vec2::new(x, 4.0), Vec2::new(x + 4.0, 4.0)],
+                    speed: 2.0,
+                },
+                one_way: false,
+            });
+        }
+        let spawns = [SpawnPoint {
+            name: "a".into(),
+            position: Vec2::new(11.0, 1.0),
+        }];
+        let (s, notes) = probe_scenarios(&l, &spawns, &ProbeConfig::default());
+        assert!(notes.is_empty());
+        let names: Vec<&str> = s.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(
+            names,
+            ["a-drop", "a-walk_left", "a-walk_right", "a-jump", "a-ride"]
+        );
+        let ride = &s[4];
+        // Platform 1 (at x = 12) is nearer to x = 11 than platform 0 (ends at x = 5).
+        assert_eq!(ride.ride, Some(1));
+        assert_eq!(ride.spawn, Vec2::new(13.5, 4.5));
+        // One round trip: 2 x 4 tiles at 2 tiles/s.
+        assert_eq!(ride.duration, 4.0);
+        assert_eq!(s[1].inputs[0].left, Some(true));
+        assert_eq!(s[2].inputs[0].right, Some(true));
+
+        l.platforms.clear();
+        let (s, notes) = probe_scenarios(&l, &spawns, &ProbeConfig::default());
+        assert_eq!(s.len(), 4);
+        assert!(notes[0].1.contains("no moving platform"), "{notes:?}");
+    }
+}
