@@ -76,8 +76,8 @@ const RIDE_PERIOD: f32 = 4.0;
 
 /// The probe level: a floor 300 tiles long with a one-tile wall at x = 250, 40 tiles high (room
 /// for a 10-tile character), and for the rides (a level of their own, so that a configuration
-/// without moving platforms still runs the static probes) two 12-tile platforms swaying on sines of period [`RIDE_PERIOD`]:
-/// platform 0 across x = 8..28 (amplitude 4 tiles, up to 6.3 tiles/s), platform 1 up and down
+/// without moving platforms still runs the static probes) two 12-tile platforms swaying on
+/// sines of period [`RIDE_PERIOD`]: platform 0 across x = 8..28 (amplitude 4 tiles, up to 6.3 tiles/s), platform 1 up and down
 /// y = 4..8 (amplitude 2 tiles, up to 3.1 tiles/s, its largest downward acceleration 4.9 tiles/s²,
 /// well under gravity, so a rider can stay on). Rides along one axis at a time: on a diagonal or
 /// circular path Rapier's controller loses its platform even at the base case (the built-in
@@ -115,23 +115,14 @@ fn probe_level(offset: f32, with_platforms: bool) -> Level {
 /// The probes: a drop onto the floor then rest, a walk along the floor, a fast mover aimed at the
 /// wall, and a rider standing on each moving platform for two of its periods and a half.
 fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
-    let spec = |name: &str, spawn: Vec2, velocity: Vec2, duration: f32, inputs: Vec<InputEvent>| {
-        ScenarioSpec {
-            name: name.into(),
-            spawn,
-            size,
-            velocity,
-            duration,
-            dt,
-            inputs,
-            motion: Default::default(),
-            expect_y: None,
-            ride: match name {
-                "ride_across" => Some(0),
-                "ride_up_down" => Some(1),
-                _ => None,
-            },
-        }
+    let spec = |name: &str, spawn: Vec2, duration: f32, inputs: Vec<InputEvent>| ScenarioSpec {
+        size,
+        dt,
+        ..ScenarioSpec::new(name.into(), spawn, duration, inputs)
+    };
+    let ride = |name: &str, x: f32, platform: u32| ScenarioSpec {
+        ride: Some(platform),
+        ..spec(name, Vec2::new(x, 6.5), 2.5 * RIDE_PERIOD, vec![])
     };
     let right = InputEvent {
         t: 0.0,
@@ -144,35 +135,14 @@ fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
         ..Default::default()
     };
     vec![
-        spec("drop", Vec2::new(50.5, 3.0), Vec2::ZERO, 2.0, vec![]),
-        spec(
-            "walk",
-            Vec2::new(100.5, 1.0),
-            Vec2::ZERO,
-            2.0,
-            vec![right, stop],
-        ),
-        spec(
-            "fast",
-            Vec2::new(150.5 - size.x, 1.5),
-            Vec2::new(speed, 0.0),
-            2.0,
-            vec![],
-        ),
-        spec(
-            "ride_across",
-            Vec2::new(18.0, 6.5),
-            Vec2::ZERO,
-            2.5 * RIDE_PERIOD,
-            vec![],
-        ),
-        spec(
-            "ride_up_down",
-            Vec2::new(36.0, 6.5),
-            Vec2::ZERO,
-            2.5 * RIDE_PERIOD,
-            vec![],
-        ),
+        spec("drop", Vec2::new(50.5, 3.0), 2.0, vec![]),
+        spec("walk", Vec2::new(100.5, 1.0), 2.0, vec![right, stop]),
+        ScenarioSpec {
+            velocity: Vec2::new(speed, 0.0),
+            ..spec("fast", Vec2::new(150.5 - size.x, 1.5), 2.0, vec![])
+        },
+        ride("ride_across", 18.0, 0),
+        ride("ride_up_down", 36.0, 1),
     ]
 }
 
@@ -211,11 +181,13 @@ fn carry_drift(p: &Platform, origin: Vec2, trace: &crate::trace::Trace, dt: f32)
     (drift, 2.0 * step)
 }
 
-/// The penetration a backend is held to: the sweep's epsilon, Rapier's offset (1% of the
-/// character's height) - each controller's own contact tolerance.
+/// The penetration a backend is held to: the sweep's epsilon, none on integer positions (they
+/// snap exactly and have no epsilon), Rapier's offset (1% of the character's height) - each
+/// controller's own contact tolerance.
 fn penetration_tolerance(run: &RunConfig, size: Vec2) -> f64 {
     match &run.backend {
-        BackendConfig::Sweep(c) => c.epsilon as f64,
+        BackendConfig::Sweep(c) if c.positions == Positions::Float => c.epsilon as f64,
+        BackendConfig::Sweep(_) => 0.0,
         BackendConfig::Rapier(_) => 0.01 * size.y as f64,
     }
 }

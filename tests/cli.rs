@@ -1,10 +1,8 @@
 //! The `platbench` command as a user runs it.
 
-use std::process::Command;
+mod common;
 
-fn platbench() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_platbench"))
-}
+use common::{assert_success, platbench};
 
 #[test]
 fn no_arguments_prints_the_summary() {
@@ -40,11 +38,7 @@ fn run_writes_traces_and_metrics() {
         .arg(&out_dir)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
     assert!(
         metrics.starts_with("level,scenario,backend,config,metric,value,unit,reference,error\n")
@@ -111,11 +105,7 @@ fn an_unchanged_run_diffs_clean_and_a_changed_constant_is_named() {
         .arg(&same)
         .output()
         .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    assert_success(&run);
     let d = platbench()
         .arg("diff")
         .arg(baseline)
@@ -203,11 +193,7 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
         .arg(&level)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
     let timing: Vec<&str> = metrics
         .lines()

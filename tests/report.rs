@@ -1,21 +1,19 @@
 //! The HTML report as a reader gets it: self-contained, one picture per scenario, every drawn
 //! backend's path in each.
 
-use std::process::Command;
+mod common;
+
+use common::{assert_success, platbench};
 
 #[test]
 fn report_is_self_contained_with_one_picture_per_scenario() {
     let dir = tempfile::tempdir().unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_platbench"))
+    let out = platbench()
         .args(["report", "--out"])
         .arg(dir.path())
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
     let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     // The Markdown twin lists each scenario as "- level.scenario".
@@ -51,7 +49,7 @@ fn report_is_self_contained_with_one_picture_per_scenario() {
 
 /// `platbench report` on one small level, writing into `dir`, with `extra` arguments.
 fn report_on_flat_seams(dir: &std::path::Path, extra: &[&std::ffi::OsStr]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_platbench"))
+    platbench()
         .args(["report", "compare/levels/flat_seams.toml", "--out"])
         .arg(dir)
         .args(extra)
@@ -113,11 +111,7 @@ fn report_includes_the_tradeoff_chart_and_the_stability_table_when_given() {
             dir.path().join("stability.csv").as_os_str(),
         ],
     );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
     let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     assert!(html.contains("class=\"tradeoff\""), "the chart is drawn");

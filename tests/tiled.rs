@@ -1,6 +1,9 @@
 //! Tiled maps (issue 9): each mapping rule, each unsupported construct's message, the probes,
 //! the side file, and the showcase map run end to end on both backends.
 
+mod common;
+
+use common::platbench;
 use std::path::{Path, PathBuf};
 
 use glam::Vec2;
@@ -572,7 +575,8 @@ fn the_showcase_runs_on_every_configuration_of_both_backends() {
                 "start-walk_right" => {
                     // Up the collision-editor ramp at i = 8 onto the plateau (top at y = 2,
                     // i = 9..13), down its mirror at i = 13 and on: past x = 14, the mirror's
-                    // right edge, back on the floor (y = 1).
+                    // right edge, back on the floor (y = 1). Heights within the sweep's epsilon,
+                    // 1e-3.
                     let top = rows.iter().map(|r| r.y).fold(f32::MIN, f32::max);
                     assert!((top - 2.0).abs() < 1e-3, "plateau top 2, got {top}");
                     assert!(last.x > 14.0, "ended at x = {}", last.x);
@@ -580,7 +584,7 @@ fn the_showcase_runs_on_every_configuration_of_both_backends() {
                 }
                 "start-jump" => {
                     // A 3-tile jump from the floor (y = 1) passes up through the one-way row at
-                    // j = 2 and lands on its top, y = 3.
+                    // j = 2 and lands on its top, y = 3 (within the sweep's epsilon, 1e-3).
                     assert!((last.y - 3.0).abs() < 1e-3, "ended at y = {}", last.y);
                     assert!(last.is_grounded(), "not grounded on the one-way top");
                 }
@@ -599,10 +603,6 @@ fn the_showcase_runs_on_every_configuration_of_both_backends() {
             }
         }
     }
-}
-
-fn platbench() -> std::process::Command {
-    std::process::Command::new(env!("CARGO_BIN_EXE_platbench"))
 }
 
 #[test]

@@ -219,6 +219,34 @@ pub struct ScenarioSpec {
     pub ride: Option<u32>,
 }
 
+impl ScenarioSpec {
+    /// A scenario with the default character, time step and motion, from rest, no expected end
+    /// place and no platform ridden: the fields other code then sets what it needs of.
+    pub fn new(name: String, spawn: Vec2, duration: f32, inputs: Vec<InputEvent>) -> Self {
+        ScenarioSpec {
+            name,
+            spawn,
+            size: DEFAULT_CHARACTER_SIZE,
+            velocity: Vec2::ZERO,
+            duration,
+            dt: DEFAULT_DT,
+            inputs,
+            motion: MotionOverrides::default(),
+            expect_y: None,
+            ride: None,
+        }
+    }
+}
+
+/// Whether `name` can name a level or scenario: non-empty ASCII letters, digits, '_' or '-',
+/// since it names output files (and '.' separates the parts of a trace file's name).
+pub fn valid_name(name: &str) -> bool {
+    !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}
+
 /// Default character box: 0.8 x 0.9 tiles, the size of the reference measurements.
 pub const DEFAULT_CHARACTER_SIZE: Vec2 = Vec2::new(0.8, 0.9);
 /// Default time step: 1/60 s.

@@ -146,11 +146,7 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
             .unwrap_or("level")
             .to_string()
     });
-    if name.is_empty()
-        || !name
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-    {
+    if !super::valid_name(&name) {
         return Err(loc.err(
             0,
             format!("level name {name:?} must be non-empty ASCII letters, digits, '_' or '-' (it names output files)"),
@@ -518,11 +514,7 @@ fn vec2(
 
 fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelError> {
     let name = s.name.get_ref().clone();
-    if name.is_empty()
-        || !name
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-    {
+    if !super::valid_name(&name) {
         return Err(loc.at(
             &s.name.span(),
             format!("scenario name {name:?} must be non-empty ASCII letters, digits, '_' or '-' (it names output files)"),

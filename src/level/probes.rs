@@ -5,8 +5,8 @@
 
 use glam::Vec2;
 
-use super::{character_box, InputEvent, Level, MotionOverrides, PlatformMotion, ScenarioSpec};
-use super::{DEFAULT_CHARACTER_SIZE, DEFAULT_DT};
+use super::DEFAULT_CHARACTER_SIZE;
+use super::{character_box, InputEvent, Level, PlatformMotion, ScenarioSpec};
 
 /// A place where a character starts, from a map's spawn object.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,21 +55,6 @@ impl Default for ProbeConfig {
     }
 }
 
-fn spec(name: String, spawn: Vec2, duration: f32, inputs: Vec<InputEvent>) -> ScenarioSpec {
-    ScenarioSpec {
-        name,
-        spawn,
-        size: DEFAULT_CHARACTER_SIZE,
-        velocity: Vec2::ZERO,
-        duration,
-        dt: DEFAULT_DT,
-        inputs,
-        motion: MotionOverrides::default(),
-        expect_y: None,
-        ride: None,
-    }
-}
-
 /// The probes at every spawn point, named `<spawn>-drop`, `<spawn>-walk_left`,
 /// `<spawn>-walk_right`, `<spawn>-jump` and `<spawn>-ride`; the ride is left out, with a note,
 /// when the level has no platform or the platform's top has no room for the character. Returns
@@ -84,7 +69,12 @@ pub fn probe_scenarios(
     for s in spawns {
         let at = s.position;
         let n = &s.name;
-        out.push(spec(format!("{n}-drop"), at, cfg.drop_duration, Vec::new()));
+        out.push(ScenarioSpec::new(
+            format!("{n}-drop"),
+            at,
+            cfg.drop_duration,
+            Vec::new(),
+        ));
         let walk_end = cfg.settle + cfg.walk_time;
         for (dir, left) in [("left", true), ("right", false)] {
             let press = |t: f32, on: bool| InputEvent {
@@ -93,7 +83,7 @@ pub fn probe_scenarios(
                 right: (!left).then_some(on),
                 ..InputEvent::default()
             };
-            out.push(spec(
+            out.push(ScenarioSpec::new(
                 format!("{n}-walk_{dir}"),
                 at,
                 walk_end + cfg.rest,
@@ -105,7 +95,7 @@ pub fn probe_scenarios(
             jump: Some(on),
             ..InputEvent::default()
         };
-        out.push(spec(
+        out.push(ScenarioSpec::new(
             format!("{n}-jump"),
             at,
             cfg.settle + cfg.jump_time,
@@ -116,7 +106,7 @@ pub fn probe_scenarios(
         ));
         match ride(level, at, cfg) {
             Ok((index, spawn, duration)) => {
-                let mut r = spec(format!("{n}-ride"), spawn, duration, Vec::new());
+                let mut r = ScenarioSpec::new(format!("{n}-ride"), spawn, duration, Vec::new());
                 r.ride = Some(index);
                 out.push(r);
             }

@@ -16,7 +16,7 @@ use tiled::{LayerType, ObjectShape, PropertyValue, TileLayer};
 
 use super::probes::{probe_scenarios, ProbeConfig, SpawnPoint};
 use super::{character_box, parse_scenarios, Level, LevelError, Platform, PlatformMotion};
-use super::{Slope, Tile, DEFAULT_CHARACTER_SIZE};
+use super::{valid_name, Slope, Tile, DEFAULT_CHARACTER_SIZE};
 
 /// How far a collision-shape point may be from the tile edge or corner it stands for, in
 /// pixels: the editor snaps to whole pixels, so a hand-drawn ramp is exact to about one.
@@ -795,13 +795,6 @@ impl<'m> Importer<'m> {
             one_way,
         })
     }
-}
-
-/// Whether a name can name output files (and scenarios).
-fn valid_name(n: &str) -> bool {
-    !n.is_empty()
-        && n.chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
 }
 
 fn kind_of(v: &PropertyValue) -> &'static str {

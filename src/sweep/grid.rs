@@ -24,7 +24,7 @@ use crate::backend::BackendError;
 pub const MAX_GRID_EXTENT: f64 = 16_777_216.0;
 
 /// A box on the grid, in world subpixels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct GridBox {
     /// Lower-left corner.
     pub min: I64Vec2,
@@ -135,7 +135,7 @@ impl Grid {
 
 /// A character's place on the grid: its box and the fractions of a subpixel its moves have
 /// not used yet.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct GridPos {
     /// The box, in world subpixels.
     pub b: GridBox,
@@ -144,20 +144,22 @@ pub struct GridPos {
 }
 
 impl GridPos {
+    /// The character of size `size` (tiles) whose feet are at `feet` (level coordinates), with
+    /// nothing carried yet.
+    pub fn spawn(grid: &Grid, feet: Vec2, size: Vec2) -> Self {
+        GridPos {
+            b: grid.place(feet, grid.size(size)),
+            remainder: Vec2::ZERO,
+        }
+    }
+
     /// Turns a move of `delta` tiles along `axis` into whole subpixels, keeping the fraction.
     pub fn whole_move(&mut self, grid: &Grid, axis: Axis, delta: f32) -> i64 {
-        let a = axis_index(axis);
+        let a = axis.index();
         let total = delta * grid.per_tile as f32 + self.remainder[a];
         let n = total.round();
         self.remainder[a] = total - n;
         n as i64
-    }
-}
-
-fn axis_index(axis: Axis) -> usize {
-    match axis {
-        Axis::X => 0,
-        Axis::Y => 1,
     }
 }
 
@@ -180,7 +182,7 @@ pub fn move_axis_grid(
     if n == 0 {
         return None;
     }
-    let a = axis_index(axis);
+    let a = axis.index();
     let o = 1 - a;
     let b = p.b;
     let mut swept = b;
@@ -244,10 +246,7 @@ mod tests {
     }
 
     fn at(grid: &Grid, feet: Vec2) -> GridPos {
-        GridPos {
-            b: grid.place(feet, grid.size(Vec2::new(0.8, 0.9))),
-            remainder: Vec2::ZERO,
-        }
+        GridPos::spawn(grid, feet, Vec2::new(0.8, 0.9))
     }
 
     #[test]

@@ -75,7 +75,8 @@ impl Default for SweepConfig {
 }
 
 struct Character {
-    /// Feet position in world coordinates.
+    /// Feet position in world coordinates, in float mode (in integer mode, `on_grid` is the
+    /// position and this stays at the spawn).
     pos: Vec2,
     /// The moving platform it stands on (the seed's rider list, kept on the rider's side: a
     /// platform's riders are the characters whose `riding` names it).
@@ -136,16 +137,14 @@ impl SweepBackend {
         params: MotionParams,
         config: SweepConfig,
     ) -> Result<Self, BackendError> {
-        require_supported("sweep", &level.name, level.features, Self::SUPPORTED)?;
+        let (name, supported) = match config.positions {
+            Positions::Float => ("sweep", Self::SUPPORTED),
+            Positions::Integer { .. } => ("sweep (integer positions)", INTEGER_SUPPORTED),
+        };
+        require_supported(name, &level.name, level.features, supported)?;
         let grid = match config.positions {
             Positions::Float => None,
             Positions::Integer { per_tile } => {
-                require_supported(
-                    "sweep (integer positions)",
-                    &level.name,
-                    level.features,
-                    INTEGER_SUPPORTED,
-                )?;
                 Some(Grid::new(per_tile, level.origin, &level.name)?)
             }
         };
@@ -411,9 +410,10 @@ impl SweepBackend {
             true,
             skip_y,
         );
-        if hit_y.is_none() && delta.y < 0.0 {
+        if n == 0 && delta.y < 0.0 {
             // A fall of less than a subpixel this step moves nothing: the ground is there if
-            // the box rests on it (Celeste's "collide check one pixel down").
+            // the box rests on it (Celeste's "collide check one pixel down"). A move of a
+            // subpixel or more that ends on a face has already reported it.
             hit_y = move_axis_grid(
                 &self.tiles,
                 &mut c.near,
@@ -457,21 +457,11 @@ impl Backend for SweepBackend {
 
     fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
         spec.validate()?;
-        let on_grid = match &self.grid {
-            Some(g) => GridPos {
-                b: g.place(spec.spawn, g.size(spec.size)),
-                remainder: Vec2::ZERO,
-            },
-            None => GridPos {
-                b: GridBox {
-                    min: glam::I64Vec2::ZERO,
-                    max: glam::I64Vec2::ZERO,
-                },
-                remainder: Vec2::ZERO,
-            },
-        };
         self.characters.push(Character {
-            on_grid,
+            on_grid: self
+                .grid
+                .map(|g| GridPos::spawn(&g, spec.spawn, spec.size))
+                .unwrap_or_default(),
             pos: spec.spawn + self.origin,
             size: spec.size,
             motion: MotionState::with_velocity(spec.velocity),

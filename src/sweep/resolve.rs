@@ -28,7 +28,8 @@ pub enum Axis {
 }
 
 impl Axis {
-    fn index(self) -> usize {
+    /// The axis's index in a vector (x 0, y 1).
+    pub(crate) fn index(self) -> usize {
         match self {
             Axis::X => 0,
             Axis::Y => 1,

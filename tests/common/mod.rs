@@ -44,3 +44,17 @@ pub fn rows<'a>(evals: &'a [(String, Evaluation)], m: &str) -> Vec<&'a MetricRow
         .filter(|r| r.metric == m)
         .collect()
 }
+
+/// The `platbench` binary, to run as a user does.
+pub fn platbench() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_platbench"))
+}
+
+/// Fails the test with the command's stderr unless it exited successfully.
+pub fn assert_success(out: &std::process::Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
