@@ -85,6 +85,7 @@ struct Character {
     crushed: bool,
     size: Vec2,
     motion: MotionState,
+    /// The normal of the ground it stands on (zero in the air), for the trace.
     ground_normal: Vec2,
     /// The static boxes around it, kept between steps.
     near: NearCache,
@@ -498,8 +499,9 @@ impl Backend for SweepBackend {
             },
             vel: c.motion.vel,
             grounded: c.motion.grounded,
+            // The normal of the ground the step stood it on (a slope's, on slopes).
             ground_normal: if c.motion.grounded {
-                Vec2::Y
+                c.ground_normal
             } else {
                 Vec2::ZERO
             },

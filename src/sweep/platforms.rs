@@ -140,6 +140,7 @@ impl SweepBackend {
                     // Lifted from below: it now stands on the platform.
                     c.riding = Some(i as u32);
                     c.motion.grounded = true;
+                    c.ground_normal = Vec2::Y;
                     c.motion.vel.y = 0.0;
                 }
             }
