@@ -45,8 +45,8 @@ enum Command {
     /// List the built-in levels and their scenarios.
     Levels,
     /// Speed versus accuracy: run the scenario set over a grid of settings (dt, substeps, the
-    /// sweep's epsilon and jump mode, Rapier's offset, snap distance, collider building and
-    /// shape) and write each setting's cost and error score to DIR/tradeoff.csv, with the
+    /// sweep's epsilon and jump mode, Rapier's offset, snap distance, grounded feed, collider
+    /// building and shape) and write each setting's cost and error score to DIR/tradeoff.csv, with the
     /// Pareto front marked, and the chart DIR/tradeoff.svg.
     Sweep {
         /// Output directory for tradeoff.csv and tradeoff.svg.

@@ -51,6 +51,14 @@ pub struct MotionParams {
     /// and no horizontal input. Input drives the feet, so friction only stops a character
     /// that is not being steered.
     pub ground_friction: f32,
+    /// Horizontal speed below which ground friction stops a character with no horizontal
+    /// input, in tiles/s: its velocity becomes exactly 0. Multiplying by `ground_friction`
+    /// alone only halves the speed forever (2e-17 tiles/s minutes later), and a controller that
+    /// reads any horizontal velocity as intent keeps moving on it: Rapier's slope rule tests
+    /// only the sign of the desired move, so a vanishing downhill speed lets gravity slide the
+    /// character down a ramp. Default 0.01 tiles/s: 1/6000 of a tile per 60 Hz frame, a pixel
+    /// of a 16-pixel tile every 6 seconds.
+    pub stop_speed: f32,
     /// The seed's friction on a horizontal contact (a wall): the vertical velocity is
     /// multiplied by this factor (dimensionless, 0..=1) on each frame with such a contact.
     /// 1 means no wall drag.
@@ -71,6 +79,7 @@ impl Default for MotionParams {
             jump_height: 3.0,
             jump_mode: JumpMode::ExactDiscrete,
             ground_friction: 0.5,
+            stop_speed: 0.01,
             wall_friction: 1.0,
             max_climb_angle: std::f32::consts::FRAC_PI_4,
             ladder_speed: 4.0,
@@ -89,6 +98,7 @@ impl MotionParams {
             ("run_accel", self.run_accel),
             ("jump_height", self.jump_height),
             ("ladder_speed", self.ladder_speed),
+            ("stop_speed", self.stop_speed),
         ];
         for (name, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
@@ -243,6 +253,9 @@ impl MotionState {
             self.vel.y = 0.0;
             if input.horizontal() == 0.0 {
                 self.vel.x *= p.ground_friction;
+                if self.vel.x.abs() < p.stop_speed {
+                    self.vel.x = 0.0;
+                }
             }
         }
         self.grounded = c.ground;
@@ -427,5 +440,31 @@ mod tests {
         };
         driven.apply_contacts(&p, &right, ground);
         assert_eq!(driven.vel, Vec2::new(4.0, 0.0));
+    }
+
+    #[test]
+    fn friction_brings_a_coasting_character_to_rest() {
+        let p = MotionParams::default();
+        let ground = Contacts {
+            ground: true,
+            ..Default::default()
+        };
+        let mut s = MotionState::with_velocity(Vec2::new(p.run_speed, 0.0));
+        // Halving from 6 tiles/s passes below 0.01 tiles/s after log2(600) = 9.2 frames.
+        for _ in 0..10 {
+            s.apply_contacts(&p, &Input::default(), ground);
+        }
+        assert_eq!(s.vel.x, 0.0);
+        // Without the stop speed the same frames leave a speed that never reaches 0.
+        let mut halving = MotionState::with_velocity(Vec2::new(p.run_speed, 0.0));
+        let no_stop = MotionParams {
+            stop_speed: 0.0,
+            ..p.clone()
+        };
+        // 100 halvings: 6 * 2^-100 = 5e-30, still a normal f32 (below 2^-149 it would be 0).
+        for _ in 0..100 {
+            halving.apply_contacts(&no_stop, &Input::default(), ground);
+        }
+        assert!(halving.vel.x > 0.0, "{}", halving.vel.x);
     }
 }

@@ -19,7 +19,7 @@ use crate::backend::BackendError;
 use crate::level::Level;
 use crate::metrics::{evaluate_with, MetricRow};
 use crate::motion::{JumpMode, MotionParams};
-use crate::rapier::{CharacterShape, ColliderBuilding, Length, RapierConfig};
+use crate::rapier::{CharacterShape, ColliderBuilding, GroundedMove, Length, RapierConfig};
 use crate::scenario::{time_scenario, BackendConfig, RunConfig, Runner};
 use crate::sweep::SweepConfig;
 
@@ -67,8 +67,8 @@ fn rapier(label: &str, config: RapierConfig, substeps: u32, dt: Option<f32>) -> 
 }
 
 /// The grid: each setting varies one thing from the defaults (dt from 1/30 to 1/480 s,
-/// substeps, the sweep's epsilon and jump mode, Rapier's offset, snap distance, collider
-/// building and shape).
+/// substeps, the sweep's epsilon and jump mode, Rapier's offset, snap distance, grounded feed,
+/// collider building and shape).
 pub fn grid() -> Vec<Setting> {
     let p = MotionParams::default;
     let s = SweepConfig::default;
@@ -186,6 +186,35 @@ pub fn grid() -> Vec<Setting> {
             ..r()
         };
         g.push(rapier(name, c, 1, Some(1.0 / 60.0)));
+    }
+    // How a grounded step is fed (`GroundedMove`): the bevy_rapier example's feed, and the
+    // variant that keeps the controller's platform carry.
+    for (name, grounded_move) in [
+        ("none", GroundedMove::None),
+        ("none-but-platforms", GroundedMove::NoneExceptOnPlatforms),
+    ] {
+        let c = RapierConfig {
+            grounded_move,
+            ..r()
+        };
+        g.push(rapier(
+            &format!("per-tile capsule grounded={name}"),
+            c,
+            1,
+            Some(1.0 / 60.0),
+        ));
+    }
+    for (name, offset) in [("0.02", 0.02f32), ("0.05", 0.05)] {
+        let c = RapierConfig {
+            offset: Length::Absolute(offset),
+            ..r()
+        };
+        g.push(rapier(
+            &format!("per-tile capsule offset={name}"),
+            c,
+            1,
+            Some(1.0 / 60.0),
+        ));
     }
     g
 }

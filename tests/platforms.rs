@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{evaluate_all, level, rows};
+use common::{evaluate_all, level, rows, value};
 use platbench::metrics::Evaluation;
 use platbench::rapier::{CharacterShape, ColliderBuilding};
 use platbench::scenario::RunConfig;
@@ -11,14 +11,6 @@ use platbench::sweep::SweepConfig;
 
 fn find<'a>(evals: &'a [(String, Evaluation)], name: &str) -> &'a Evaluation {
     &evals.iter().find(|(n, _)| n.ends_with(name)).unwrap().1
-}
-
-fn value(evals: &[(String, Evaluation)], scenario: &str, metric: &str) -> f64 {
-    rows(evals, metric)
-        .into_iter()
-        .find(|r| r.scenario == scenario)
-        .unwrap_or_else(|| panic!("{metric} on {scenario}"))
-        .value
 }
 
 /// Rides whose platform never drops away faster than a rider can fall: horizontal waypoints,
@@ -99,18 +91,24 @@ fn rapier_runs_every_platform_scenario_and_its_carry_is_pinned() {
             let run = RunConfig::rapier(building, shape);
             let evals = evaluate_all(&[level("platforms")], &run);
             assert_eq!(evals.len(), 10, "{}", run.label);
-            // The controller carries by the platform body's velocity from the previous step: on
-            // the horizontal ride the rider lags one step at each turn (2 tiles/s x 2 steps =
-            // 0.067 tiles, measured), and stays grounded.
+            // The platforms move before the characters (the default): the controller carries
+            // by the velocity of the step it moves in. On the horizontal ride the rider trails
+            // by one step of the 2 tiles/s platform (0.033 tiles) or two, and by three (0.1)
+            // where the controller found no contact with the platform on a few early steps and
+            // carried nothing (the round cuboid, measured); it stays grounded.
             let drift = value(&evals, "ride_horizontal", "carry_drift");
-            assert!(drift <= 0.07, "{}: horizontal drift {drift}", run.label);
+            assert!(
+                drift <= 0.1 + 1e-4,
+                "{}: horizontal drift {drift}",
+                run.label
+            );
             assert_eq!(
                 value(&evals, "ride_horizontal", "carry_airborne_frames"),
                 0.0
             );
             // Measured, pinned: on the diagonal path the rider loses the platform (>= 1 airborne
-            // frame; 50 measured); and Rapier does not push a character out of a platform that
-            // closes on it against a wall (overlap 0.8, the platform's depth into it).
+            // frame); and a character that a platform closes on against a wall ends overlapping
+            // the platform (0.8, its depth into it), as the sweep's does (crushed).
             assert!(
                 value(&evals, "diagonal", "carry_airborne_frames") > 0.0,
                 "{}",
@@ -118,6 +116,11 @@ fn rapier_runs_every_platform_scenario_and_its_carry_is_pinned() {
             );
             let crush = value(&evals, "crushed_against_a_wall", "push_penetration");
             assert!(crush > 0.5, "{}: {crush}", run.label);
+            // A block sliding into a character standing clear of the floor pushes it along
+            // without overlap: the controller moves a character hit by a kinematic body at the
+            // body's velocity (measured 0 on every shape and building).
+            let pushed = value(&evals, "pushed_across_the_floor", "push_penetration");
+            assert_eq!(pushed, 0.0, "{}", run.label);
         }
     }
 }

@@ -25,6 +25,8 @@ fn ground_detection(colliders: ColliderBuilding, snap: bool) -> (f32, u32) {
         colliders,
         shape: CharacterShape::Ball,
         snap_to_ground: snap.then_some(Length::Relative(0.2)),
+        // The scene is placed exactly as Rapier's test places it.
+        lift_spawn: false,
         ..Default::default()
     };
     let mut b = RapierBackend::new(&level, MotionParams::default(), config).unwrap();
@@ -79,6 +81,8 @@ fn climb(max_climb: f32) -> (Vec2, u32, u32) {
         shape: CharacterShape::Ball,
         max_slope_climb_angle: Some(max_climb),
         min_slope_slide_angle: Some(std::f32::consts::FRAC_PI_4),
+        // The scene is placed exactly as Rapier's test places it.
+        lift_spawn: false,
         ..Default::default()
     };
     let mut b = RapierBackend::new(&level, MotionParams::default(), config).unwrap();

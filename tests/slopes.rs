@@ -113,24 +113,51 @@ fn a_slope_over_the_climb_limit_blocks_both_backends() {
 }
 
 #[test]
-fn rapier_on_merged_colliders_climbs_a_steep_slope_rising_to_the_left() {
-    // Measured, and pinned so a Rapier upgrade that changes it is a reviewed change: on one
-    // polyline, every shape walks up the 63.4-degree ramp that rises to the left, while the same
-    // ramp rising to the right blocks it. Rapier 2D measures the slope as `up.angle_to(normal)`,
-    // a signed angle that is negative for surfaces rising to the left, so its `angle > max`
-    // climb test never fires for them (src/control/character_controller.rs, rapier2d 0.36.1).
-    // Per-tile polygons still block, by their vertical sides.
+fn rapier_climbs_a_steep_slope_rising_to_the_left_on_every_collider_building() {
+    // Measured, and pinned so a Rapier upgrade that changes it is a reviewed change: every
+    // shape walks up the 63.4-degree ramp that rises to the left, on one polyline and on
+    // per-tile polygons cut by the slope line alike, while the same ramp rising to the right
+    // blocks it (the test above). Rapier 2D measures the slope as `up.angle_to(normal)`, a
+    // signed angle that is negative for surfaces rising to the left, so its wall test
+    // (`angle >= max_slope_climb_angle`) never fires for them (rapier2d 0.36.1,
+    // src/control/character_controller.rs); tests/rapier_steep_slope_left.rs is the same
+    // scene in rapier2d alone.
     let steep = level("slope_63_4");
     for shape in CharacterShape::ALL {
-        let merged = evaluate_all(
-            std::slice::from_ref(&steep),
-            &RunConfig::rapier(ColliderBuilding::Merged, shape),
+        for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
+            let evals = evaluate_all(
+                std::slice::from_ref(&steep),
+                &RunConfig::rapier(building, shape),
+            );
+            let r = rows(&evals, "steep_blocked")
+                .into_iter()
+                .find(|r| r.scenario == "walk_into_steep_leftward")
+                .unwrap();
+            assert_eq!(r.value, 0.0, "{} {building:?}: leftward", shape.label());
+        }
+    }
+}
+
+#[test]
+fn rapier_walks_the_per_tile_22_5_degree_hill() {
+    // With per-tile polygons cut by the slope line, every shape walks over the 22.5-degree
+    // hill: its tiles cross rows, and a polygon spanning a corner the line never reaches put
+    // a 0.17-tile step into the ramp where every shape stuck (at x = 7.6). Bound: the speed
+    // on the slope at least 0.85 of the flat speed (measured 0.90 to 0.92), far above a stop.
+    let hill = level("slope_22_5");
+    for shape in CharacterShape::ALL {
+        let evals = evaluate_all(
+            std::slice::from_ref(&hill),
+            &RunConfig::rapier(ColliderBuilding::PerTile, shape),
         );
-        let r = rows(&merged, "steep_blocked")
-            .into_iter()
-            .find(|r| r.scenario == "walk_into_steep_leftward")
-            .unwrap();
-        assert_eq!(r.value, 0.0, "{}: merged, leftward", shape.label());
+        let speeds: Vec<f64> = rows(&evals, "slope_speed_ratio")
+            .iter()
+            .map(|r| r.value)
+            .collect();
+        assert!(!speeds.is_empty(), "{}", shape.label());
+        for v in speeds {
+            assert!(v >= 0.85, "{}: slope speed ratio {v}", shape.label());
+        }
     }
 }
 

@@ -50,13 +50,34 @@ pub enum Slope {
 }
 
 impl Slope {
-    /// The tile's solid part as an outline in tile-local coordinates: bottom-left corner, the
-    /// surface points left to right, bottom-right corner (repeated points removed).
+    /// The tile's solid part as an outline in tile-local coordinates, counter-clockwise from
+    /// the bottom: the tile cut by its surface. Where the surface lies on the tile's bottom (a
+    /// line that enters through the bottom edge, or zero heights), the outline starts or ends
+    /// where the surface leaves the bottom, so that a convex hull of these points is exactly
+    /// the solid part (a hull spanning a bottom corner the surface never reaches would add a
+    /// false step to a ramp). Empty when the tile holds no solid area.
     pub fn outline(&self) -> Vec<Vec2> {
         let mut pts = vec![Vec2::ZERO];
         pts.extend(self.surface_points());
         pts.push(Vec2::X);
         pts.dedup_by(|a, b| (*a - *b).length() < 1e-6);
+        // Drop bottom points whose neighbours both lie on the bottom too: collinear points
+        // along the bottom edge and spurs back to a corner the surface does not reach.
+        let on_bottom = |p: Vec2| p.y.abs() < 1e-6;
+        let mut i = 0;
+        while i < pts.len() && pts.len() >= 3 {
+            let n = pts.len();
+            let (prev, next) = (pts[(i + n - 1) % n], pts[(i + 1) % n]);
+            if on_bottom(prev) && on_bottom(pts[i]) && on_bottom(next) {
+                pts.remove(i);
+                i = i.saturating_sub(1);
+            } else {
+                i += 1;
+            }
+        }
+        if pts.len() < 3 || pts.iter().all(|p| on_bottom(*p)) {
+            pts.clear();
+        }
         pts
     }
 

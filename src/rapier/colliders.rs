@@ -9,6 +9,8 @@ use rapier2d::prelude::{
 use glam::Vec2;
 
 use crate::level::Level;
+#[cfg(doc)]
+use crate::level::Slope;
 
 /// How solid tiles become colliders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -163,8 +165,8 @@ pub fn one_way_rects(
 }
 
 /// The outlines of the level's slopes, in level coordinates, as Rapier gets them. Per tile:
-/// each slope tile's solid part (a convex polygon for a line, the surface polyline closed down
-/// both sides for a height array). Merged: one polyline per run of adjacent columns holding
+/// each slope tile's solid part, [`Slope::outline`] (a convex polygon for a line: the tile cut
+/// by the line; the surface polyline closed down both sides for a height array). Merged: one polyline per run of adjacent columns holding
 /// slopes, following the ground's top surface across the run (slopes and the solids between
 /// them), closed down both ends, with collinear points removed, so a ramp is one seamless
 /// surface whatever rows it crosses.
@@ -174,8 +176,9 @@ pub fn slope_outlines(level: &Level, building: ColliderBuilding) -> Vec<Vec<Vec2
             .slopes()
             .map(|(i, j, s)| {
                 let o = Vec2::new(i as f32, j as f32);
-                s.outline().into_iter().map(|p| p + o).collect()
+                s.outline().into_iter().map(|p| p + o).collect::<Vec<_>>()
             })
+            .filter(|outline| !outline.is_empty())
             .collect();
     }
     let mut columns: Vec<i64> = level.slopes().map(|(i, _, _)| i).collect();

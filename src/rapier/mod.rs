@@ -38,6 +38,10 @@ pub use platforms::{PlatformCarry, Platforms};
 /// puts around its limit.
 pub const CLIMB_LIMIT_MARGIN: f32 = 1e-3;
 
+/// How far beyond its offset Rapier's controller looks for ground, in tiles: its
+/// `predict_ground` adds this absolute 0.05 to the offset (rapier2d 0.36.1).
+pub const GROUND_PREDICTION: f32 = 0.05;
+
 /// How far below a one-way platform's top the feet may start a move and still land on it, in
 /// tiles: rounding only (Rapier keeps its offset above the top when standing on it).
 pub const ONE_WAY_TOLERANCE: f32 = 1e-3;
@@ -52,6 +56,17 @@ pub enum Length {
     Relative(f32),
 }
 
+impl Length {
+    /// The length in tiles for a character `height` tiles tall (Rapier evaluates relative
+    /// lengths against the height of the shape's bounding box, which is the box's here).
+    pub fn eval(self, height: f32) -> f32 {
+        match self {
+            Length::Absolute(v) => v,
+            Length::Relative(v) => v * height,
+        }
+    }
+}
+
 impl From<Length> for CharacterLength {
     fn from(l: Length) -> Self {
         match l {
@@ -59,6 +74,47 @@ impl From<Length> for CharacterLength {
             Length::Relative(v) => CharacterLength::Relative(v),
         }
     }
+}
+
+/// How a grounded step's vertical move is fed to the controller. Rapier leaves this to its
+/// users, and its own examples differ; the choice decides whether a box sticks on a long merged
+/// floor (rapier #613: a cast at a glancing angle can miss the offset band).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroundedMove {
+    /// Gravity every step: the shared motion's vertical velocity, reset to 0 when grounded, so
+    /// each grounded step asks to move down by `g * dt²`. The set-up of
+    /// `shared/reference/rapier-kcc-0.36.1.md` (`vy -= g * dt` each frame).
+    Gravity,
+    /// No vertical move while grounded (a jump still rises): the official bevy_rapier character
+    /// example (`bevy_rapier3d/examples/character_controller3.rs`) zeroes its vertical movement
+    /// when the controller reports grounded and only then adds gravity for the next frame.
+    /// Snap-to-ground follows the ground down slopes. The controller's own carry on a moving
+    /// platform stops with it: Rapier carries a rider only after a cast hit.
+    None,
+    /// As [`GroundedMove::None`], except on a moving platform (a kinematic body), where
+    /// gravity is fed so that the controller's cast hits the platform and its carry runs.
+    NoneExceptOnPlatforms,
+}
+
+impl GroundedMove {
+    /// Short label for configuration names.
+    pub fn label(self) -> &'static str {
+        match self {
+            GroundedMove::Gravity => "gravity",
+            GroundedMove::None => "none",
+            GroundedMove::NoneExceptOnPlatforms => "none-but-platforms",
+        }
+    }
+}
+
+/// When moving platforms move within a step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlatformOrder {
+    /// After every character has moved: the seed's order, the sweep's.
+    AfterCharacters,
+    /// Before the characters move: the platform's velocity the controller carries with is then
+    /// the one of this step's displacement, not the step before's.
+    BeforeCharacters,
 }
 
 /// Settings of the Rapier backend: every option of Rapier's `KinematicCharacterController`,
@@ -96,6 +152,19 @@ pub struct RapierConfig {
     /// How a rider is carried by a moving platform. Default: the controller's own carry, which
     /// the reference measured exact horizontally; adding the displacement too over-carries.
     pub platform_carry: PlatformCarry,
+    /// How a grounded step's vertical move is fed (default: gravity every step).
+    pub grounded_move: GroundedMove,
+    /// Whether a character spawned closer than the offset above the ground is raised to the
+    /// offset (default: on). Spawned flush, it would start inside the offset band, where
+    /// Rapier's casts see it touching and its depenetration (which runs only for overlaps)
+    /// never lifts it; a Rapier user places the character clear of the ground. Off only to
+    /// reproduce a scene placed exactly, such as Rapier's own tests.
+    pub lift_spawn: bool,
+    /// When moving platforms move within a step. Default: before the characters, which
+    /// `examples/rapier_setups.rs` measured to carry better than the seed's order (the
+    /// controller carries with the platform velocity of the step it moves in, not the step
+    /// before's).
+    pub platform_order: PlatformOrder,
 }
 
 impl Default for RapierConfig {
@@ -112,6 +181,9 @@ impl Default for RapierConfig {
             snap_to_ground: Some(Length::Relative(0.2)),
             normal_nudge_factor: kcc.normal_nudge_factor,
             platform_carry: PlatformCarry::Controller,
+            grounded_move: GroundedMove::Gravity,
+            lift_spawn: true,
+            platform_order: PlatformOrder::BeforeCharacters,
         }
     }
 }
@@ -139,9 +211,15 @@ impl RapierConfig {
         }
     }
 
-    /// Short label for tables and file names: the collider building and the shape.
+    /// Short label for tables and file names: the collider building and the shape, then how
+    /// a grounded step is fed when that is not gravity.
     pub fn label(&self) -> String {
-        format!("{} {}", self.colliders.label(), self.shape.label())
+        let mut label = format!("{} {}", self.colliders.label(), self.shape.label());
+        if self.grounded_move != GroundedMove::Gravity {
+            label += " grounded=";
+            label += self.grounded_move.label();
+        }
+        label
     }
 }
 
@@ -262,15 +340,21 @@ impl RapierBackend {
         m
     }
 
-    fn move_shape(&self, id: CharacterId, desired: Vec2, dt: f32) -> Move {
-        let c = &self.characters[id];
+    /// The level's colliders as Rapier's query pipeline sees them, unfiltered.
+    fn queries(&self) -> rapier2d::prelude::QueryPipeline<'_> {
         let w = &self.world;
-        let queries = w.broad_phase.as_query_pipeline(
+        w.broad_phase.as_query_pipeline(
             &self.dispatcher,
             &w.bodies,
             &w.colliders,
             QueryFilter::default(),
-        );
+        )
+    }
+
+    fn move_shape(&self, id: CharacterId, desired: Vec2, dt: f32) -> Move {
+        let c = &self.characters[id];
+        let w = &self.world;
+        let queries = self.queries();
         let pose = CharacterShape::pose(c.pos, c.size);
         // One-way platforms, as Rapier users write them: a filter predicate that keeps a one-way
         // collider only for a character entirely above its top at the start of the move, and
@@ -307,6 +391,29 @@ impl RapierBackend {
                     contacts.wall = true;
                 }
             });
+        // Rapier reports grounded from contacts within its prediction distance, but names the
+        // ground only through a cast that hit it. A step that asked for no vertical move (see
+        // `GroundedMove`) casts nothing down, so what it stands on (a one-way top, a platform,
+        // the slope's normal) is found by a read-only cast down over that distance, through
+        // the same filter. It changes no position.
+        if mvt.grounded && ground_normal.is_none() {
+            let reach = self.config.offset.eval(c.size.y) + GROUND_PREDICTION;
+            let after = CharacterShape::pose(c.pos + mvt.translation, c.size);
+            let options = rapier2d::parry::query::ShapeCastOptions {
+                max_time_of_impact: reach,
+                target_distance: 0.0,
+                stop_at_penetration: false,
+                compute_impact_geometry_on_penetration: true,
+            };
+            if let Some((handle, hit)) = queries.cast_shape(&after, -Vec2::Y, &*c.shape, options) {
+                if hit.normal1.y > 0.5 {
+                    ground_normal = Some(hit.normal1);
+                    let co = w.colliders.get(handle);
+                    ground_one_way = co.and_then(one_way_top);
+                    ground_body = co.and_then(|co| co.parent());
+                }
+            }
+        }
         contacts.ground = mvt.grounded;
         contacts.one_way = ground_one_way.is_some();
         Move {
@@ -319,12 +426,52 @@ impl RapierBackend {
         }
     }
 
+    /// Moves the platforms to their place at the end of this step.
+    fn step_platforms(&mut self, dt: f32) {
+        if let Some(p) = &mut self.platforms {
+            let t1 = (self.frame + 1) as f64 * dt as f64;
+            p.step_to(Rc::make_mut(&mut self.world), t1, dt);
+        }
+    }
+
+    /// How far a character of `shape` at feet `pos` must rise to stand at least the offset
+    /// above what is below it: a character spawned flush on the ground starts inside the
+    /// offset band, where Rapier's casts report it touching and its depenetration (which runs
+    /// only for overlaps) never lifts it. A cast down from `offset` above the spawn finds the
+    /// ground within twice the offset.
+    fn spawn_lift(&self, pos: Vec2, size: Vec2, shape: &SharedShape) -> f32 {
+        let offset = self.config.offset.eval(size.y);
+        let queries = self.queries();
+        let from = CharacterShape::pose(pos + Vec2::new(0.0, offset), size);
+        let options = rapier2d::parry::query::ShapeCastOptions {
+            max_time_of_impact: 2.0 * offset,
+            target_distance: 0.0,
+            stop_at_penetration: true,
+            compute_impact_geometry_on_penetration: false,
+        };
+        match queries.cast_shape(&from, -Vec2::Y, &**shape, options) {
+            Some((_, hit)) => (2.0 * offset - hit.time_of_impact).max(0.0),
+            None => 0.0,
+        }
+    }
+
     fn step_character(&mut self, id: CharacterId, input: &Input, dt: f32) {
         let c = &mut self.characters[id];
         if let Some(level) = &self.ladders {
             crate::ladder::enter(level, self.origin, &mut c.motion, &mut c.pos, c.size, input);
         }
+        let was_grounded = c.motion.grounded;
         let mut desired = c.motion.integrate(&self.params, input, dt);
+        // A grounded step that does not jump, climb or drop through: the vertical move is fed
+        // as `grounded_move` says.
+        if was_grounded && desired.y <= 0.0 && !c.motion.on_ladder && !c.motion.drop_through {
+            match self.config.grounded_move {
+                GroundedMove::Gravity => {}
+                GroundedMove::None => desired.y = 0.0,
+                GroundedMove::NoneExceptOnPlatforms if c.riding.is_none() => desired.y = 0.0,
+                GroundedMove::NoneExceptOnPlatforms => {}
+            }
+        }
         // The carry Rapier users add: the platform's coming displacement, when grounded on it.
         if let (Some(i), Some(p), PlatformCarry::ControllerPlusDisplacement) =
             (c.riding, &self.platforms, self.config.platform_carry)
@@ -375,13 +522,21 @@ impl Backend for RapierBackend {
 
     fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
         spec.validate()?;
+        let shape = self.config.shape.build(spec.size);
+        let pos = spec.spawn + self.origin;
+        let lift = if self.config.lift_spawn {
+            self.spawn_lift(pos, spec.size, &shape)
+        } else {
+            0.0
+        };
+        let pos = pos + Vec2::new(0.0, lift);
         self.characters.push(Character {
-            pos: spec.spawn + self.origin,
+            pos,
             riding: None,
             drop_top: None,
             one_way_ground: None,
             size: spec.size,
-            shape: self.config.shape.build(spec.size),
+            shape,
             motion: MotionState::with_velocity(spec.velocity),
             ground_normal: Vec2::ZERO,
         });
@@ -389,14 +544,16 @@ impl Backend for RapierBackend {
     }
 
     fn step(&mut self, inputs: &[Input], dt: f32) {
+        let order = self.config.platform_order;
+        if order == PlatformOrder::BeforeCharacters {
+            self.step_platforms(dt);
+        }
         for id in 0..self.characters.len() {
             let input = inputs.get(id).copied().unwrap_or_default();
             self.step_character(id, &input, dt);
         }
-        // Platforms move after the characters, as in the sweep.
-        if let Some(p) = &mut self.platforms {
-            let t1 = (self.frame + 1) as f64 * dt as f64;
-            p.step_to(Rc::make_mut(&mut self.world), t1, dt);
+        if order == PlatformOrder::AfterCharacters {
+            self.step_platforms(dt);
         }
         self.frame += 1;
     }

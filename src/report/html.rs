@@ -328,7 +328,33 @@ pub fn recommendations(rows: &[MetricRow]) -> Vec<String> {
         v("rapier", "steep_blocked"),
     ) {
         if r < 1.0 {
-            out.push(format!("Slopes with a strict climb limit: sweep ({} airborne frames walking slopes, every too-steep slope blocked); Rapier on merged colliders climbs too-steep slopes that rise to the left.", format_value(s)));
+            out.push(format!("Slopes with a strict climb limit: sweep ({} airborne frames walking slopes, every too-steep slope blocked); Rapier climbs too-steep slopes that rise to the left, on every collider building (its 2D slope angle is signed).", format_value(s)));
+        }
+    }
+    // Which remedy fixes a Rapier character that sticks, with the numbers of both: the same
+    // per-tile rows, fed gravity every step and fed as the remedy says.
+    let rapier_rows = |remedy: bool, metric: &'static str| {
+        rows.iter().filter(move |r| {
+            r.backend == "rapier"
+                && r.metric == metric
+                && r.config.starts_with("per-tile")
+                && r.config.contains("grounded=none-but-platforms") == remedy
+        })
+    };
+    let worst_progress = |remedy: bool| {
+        rapier_rows(remedy, "progress_ratio")
+            .map(|r| r.value)
+            .fold(None, |a: Option<f64>, v| Some(a.map_or(v, |a| a.min(v))))
+    };
+    let stuck =
+        |remedy: bool| -> f64 { rapier_rows(remedy, "stuck_frames").map(|r| r.value).sum() };
+    if let (Some(d), Some(f)) = (worst_progress(false), worst_progress(true)) {
+        if f > d {
+            let frozen = rapier_rows(true, "rest_gap")
+                .map(|r| r.value)
+                .filter(|v| v.is_finite())
+                .fold(0.0f64, f64::max);
+            out.push(format!("A Rapier character that gets stuck on flat ground (per-tile rows fed gravity every step: worst {} of the commanded walk, {} stuck frames in all): give a grounded step no vertical move, except on a moving platform, as the official bevy_rapier character example feeds it (`grounded=none-but-platforms`): worst {}, {} stuck frames in all over the same shapes. Its price: where Rapier reports grounded on the corner of a wall's tiles the character now stops there, in the air (rest_gap up to {}). Rapier's docs' other advice, a larger offset, freed no shape as well (`cargo run --release --example rapier_setups`).", format_value(d), format_value(stuck(false)), format_value(f), format_value(stuck(true)), format_value(frozen)));
         }
     }
     let turning = |prefix: &str| {

@@ -221,7 +221,7 @@ pub fn notes(rows: &[MetricRow]) -> Vec<String> {
         out.push("rapier rest_gap is about its `offset` (1% of the character height, 0.009 tiles): Rapier keeps this gap on purpose and its docs say it must not be zero.".into());
     }
     if rapier("land_frame_error").any(|r| r.value < 0.0) {
-        out.push("rapier lands early: it reports grounded while still up to its snap-to-ground distance (20% of the height) above the floor, then snaps down.".into());
+        out.push("rapier lands early: it reports grounded while still within its ground prediction above the floor (its offset plus 0.05 tiles), then snaps down.".into());
     }
     if rapier("max_penetration").any(|r| r.value > 0.0) {
         out.push("rapier sinks into merged floors: a shape cast at a glancing angle can miss the offset band and start inside the floor (rapier #613).".into());
@@ -238,13 +238,13 @@ pub fn notes(rows: &[MetricRow]) -> Vec<String> {
         out.push("rapier shapes: on one long merged box a cuboid sticks (it misses the offset band at a glancing angle, starts inside the floor and every cast from there is blocked, rapier #613) while capsule, ball and round cuboid slide on; on per-tile floors every shape walks but catches on seams. A box character wants per-tile or short merged colliders; a rounded one can use merged floors, but not boxes thousands of tiles long, which rounded shapes sink into.".into());
     }
     if rapier("steep_blocked").any(|r| r.value == 0.0) {
-        out.push("rapier climbs a too-steep slope that rises to the left on merged colliders: its 2D climb test uses a signed angle that is negative for such slopes (the same slope rising to the right blocks).".into());
+        out.push("rapier climbs a too-steep slope that rises to the left, on every collider building: its 2D climb test uses a signed angle that is negative for such slopes (the same slope rising to the right blocks).".into());
     }
     if rapier("carry_airborne_frames").any(|r| r.value > 0.0) {
-        out.push("rapier riders: the controller carries a rider by the platform body's velocity from the previous step; on paths that turn (diagonal, circle) the rider loses the platform, and a platform moving into a character is not pushed out of it (Rapier's depenetration runs only for a zero desired move).".into());
+        out.push("rapier riders: the controller carries a rider by the velocity of the platform body it touches (the platforms move first, so it is this step's); on paths that turn (diagonal, circle) the rider loses the platform.".into());
     }
     if rapier("progress_ratio").any(|r| r.value < 0.99) {
-        out.push("rapier loses progress on flat ground: the shape catches on tile seams and, when it starts inside its offset band (spawned flush, walk_right_flush), creeps back out by only 1e-4 tiles a step.".into());
+        out.push("rapier loses progress on flat ground when fed gravity on every grounded step: the shape catches on tile seams; fed no vertical move while grounded (grounded=none-but-platforms) it walks.".into());
     }
     if rows
         .iter()

@@ -58,3 +58,12 @@ pub fn assert_success(out: &std::process::Output) {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// The value of metric `metric` on the scenario named `scenario`.
+pub fn value(evals: &[(String, Evaluation)], scenario: &str, metric: &str) -> f64 {
+    rows(evals, metric)
+        .into_iter()
+        .find(|r| r.scenario == scenario)
+        .unwrap_or_else(|| panic!("{metric} on {scenario}"))
+        .value
+}
