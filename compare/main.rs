@@ -49,9 +49,15 @@ enum Command {
     /// shape) and write each setting's cost and error score to DIR/tradeoff.csv, with the
     /// Pareto front marked, and the chart DIR/tradeoff.svg.
     Sweep {
-        /// Output directory for tradeoff.csv and tradeoff.svg.
+        /// Output directory for tradeoff.csv and tradeoff.svg (replaced as a whole; see
+        /// --force).
         #[arg(long, default_value = "platbench-sweep")]
         out: PathBuf,
+        /// Replace --out even when it holds something other than an earlier `platbench sweep`
+        /// output (a directory of your own files, another command's output). Without it such a
+        /// directory is refused. A baseline is never replaced but by `run --bless`.
+        #[arg(long)]
+        force: bool,
         /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
         levels: Vec<PathBuf>,
     },
@@ -61,9 +67,14 @@ enum Command {
     /// widths 0.01 to 10 tiles, and the sweep's epsilon 1e-1 to 1e-9. Writes DIR/stability.csv
     /// and prints each configuration's envelope, naming each invariant that broke and where.
     Stress {
-        /// Output directory for stability.csv.
+        /// Output directory for stability.csv (replaced as a whole; see --force).
         #[arg(long, default_value = "platbench-stress")]
         out: PathBuf,
+        /// Replace --out even when it holds something other than an earlier `platbench stress`
+        /// output (a directory of your own files, another command's output). Without it such a
+        /// directory is refused. A baseline is never replaced but by `run --bless`.
+        #[arg(long)]
+        force: bool,
     },
     /// Run level files (the built-in set when none is given) and write the "pick a backend"
     /// report: DIR/report.html (self-contained: inline pictures, no scripts, no network) and its
@@ -78,9 +89,14 @@ enum Command {
 struct ReportArgs {
     /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
     levels: Vec<PathBuf>,
-    /// Directory for report.html and report.md.
+    /// Directory for report.html and report.md (replaced as a whole; see --force).
     #[arg(long, default_value = "platbench-report")]
     out: PathBuf,
+    /// Replace --out even when it holds something other than an earlier `platbench report`
+    /// output (a directory of your own files, another command's output). Without it such a
+    /// directory is refused. A baseline is never replaced but by `run --bless`.
+    #[arg(long)]
+    force: bool,
     /// Backends to run (repeat or comma-separate); both by default.
     #[arg(long = "backend", value_name = "BACKEND", value_delimiter = ',', value_parser = ["sweep", "rapier"])]
     backends: Vec<String>,
@@ -125,9 +141,16 @@ struct DiffArgs {
 struct RunArgs {
     /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
     levels: Vec<PathBuf>,
-    /// Output directory.
+    /// Output directory, replaced as a whole once the run is complete. It must be missing,
+    /// empty, or an earlier `platbench run` output (it holds a .platbench-output marker file);
+    /// anything else is refused unless --force. A baseline (its marker says so) is refused
+    /// even with --force: only --bless replaces it.
     #[arg(long, default_value = "platbench-out")]
     out: PathBuf,
+    /// Replace --out even when it is not an earlier run's output (a directory of your own
+    /// files, another command's output): everything in it is deleted.
+    #[arg(long)]
+    force: bool,
     /// Print every metric of every scenario, not only the per-metric summary.
     #[arg(long)]
     detail: bool,
@@ -159,8 +182,8 @@ fn main() -> ExitCode {
         None => run(&RunArgs::default(), false),
         Some(Command::Run(args)) => run(&args, true),
         Some(Command::Levels) => list_levels(),
-        Some(Command::Stress { out }) => stress(&out),
-        Some(Command::Sweep { out, levels }) => sweep_settings(&out, &levels),
+        Some(Command::Stress { out, force }) => stress(&out, force),
+        Some(Command::Sweep { out, force, levels }) => sweep_settings(&out, force, &levels),
         Some(Command::Report(args)) => report(&args),
         Some(Command::Diff(args)) => return diff(&args),
     };
@@ -270,19 +293,15 @@ fn evaluate_or_skip(
 }
 
 fn run(args: &RunArgs, write: bool) -> Result<()> {
-    if !args.bless {
-        let same = |a: &std::path::Path, b: &std::path::Path| {
-            a.canonicalize()
-                .ok()
-                .zip(b.canonicalize().ok())
-                .is_some_and(|(a, b)| a == b)
-        };
-        if write && same(&args.out, &baseline_dir()) {
-            bail!(
-                "--out {} is the committed baseline; it is replaced only on purpose, with `platbench run --bless`",
-                args.out.display()
-            );
-        }
+    // Where the run goes, checked before any work: a directory that is not this command's
+    // output (or a baseline, without --bless) is refused now, not after the run.
+    let (target, kind) = if args.bless {
+        (baseline_dir(), output::Kind::Baseline)
+    } else {
+        (args.out.clone(), output::Kind::Run)
+    };
+    if write {
+        output::check_target(&target, kind, args.force)?;
     }
     let mut levels = load_levels(&args.levels)?;
     if let Some(dt) = args.dt {
@@ -345,17 +364,12 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
         out(&format!("\n{}", detail_table(&metrics)));
     }
     if write {
-        let out = if args.bless {
-            baseline_dir()
-        } else {
-            args.out.clone()
-        };
-        output::write_run(&out, &traces, &metrics)?;
+        output::write_run(&target, kind, args.force, &traces, &metrics)?;
         eprintln!(
             "wrote {} traces and {} metric rows to {}",
             traces.len(),
             metrics.len(),
-            out.display()
+            target.display()
         );
     } else {
         eprintln!("(worst case per metric over all scenarios; `platbench run --detail` lists every scenario, `--out DIR` writes the CSV files)");
@@ -441,6 +455,7 @@ fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) -> Result<V
 fn report(args: &ReportArgs) -> Result<()> {
     use platbench::report::html::{render_report, Extras, ScenarioTraces};
     // The extra files first: a bad one fails before the long run.
+    output::check_target(&args.out, output::Kind::Report, args.force)?;
     let extras = Extras {
         tradeoff: args.tradeoff.as_deref().map(read_rows).transpose()?,
         stability: args.stability.as_deref().map(read_rows).transpose()?,
@@ -478,22 +493,25 @@ fn report(args: &ReportArgs) -> Result<()> {
         })
         .collect();
     let (html, md) = render_report(&metrics, &scenarios, &extras);
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    output::write_output(&args.out, output::Kind::Report, args.force, |dir| {
+        for (name, text) in [("report.html", &html), ("report.md", &md)] {
+            output::write_file(&dir.join(name), text.as_bytes())?;
+        }
+        Ok(())
+    })?;
     for (name, text) in [("report.html", &html), ("report.md", &md)] {
-        let path = args.out.join(name);
-        let mut tmp = tempfile::NamedTempFile::new_in(&args.out)
-            .with_context(|| format!("cannot write in {}", args.out.display()))?;
-        std::io::Write::write_all(&mut tmp, text.as_bytes())?;
-        tmp.persist(&path)
-            .with_context(|| format!("cannot write {}", path.display()))?;
-        eprintln!("wrote {} ({} KB)", path.display(), text.len() / 1024);
+        eprintln!(
+            "wrote {} ({} KB)",
+            args.out.join(name).display(),
+            text.len() / 1024
+        );
     }
     Ok(())
 }
 
-fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<()> {
+fn sweep_settings(out_dir: &std::path::Path, force: bool, level_files: &[PathBuf]) -> Result<()> {
     use platbench::tradeoff::{chart_svg, grid, run_tradeoff};
+    output::check_target(out_dir, output::Kind::Sweep, force)?;
     let levels = load_levels(level_files)?;
     let settings = grid();
     let started = Instant::now();
@@ -526,19 +544,10 @@ fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<
         ]);
     }
     out(&t.to_string());
-    std::fs::create_dir_all(out_dir)
-        .with_context(|| format!("cannot create {}", out_dir.display()))?;
-    let csv_tmp = tempfile::NamedTempFile::new_in(out_dir)?;
-    let mut w = csv::Writer::from_writer(csv_tmp.as_file());
-    for r in &rows {
-        w.serialize(r)?;
-    }
-    w.flush()?;
-    drop(w);
-    csv_tmp.persist(out_dir.join("tradeoff.csv"))?;
-    let mut svg_tmp = tempfile::NamedTempFile::new_in(out_dir)?;
-    std::io::Write::write_all(&mut svg_tmp, chart_svg(&rows).as_bytes())?;
-    svg_tmp.persist(out_dir.join("tradeoff.svg"))?;
+    output::write_output(out_dir, output::Kind::Sweep, force, |dir| {
+        output::write_csv(&dir.join("tradeoff.csv"), &rows)?;
+        output::write_file(&dir.join("tradeoff.svg"), chart_svg(&rows).as_bytes())
+    })?;
     eprintln!(
         "wrote tradeoff.csv and tradeoff.svg to {}",
         out_dir.display()
@@ -546,7 +555,7 @@ fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<
     Ok(())
 }
 
-fn stress(out_dir: &std::path::Path) -> Result<()> {
+fn stress(out_dir: &std::path::Path, force: bool) -> Result<()> {
     use platbench::rapier::{CharacterShape, ColliderBuilding};
     use platbench::report::html::{breaks_list, value_list};
     use platbench::stress::{envelope, stress_matrix};
@@ -556,6 +565,7 @@ fn stress(out_dir: &std::path::Path) -> Result<()> {
         RunConfig::rapier(ColliderBuilding::PerTile, CharacterShape::Capsule),
         RunConfig::rapier(ColliderBuilding::Merged, CharacterShape::Capsule),
     ];
+    output::check_target(out_dir, output::Kind::Stress, force)?;
     let started = Instant::now();
     let rows = stress_matrix(&runs, |what| eprintln!("  {what}"))?;
     eprintln!("ran in {:.1} s", started.elapsed().as_secs_f64());
@@ -576,19 +586,10 @@ fn stress(out_dir: &std::path::Path) -> Result<()> {
         ]);
     }
     out(&t.to_string());
-    std::fs::create_dir_all(out_dir)
-        .with_context(|| format!("cannot create {}", out_dir.display()))?;
-    let path = out_dir.join("stability.csv");
-    let tmp = tempfile::NamedTempFile::new_in(out_dir)?;
-    let mut w = csv::Writer::from_writer(tmp.as_file());
-    for r in &rows {
-        w.serialize(r)?;
-    }
-    w.flush()?;
-    drop(w);
-    tmp.persist(&path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    eprintln!("wrote {}", path.display());
+    output::write_output(out_dir, output::Kind::Stress, force, |dir| {
+        output::write_csv(&dir.join("stability.csv"), &rows)
+    })?;
+    eprintln!("wrote {}", out_dir.join("stability.csv").display());
     Ok(())
 }
 
