@@ -221,10 +221,19 @@ fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
             }
             level
         } else {
-            let text = std::fs::read_to_string(p)
+            let text = platbench::limits::read_text_capped(p)
                 .with_context(|| format!("cannot read level file {}", p.display()))?;
             parse_level(&text, &p.display().to_string())?
         };
+        if level.scenarios.is_empty() {
+            // Nothing would run: a level without scenarios would put a run of zero cost and
+            // zero error into every table and onto the trade-off's front.
+            eprintln!(
+                "warning: {}: the level has no [[scenario]] entries, so nothing runs on it; skipped (add a [[scenario]] with a name, spawn and duration)",
+                level.source
+            );
+            continue;
+        }
         if let Some(other) = levels.iter().find(|l| l.name == level.name) {
             bail!(
                 "{} and {} both name their level {:?}; level names must be unique in a run (they name the trace files)",
@@ -234,6 +243,9 @@ fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
             );
         }
         levels.push(level);
+    }
+    if levels.is_empty() {
+        bail!("none of the level files has a scenario to run");
     }
     Ok(levels)
 }
@@ -250,8 +262,11 @@ fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
         });
     }
     if let Some(eps) = args.epsilon {
-        if !(eps.is_finite() && eps >= 0.0) {
-            bail!("--epsilon {eps}: expected a finite number >= 0 (tiles)");
+        if !platbench::limits::within(eps as f64, (0.0, platbench::limits::MAX_EPSILON)) {
+            bail!(
+                "--epsilon {eps}: expected tiles, 0 <= epsilon <= {}",
+                platbench::limits::MAX_EPSILON
+            );
         }
         for c in &mut set {
             if let BackendConfig::Sweep(s) = &mut c.backend {
@@ -303,14 +318,30 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
     if write {
         output::check_target(&target, kind, args.force)?;
     }
+    if let Some(dt) = args.dt {
+        let (lo, hi) = platbench::limits::DT_RANGE;
+        if !platbench::limits::dt_in_range(dt as f64) {
+            bail!("--dt {dt}: expected a time step in seconds, {lo} <= dt <= {hi}");
+        }
+    }
     let mut levels = load_levels(&args.levels)?;
     if let Some(dt) = args.dt {
-        if !(dt.is_finite() && dt > 0.0 && dt <= 1.0) {
-            bail!("--dt {dt}: expected a time step in seconds, 0 < dt <= 1");
-        }
+        // The frame caps hold for the step given here as for a step in the file.
         for l in &mut levels {
+            let mut level_frames = 0u64;
             for s in &mut l.scenarios {
                 s.dt = dt;
+                level_frames += platbench::limits::check_timing(s.duration as f64, dt as f64)
+                    .map_err(|m| {
+                        anyhow::anyhow!("--dt {dt} on {} scenario {}: {m}", l.source, s.name)
+                    })?;
+            }
+            if level_frames > platbench::limits::MAX_LEVEL_FRAMES {
+                bail!(
+                    "--dt {dt}: the scenarios of {} would run {level_frames} frames together; expected at most {}",
+                    l.source,
+                    platbench::limits::MAX_LEVEL_FRAMES
+                );
             }
         }
     }

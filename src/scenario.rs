@@ -252,7 +252,7 @@ pub fn time_scenario(
     run: &RunConfig,
     repeats: usize,
 ) -> Result<f64, BackendError> {
-    check_dt(spec.dt)?;
+    check_dt(spec)?;
     let params = effective_params(&run.params, spec);
     let script = input_script(spec);
     let mut best = f64::INFINITY;
@@ -294,7 +294,7 @@ fn drive(
     run: &RunConfig,
     mut backend: Box<dyn Backend>,
 ) -> Result<Trace, BackendError> {
-    check_dt(spec.dt)?;
+    check_dt(spec)?;
     let id = backend.add_character(CharacterSpec {
         spawn: spec.spawn,
         size: spec.size,
@@ -331,16 +331,16 @@ fn drive(
     })
 }
 
-/// Refuses a time step that is not a finite number > 0.
-fn check_dt(dt: f32) -> Result<(), BackendError> {
-    if dt.is_finite() && dt > 0.0 {
-        Ok(())
-    } else {
-        Err(crate::backend::invalid(
+/// Refuses a time step or duration outside the ranges of [`crate::limits`]: the frames a run
+/// takes (and the trace it records) are bounded before it starts.
+fn check_dt(spec: &ScenarioSpec) -> Result<(), BackendError> {
+    match crate::limits::check_timing(spec.duration as f64, spec.dt as f64) {
+        Ok(_) => Ok(()),
+        Err(message) => Err(crate::backend::invalid(
             "dt",
-            dt,
-            "a finite time step > 0 (seconds)",
-        ))
+            message,
+            "a time step 1e-6..=1 s and a duration of 1 to 10,000,000 frames (crate::limits)",
+        )),
     }
 }
 

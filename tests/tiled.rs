@@ -337,7 +337,7 @@ fn platform_and_spawn_errors_name_the_object() {
                 poly,
             ),
             "object 2 \"lift\"",
-            "expected a number > 0",
+            "expected 0 < speed <= 10000",
         ),
         (
             platform(
@@ -514,7 +514,9 @@ fn unsupported_maps_and_layers_are_errors() {
     std::fs::write(&path, short).unwrap();
     let e = import_tiled_map(&path).unwrap_err().to_string();
     assert!(
-        e.contains("layer \"collision\"") && e.contains("fewer than 3 x 2"),
+        e.contains("layer \"collision\"")
+            && e.contains("4 cells of 4 bytes")
+            && e.contains("expected exactly 6 cells"),
         "{e}"
     );
 }
