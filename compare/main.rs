@@ -81,7 +81,13 @@ enum Command {
     /// Markdown twin DIR/report.md.
     Report(ReportArgs),
     /// Compare a run directory against a baseline: metrics beyond tolerance, first divergent
-    /// trace frames. Exits 1 when a metric got worse (or went missing), 0 otherwise.
+    /// trace frames.
+    ///
+    /// Exit status: 0 when nothing fails; 1 when a metric got worse beyond its tolerance, a
+    /// metric or trace of the baseline is missing from the new run (unless --allow-missing),
+    /// or a trace diverges beyond --position-tolerance or ends early (unless
+    /// --allow-divergence); 2 on an error (a bad option, an unreadable or malformed file).
+    /// A NaN where the other run has a number is a difference.
     Diff(DiffArgs),
 }
 
@@ -120,13 +126,22 @@ struct DiffArgs {
     /// New run directory (written by `platbench run --out`).
     new: PathBuf,
     /// Override a metric's tolerance: METRIC=ABS or METRIC=ABS,REL (REL a fraction of the
-    /// baseline's distance from ideal). Repeatable. Defaults: 1e-5 + 1% for lengths and ratios,
-    /// exact for counts, frames and booleans.
+    /// baseline's distance from ideal; both finite and >= 0; METRIC a name of the metric
+    /// catalog). Repeatable. Defaults: 1e-5 + 1% for lengths and ratios, exact for counts,
+    /// frames and booleans.
     #[arg(long = "tol", value_name = "METRIC=ABS[,REL]")]
     tolerances: Vec<String>,
-    /// Position difference at which a trace diverges, in tiles.
+    /// Position difference at which a trace diverges, in tiles (finite and >= 0).
     #[arg(long, default_value_t = 1e-4, value_name = "TILES")]
     position_tolerance: f32,
+    /// Do not fail (exit 1) when a metric or trace of the baseline is missing from the new run;
+    /// it is still listed.
+    #[arg(long)]
+    allow_missing: bool,
+    /// Do not fail (exit 1) when a trace diverges beyond --position-tolerance or ends before
+    /// (or runs past) the baseline's; it is still listed.
+    #[arg(long)]
+    allow_divergence: bool,
     /// Output format.
     #[arg(long, default_value = "text", value_parser = ["text", "md", "csv"])]
     format: String,
@@ -424,9 +439,23 @@ fn baseline_dir() -> PathBuf {
 }
 
 fn diff(args: &DiffArgs) -> ExitCode {
-    use platbench::report::diff::{diff_runs, render, DiffFormat, Tolerance};
+    use platbench::report::diff::{diff_runs, render, DiffFormat, FailOn, Tolerance};
+    let p = args.position_tolerance;
+    if !(p.is_finite() && p >= 0.0) {
+        eprintln!("error: --position-tolerance {p}: expected a finite number of tiles >= 0 (a NaN or infinite tolerance would pass every trace)");
+        return ExitCode::from(2);
+    }
     let mut tols = std::collections::BTreeMap::new();
     for t in &args.tolerances {
+        if let Some((m, _)) = t.split_once('=') {
+            if !platbench::metrics::CATALOG.contains(&m) {
+                eprintln!(
+                    "error: --tol {t}: no metric is named {m:?}; expected one of {}",
+                    platbench::metrics::CATALOG.join(", ")
+                );
+                return ExitCode::from(2);
+            }
+        }
         let parsed = t.split_once('=').and_then(|(m, v)| {
             let mut parts = v.split(',').map(|x| x.trim().parse::<f64>());
             let abs = parts.next()?.ok()?;
@@ -442,7 +471,7 @@ fn diff(args: &DiffArgs) -> ExitCode {
                 tols.insert(m, tol);
             }
             None => {
-                eprintln!("error: --tol {t}: expected METRIC=ABS or METRIC=ABS,REL with non-negative numbers");
+                eprintln!("error: --tol {t}: expected METRIC=ABS or METRIC=ABS,REL with finite numbers >= 0");
                 return ExitCode::from(2);
             }
         }
@@ -455,11 +484,18 @@ fn diff(args: &DiffArgs) -> ExitCode {
     match diff_runs(&args.base, &args.new, &tols, args.position_tolerance) {
         Ok(d) => {
             out(render(&d, format).trim_end());
-            if d.regressed(args.fail_on_timing) {
-                eprintln!("regression: a metric got worse beyond its tolerance (or went missing)");
-                ExitCode::from(1)
-            } else {
+            let failures = d.failures(FailOn {
+                timing: args.fail_on_timing,
+                allow_missing: args.allow_missing,
+                allow_divergence: args.allow_divergence,
+            });
+            if failures.is_empty() {
                 ExitCode::SUCCESS
+            } else {
+                for f in failures {
+                    eprintln!("regression: {f}");
+                }
+                ExitCode::from(1)
             }
         }
         Err(e) => {

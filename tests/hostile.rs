@@ -493,3 +493,118 @@ inputs = [ { t = {t}, right = true, jump = true } ]
         }
     }
 }
+
+// ---- 3. diff ------------------------------------------------------------------------------
+
+fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        if e.file_type().unwrap().is_dir() {
+            copy_dir(&e.path(), &to.join(e.file_name()));
+        } else {
+            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
+        }
+    }
+}
+
+/// `platbench diff BASE NEW EXTRA...`
+fn diff(base: &Path, new: &Path, extra: &[&str]) -> Output {
+    platbench()
+        .arg("diff")
+        .arg(base)
+        .arg(new)
+        .args(extra)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn diff_fails_on_nan_missing_and_truncated_traces_and_refuses_bad_tolerances() {
+    let dir = tempfile::tempdir().unwrap();
+    let level = quick_level(dir.path());
+    let base = dir.path().join("base");
+    assert_success(&run_quick(&level, &base, &[]));
+    let trace = "traces/quick.stand.sweep.csv";
+    let fresh = |name: &str| {
+        let new = dir.path().join(name);
+        copy_dir(&base, &new);
+        new
+    };
+    // A copy is the same run: exit 0.
+    let same = fresh("same");
+    assert_eq!(diff(&base, &same, &[]).status.code(), Some(0));
+
+    // Every position NaN: once "0 diverge" and exit 0.
+    let nan = fresh("nan");
+    let text = std::fs::read_to_string(nan.join(trace)).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    for l in lines.iter_mut().skip(1) {
+        let mut f: Vec<&str> = l.split(',').collect();
+        f[3] = "NaN";
+        f[4] = "NaN";
+        *l = f.join(",");
+    }
+    std::fs::write(nan.join(trace), lines.join("\n") + "\n").unwrap();
+    let out = diff(&base, &nan, &[]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("1 trace(s) diverge"),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(
+        diff(&base, &nan, &["--allow-divergence"]).status.code(),
+        Some(0)
+    );
+
+    // Truncated: the last frames cut off.
+    let cut = fresh("cut");
+    std::fs::write(
+        cut.join(trace),
+        text.lines().take(10).collect::<Vec<_>>().join("\n") + "\n",
+    )
+    .unwrap();
+    let out = diff(&base, &cut, &[]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("end before"), "{}", stderr(&out));
+
+    // Missing: a trace and a metric row of the baseline gone.
+    let gone = fresh("gone");
+    std::fs::remove_file(gone.join(trace)).unwrap();
+    let metrics = std::fs::read_to_string(gone.join("metrics.csv")).unwrap();
+    let kept: Vec<&str> = metrics
+        .lines()
+        .filter(|l| !l.contains(",rest_gap,"))
+        .collect();
+    assert!(kept.len() < metrics.lines().count());
+    std::fs::write(gone.join("metrics.csv"), kept.join("\n") + "\n").unwrap();
+    let out = diff(&base, &gone, &[]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains("trace(s) of the baseline are missing"),
+        "{err}"
+    );
+    assert!(
+        err.contains("metric(s) of the baseline are missing"),
+        "{err}"
+    );
+    assert_eq!(
+        diff(&base, &gone, &["--allow-missing"]).status.code(),
+        Some(0)
+    );
+
+    // Tolerances that would pass anything, and a metric that does not exist.
+    for (args, needle) in [
+        (vec!["--position-tolerance", "NaN"], "--position-tolerance"),
+        (vec!["--position-tolerance", "inf"], "--position-tolerance"),
+        (vec!["--position-tolerance", "-1"], "--position-tolerance"),
+        (vec!["--tol", "rest_gap=nan"], "--tol"),
+        (vec!["--tol", "rest_gap=1,inf"], "--tol"),
+        (vec!["--tol", "rest_gap=-1"], "--tol"),
+        (vec!["--tol", "no_such_metric=1"], "no metric is named"),
+    ] {
+        assert_error(&diff(&base, &nan, &args), needle);
+    }
+}
