@@ -4,6 +4,7 @@
 mod builtin;
 mod output;
 
+use std::io::IsTerminal as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -271,6 +272,16 @@ fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
         set.retain(|c| args.backends.iter().any(|b| b == c.backend.name()));
     }
     if !args.shapes.is_empty() {
+        if !set
+            .iter()
+            .any(|c| matches!(c.backend, BackendConfig::Rapier(_)))
+        {
+            bail!(
+                "--shape {} picks Rapier's character shapes, but no Rapier configuration runs (--backend {}); drop --shape, or add --backend rapier",
+                args.shapes.join(","),
+                args.backends.join(",")
+            );
+        }
         set.retain(|c| match &c.backend {
             BackendConfig::Rapier(r) => args.shapes.contains(&r.shape.label()),
             _ => true,
@@ -361,13 +372,25 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
         }
     }
     let configs = configs(args)?;
-    let total: usize = levels.iter().map(|l| l.scenarios.len()).sum::<usize>() * configs.len();
+    // The runs that will write a trace: a configuration that does not model a level's
+    // features skips that level (said once, below).
+    let scenarios: usize = levels.iter().map(|l| l.scenarios.len()).sum();
+    let total: usize = levels
+        .iter()
+        .map(|l| l.scenarios.len() * configs.iter().filter(|c| c.backend.supports(l)).count())
+        .sum();
+    let skipped_runs = scenarios * configs.len() - total;
     eprintln!(
-        "platbench: {} scenarios on {} configurations ({} runs)",
-        total / configs.len().max(1),
+        "platbench: {scenarios} scenarios on {} configurations ({total} runs{})",
         configs.len(),
-        total
+        if skipped_runs > 0 {
+            format!(", {skipped_runs} skipped where a configuration does not model a level")
+        } else {
+            String::new()
+        }
     );
+    // Progress within a level, only for a person watching: a terminal's stderr.
+    let live = std::io::stderr().is_terminal();
     let started = Instant::now();
     let mut traces: Vec<Trace> = Vec::new();
     let mut metrics: Vec<MetricRow> = Vec::new();
@@ -376,10 +399,21 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
     for level in &levels {
         let level_start = Instant::now();
         let mut runner = Runner::new(level);
-        for spec in &level.scenarios {
+        for (si, spec) in level.scenarios.iter().enumerate() {
             for run in &configs {
+                if live {
+                    eprint!(
+                        "\r\x1b[K  [{done}/{total}] {}: scenario {}/{} {} on {} {} ({} frames)",
+                        level.name,
+                        si + 1,
+                        level.scenarios.len(),
+                        spec.name,
+                        run.backend.name(),
+                        run.label,
+                        platbench::scenario::step_count(spec)
+                    );
+                }
                 let Some(e) = evaluate_or_skip(&mut runner, spec, run, &mut skipped)? else {
-                    done += 1;
                     continue;
                 };
                 if args.timing {
@@ -392,6 +426,9 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
                 }
                 done += 1;
             }
+        }
+        if live {
+            eprint!("\r\x1b[K");
         }
         eprintln!(
             "  [{done}/{total}] {} ({}) {:.2} s",
@@ -519,12 +556,31 @@ fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) -> Result<V
     Ok(rows)
 }
 
+/// Reads a tradeoff.csv and checks what the chart draws: each cost and error score finite and
+/// >= 0 (a damaged file drew NaN and -1e308 costs), and at least one setting per row.
+fn read_tradeoff(path: &std::path::Path) -> Result<Vec<platbench::tradeoff::TradeoffRow>> {
+    let rows: Vec<platbench::tradeoff::TradeoffRow> = read_rows(path)?;
+    for (k, r) in rows.iter().enumerate() {
+        // Line 1 is the header.
+        let line = k + 2;
+        for (what, v) in [("cost_us", r.cost_us), ("error", r.error)] {
+            if !(v.is_finite() && v >= 0.0) {
+                bail!(
+                    "{}:{line}: {what} is {v}; expected a finite number >= 0 (a tradeoff.csv written by `platbench sweep`; rerun it if the file was damaged)",
+                    path.display()
+                );
+            }
+        }
+    }
+    Ok(rows)
+}
+
 fn report(args: &ReportArgs) -> Result<()> {
     use platbench::report::html::{render_report, Extras, ScenarioTraces};
     // The extra files first: a bad one fails before the long run.
     output::check_target(&args.out, output::Kind::Report, args.force)?;
     let extras = Extras {
-        tradeoff: args.tradeoff.as_deref().map(read_rows).transpose()?,
+        tradeoff: args.tradeoff.as_deref().map(read_tradeoff).transpose()?,
         stability: args.stability.as_deref().map(read_rows).transpose()?,
     };
     let levels = load_levels(&args.levels)?;

@@ -37,6 +37,25 @@ impl BackendConfig {
         }
     }
 
+    /// Whether this backend models `level`: its features, and for integer positions its
+    /// origin. A level it does not model is refused by its build (and skipped by the CLI), so a
+    /// run can count what it will run beforehand.
+    pub fn supports(&self, level: &Level) -> bool {
+        let supported = match self {
+            BackendConfig::Sweep(c) => match c.positions {
+                crate::sweep::Positions::Float => SweepBackend::SUPPORTED,
+                crate::sweep::Positions::Integer { per_tile } => {
+                    if crate::sweep::grid::Grid::new(per_tile, level.origin, &level.name).is_err() {
+                        return false;
+                    }
+                    crate::sweep::INTEGER_SUPPORTED
+                }
+            },
+            BackendConfig::Rapier(_) => RapierBackend::SUPPORTED,
+        };
+        crate::backend::require_supported(self.name(), "", level.features, supported).is_ok()
+    }
+
     /// Builds the backend over `level`.
     pub fn build(
         &self,

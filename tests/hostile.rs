@@ -608,3 +608,191 @@ fn diff_fails_on_nan_missing_and_truncated_traces_and_refuses_bad_tolerances() {
         assert_error(&diff(&base, &nan, &args), needle);
     }
 }
+
+// ---- 4. no panic text from any input ----------------------------------------------------
+
+#[test]
+fn a_tiled_layer_shorter_than_its_map_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("short.tmx");
+    // A 4 x 2 map whose only layer holds 5 of its 8 cells.
+    std::fs::write(
+        &map,
+        "<?xml version=\"1.0\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" width=\"4\" height=\"2\" tilewidth=\"16\" tileheight=\"16\" infinite=\"0\">\n <tileset firstgid=\"1\" name=\"t\" tilewidth=\"16\" tileheight=\"16\" tilecount=\"1\" columns=\"1\"/>\n <layer id=\"1\" name=\"ground\" width=\"4\" height=\"2\">\n  <data encoding=\"csv\">\n0,0,0,0,\n1\n</data>\n </layer>\n</map>\n",
+    )
+    .unwrap();
+    let out = platbench()
+        .arg("run")
+        .arg(&map)
+        .arg("--out")
+        .arg(dir.path().join("o"))
+        .output()
+        .unwrap();
+    assert_error(
+        &out,
+        "holds 5 comma-separated cells; expected exactly 8 cells",
+    );
+    assert!(
+        !stderr(&out).contains("index out of bounds"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+// ---- 5. what was accepted silently ------------------------------------------------------
+
+#[test]
+fn silently_accepted_levels_are_errors_or_warnings_that_say_what_to_do() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        // rest_gap = inf, silently.
+        (
+            "name = \"a\"\nmap = \"\"\"\n....\n####\n\"\"\"\n[[scenario]]\nname = \"s\"\nspawn = [100.5, 1.0]\nduration = 1.0\n",
+            "is outside the map",
+        ),
+        (
+            "name = \"b\"\nmap = \"\"\"\n#...\n####\n\"\"\"\n[legend]\n\"#\" = \"empty\"\n[[scenario]]\nname = \"s\"\nspawn = [1.5, 1.0]\nduration = 1.0\n",
+            "cannot be redefined as empty",
+        ),
+        // Every position collapsed, and the summary blamed Rapier.
+        (
+            "name = \"c\"\norigin = [1e30, 1e30]\nmap = \"\"\"\n....\n####\n\"\"\"\n[[scenario]]\nname = \"s\"\nspawn = [1.5, 1.0]\nduration = 1.0\n",
+            "origin x is 1",
+        ),
+        // Zero steps.
+        (
+            "name = \"d\"\nmap = \"\"\"\n....\n####\n\"\"\"\n[[scenario]]\nname = \"s\"\nspawn = [1.5, 1.0]\nduration = 1.0\ndt = 1e30\n",
+            "expected a time step",
+        ),
+    ];
+    for (text, needle) in cases {
+        let path = dir.path().join("l.toml");
+        std::fs::write(&path, text).unwrap();
+        let out = platbench()
+            .arg("run")
+            .arg(&path)
+            .arg("--out")
+            .arg(dir.path().join("o"))
+            .output()
+            .unwrap();
+        assert_error(&out, needle);
+        assert!(stderr(&out).contains("l.toml:"), "{}", stderr(&out));
+    }
+    // A level with no scenarios is skipped with a warning (a 0-cost, 0-error setting once
+    // reached the trade-off's front); the other level runs.
+    let empty = dir.path().join("empty.toml");
+    std::fs::write(
+        &empty,
+        "name = \"empty\"\nmap = \"\"\"\n....\n####\n\"\"\"\n",
+    )
+    .unwrap();
+    let level = quick_level(dir.path());
+    let out = platbench()
+        .arg("run")
+        .arg(&empty)
+        .arg(&level)
+        .args(["--backend", "sweep", "--out"])
+        .arg(dir.path().join("o"))
+        .output()
+        .unwrap();
+    assert_success(&out);
+    assert!(
+        stderr(&out).contains("empty.toml: the level has no [[scenario]] entries"),
+        "{}",
+        stderr(&out)
+    );
+    // Alone, it is an error: nothing would run.
+    let out = platbench()
+        .args(["sweep", "--out"])
+        .arg(dir.path().join("s"))
+        .arg(&empty)
+        .output()
+        .unwrap();
+    assert_error(&out, "none of the level files has a scenario to run");
+}
+
+#[test]
+fn report_refuses_a_damaged_tradeoff_file_naming_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let level = quick_level(dir.path());
+    let trade = dir.path().join("tradeoff.csv");
+    std::fs::write(
+        &trade,
+        "backend,setting,cost_us,error,pareto,scenarios\nsweep,dt=1/60,2.5,0.01,true,1\nsweep,dt=1/30,NaN,0.01,false,1\n",
+    )
+    .unwrap();
+    let out = platbench()
+        .arg("report")
+        .arg(&level)
+        .arg("--tradeoff")
+        .arg(&trade)
+        .args(["--backend", "sweep", "--out"])
+        .arg(dir.path().join("r"))
+        .output()
+        .unwrap();
+    assert_error(&out, "tradeoff.csv:3: cost_us is NaN");
+    std::fs::write(
+        &trade,
+        "backend,setting,cost_us,error,pareto,scenarios\nsweep,dt=1/60,-1e308,0.01,true,1\n",
+    )
+    .unwrap();
+    let out = platbench()
+        .arg("report")
+        .arg(&level)
+        .arg("--tradeoff")
+        .arg(&trade)
+        .arg("--out")
+        .arg(dir.path().join("r"))
+        .output()
+        .unwrap();
+    assert_error(&out, "tradeoff.csv:2: cost_us is -1");
+}
+
+// ---- 6. the small things ----------------------------------------------------------------
+
+#[test]
+fn the_header_counts_the_traces_written_and_stderr_stays_clean_off_a_terminal() {
+    // The built-in set on the sweep's three configurations: integer positions skip the
+    // levels with slopes or moving platforms, which the header once counted anyway.
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("o");
+    let out = platbench()
+        .args(["run", "--backend", "sweep", "--out"])
+        .arg(&out_dir)
+        .output()
+        .unwrap();
+    assert_success(&out);
+    let err = stderr(&out);
+    let runs: usize = err
+        .split_once(" runs")
+        .and_then(|(head, _)| head.rsplit('(').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no run count in: {err}"));
+    let written = std::fs::read_dir(out_dir.join("traces")).unwrap().count();
+    assert_eq!(runs, written, "{err}");
+    assert!(err.contains(&format!("wrote {written} traces")), "{err}");
+    assert!(
+        err.contains("skipped where a configuration does not model a level"),
+        "{err}"
+    );
+    // No progress line rewritten in place: stderr is a pipe here, as in CI.
+    assert!(!err.contains('\r') && !err.contains('\x1b'), "{err:?}");
+}
+
+#[test]
+fn shape_without_a_rapier_backend_is_an_error_and_the_rules_map_runs_alone() {
+    let out = platbench()
+        .args(["run", "--backend", "sweep", "--shape", "ball"])
+        .output()
+        .unwrap();
+    assert_error(&out, "add --backend rapier");
+    let dir = tempfile::tempdir().unwrap();
+    let out = platbench()
+        .arg("run")
+        .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/maps/rules.tmx"))
+        .args(["--backend", "sweep", "--out"])
+        .arg(dir.path().join("o"))
+        .output()
+        .unwrap();
+    assert_success(&out);
+}

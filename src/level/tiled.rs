@@ -107,7 +107,7 @@ pub enum TiledError {
         message: String,
     },
     /// The map has neither spawn points nor a side file, so nothing can run on it.
-    #[error("{file}: the map has no spawn points (objects of class \"spawn\") and no side file {side} with [[scenario]] entries; expected one of them, so that something runs on it")]
+    #[error("{file}: the map has no spawn points (objects of class \"spawn\") and no side file {side} with [[scenario]] entries, so nothing can run on it; add a point object of class \"spawn\" in an object layer in Tiled (where the character's feet start), or write {side} with [[scenario]] entries (README, \"Tiled maps\")")]
     NoScenarios {
         /// The map file.
         file: String,
