@@ -4,6 +4,7 @@
 mod builtin;
 mod output;
 
+use std::io::IsTerminal as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -49,9 +50,15 @@ enum Command {
     /// building and shape) and write each setting's cost and error score to DIR/tradeoff.csv, with the
     /// Pareto front marked, and the chart DIR/tradeoff.svg.
     Sweep {
-        /// Output directory for tradeoff.csv and tradeoff.svg.
+        /// Output directory for tradeoff.csv and tradeoff.svg (replaced as a whole; see
+        /// --force).
         #[arg(long, default_value = "platbench-sweep")]
         out: PathBuf,
+        /// Replace --out even when it holds something other than an earlier `platbench sweep`
+        /// output (a directory of your own files, another command's output). Without it such a
+        /// directory is refused. A baseline is never replaced but by `run --bless`.
+        #[arg(long)]
+        force: bool,
         /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
         levels: Vec<PathBuf>,
     },
@@ -61,16 +68,27 @@ enum Command {
     /// widths 0.01 to 10 tiles, and the sweep's epsilon 1e-1 to 1e-9. Writes DIR/stability.csv
     /// and prints each configuration's envelope, naming each invariant that broke and where.
     Stress {
-        /// Output directory for stability.csv.
+        /// Output directory for stability.csv (replaced as a whole; see --force).
         #[arg(long, default_value = "platbench-stress")]
         out: PathBuf,
+        /// Replace --out even when it holds something other than an earlier `platbench stress`
+        /// output (a directory of your own files, another command's output). Without it such a
+        /// directory is refused. A baseline is never replaced but by `run --bless`.
+        #[arg(long)]
+        force: bool,
     },
     /// Run level files (the built-in set when none is given) and write the "pick a backend"
     /// report: DIR/report.html (self-contained: inline pictures, no scripts, no network) and its
     /// Markdown twin DIR/report.md.
     Report(ReportArgs),
     /// Compare a run directory against a baseline: metrics beyond tolerance, first divergent
-    /// trace frames. Exits 1 when a metric got worse (or went missing), 0 otherwise.
+    /// trace frames.
+    ///
+    /// Exit status: 0 when nothing fails; 1 when a metric got worse beyond its tolerance, a
+    /// metric or trace of the baseline is missing from the new run (unless --allow-missing),
+    /// or a trace diverges beyond --position-tolerance or ends early (unless
+    /// --allow-divergence); 2 on an error (a bad option, an unreadable or malformed file).
+    /// A NaN where the other run has a number is a difference.
     Diff(DiffArgs),
 }
 
@@ -78,9 +96,14 @@ enum Command {
 struct ReportArgs {
     /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
     levels: Vec<PathBuf>,
-    /// Directory for report.html and report.md.
+    /// Directory for report.html and report.md (replaced as a whole; see --force).
     #[arg(long, default_value = "platbench-report")]
     out: PathBuf,
+    /// Replace --out even when it holds something other than an earlier `platbench report`
+    /// output (a directory of your own files, another command's output). Without it such a
+    /// directory is refused. A baseline is never replaced but by `run --bless`.
+    #[arg(long)]
+    force: bool,
     /// Backends to run (repeat or comma-separate); both by default.
     #[arg(long = "backend", value_name = "BACKEND", value_delimiter = ',', value_parser = ["sweep", "rapier"])]
     backends: Vec<String>,
@@ -104,13 +127,22 @@ struct DiffArgs {
     /// New run directory (written by `platbench run --out`).
     new: PathBuf,
     /// Override a metric's tolerance: METRIC=ABS or METRIC=ABS,REL (REL a fraction of the
-    /// baseline's distance from ideal). Repeatable. Defaults: 1e-5 + 1% for lengths and ratios,
-    /// exact for counts, frames and booleans.
+    /// baseline's distance from ideal; both finite and >= 0; METRIC a name of the metric
+    /// catalog). Repeatable. Defaults: 1e-5 + 1% for lengths and ratios, exact for counts,
+    /// frames and booleans.
     #[arg(long = "tol", value_name = "METRIC=ABS[,REL]")]
     tolerances: Vec<String>,
-    /// Position difference at which a trace diverges, in tiles.
+    /// Position difference at which a trace diverges, in tiles (finite and >= 0).
     #[arg(long, default_value_t = 1e-4, value_name = "TILES")]
     position_tolerance: f32,
+    /// Do not fail (exit 1) when a metric or trace of the baseline is missing from the new run;
+    /// it is still listed.
+    #[arg(long)]
+    allow_missing: bool,
+    /// Do not fail (exit 1) when a trace diverges beyond --position-tolerance or ends before
+    /// (or runs past) the baseline's; it is still listed.
+    #[arg(long)]
+    allow_divergence: bool,
     /// Output format.
     #[arg(long, default_value = "text", value_parser = ["text", "md", "csv"])]
     format: String,
@@ -125,9 +157,16 @@ struct DiffArgs {
 struct RunArgs {
     /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
     levels: Vec<PathBuf>,
-    /// Output directory.
+    /// Output directory, replaced as a whole once the run is complete. It must be missing,
+    /// empty, or an earlier `platbench run` output (it holds a .platbench-output marker file);
+    /// anything else is refused unless --force. A baseline (its marker says so) is refused
+    /// even with --force: only --bless replaces it.
     #[arg(long, default_value = "platbench-out")]
     out: PathBuf,
+    /// Replace --out even when it is not an earlier run's output (a directory of your own
+    /// files, another command's output): everything in it is deleted.
+    #[arg(long)]
+    force: bool,
     /// Print every metric of every scenario, not only the per-metric summary.
     #[arg(long)]
     detail: bool,
@@ -159,8 +198,8 @@ fn main() -> ExitCode {
         None => run(&RunArgs::default(), false),
         Some(Command::Run(args)) => run(&args, true),
         Some(Command::Levels) => list_levels(),
-        Some(Command::Stress { out }) => stress(&out),
-        Some(Command::Sweep { out, levels }) => sweep_settings(&out, &levels),
+        Some(Command::Stress { out, force }) => stress(&out, force),
+        Some(Command::Sweep { out, force, levels }) => sweep_settings(&out, force, &levels),
         Some(Command::Report(args)) => report(&args),
         Some(Command::Diff(args)) => return diff(&args),
     };
@@ -198,10 +237,19 @@ fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
             }
             level
         } else {
-            let text = std::fs::read_to_string(p)
+            let text = platbench::limits::read_text_capped(p)
                 .with_context(|| format!("cannot read level file {}", p.display()))?;
             parse_level(&text, &p.display().to_string())?
         };
+        if level.scenarios.is_empty() {
+            // Nothing would run: a level without scenarios would put a run of zero cost and
+            // zero error into every table and onto the trade-off's front.
+            eprintln!(
+                "warning: {}: the level has no [[scenario]] entries, so nothing runs on it; skipped (add a [[scenario]] with a name, spawn and duration)",
+                level.source
+            );
+            continue;
+        }
         if let Some(other) = levels.iter().find(|l| l.name == level.name) {
             bail!(
                 "{} and {} both name their level {:?}; level names must be unique in a run (they name the trace files)",
@@ -212,6 +260,9 @@ fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
         }
         levels.push(level);
     }
+    if levels.is_empty() {
+        bail!("none of the level files has a scenario to run");
+    }
     Ok(levels)
 }
 
@@ -221,14 +272,27 @@ fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
         set.retain(|c| args.backends.iter().any(|b| b == c.backend.name()));
     }
     if !args.shapes.is_empty() {
+        if !set
+            .iter()
+            .any(|c| matches!(c.backend, BackendConfig::Rapier(_)))
+        {
+            bail!(
+                "--shape {} picks Rapier's character shapes, but no Rapier configuration runs (--backend {}); drop --shape, or add --backend rapier",
+                args.shapes.join(","),
+                args.backends.join(",")
+            );
+        }
         set.retain(|c| match &c.backend {
             BackendConfig::Rapier(r) => args.shapes.contains(&r.shape.label()),
             _ => true,
         });
     }
     if let Some(eps) = args.epsilon {
-        if !(eps.is_finite() && eps >= 0.0) {
-            bail!("--epsilon {eps}: expected a finite number >= 0 (tiles)");
+        if !platbench::limits::within(eps as f64, (0.0, platbench::limits::MAX_EPSILON)) {
+            bail!(
+                "--epsilon {eps}: expected tiles, 0 <= epsilon <= {}",
+                platbench::limits::MAX_EPSILON
+            );
         }
         for c in &mut set {
             if let BackendConfig::Sweep(s) = &mut c.backend {
@@ -270,39 +334,63 @@ fn evaluate_or_skip(
 }
 
 fn run(args: &RunArgs, write: bool) -> Result<()> {
-    if !args.bless {
-        let same = |a: &std::path::Path, b: &std::path::Path| {
-            a.canonicalize()
-                .ok()
-                .zip(b.canonicalize().ok())
-                .is_some_and(|(a, b)| a == b)
-        };
-        if write && same(&args.out, &baseline_dir()) {
-            bail!(
-                "--out {} is the committed baseline; it is replaced only on purpose, with `platbench run --bless`",
-                args.out.display()
-            );
+    // Where the run goes, checked before any work: a directory that is not this command's
+    // output (or a baseline, without --bless) is refused now, not after the run.
+    let (target, kind) = if args.bless {
+        (baseline_dir(), output::Kind::Baseline)
+    } else {
+        (args.out.clone(), output::Kind::Run)
+    };
+    if write {
+        output::check_target(&target, kind, args.force)?;
+    }
+    if let Some(dt) = args.dt {
+        let (lo, hi) = platbench::limits::DT_RANGE;
+        if !platbench::limits::dt_in_range(dt as f64) {
+            bail!("--dt {dt}: expected a time step in seconds, {lo} <= dt <= {hi}");
         }
     }
     let mut levels = load_levels(&args.levels)?;
     if let Some(dt) = args.dt {
-        if !(dt.is_finite() && dt > 0.0 && dt <= 1.0) {
-            bail!("--dt {dt}: expected a time step in seconds, 0 < dt <= 1");
-        }
+        // The frame caps hold for the step given here as for a step in the file.
         for l in &mut levels {
+            let mut level_frames = 0u64;
             for s in &mut l.scenarios {
                 s.dt = dt;
+                level_frames += platbench::limits::check_timing(s.duration as f64, dt as f64)
+                    .map_err(|m| {
+                        anyhow::anyhow!("--dt {dt} on {} scenario {}: {m}", l.source, s.name)
+                    })?;
+            }
+            if level_frames > platbench::limits::MAX_LEVEL_FRAMES {
+                bail!(
+                    "--dt {dt}: the scenarios of {} would run {level_frames} frames together; expected at most {}",
+                    l.source,
+                    platbench::limits::MAX_LEVEL_FRAMES
+                );
             }
         }
     }
     let configs = configs(args)?;
-    let total: usize = levels.iter().map(|l| l.scenarios.len()).sum::<usize>() * configs.len();
+    // The runs that will write a trace: a configuration that does not model a level's
+    // features skips that level (said once, below).
+    let scenarios: usize = levels.iter().map(|l| l.scenarios.len()).sum();
+    let total: usize = levels
+        .iter()
+        .map(|l| l.scenarios.len() * configs.iter().filter(|c| c.backend.supports(l)).count())
+        .sum();
+    let skipped_runs = scenarios * configs.len() - total;
     eprintln!(
-        "platbench: {} scenarios on {} configurations ({} runs)",
-        total / configs.len().max(1),
+        "platbench: {scenarios} scenarios on {} configurations ({total} runs{})",
         configs.len(),
-        total
+        if skipped_runs > 0 {
+            format!(", {skipped_runs} skipped where a configuration does not model a level")
+        } else {
+            String::new()
+        }
     );
+    // Progress within a level, only for a person watching: a terminal's stderr.
+    let live = std::io::stderr().is_terminal();
     let started = Instant::now();
     let mut traces: Vec<Trace> = Vec::new();
     let mut metrics: Vec<MetricRow> = Vec::new();
@@ -311,10 +399,21 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
     for level in &levels {
         let level_start = Instant::now();
         let mut runner = Runner::new(level);
-        for spec in &level.scenarios {
+        for (si, spec) in level.scenarios.iter().enumerate() {
             for run in &configs {
+                if live {
+                    eprint!(
+                        "\r\x1b[K  [{done}/{total}] {}: scenario {}/{} {} on {} {} ({} frames)",
+                        level.name,
+                        si + 1,
+                        level.scenarios.len(),
+                        spec.name,
+                        run.backend.name(),
+                        run.label,
+                        platbench::scenario::step_count(spec)
+                    );
+                }
                 let Some(e) = evaluate_or_skip(&mut runner, spec, run, &mut skipped)? else {
-                    done += 1;
                     continue;
                 };
                 if args.timing {
@@ -327,6 +426,9 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
                 }
                 done += 1;
             }
+        }
+        if live {
+            eprint!("\r\x1b[K");
         }
         eprintln!(
             "  [{done}/{total}] {} ({}) {:.2} s",
@@ -345,17 +447,12 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
         out(&format!("\n{}", detail_table(&metrics)));
     }
     if write {
-        let out = if args.bless {
-            baseline_dir()
-        } else {
-            args.out.clone()
-        };
-        output::write_run(&out, &traces, &metrics)?;
+        output::write_run(&target, kind, args.force, &traces, &metrics)?;
         eprintln!(
             "wrote {} traces and {} metric rows to {}",
             traces.len(),
             metrics.len(),
-            out.display()
+            target.display()
         );
     } else {
         eprintln!("(worst case per metric over all scenarios; `platbench run --detail` lists every scenario, `--out DIR` writes the CSV files)");
@@ -379,9 +476,23 @@ fn baseline_dir() -> PathBuf {
 }
 
 fn diff(args: &DiffArgs) -> ExitCode {
-    use platbench::report::diff::{diff_runs, render, DiffFormat, Tolerance};
+    use platbench::report::diff::{diff_runs, render, DiffFormat, FailOn, Tolerance};
+    let p = args.position_tolerance;
+    if !(p.is_finite() && p >= 0.0) {
+        eprintln!("error: --position-tolerance {p}: expected a finite number of tiles >= 0 (a NaN or infinite tolerance would pass every trace)");
+        return ExitCode::from(2);
+    }
     let mut tols = std::collections::BTreeMap::new();
     for t in &args.tolerances {
+        if let Some((m, _)) = t.split_once('=') {
+            if !platbench::metrics::CATALOG.contains(&m) {
+                eprintln!(
+                    "error: --tol {t}: no metric is named {m:?}; expected one of {}",
+                    platbench::metrics::CATALOG.join(", ")
+                );
+                return ExitCode::from(2);
+            }
+        }
         let parsed = t.split_once('=').and_then(|(m, v)| {
             let mut parts = v.split(',').map(|x| x.trim().parse::<f64>());
             let abs = parts.next()?.ok()?;
@@ -397,7 +508,7 @@ fn diff(args: &DiffArgs) -> ExitCode {
                 tols.insert(m, tol);
             }
             None => {
-                eprintln!("error: --tol {t}: expected METRIC=ABS or METRIC=ABS,REL with non-negative numbers");
+                eprintln!("error: --tol {t}: expected METRIC=ABS or METRIC=ABS,REL with finite numbers >= 0");
                 return ExitCode::from(2);
             }
         }
@@ -410,11 +521,18 @@ fn diff(args: &DiffArgs) -> ExitCode {
     match diff_runs(&args.base, &args.new, &tols, args.position_tolerance) {
         Ok(d) => {
             out(render(&d, format).trim_end());
-            if d.regressed(args.fail_on_timing) {
-                eprintln!("regression: a metric got worse beyond its tolerance (or went missing)");
-                ExitCode::from(1)
-            } else {
+            let failures = d.failures(FailOn {
+                timing: args.fail_on_timing,
+                allow_missing: args.allow_missing,
+                allow_divergence: args.allow_divergence,
+            });
+            if failures.is_empty() {
                 ExitCode::SUCCESS
+            } else {
+                for f in failures {
+                    eprintln!("regression: {f}");
+                }
+                ExitCode::from(1)
             }
         }
         Err(e) => {
@@ -438,11 +556,31 @@ fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) -> Result<V
     Ok(rows)
 }
 
+/// Reads a tradeoff.csv and checks what the chart draws: each cost and error score finite and
+/// >= 0 (a damaged file drew NaN and -1e308 costs), and at least one setting per row.
+fn read_tradeoff(path: &std::path::Path) -> Result<Vec<platbench::tradeoff::TradeoffRow>> {
+    let rows: Vec<platbench::tradeoff::TradeoffRow> = read_rows(path)?;
+    for (k, r) in rows.iter().enumerate() {
+        // Line 1 is the header.
+        let line = k + 2;
+        for (what, v) in [("cost_us", r.cost_us), ("error", r.error)] {
+            if !(v.is_finite() && v >= 0.0) {
+                bail!(
+                    "{}:{line}: {what} is {v}; expected a finite number >= 0 (a tradeoff.csv written by `platbench sweep`; rerun it if the file was damaged)",
+                    path.display()
+                );
+            }
+        }
+    }
+    Ok(rows)
+}
+
 fn report(args: &ReportArgs) -> Result<()> {
     use platbench::report::html::{render_report, Extras, ScenarioTraces};
     // The extra files first: a bad one fails before the long run.
+    output::check_target(&args.out, output::Kind::Report, args.force)?;
     let extras = Extras {
-        tradeoff: args.tradeoff.as_deref().map(read_rows).transpose()?,
+        tradeoff: args.tradeoff.as_deref().map(read_tradeoff).transpose()?,
         stability: args.stability.as_deref().map(read_rows).transpose()?,
     };
     let levels = load_levels(&args.levels)?;
@@ -478,22 +616,25 @@ fn report(args: &ReportArgs) -> Result<()> {
         })
         .collect();
     let (html, md) = render_report(&metrics, &scenarios, &extras);
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    output::write_output(&args.out, output::Kind::Report, args.force, |dir| {
+        for (name, text) in [("report.html", &html), ("report.md", &md)] {
+            output::write_file(&dir.join(name), text.as_bytes())?;
+        }
+        Ok(())
+    })?;
     for (name, text) in [("report.html", &html), ("report.md", &md)] {
-        let path = args.out.join(name);
-        let mut tmp = tempfile::NamedTempFile::new_in(&args.out)
-            .with_context(|| format!("cannot write in {}", args.out.display()))?;
-        std::io::Write::write_all(&mut tmp, text.as_bytes())?;
-        tmp.persist(&path)
-            .with_context(|| format!("cannot write {}", path.display()))?;
-        eprintln!("wrote {} ({} KB)", path.display(), text.len() / 1024);
+        eprintln!(
+            "wrote {} ({} KB)",
+            args.out.join(name).display(),
+            text.len() / 1024
+        );
     }
     Ok(())
 }
 
-fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<()> {
+fn sweep_settings(out_dir: &std::path::Path, force: bool, level_files: &[PathBuf]) -> Result<()> {
     use platbench::tradeoff::{chart_svg, grid, run_tradeoff};
+    output::check_target(out_dir, output::Kind::Sweep, force)?;
     let levels = load_levels(level_files)?;
     let settings = grid();
     let started = Instant::now();
@@ -526,19 +667,10 @@ fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<
         ]);
     }
     out(&t.to_string());
-    std::fs::create_dir_all(out_dir)
-        .with_context(|| format!("cannot create {}", out_dir.display()))?;
-    let csv_tmp = tempfile::NamedTempFile::new_in(out_dir)?;
-    let mut w = csv::Writer::from_writer(csv_tmp.as_file());
-    for r in &rows {
-        w.serialize(r)?;
-    }
-    w.flush()?;
-    drop(w);
-    csv_tmp.persist(out_dir.join("tradeoff.csv"))?;
-    let mut svg_tmp = tempfile::NamedTempFile::new_in(out_dir)?;
-    std::io::Write::write_all(&mut svg_tmp, chart_svg(&rows).as_bytes())?;
-    svg_tmp.persist(out_dir.join("tradeoff.svg"))?;
+    output::write_output(out_dir, output::Kind::Sweep, force, |dir| {
+        output::write_csv(&dir.join("tradeoff.csv"), &rows)?;
+        output::write_file(&dir.join("tradeoff.svg"), chart_svg(&rows).as_bytes())
+    })?;
     eprintln!(
         "wrote tradeoff.csv and tradeoff.svg to {}",
         out_dir.display()
@@ -546,7 +678,7 @@ fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<
     Ok(())
 }
 
-fn stress(out_dir: &std::path::Path) -> Result<()> {
+fn stress(out_dir: &std::path::Path, force: bool) -> Result<()> {
     use platbench::rapier::{CharacterShape, ColliderBuilding};
     use platbench::report::html::{breaks_list, value_list};
     use platbench::stress::{envelope, stress_matrix};
@@ -556,6 +688,7 @@ fn stress(out_dir: &std::path::Path) -> Result<()> {
         RunConfig::rapier(ColliderBuilding::PerTile, CharacterShape::Capsule),
         RunConfig::rapier(ColliderBuilding::Merged, CharacterShape::Capsule),
     ];
+    output::check_target(out_dir, output::Kind::Stress, force)?;
     let started = Instant::now();
     let rows = stress_matrix(&runs, |what| eprintln!("  {what}"))?;
     eprintln!("ran in {:.1} s", started.elapsed().as_secs_f64());
@@ -576,19 +709,10 @@ fn stress(out_dir: &std::path::Path) -> Result<()> {
         ]);
     }
     out(&t.to_string());
-    std::fs::create_dir_all(out_dir)
-        .with_context(|| format!("cannot create {}", out_dir.display()))?;
-    let path = out_dir.join("stability.csv");
-    let tmp = tempfile::NamedTempFile::new_in(out_dir)?;
-    let mut w = csv::Writer::from_writer(tmp.as_file());
-    for r in &rows {
-        w.serialize(r)?;
-    }
-    w.flush()?;
-    drop(w);
-    tmp.persist(&path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    eprintln!("wrote {}", path.display());
+    output::write_output(out_dir, output::Kind::Stress, force, |dir| {
+        output::write_csv(&dir.join("stability.csv"), &rows)
+    })?;
+    eprintln!("wrote {}", out_dir.join("stability.csv").display());
     Ok(())
 }
 

@@ -1,67 +1,350 @@
-//! Writing a run's files without losing the previous ones: everything goes into a staging
-//! directory beside the target, which replaces the target only once it is complete.
+//! Writing a command's output directory without losing anything: the directory is replaced
+//! only when it is missing, empty, or holds the output of the same command (recognised by the
+//! marker file every output holds); everything goes into a staging directory beside it, which
+//! replaces it only once complete. A run killed midway leaves a staging directory that the next
+//! write beside it removes, once it has proved the directory is one a dead platbench left.
 
 use std::fs;
-use std::path::Path;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 
 use platbench::metrics::MetricRow;
 use platbench::trace::Trace;
 
-/// Writes `DIR/traces/*.csv` and `DIR/metrics.csv`, replacing `DIR` as a whole.
-pub fn write_run(dir: &Path, traces: &[Trace], metrics: &[MetricRow]) -> Result<()> {
-    let parent = match dir.parent() {
+/// The marker file in every directory platbench writes: one line, `platbench <kind>`.
+pub const MARKER: &str = ".platbench-output";
+/// Prefix of a staging directory: `.platbench-staging-<pid>-<n>`.
+const STAGING: &str = ".platbench-staging-";
+/// Prefix of a replaced output moved aside for the swap: `.platbench-old-<pid>-<n>-<name>`.
+const OLD: &str = ".platbench-old-";
+
+/// Which command wrote a directory.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// `platbench run --out`.
+    Run,
+    /// `platbench run --bless`: the committed baseline.
+    Baseline,
+    /// `platbench report --out`.
+    Report,
+    /// `platbench stress --out`.
+    Stress,
+    /// `platbench sweep --out`.
+    Sweep,
+}
+
+impl Kind {
+    const ALL: [Kind; 5] = [
+        Kind::Run,
+        Kind::Baseline,
+        Kind::Report,
+        Kind::Stress,
+        Kind::Sweep,
+    ];
+
+    fn name(self) -> &'static str {
+        match self {
+            Kind::Run => "run",
+            Kind::Baseline => "baseline",
+            Kind::Report => "report",
+            Kind::Stress => "stress",
+            Kind::Sweep => "sweep",
+        }
+    }
+
+    fn command(self) -> &'static str {
+        match self {
+            Kind::Baseline => "platbench run --bless",
+            Kind::Run => "platbench run",
+            Kind::Report => "platbench report",
+            Kind::Stress => "platbench stress",
+            Kind::Sweep => "platbench sweep",
+        }
+    }
+
+    fn marker_text(self) -> String {
+        format!("platbench {}\n", self.name())
+    }
+}
+
+/// The kind named by `dir`'s marker file, if it has one that platbench wrote.
+fn marker_of(dir: &Path) -> Option<Kind> {
+    let text = fs::read_to_string(dir.join(MARKER)).ok()?;
+    let line = text.lines().next()?.trim();
+    Kind::ALL
+        .into_iter()
+        .find(|k| line == format!("platbench {}", k.name()))
+}
+
+/// Checks that `dir` may be replaced by an output of `kind`, before any work is done:
+///
+/// - a missing or empty directory is written;
+/// - a directory holding the same command's output (its marker) is replaced;
+/// - a baseline (marker `platbench baseline`) is replaced only by `run --bless`, whatever else
+///   is asked;
+/// - a file is never replaced;
+/// - anything else (a user's directory, another command's output) only with `force`; the
+///   filesystem root, the current directory and its ancestors never.
+pub fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
+    let meta = match fs::symlink_metadata(dir) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(e).with_context(|| format!("cannot inspect {}", dir.display())),
+    };
+    if !meta.is_dir() {
+        bail!(
+            "--out {} exists and is not a directory; platbench writes a directory there and never replaces a file: remove it or choose another --out",
+            dir.display()
+        );
+    }
+    if let (Ok(canon), Ok(cwd)) = (dir.canonicalize(), std::env::current_dir()) {
+        if cwd.starts_with(&canon) {
+            bail!(
+                "--out {} is the current directory or one of its parents; platbench replaces its output directory as a whole, so it must be a directory of its own",
+                dir.display()
+            );
+        }
+    }
+    let found = marker_of(dir);
+    if found == Some(Kind::Baseline) && kind != Kind::Baseline {
+        bail!(
+            "--out {} is a platbench baseline (its {MARKER} file says so); a baseline is replaced only on purpose, with `platbench run --bless`",
+            dir.display()
+        );
+    }
+    if found == Some(kind) || force {
+        return Ok(());
+    }
+    if let Some(other) = found {
+        bail!(
+            "--out {} holds the output of `{}`, not of `{}`; refusing to replace it. Choose another --out, or pass --force to replace it",
+            dir.display(),
+            other.command(),
+            kind.command()
+        );
+    }
+    let entries = fs::read_dir(dir)
+        .with_context(|| format!("cannot read {}", dir.display()))?
+        .count();
+    if entries > 0 {
+        bail!(
+            "--out {} already exists, holds {entries} entries and is not a platbench output (it has no {MARKER} file); refusing to replace it. Choose another --out, or pass --force to replace it and everything in it",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// The directory `dir` sits in (`.` for a bare name).
+fn parent_of(dir: &Path) -> PathBuf {
+    match dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => ".".into(),
+    }
+}
+
+/// Whether process `pid` is known to have ended: only where `/proc` lists the live processes
+/// (Linux); elsewhere nothing is known, and nothing is cleaned.
+fn process_ended(pid: u32) -> bool {
+    Path::new("/proc/self").exists() && !Path::new("/proc").join(pid.to_string()).exists()
+}
+
+/// Removes the staging directories a dead platbench left in `parent`, and puts back an output
+/// it had moved aside and not replaced. Only entries whose names platbench gives, of a process
+/// that has ended, are touched. Says on stderr what it did.
+pub fn clean_stale(parent: &Path) {
+    let Ok(entries) = fs::read_dir(parent) else {
+        return;
     };
+    for e in entries.filter_map(|e| e.ok()) {
+        let Ok(name) = e.file_name().into_string() else {
+            continue;
+        };
+        let path = e.path();
+        if !e.file_type().is_ok_and(|t| t.is_dir()) {
+            continue;
+        }
+        if let Some(rest) = name.strip_prefix(STAGING) {
+            let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<u32>().ok()) else {
+                continue;
+            };
+            // Its own marker (written first) or nothing at all: a directory platbench made.
+            let ours = marker_of(&path).is_some()
+                || fs::read_dir(&path).is_ok_and(|mut d| d.next().is_none());
+            if pid != std::process::id() && process_ended(pid) && ours {
+                match fs::remove_dir_all(&path) {
+                    Ok(()) => eprintln!(
+                        "note: removed {}, left by an interrupted platbench (process {pid})",
+                        path.display()
+                    ),
+                    Err(err) => eprintln!("warning: cannot remove {}: {err}", path.display()),
+                }
+            }
+        } else if let Some(rest) = name.strip_prefix(OLD) {
+            let mut parts = rest.splitn(3, '-');
+            let (Some(pid), Some(_), Some(target)) = (
+                parts.next().and_then(|p| p.parse::<u32>().ok()),
+                parts.next(),
+                parts.next(),
+            ) else {
+                continue;
+            };
+            if pid == std::process::id() || !process_ended(pid) {
+                continue;
+            }
+            let target = parent.join(target);
+            if target.exists() {
+                match fs::remove_dir_all(&path) {
+                    Ok(()) => eprintln!(
+                        "note: removed {}, the previous output an interrupted platbench (process {pid}) had replaced",
+                        path.display()
+                    ),
+                    Err(err) => eprintln!("warning: cannot remove {}: {err}", path.display()),
+                }
+            } else if fs::rename(&path, &target).is_ok() {
+                eprintln!(
+                    "note: put {} back as {}: an interrupted platbench (process {pid}) had moved it aside",
+                    path.display(),
+                    target.display()
+                );
+            }
+        }
+    }
+}
+
+/// A staging directory, removed when dropped unless it was moved into place.
+struct Staging {
+    path: Option<PathBuf>,
+}
+
+impl Staging {
+    fn create(parent: &Path) -> Result<Staging> {
+        for n in 0..1000u32 {
+            let path = parent.join(format!("{STAGING}{}-{n}", std::process::id()));
+            match fs::create_dir(&path) {
+                Ok(()) => return Ok(Staging { path: Some(path) }),
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+                Err(e) => {
+                    return Err(e).with_context(|| {
+                        format!("cannot create a staging directory in {}", parent.display())
+                    })
+                }
+            }
+        }
+        bail!(
+            "cannot create a staging directory in {}: 1000 names taken",
+            parent.display()
+        )
+    }
+
+    fn path(&self) -> &Path {
+        self.path.as_deref().unwrap_or(Path::new("."))
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if let Some(p) = self.path.take() {
+            let _ = fs::remove_dir_all(p);
+        }
+    }
+}
+
+/// Writes `text` to `path` (mode 0644 under the usual umask, as any file the user creates).
+pub fn write_file(path: &Path, text: &[u8]) -> Result<()> {
+    let mut f =
+        fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+    f.write_all(text)
+        .and_then(|()| f.flush())
+        .with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Writes an output of `kind` into `dir` as a whole: checks `dir` again ([`check_target`]),
+/// cleans what an interrupted platbench left beside it, lets `fill` write the files into a
+/// staging directory (with the marker), then swaps the staging directory in.
+pub fn write_output(
+    dir: &Path,
+    kind: Kind,
+    force: bool,
+    fill: impl FnOnce(&Path) -> Result<()>,
+) -> Result<()> {
+    check_target(dir, kind, force)?;
+    let parent = parent_of(dir);
     fs::create_dir_all(&parent).with_context(|| format!("cannot create {}", parent.display()))?;
-    let staging = tempfile::Builder::new()
-        .prefix(".platbench-staging-")
-        .tempdir_in(&parent)
-        .with_context(|| format!("cannot create a staging directory in {}", parent.display()))?;
-    let traces_dir = staging.path().join("traces");
-    fs::create_dir(&traces_dir)?;
-    for t in traces {
-        let path = traces_dir.join(t.file_name());
-        let file =
-            fs::File::create(&path).with_context(|| format!("cannot create {}", path.display()))?;
-        t.write_csv(std::io::BufWriter::new(file))
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
-    let mpath = staging.path().join("metrics.csv");
-    let mut w = csv::Writer::from_path(&mpath)
-        .with_context(|| format!("cannot create {}", mpath.display()))?;
-    for m in metrics {
-        w.serialize(m)?;
-    }
-    w.flush()?;
-    drop(w);
+    clean_stale(&parent);
+    let mut staging = Staging::create(&parent)?;
+    write_file(&staging.path().join(MARKER), kind.marker_text().as_bytes())?;
+    fill(staging.path())?;
 
     // Swap: move the old directory aside, move the new one in, then delete the old one.
-    let staged = staging.keep();
-    let old = if dir.exists() {
-        let aside = parent.join(format!(
-            ".platbench-old-{}-{}",
-            std::process::id(),
-            dir.file_name().and_then(|n| n.to_str()).unwrap_or("out")
-        ));
+    let old = if fs::symlink_metadata(dir).is_ok() {
+        let name = dir.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+        let aside = (0..1000u32)
+            .map(|n| parent.join(format!("{OLD}{}-{n}-{name}", std::process::id())))
+            .find(|p| !p.exists())
+            .with_context(|| format!("no free name to move {} aside", dir.display()))?;
         fs::rename(dir, &aside)
             .with_context(|| format!("cannot move the previous {} aside", dir.display()))?;
         Some(aside)
     } else {
         None
     };
-    if let Err(e) = fs::rename(&staged, dir) {
+    if let Err(e) = fs::rename(staging.path(), dir) {
         if let Some(aside) = &old {
             let _ = fs::rename(aside, dir);
         }
-        let _ = fs::remove_dir_all(&staged);
-        return Err(e).with_context(|| format!("cannot move the new run into {}", dir.display()));
+        return Err(e)
+            .with_context(|| format!("cannot move the new output into {}", dir.display()));
     }
+    staging.path = None;
     if let Some(aside) = old {
         fs::remove_dir_all(&aside)
-            .with_context(|| format!("cannot remove the previous run at {}", aside.display()))?;
+            .with_context(|| format!("cannot remove the previous output at {}", aside.display()))?;
     }
+    Ok(())
+}
+
+/// Writes `DIR/traces/*.csv` and `DIR/metrics.csv` (and the marker), replacing `DIR` as a whole.
+pub fn write_run(
+    dir: &Path,
+    kind: Kind,
+    force: bool,
+    traces: &[Trace],
+    metrics: &[MetricRow],
+) -> Result<()> {
+    write_output(dir, kind, force, |staging| {
+        let traces_dir = staging.join("traces");
+        fs::create_dir(&traces_dir)
+            .with_context(|| format!("cannot create {}", traces_dir.display()))?;
+        for t in traces {
+            let path = traces_dir.join(t.file_name());
+            let file = fs::File::create(&path)
+                .with_context(|| format!("cannot create {}", path.display()))?;
+            t.write_csv(std::io::BufWriter::new(file))
+                .with_context(|| format!("cannot write {}", path.display()))?;
+        }
+        let mpath = staging.join("metrics.csv");
+        let mut w = csv::Writer::from_path(&mpath)
+            .with_context(|| format!("cannot create {}", mpath.display()))?;
+        for m in metrics {
+            w.serialize(m)?;
+        }
+        w.flush()?;
+        Ok(())
+    })
+}
+
+/// Serialises `rows` as CSV into `path`.
+pub fn write_csv<T: serde::Serialize>(path: &Path, rows: &[T]) -> Result<()> {
+    let mut w = csv::Writer::from_path(path)
+        .with_context(|| format!("cannot create {}", path.display()))?;
+    for r in rows {
+        w.serialize(r)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    w.flush()
+        .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
 }

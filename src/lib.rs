@@ -10,6 +10,7 @@
 pub mod backend;
 pub mod ladder;
 pub mod level;
+pub mod limits;
 pub mod metrics;
 pub mod motion;
 pub mod rapier;

@@ -88,21 +88,54 @@ impl Default for MotionParams {
 }
 
 impl MotionParams {
-    /// Checks every parameter against its meaning: finite, not negative, frictions within
-    /// 0..=1, the climb angle within 0..90 degrees.
+    /// Checks every parameter against its meaning: finite, not negative, within the ranges of
+    /// [`crate::limits`] (gravity and run acceleration to 1e5 tiles/s², speeds to 1e4 tiles/s,
+    /// the jump height to 1e4 tiles), frictions within 0..=1, the climb angle within 0..90
+    /// degrees.
     pub fn validate(&self) -> Result<(), crate::backend::BackendError> {
         use crate::backend::invalid;
+        use crate::limits::{MAX_ACCEL, MAX_JUMP_HEIGHT, MAX_SPEED};
         let non_negative = [
-            ("gravity", self.gravity),
-            ("run_speed", self.run_speed),
-            ("run_accel", self.run_accel),
-            ("jump_height", self.jump_height),
-            ("ladder_speed", self.ladder_speed),
-            ("stop_speed", self.stop_speed),
+            (
+                "gravity",
+                self.gravity,
+                MAX_ACCEL,
+                "a number 0..=1e5 (tiles/s²)",
+            ),
+            (
+                "run_speed",
+                self.run_speed,
+                MAX_SPEED,
+                "a number 0..=1e4 (tiles/s)",
+            ),
+            (
+                "run_accel",
+                self.run_accel,
+                MAX_ACCEL,
+                "a number 0..=1e5 (tiles/s²)",
+            ),
+            (
+                "jump_height",
+                self.jump_height,
+                MAX_JUMP_HEIGHT,
+                "a number 0..=1e4 (tiles)",
+            ),
+            (
+                "ladder_speed",
+                self.ladder_speed,
+                MAX_SPEED,
+                "a number 0..=1e4 (tiles/s)",
+            ),
+            (
+                "stop_speed",
+                self.stop_speed,
+                MAX_SPEED,
+                "a number 0..=1e4 (tiles/s)",
+            ),
         ];
-        for (name, v) in non_negative {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(invalid(name, v, "a finite number >= 0"));
+        for (name, v, max, expected) in non_negative {
+            if !(v.is_finite() && v >= 0.0 && v as f64 <= max) {
+                return Err(invalid(name, v, expected));
             }
         }
         for (name, v) in [
@@ -297,11 +330,17 @@ pub fn exact_discrete_jump_speed(g: f32, h: f32, dt: f32) -> f32 {
     let mut n = ((1.0 + (1.0 + 8.0 * h / step).sqrt()) / 2.0)
         .floor()
         .max(1.0);
-    while n > 1.0 && step * n * (n - 1.0) / 2.0 > h {
-        n -= 1.0;
+    // The estimate is within a step or two of N; the corrections are bounded, since above
+    // 2^53 `n + 1.0 == n` and an unbounded `n += 1.0` would never end (jump_height = 1e30).
+    for _ in 0..4 {
+        if n > 1.0 && step * n * (n - 1.0) / 2.0 > h {
+            n -= 1.0;
+        }
     }
-    while step * (n + 1.0) * n / 2.0 <= h {
-        n += 1.0;
+    for _ in 0..4 {
+        if step * (n + 1.0) * n / 2.0 <= h {
+            n += 1.0;
+        }
     }
     ((h + step * n * (n + 1.0) / 2.0) / (n * dt)) as f32
 }
@@ -353,6 +392,19 @@ mod tests {
                 assert!((apex - h).abs() < 1e-4, "dt {dt} h {h}: apex {apex}");
             }
         }
+    }
+
+    #[test]
+    fn absurd_jump_heights_end_instead_of_looping() {
+        // 1e30 tiles once looped forever (`n += 1.0` stalls above 2^53); now it ends with a
+        // finite speed, and validation refuses such a height before any run.
+        let v = exact_discrete_jump_speed(30.0, 1e30, 1.0 / 60.0);
+        assert!(v.is_finite() && v > 0.0, "{v}");
+        let p = MotionParams {
+            jump_height: 1e30,
+            ..Default::default()
+        };
+        assert!(p.validate().is_err());
     }
 
     #[test]

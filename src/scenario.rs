@@ -37,6 +37,25 @@ impl BackendConfig {
         }
     }
 
+    /// Whether this backend models `level`: its features, and for integer positions its
+    /// origin. A level it does not model is refused by its build (and skipped by the CLI), so a
+    /// run can count what it will run beforehand.
+    pub fn supports(&self, level: &Level) -> bool {
+        let supported = match self {
+            BackendConfig::Sweep(c) => match c.positions {
+                crate::sweep::Positions::Float => SweepBackend::SUPPORTED,
+                crate::sweep::Positions::Integer { per_tile } => {
+                    if crate::sweep::grid::Grid::new(per_tile, level.origin, &level.name).is_err() {
+                        return false;
+                    }
+                    crate::sweep::INTEGER_SUPPORTED
+                }
+            },
+            BackendConfig::Rapier(_) => RapierBackend::SUPPORTED,
+        };
+        crate::backend::require_supported(self.name(), "", level.features, supported).is_ok()
+    }
+
     /// Builds the backend over `level`.
     pub fn build(
         &self,
@@ -269,7 +288,7 @@ pub fn time_scenario(
     run: &RunConfig,
     repeats: usize,
 ) -> Result<f64, BackendError> {
-    check_dt(spec.dt)?;
+    check_dt(spec)?;
     let params = effective_params(&run.params, spec);
     let script = input_script(spec);
     let mut best = f64::INFINITY;
@@ -311,7 +330,7 @@ fn drive(
     run: &RunConfig,
     mut backend: Box<dyn Backend>,
 ) -> Result<Trace, BackendError> {
-    check_dt(spec.dt)?;
+    check_dt(spec)?;
     let id = backend.add_character(CharacterSpec {
         spawn: spec.spawn,
         size: spec.size,
@@ -348,16 +367,16 @@ fn drive(
     })
 }
 
-/// Refuses a time step that is not a finite number > 0.
-fn check_dt(dt: f32) -> Result<(), BackendError> {
-    if dt.is_finite() && dt > 0.0 {
-        Ok(())
-    } else {
-        Err(crate::backend::invalid(
+/// Refuses a time step or duration outside the ranges of [`crate::limits`]: the frames a run
+/// takes (and the trace it records) are bounded before it starts.
+fn check_dt(spec: &ScenarioSpec) -> Result<(), BackendError> {
+    match crate::limits::check_timing(spec.duration as f64, spec.dt as f64) {
+        Ok(_) => Ok(()),
+        Err(message) => Err(crate::backend::invalid(
             "dt",
-            dt,
-            "a finite time step > 0 (seconds)",
-        ))
+            message,
+            "a time step 1e-6..=1 s and a duration of 1 to 10,000,000 frames (crate::limits)",
+        )),
     }
 }
 

@@ -149,32 +149,46 @@ fn an_unchanged_run_diffs_clean_and_a_changed_constant_is_named() {
 
 #[test]
 fn the_baseline_is_written_only_with_bless() {
-    // A stand-in baseline, so that a broken guard cannot touch the committed one.
+    // A stand-in baseline, so that a broken guard cannot touch the committed one. It is a
+    // baseline by its marker, wherever it lies: the path is not what protects it.
     let dir = tempfile::tempdir().unwrap();
     let baseline = dir.path().join("baseline");
     std::fs::create_dir(&baseline).unwrap();
-    std::fs::write(baseline.join("marker"), "keep").unwrap();
-    let out = platbench()
-        .env("PLATBENCH_BASELINE", &baseline)
-        .args(["run", "--out"])
-        .arg(&baseline)
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--bless"));
-    assert!(
-        baseline.join("marker").exists(),
-        "the baseline was replaced"
-    );
-    // --bless is the way: it replaces the baseline with a full run.
+    std::fs::write(baseline.join(".platbench-output"), "platbench baseline\n").unwrap();
+    std::fs::write(baseline.join("keep"), "keep").unwrap();
+    for extra in [&[][..], &["--force"][..]] {
+        let out = platbench()
+            .args(["run", "--out"])
+            .arg(&baseline)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{extra:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("--bless"));
+        assert!(baseline.join("keep").exists(), "the baseline was replaced");
+    }
+    // --bless is the way: it replaces the baseline with a full run, and marks it a baseline.
     let out = platbench()
         .env("PLATBENCH_BASELINE", &baseline)
         .args(["run", "--bless"])
         .output()
         .unwrap();
-    assert!(out.status.success());
-    assert!(!baseline.join("marker").exists());
+    assert_success(&out);
+    assert!(!baseline.join("keep").exists());
     assert!(baseline.join("metrics.csv").exists());
+    assert_eq!(
+        std::fs::read_to_string(baseline.join(".platbench-output")).unwrap(),
+        "platbench baseline\n"
+    );
+    // The committed baseline carries the same marker, so a copy of it anywhere is protected.
+    let committed = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/compare/baseline/.platbench-output"
+    );
+    assert_eq!(
+        std::fs::read_to_string(committed).unwrap(),
+        "platbench baseline\n"
+    );
 }
 
 #[test]

@@ -47,11 +47,12 @@ fn report_is_self_contained_with_one_picture_per_scenario() {
     }
 }
 
-/// `platbench report` on one small level, writing into `dir`, with `extra` arguments.
+/// `platbench report` on one small level, writing into `DIR/report` (a directory of its own:
+/// `DIR` holds the input files), with `extra` arguments.
 fn report_on_flat_seams(dir: &std::path::Path, extra: &[&std::ffi::OsStr]) -> std::process::Output {
     platbench()
         .args(["report", "compare/levels/flat_seams.toml", "--out"])
-        .arg(dir)
+        .arg(dir.join("report"))
         .args(extra)
         .output()
         .unwrap()
@@ -112,8 +113,8 @@ fn report_includes_the_tradeoff_chart_and_the_stability_table_when_given() {
         ],
     );
     assert_success(&out);
-    let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
-    let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
+    let html = std::fs::read_to_string(dir.path().join("report/report.html")).unwrap();
+    let md = std::fs::read_to_string(dir.path().join("report/report.md")).unwrap();
     assert!(html.contains("class=\"tradeoff\""), "the chart is drawn");
     // The Pareto front is listed cheapest first, and only the front.
     let (a, b) = (
@@ -140,5 +141,8 @@ fn report_names_a_bad_tradeoff_file() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("tradeoff.csv"), "{err}");
-    assert!(!dir.path().join("report.html").exists(), "nothing written");
+    assert!(
+        !dir.path().join("report/report.html").exists(),
+        "nothing written"
+    );
 }

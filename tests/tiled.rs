@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::platbench;
+use common::{assert_success, platbench};
 use std::path::{Path, PathBuf};
 
 use glam::Vec2;
@@ -337,7 +337,7 @@ fn platform_and_spawn_errors_name_the_object() {
                 poly,
             ),
             "object 2 \"lift\"",
-            "expected a number > 0",
+            "expected 0 < speed <= 10000",
         ),
         (
             platform(
@@ -514,7 +514,9 @@ fn unsupported_maps_and_layers_are_errors() {
     std::fs::write(&path, short).unwrap();
     let e = import_tiled_map(&path).unwrap_err().to_string();
     assert!(
-        e.contains("layer \"collision\"") && e.contains("fewer than 3 x 2"),
+        e.contains("layer \"collision\"")
+            && e.contains("4 cells of 4 bytes")
+            && e.contains("expected exactly 6 cells"),
         "{e}"
     );
 }
@@ -663,16 +665,30 @@ fn run_mixes_toml_and_tiled_files_and_prints_warnings() {
     assert!(out_dir
         .join("traces/mine.start-walk_right.sweep.csv")
         .exists());
-    // A map with nothing to run is an error, named, with exit code 2.
-    let out = platbench()
-        .arg("run")
-        .arg(shipped("rules.tmx"))
-        .output()
-        .unwrap();
+    // A map with nothing to run (rules.tmx without its side file) is an error that says what
+    // to add, with exit code 2.
+    let bare = dir.path().join("bare.tmx");
+    std::fs::copy(shipped("rules.tmx"), &bare).unwrap();
+    let out = platbench().arg("run").arg(&bare).output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(
-        stderr.contains("rules.tmx") && stderr.contains("no spawn points"),
+        stderr.contains("bare.tmx")
+            && stderr.contains("no spawn points")
+            && stderr.contains("add a point object of class \"spawn\""),
         "{stderr}"
     );
+    // The shipped map runs on its own, through its side file rules.toml.
+    let rules_out = dir.path().join("rules-out");
+    let out = platbench()
+        .arg("run")
+        .arg(shipped("rules.tmx"))
+        .args(["--backend", "sweep", "--out"])
+        .arg(&rules_out)
+        .output()
+        .unwrap();
+    assert_success(&out);
+    assert!(rules_out
+        .join("traces/rules.walk_over_the_rules.sweep.csv")
+        .exists());
 }

@@ -407,11 +407,14 @@ impl Level {
     }
 
     /// Solid tiles whose boxes overlap `area` with positive area (touching does not count).
+    /// Only the part of `area` inside the map is walked (outside is empty), so the work is
+    /// bounded by the map however large or non-finite the area is.
     pub fn solids_overlapping(&self, area: &Aabb) -> impl Iterator<Item = Aabb> + '_ {
-        let i0 = area.mins.x.floor() as i64;
-        let i1 = area.maxs.x.ceil() as i64;
-        let j0 = area.mins.y.floor() as i64;
-        let j1 = area.maxs.y.ceil() as i64;
+        let (w, h) = (self.width as i64, self.height as i64);
+        let i0 = (area.mins.x.floor() as i64).clamp(0, w);
+        let i1 = (area.maxs.x.ceil() as i64).clamp(0, w);
+        let j0 = (area.mins.y.floor() as i64).clamp(0, h);
+        let j1 = (area.maxs.y.ceil() as i64).clamp(0, h);
         let a = *area;
         (j0..j1)
             .flat_map(move |j| (i0..i1).map(move |i| (i, j)))
@@ -428,8 +431,9 @@ impl Level {
     /// The highest solid or one-way top at or below `y + tolerance` under the horizontal span
     /// `[x0, x1]` (open at both ends), or `None` if nothing is below.
     pub fn support_below(&self, x0: f32, x1: f32, y: f32, tolerance: f32) -> Option<f32> {
-        let i0 = x0.floor() as i64;
-        let i1 = x1.ceil() as i64;
+        // Columns outside the map hold nothing: the walk stays within it.
+        let i0 = (x0.floor() as i64).clamp(0, self.width as i64);
+        let i1 = (x1.ceil() as i64).clamp(0, self.width as i64);
         let top_row = ((y + tolerance).floor() as i64 - 1).min(self.height as i64 - 1);
         let mut best: Option<f32> = None;
         for i in i0..i1 {
@@ -457,7 +461,8 @@ impl Level {
     pub fn surface_at(&self, x: f32, top: f32, depth: f32) -> Option<(f32, Option<(i64, i64)>)> {
         let i = x.floor() as i64;
         let lowest = top - depth;
-        let mut j = top.floor() as i64;
+        // Rows above the map hold nothing: the walk starts at most at its top row.
+        let mut j = (top.floor() as i64).min(self.height as i64 - 1);
         while j as f32 + 1.0 > lowest && j >= 0 {
             match self.tile(i, j) {
                 Tile::Solid => {
@@ -633,6 +638,21 @@ mod tests {
         // A solid 3 x 2 block becomes one rectangle.
         let block = Level::from_tiles("b", 3, 2, vec![Tile::Solid; 6]);
         assert_eq!(block.merged_solid_rects().len(), 1);
+    }
+
+    #[test]
+    fn walks_over_tiles_stay_within_the_map() {
+        // An area of 1e30 tiles (once a hang: `size = [1e30, 1e30]`) or a non-finite one
+        // visits only the map's 12 tiles, and finds its 5 solids.
+        let l = small();
+        let huge = Aabb::new(Vec2::splat(-1e30), Vec2::splat(1e30));
+        assert_eq!(l.solids_overlapping(&huge).count(), 5);
+        let inf = Aabb::new(Vec2::splat(f32::NEG_INFINITY), Vec2::splat(f32::INFINITY));
+        assert_eq!(l.solids_overlapping(&inf).count(), 5);
+        let nan = Aabb::new(Vec2::splat(f32::NAN), Vec2::splat(f32::NAN));
+        assert_eq!(l.solids_overlapping(&nan).count(), 0);
+        assert_eq!(l.surface_at(0.5, 1e30, f32::INFINITY), Some((1.0, None)));
+        assert_eq!(l.support_below(-1e30, 1e30, 1e30, 0.0), Some(2.0));
     }
 
     #[test]

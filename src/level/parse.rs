@@ -8,6 +8,8 @@ use glam::Vec2;
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::limits;
+
 use super::{
     InputEvent, Level, MotionOverrides, Platform, PlatformMotion, ScenarioSpec, Slope, Tile,
     DEFAULT_CHARACTER_SIZE, DEFAULT_DT,
@@ -155,7 +157,11 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
     let mut level = Level::from_tiles(&name, width, height, tiles);
     level.description = raw.description.unwrap_or_default();
     if let Some(o) = &raw.origin {
-        level.origin = vec2(&loc, o, "origin", false)?;
+        let [x, y] = *o.get_ref();
+        level.origin = Vec2::new(
+            coord(&loc, &o.span(), "origin x", x)?,
+            coord(&loc, &o.span(), "origin y", y)?,
+        );
     }
     level.source = file.to_string();
 
@@ -214,7 +220,8 @@ fn scenarios(
         }
     }
     let mut seen = HashMap::new();
-    let mut out = Vec::with_capacity(raw.len());
+    let mut out: Vec<ScenarioSpec> = Vec::with_capacity(raw.len());
+    let mut level_frames = 0u64;
     for s in raw {
         let spec = parse_scenario(loc, s.get_ref())?;
         if let Some(prev) = seen.insert(spec.name.clone(), s.span()) {
@@ -228,6 +235,17 @@ fn scenarios(
             ));
         }
         check_spawn(loc, level, &spec, &s.get_ref().spawn.span())?;
+        level_frames += limits::frames(spec.duration as f64, spec.dt as f64) as u64;
+        if level_frames > limits::MAX_LEVEL_FRAMES {
+            return Err(loc.at(
+                &s.get_ref().duration.span(),
+                format!(
+                    "the scenarios up to {:?} run {level_frames} frames together; expected at most {} in one level (split the level into files, or shorten its scenarios)",
+                    spec.name,
+                    limits::MAX_LEVEL_FRAMES
+                ),
+            ));
+        }
         out.push(spec);
     }
     Ok(out)
@@ -270,9 +288,32 @@ fn parse_legend(
             }
         };
         let tile = parse_legend_value(loc, value)?;
+        if let Some(builtin) = legend.get(&c) {
+            if *builtin != tile {
+                return Err(loc.at(
+                    &key.span(),
+                    format!(
+                        "legend key {c:?} is a built-in tile ({}) and cannot be redefined as {}; expected a character of your own (built in: '#' solid, '.' and ' ' empty, '=' one-way, 'H' ladder, '/' and '\\' slopes)",
+                        tile_kind(builtin),
+                        tile_kind(&tile)
+                    ),
+                ));
+            }
+        }
         legend.insert(c, tile);
     }
     Ok(legend)
+}
+
+/// A tile kind in words, for messages.
+fn tile_kind(t: &Tile) -> &'static str {
+    match t {
+        Tile::Empty => "empty",
+        Tile::Solid => "solid",
+        Tile::OneWay => "one-way",
+        Tile::Ladder => "ladder",
+        Tile::Slope(_) => "a slope",
+    }
 }
 
 fn parse_legend_value(loc: &Locator, value: &Spanned<toml::Value>) -> Result<Tile, LevelError> {
@@ -303,7 +344,7 @@ fn parse_legend_value(loc: &Locator, value: &Spanned<toml::Value>) -> Result<Til
                 }
                 _ => Err(loc.at(
                     &span,
-                    "a height array must hold exactly 16 integers between 0 and 16 (sixteenths of a tile)",
+                    "a height array is 16 integers; expected exactly 16 integers between 0 and 16 (sixteenths of a tile)",
                 )),
             }
         }
@@ -322,7 +363,7 @@ fn parse_legend_value(loc: &Locator, value: &Spanned<toml::Value>) -> Result<Til
                 }
                 _ => Err(loc.at(
                     &span,
-                    "a line slope must be [left, right]: two numbers between -16 and 16 (heights of the line at the tile's edges, in tiles; the surface is clamped into the tile)",
+                    "a line slope is [left, right]; expected two numbers between -16 and 16 (heights of the line at the tile's edges, in tiles; the surface is clamped into the tile)",
                 )),
             }
         }
@@ -386,6 +427,15 @@ fn parse_map(
         }
     }
     let height = rows.len();
+    if (width as u64) * (height as u64) > limits::MAX_TILES {
+        return Err(loc.at(
+            &span,
+            format!(
+                "the map is {width} x {height} tiles; expected at most {} tiles (as for Tiled maps)",
+                limits::MAX_TILES
+            ),
+        ));
+    }
     let mut tiles = vec![Tile::Empty; width * height];
     for (r, row) in rows.iter().enumerate() {
         let j = height - 1 - r;
@@ -407,12 +457,26 @@ fn parse_platform(loc: &Locator, p: &Spanned<RawPlatform>) -> Result<Platform, L
     let r = p.get_ref();
     let [x, y, w, h] = r.rect;
     let start = Vec2::new(
-        finite(loc, &span, "rect x", x)?,
-        finite(loc, &span, "rect y", y)?,
+        coord(loc, &span, "rect x", x)?,
+        coord(loc, &span, "rect y", y)?,
     );
     let size = Vec2::new(
-        positive(loc, &span, "rect width", w)?,
-        positive(loc, &span, "rect height", h)?,
+        ranged(
+            loc,
+            &span,
+            "rect width",
+            w,
+            (f64::MIN_POSITIVE, limits::MAX_COORD),
+            "tiles",
+        )?,
+        ranged(
+            loc,
+            &span,
+            "rect height",
+            h,
+            (f64::MIN_POSITIVE, limits::MAX_COORD),
+            "tiles",
+        )?,
     );
     let kinds = r.path.is_some() as u8 + r.sine.is_some() as u8 + r.circle.is_some() as u8;
     if kinds != 1 {
@@ -425,12 +489,19 @@ fn parse_platform(loc: &Locator, p: &Spanned<RawPlatform>) -> Result<Platform, L
         let speed = r
             .speed
             .ok_or_else(|| loc.at(&span, "a platform with a `path` needs a `speed` (tiles/s)"))?;
-        let speed = positive(loc, &span, "speed", speed)?;
+        let speed = ranged(
+            loc,
+            &span,
+            "speed",
+            speed,
+            (f64::MIN_POSITIVE, limits::MAX_SPEED),
+            "tiles/s",
+        )?;
         let mut points = Vec::with_capacity(path.len());
         for [px, py] in path {
             points.push(Vec2::new(
-                finite(loc, &span, "path x", *px)?,
-                finite(loc, &span, "path y", *py)?,
+                coord(loc, &span, "path x", *px)?,
+                coord(loc, &span, "path y", *py)?,
             ));
         }
         if points.len() < 2 {
@@ -459,10 +530,10 @@ fn parse_platform(loc: &Locator, p: &Spanned<RawPlatform>) -> Result<Platform, L
         let [ax, ay] = s.amplitude;
         PlatformMotion::Sine {
             amplitude: Vec2::new(
-                finite(loc, &span, "sine amplitude", ax)?,
-                finite(loc, &span, "sine amplitude", ay)?,
+                coord(loc, &span, "sine amplitude", ax)?,
+                coord(loc, &span, "sine amplitude", ay)?,
             ),
-            period: positive(loc, &span, "sine period", s.period)?,
+            period: period(loc, &span, "sine period", s.period)?,
         }
     } else {
         let c = r
@@ -470,8 +541,15 @@ fn parse_platform(loc: &Locator, p: &Spanned<RawPlatform>) -> Result<Platform, L
             .as_ref()
             .ok_or_else(|| loc.at(&span, "missing motion"))?;
         PlatformMotion::Circle {
-            radius: positive(loc, &span, "circle radius", c.radius)?,
-            period: positive(loc, &span, "circle period", c.period)?,
+            radius: ranged(
+                loc,
+                &span,
+                "circle radius",
+                c.radius,
+                (f64::MIN_POSITIVE, limits::MAX_COORD),
+                "tiles",
+            )?,
+            period: period(loc, &span, "circle period", c.period)?,
         }
     };
     Ok(Platform {
@@ -495,6 +573,53 @@ fn positive(loc: &Locator, span: &Range<usize>, what: &str, v: f64) -> Result<f3
         return Err(loc.at(span, format!("{what} is {v}; expected a number > 0")));
     }
     Ok(x)
+}
+
+/// A number within `range` (inclusive), in `unit`.
+fn ranged(
+    loc: &Locator,
+    span: &Range<usize>,
+    what: &str,
+    v: f64,
+    range: (f64, f64),
+    unit: &str,
+) -> Result<f32, LevelError> {
+    if !limits::within(v, range) {
+        let lo = if range.0 == f64::MIN_POSITIVE {
+            "0 < ".to_string()
+        } else {
+            format!("{} <= ", range.0)
+        };
+        return Err(loc.at(
+            span,
+            format!("{what} is {v}; expected {lo}{what} <= {} ({unit})", range.1),
+        ));
+    }
+    Ok(v as f32)
+}
+
+/// A coordinate or length within [`limits::MAX_COORD`] of zero, in tiles.
+fn coord(loc: &Locator, span: &Range<usize>, what: &str, v: f64) -> Result<f32, LevelError> {
+    ranged(
+        loc,
+        span,
+        what,
+        v,
+        (-limits::MAX_COORD, limits::MAX_COORD),
+        "tiles",
+    )
+}
+
+/// A platform's period, in seconds.
+fn period(loc: &Locator, span: &Range<usize>, what: &str, v: f64) -> Result<f32, LevelError> {
+    ranged(
+        loc,
+        span,
+        what,
+        v,
+        (limits::MIN_PERIOD, limits::MAX_DURATION),
+        "seconds",
+    )
 }
 
 fn vec2(
@@ -522,25 +647,50 @@ fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelE
     }
     let duration = positive(loc, &s.duration.span(), "duration", *s.duration.get_ref())?;
     let dt = match &s.dt {
-        Some(d) => positive(loc, &d.span(), "dt", *d.get_ref())?,
+        Some(d) => {
+            let v = *d.get_ref();
+            if !limits::dt_in_range(v) {
+                return Err(loc.at(
+                    &d.span(),
+                    format!(
+                        "dt is {v}; expected a time step in seconds, {} <= dt <= {}",
+                        limits::DT_RANGE.0,
+                        limits::DT_RANGE.1
+                    ),
+                ));
+            }
+            v as f32
+        }
         None => DEFAULT_DT,
     };
-    if duration / dt > 10_000_000.0 {
-        return Err(loc.at(
-            &s.duration.span(),
-            format!(
-                "duration / dt is {} frames; expected at most 10,000,000",
-                duration / dt
-            ),
-        ));
-    }
+    limits::check_timing(duration as f64, dt as f64).map_err(|m| loc.at(&s.duration.span(), m))?;
     let spawn = vec2(loc, &s.spawn, "spawn", false)?;
     let size = match &s.size {
-        Some(v) => vec2(loc, v, "size", true)?,
+        Some(v) => {
+            let [w, h] = *v.get_ref();
+            Vec2::new(
+                ranged(loc, &v.span(), "size width", w, limits::SIZE_RANGE, "tiles")?,
+                ranged(
+                    loc,
+                    &v.span(),
+                    "size height",
+                    h,
+                    limits::SIZE_RANGE,
+                    "tiles",
+                )?,
+            )
+        }
         None => DEFAULT_CHARACTER_SIZE,
     };
     let velocity = match &s.velocity {
-        Some(v) => vec2(loc, v, "velocity", false)?,
+        Some(v) => {
+            let [x, y] = *v.get_ref();
+            let r = (-limits::MAX_SPEED, limits::MAX_SPEED);
+            Vec2::new(
+                ranged(loc, &v.span(), "velocity x", x, r, "tiles/s")?,
+                ranged(loc, &v.span(), "velocity y", y, r, "tiles/s")?,
+            )
+        }
         None => Vec2::ZERO,
     };
     let mut inputs = Vec::with_capacity(s.inputs.len());
@@ -576,20 +726,35 @@ fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelE
         Some(m) => {
             let span = m.span();
             let m = m.get_ref();
-            let opt = |v: Option<f64>, what: &str| -> Result<Option<f32>, LevelError> {
-                v.map(|x| positive(loc, &span, what, x)).transpose()
+            let opt = |v: Option<f64>,
+                       what: &str,
+                       max: f64,
+                       unit: &str|
+             -> Result<Option<f32>, LevelError> {
+                v.map(|x| ranged(loc, &span, what, x, (f64::MIN_POSITIVE, max), unit))
+                    .transpose()
             };
             MotionOverrides {
-                jump_height: opt(m.jump_height, "motion.jump_height")?,
-                run_speed: opt(m.run_speed, "motion.run_speed")?,
-                gravity: opt(m.gravity, "motion.gravity")?,
+                jump_height: opt(
+                    m.jump_height,
+                    "motion.jump_height",
+                    limits::MAX_JUMP_HEIGHT,
+                    "tiles",
+                )?,
+                run_speed: opt(
+                    m.run_speed,
+                    "motion.run_speed",
+                    limits::MAX_SPEED,
+                    "tiles/s",
+                )?,
+                gravity: opt(m.gravity, "motion.gravity", limits::MAX_ACCEL, "tiles/s²")?,
             }
         }
     };
     let expect_y = s
         .expect_y
         .as_ref()
-        .map(|v| finite(loc, &v.span(), "expect_y", *v.get_ref()))
+        .map(|v| coord(loc, &v.span(), "expect_y", *v.get_ref()))
         .transpose()?;
     Ok(ScenarioSpec {
         name,
@@ -611,6 +776,16 @@ fn check_spawn(
     spec: &ScenarioSpec,
     span: &Range<usize>,
 ) -> Result<(), LevelError> {
+    let (x, y) = (spec.spawn.x, spec.spawn.y);
+    if !(x >= 0.0 && x <= level.width as f32 && y >= 0.0 && y <= level.height as f32) {
+        return Err(loc.at(
+            span,
+            format!(
+                "spawn ({x}, {y}) is outside the map, which spans 0 <= x <= {} and 0 <= y <= {} tiles; expected the feet (bottom centre) inside the map, on or above open space",
+                level.width, level.height
+            ),
+        ));
+    }
     let b = super::character_box(spec.spawn, spec.size);
     if let Some(t) = level.solids_overlapping(&b).next() {
         return Err(loc.at(

@@ -14,6 +14,8 @@ use std::path::Path;
 use glam::Vec2;
 use tiled::{LayerType, ObjectShape, PropertyValue, TileLayer};
 
+mod scan;
+
 use super::probes::{probe_scenarios, ProbeConfig, SpawnPoint};
 use super::{character_box, parse_scenarios, Level, LevelError, Platform, PlatformMotion};
 use super::{valid_name, Slope, Tile, DEFAULT_CHARACTER_SIZE};
@@ -105,7 +107,7 @@ pub enum TiledError {
         message: String,
     },
     /// The map has neither spawn points nor a side file, so nothing can run on it.
-    #[error("{file}: the map has no spawn points (objects of class \"spawn\") and no side file {side} with [[scenario]] entries; expected one of them, so that something runs on it")]
+    #[error("{file}: the map has no spawn points (objects of class \"spawn\") and no side file {side} with [[scenario]] entries, so nothing can run on it; add a point object of class \"spawn\" in an object layer in Tiled (where the character's feet start), or write {side} with [[scenario]] entries (README, \"Tiled maps\")")]
     NoScenarios {
         /// The map file.
         file: String,
@@ -172,10 +174,11 @@ pub fn load_tiled_map(path: &Path) -> Result<(Level, Vec<TiledWarning>), TiledEr
     } = import_tiled_map(path)?;
     let side = path.with_extension("toml");
     if side.is_file() {
-        let text = std::fs::read_to_string(&side).map_err(|e| TiledError::SideFileRead {
-            file: side.display().to_string(),
-            message: e.to_string(),
-        })?;
+        let text =
+            crate::limits::read_text_capped(&side).map_err(|e| TiledError::SideFileRead {
+                file: side.display().to_string(),
+                message: e.to_string(),
+            })?;
         level.scenarios = parse_scenarios(&text, &side.display().to_string(), &level)?;
         if level.scenarios.is_empty() {
             return Err(TiledError::NoScenarios {
@@ -220,7 +223,27 @@ pub fn load_tiled_map(path: &Path) -> Result<(Level, Vec<TiledWarning>), TiledEr
 /// Reads a Tiled map's geometry, platforms and spawn points (no scenarios).
 pub fn import_tiled_map(path: &Path) -> Result<TiledImport, TiledError> {
     let file = path.display().to_string();
-    let map = tiled::Loader::new()
+    // Read once, within the input cap, and look at what the tiled crate would allocate or
+    // index before it does.
+    let text = crate::limits::read_text_capped(path).map_err(|e| TiledError::Load {
+        file: file.clone(),
+        message: e.to_string(),
+    })?;
+    scan::scan_map(&text).map_err(|e| TiledError::Map {
+        file: format!("{file}:{}", e.line),
+        message: e.message,
+    })?;
+    let map_path = path.to_path_buf();
+    let bytes = text.into_bytes();
+    // The map as read above; tilesets and templates through the same cap.
+    let reader = move |p: &Path| -> std::io::Result<std::io::Cursor<Vec<u8>>> {
+        if p == map_path {
+            Ok(std::io::Cursor::new(bytes.clone()))
+        } else {
+            crate::limits::read_capped(p).map(std::io::Cursor::new)
+        }
+    };
+    let map = tiled::Loader::with_reader(reader)
         .load_tmx_map(path)
         .map_err(|e| TiledError::Load {
             file: file.clone(),
@@ -229,13 +252,15 @@ pub fn import_tiled_map(path: &Path) -> Result<TiledImport, TiledError> {
     let mut im = Importer {
         file: file.clone(),
         map: &map,
-        tiles: vec![None; (map.width as usize).saturating_mul(map.height as usize)],
+        tiles: Vec::new(),
         kinds: HashMap::new(),
         warned: Vec::new(),
         warnings: Vec::new(),
         objects: Vec::new(),
     };
+    // The size is checked before the cells are allocated.
     im.check_map()?;
+    im.tiles = vec![None; (map.width as usize) * (map.height as usize)];
     let (name, description) = im.map_properties(path)?;
     for layer in map.layers() {
         im.layer(layer, true)?;
@@ -311,10 +336,12 @@ impl<'m> Importer<'m> {
                 m.width, m.height, m.tile_width, m.tile_height
             )));
         }
-        if (m.width as u64) * (m.height as u64) > 16_000_000 {
+        if (m.width as u64) * (m.height as u64) > crate::limits::MAX_TILES {
             return Err(self.map_err(format!(
-                "the map is {} x {} tiles; expected at most 16 million tiles",
-                m.width, m.height
+                "the map is {} x {} tiles; expected at most {} tiles",
+                m.width,
+                m.height,
+                crate::limits::MAX_TILES
             )));
         }
         Ok(())
@@ -451,19 +478,8 @@ impl<'m> Importer<'m> {
         t: &tiled::FiniteTileLayer<'m>,
     ) -> Result<(), TiledError> {
         let (w, h) = (self.map.width, self.map.height);
-        // The tiled crate indexes its cell list without a bounds check: a layer whose data holds
-        // fewer cells than width x height would panic there. Probe the last cell (the largest
-        // index) once, contained, and report it as an error instead.
-        let probe = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            t.get_tile_data(w as i32 - 1, h as i32 - 1).is_some()
-        }));
-        if probe.is_err() {
-            return Err(TiledError::Layer {
-                file: self.file.clone(),
-                layer: lname.to_string(),
-                message: format!("the layer's data holds fewer than {w} x {h} cells; expected one per cell of the map"),
-            });
-        }
+        // The tiled crate indexes its cell list without a bounds check; a layer whose data holds
+        // fewer cells than width x height was refused by `scan::scan_map` before loading.
         for y in 0..h {
             for x in 0..w {
                 let Some(lt) = t.get_tile(x as i32, y as i32) else {
@@ -609,6 +625,13 @@ impl<'m> Importer<'m> {
                     if !(feet.x.is_finite() && feet.y.is_finite()) {
                         return Err(obj_err(o, "its position is not finite".into()));
                     }
+                    let (w, h) = (level.width as f32, level.height as f32);
+                    if !(feet.x >= 0.0 && feet.x <= w && feet.y >= 0.0 && feet.y <= h) {
+                        return Err(obj_err(o, format!(
+                            "the spawn point's feet are at ({}, {}) tiles, outside the map (0 <= x <= {w}, 0 <= y <= {h}); expected a spawn inside the map, on or above open space",
+                            feet.x, feet.y
+                        )));
+                    }
                     for key in o.properties.keys() {
                         self.warn(subject.clone(), format!("property {key:?} is not one platbench reads on a spawn point; ignored"));
                     }
@@ -724,11 +747,14 @@ impl<'m> Importer<'m> {
             _ => return Err(obj_err(o, "a moving platform needs a \"path\" property (an object reference to a polyline); none is set".into())),
         };
         let speed = match speed {
-            Some(s) if s.is_finite() && s > 0.0 => s,
+            Some(s) if s.is_finite() && s > 0.0 && s as f64 <= crate::limits::MAX_SPEED => s,
             Some(s) => {
                 return Err(obj_err(
                     o,
-                    format!("speed = {s}; expected a number > 0 (tiles/s)"),
+                    format!(
+                        "speed = {s}; expected 0 < speed <= {} (tiles/s)",
+                        crate::limits::MAX_SPEED
+                    ),
                 ))
             }
             None => {
@@ -772,6 +798,17 @@ impl<'m> Importer<'m> {
             .iter()
             .map(|&(x, y)| start + Vec2::new((x - x0) / tw, -(y - y0) / th))
             .collect();
+        let far =
+            |v: Vec2| v.abs().max_element() as f64 > crate::limits::MAX_COORD || !v.is_finite();
+        if far(start) || far(size) || waypoints.iter().any(|w| far(*w)) {
+            return Err(obj_err(
+                o,
+                format!(
+                    "the platform or its path reaches beyond {} tiles from the map's corner; expected a platform near the map",
+                    crate::limits::MAX_COORD
+                ),
+            ));
+        }
         if waypoints.iter().any(|w| !w.is_finite()) {
             return Err(obj_err(
                 o,

@@ -38,7 +38,13 @@ pub struct Ground<'a> {
 /// under a line, or for a height array the seed's 16 columns exactly.
 fn slope_shape(s: &Slope) -> Option<SharedShape> {
     match s {
-        Slope::Line { .. } => SharedShape::convex_hull(&s.outline()),
+        Slope::Line { .. } => {
+            // A line that never rises above the tile's bottom leaves no solid part.
+            let outline = s.outline();
+            (outline.len() >= 3)
+                .then(|| SharedShape::convex_hull(&outline))
+                .flatten()
+        }
         Slope::Heights(h) => {
             let parts: Vec<(Pose, SharedShape)> = h
                 .iter()

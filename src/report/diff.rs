@@ -103,11 +103,27 @@ pub struct MetricDiff {
     pub change: Change,
 }
 
+/// What happened to one trace.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TraceChange {
+    /// A position differs beyond the tolerance (a NaN where the other has a number counts).
+    Diverged,
+    /// One trace ends before the other (every frame before agrees).
+    Truncated,
+    /// In the baseline only.
+    Missing,
+    /// In the new run only.
+    Added,
+}
+
 /// One trace's comparison.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TraceDiff {
     /// Trace file name.
     pub file: String,
+    /// The verdict.
+    pub change: TraceChange,
     /// First frame whose position differs beyond the tolerance (or where one trace ends), if
     /// any.
     pub frame: Option<u32>,
@@ -130,15 +146,84 @@ pub struct RunDiff {
     pub traces_compared: usize,
 }
 
+/// What fails a diff, beyond a metric that got worse (which always does, timings aside).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FailOn {
+    /// A timing (`ns_per_character_step`) that got worse fails too.
+    pub timing: bool,
+    /// A metric or trace in the baseline only does not fail (it is still listed).
+    pub allow_missing: bool,
+    /// A trace that diverges or ends early does not fail (it is still listed).
+    pub allow_divergence: bool,
+}
+
 impl RunDiff {
     /// Whether a metric got worse (or went missing): the regression that fails CI. Timings
     /// (`ns_per_character_step`) count only when `timing_fails` is set: they are reported, but
     /// a shared machine's noise must not fail a build by default.
     pub fn regressed(&self, timing_fails: bool) -> bool {
-        self.metrics.iter().any(|m| {
-            matches!(m.change, Change::Worse | Change::Missing)
-                && (timing_fails || m.metric != "ns_per_character_step")
-        })
+        !self
+            .failures(FailOn {
+                timing: timing_fails,
+                ..FailOn::default()
+            })
+            .is_empty()
+    }
+
+    /// Why the diff fails under `fail_on`, one line per kind of failure (empty: it passes): a
+    /// metric worse beyond its tolerance, a metric or trace missing from the new run, a trace
+    /// that diverges beyond the position tolerance or ends early.
+    pub fn failures(&self, fail_on: FailOn) -> Vec<String> {
+        let counts_metric = |m: &&MetricDiff| fail_on.timing || m.metric != "ns_per_character_step";
+        let worse = self
+            .metrics
+            .iter()
+            .filter(counts_metric)
+            .filter(|m| m.change == Change::Worse)
+            .count();
+        let missing_metrics = self
+            .metrics
+            .iter()
+            .filter(counts_metric)
+            .filter(|m| m.change == Change::Missing)
+            .count();
+        let count = |c: TraceChange| self.traces.iter().filter(|t| t.change == c).count();
+        let mut out = Vec::new();
+        if worse > 0 {
+            out.push(format!(
+                "{worse} metric(s) got worse beyond their tolerance"
+            ));
+        }
+        if !fail_on.allow_missing {
+            if missing_metrics > 0 {
+                out.push(format!(
+                    "{missing_metrics} metric(s) of the baseline are missing from the new run (--allow-missing accepts that)"
+                ));
+            }
+            if count(TraceChange::Missing) > 0 {
+                out.push(format!(
+                    "{} trace(s) of the baseline are missing from the new run (--allow-missing accepts that)",
+                    count(TraceChange::Missing)
+                ));
+            }
+        }
+        if !fail_on.allow_divergence {
+            for (c, what) in [
+                (TraceChange::Diverged, "diverge beyond --position-tolerance"),
+                (
+                    TraceChange::Truncated,
+                    "end before the baseline's or run past it",
+                ),
+            ] {
+                if count(c) > 0 {
+                    out.push(format!(
+                        "{} trace(s) {what} (--allow-divergence accepts that)",
+                        count(c)
+                    ));
+                }
+            }
+        }
+        out
     }
 }
 
@@ -259,6 +344,11 @@ pub fn diff_runs(
         if !(in_b && in_n) {
             out.traces.push(TraceDiff {
                 file: name.clone(),
+                change: if in_b {
+                    TraceChange::Missing
+                } else {
+                    TraceChange::Added
+                },
                 frame: None,
                 base: None,
                 new: None,
@@ -281,11 +371,18 @@ pub fn diff_runs(
 /// Whether `new` is better, worse or the same as `base`, by distance from `reference`.
 fn classify(base: f64, new: f64, reference: f64, tol: Tolerance) -> Change {
     let (db, dn) = ((base - reference).abs(), (new - reference).abs());
-    if base.to_bits() == new.to_bits() || (db.is_infinite() && dn.is_infinite()) {
+    if base.to_bits() == new.to_bits()
+        || (db.is_infinite() && dn.is_infinite())
+        || (db.is_nan() && dn.is_nan())
+    {
         return Change::Same;
     }
-    if dn.is_nan() && !db.is_nan() {
+    // A NaN is a difference: one that appears is worse, one that goes is better.
+    if dn.is_nan() {
         return Change::Worse;
+    }
+    if db.is_nan() {
+        return Change::Better;
     }
     let allowed = tol.abs + tol.rel * if db.is_finite() { db } else { 0.0 };
     if dn > db + allowed {
@@ -297,13 +394,23 @@ fn classify(base: f64, new: f64, reference: f64, tol: Tolerance) -> Change {
     }
 }
 
+/// Whether two coordinates differ by more than `tol`: a NaN against a number does, two NaNs
+/// do not.
+fn differs(a: f32, b: f32, tol: f32) -> bool {
+    if a.is_nan() || b.is_nan() {
+        return a.is_nan() != b.is_nan();
+    }
+    a != b && (a - b).abs() > tol
+}
+
 /// The first frame where the two traces' positions differ by more than `tol` (or one ends).
 fn first_divergence(b: &[TraceRow], n: &[TraceRow], tol: f32) -> Option<TraceDiff> {
     let at = |r: &TraceRow| (r.x, r.y);
     for (rb, rn) in b.iter().zip(n) {
-        if (rb.x - rn.x).abs() > tol || (rb.y - rn.y).abs() > tol || rb.frame != rn.frame {
+        if differs(rb.x, rn.x, tol) || differs(rb.y, rn.y, tol) || rb.frame != rn.frame {
             return Some(TraceDiff {
                 file: String::new(),
+                change: TraceChange::Diverged,
                 frame: Some(rb.frame),
                 base: Some(at(rb)),
                 new: Some(at(rn)),
@@ -314,6 +421,7 @@ fn first_divergence(b: &[TraceRow], n: &[TraceRow], tol: f32) -> Option<TraceDif
         let k = b.len().min(n.len());
         TraceDiff {
             file: String::new(),
+            change: TraceChange::Truncated,
             frame: Some(k as u32),
             base: b.get(k).map(at),
             new: n.get(k).map(at),
@@ -343,6 +451,29 @@ mod tests {
             classify(f64::INFINITY, f64::INFINITY, 0.0, exact),
             Change::Same
         );
+        // NaN is a difference, both ways.
+        assert_eq!(classify(0.0, f64::NAN, 0.0, loose), Change::Worse);
+        assert_eq!(classify(f64::NAN, 0.0, 0.0, loose), Change::Better);
+        assert_eq!(classify(f64::NAN, f64::NAN, 0.0, loose), Change::Same);
+    }
+
+    #[test]
+    fn a_nan_position_diverges() {
+        let row = |x: f32| {
+            let state = crate::backend::CharacterState {
+                pos: glam::Vec2::new(x, 0.0),
+                ..Default::default()
+            };
+            TraceRow::from_state(0, 0.0, 0, &state)
+        };
+        assert!(differs(0.0, f32::NAN, 1e-4));
+        assert!(!differs(f32::NAN, f32::NAN, 1e-4));
+        assert!(!differs(f32::INFINITY, f32::INFINITY, 1e-4));
+        assert!(differs(0.0, f32::INFINITY, 1e-4));
+        let d = first_divergence(&[row(1.0)], &[row(f32::NAN)], 1e-4).unwrap();
+        assert_eq!(d.change, TraceChange::Diverged);
+        let d = first_divergence(&[row(1.0), row(1.0)], &[row(1.0)], 1e-4).unwrap();
+        assert_eq!(d.change, TraceChange::Truncated);
     }
 }
 
@@ -451,7 +582,11 @@ pub fn render(d: &RunDiff, format: DiffFormat) -> String {
         for tr in &d.traces {
             t.add_row(vec![
                 tr.file.clone(),
-                tr.frame.map_or("only in one run".into(), |f| f.to_string()),
+                match tr.change {
+                    TraceChange::Missing => "missing from the new run".into(),
+                    TraceChange::Added => "only in the new run".into(),
+                    _ => tr.frame.map_or("-".into(), |f| f.to_string()),
+                },
                 fmt_pos(tr.base),
                 fmt_pos(tr.new),
             ]);

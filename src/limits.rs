@@ -1,0 +1,143 @@
+//! The range of every number a user gives platbench, checked before any work is done: a
+//! value outside its range is an error that says what was found and what is expected, never a
+//! hang, a runaway allocation or a silently meaningless run. The README's "Input ranges" table
+//! lists the same numbers.
+//!
+//! Why these numbers: they are generous multiples of what the stress matrix exercises (offsets
+//! to 1e7 tiles, dt 1e-4 to 0.2 s, speeds to 1000 tiles/s, widths 0.01 to 10 tiles), and
+//! together they keep every quantity a run computes finite and its work proportional to the
+//! frames and tiles asked for: a fall under the largest gravity for the longest duration
+//! reaches `0.5 * 1e5 * 1e5^2 = 5e14` tiles, within f32 and far within the sweep's integer
+//! positions (`i64` subpixels).
+
+use std::io::Read;
+use std::path::Path;
+
+/// Largest file read as a level, map, tileset or side file, in bytes (128 MiB): a 16-million
+/// tile map written as Tiled CSV takes about 80 MB. Reading stops here, so a device or pipe
+/// that never ends (`/dev/zero`) is refused after 128 MiB.
+pub const MAX_INPUT_BYTES: u64 = 128 * 1024 * 1024;
+/// Most tiles a level may have (width x height), TOML or Tiled alike.
+pub const MAX_TILES: u64 = 16_000_000;
+/// Most frames (duration / dt) one scenario may run.
+pub const MAX_FRAMES: u64 = 10_000_000;
+/// Most frames all the scenarios of one level may run together.
+pub const MAX_LEVEL_FRAMES: u64 = 50_000_000;
+/// Longest scenario, in seconds (about 28 hours of game time).
+pub const MAX_DURATION: f64 = 1e5;
+/// Smallest and largest time step, in seconds.
+pub const DT_RANGE: (f64, f64) = (1e-6, 1.0);
+/// Largest distance of a level's origin, a platform's corner or waypoint, a sine amplitude, a
+/// circle radius or an `expect_y` from zero, in tiles: beyond 1e7 an f32 position moves in whole
+/// tiles, and nothing a controller does there means anything.
+pub const MAX_COORD: f64 = 1e7;
+/// Smallest and largest character width or height, in tiles.
+pub const SIZE_RANGE: (f64, f64) = (1e-3, 1e3);
+/// Largest speed (a run speed, an initial velocity component, a ladder or platform speed), in
+/// tiles/s.
+pub const MAX_SPEED: f64 = 1e4;
+/// Largest acceleration (gravity, run acceleration), in tiles/s².
+pub const MAX_ACCEL: f64 = 1e5;
+/// Largest jump height, in tiles.
+pub const MAX_JUMP_HEIGHT: f64 = 1e4;
+/// Smallest platform period, in seconds (a period shorter than the smallest dt is noise).
+pub const MIN_PERIOD: f64 = 1e-6;
+/// Largest sweep epsilon, in tiles: an overlap tolerance of a whole tile tolerates everything.
+pub const MAX_EPSILON: f64 = 1.0;
+
+/// Whether `dt` (seconds) is within [`DT_RANGE`], compared in f32 as the runner stores it (so
+/// `1e-6` read into an f32, a hair below 1e-6, is in).
+pub fn dt_in_range(dt: f64) -> bool {
+    dt.is_finite() && (dt as f32) >= DT_RANGE.0 as f32 && (dt as f32) <= DT_RANGE.1 as f32
+}
+
+/// Whether `v` is finite and within `lo..=hi`.
+pub fn within(v: f64, (lo, hi): (f64, f64)) -> bool {
+    v.is_finite() && v >= lo && v <= hi
+}
+
+/// The number of frames a scenario of `duration` seconds runs at step `dt` (as the runner
+/// counts them: `round(duration / dt)`), computed without overflow.
+pub fn frames(duration: f64, dt: f64) -> f64 {
+    (duration / dt).round()
+}
+
+/// Checks a scenario's duration against its time step: the step within [`DT_RANGE`], the
+/// duration within [`MAX_DURATION`], and between 1 and [`MAX_FRAMES`] frames. Returns what is
+/// wrong, for the caller to place (file and line, or a command-line flag).
+pub fn check_timing(duration: f64, dt: f64) -> Result<u64, String> {
+    if !dt_in_range(dt) {
+        return Err(format!(
+            "dt is {dt}; expected a time step in seconds, {} <= dt <= {}",
+            DT_RANGE.0, DT_RANGE.1
+        ));
+    }
+    if !(duration.is_finite() && duration > 0.0 && duration <= MAX_DURATION) {
+        return Err(format!(
+            "duration is {duration}; expected seconds, 0 < duration <= {MAX_DURATION}"
+        ));
+    }
+    let n = frames(duration, dt);
+    if n < 1.0 {
+        return Err(format!(
+            "duration / dt = {duration} / {dt} rounds to 0 frames, so nothing would run; expected a duration of at least half a step"
+        ));
+    }
+    if n > MAX_FRAMES as f64 {
+        return Err(format!(
+            "duration / dt = {duration} / {dt} is {n} frames; expected at most {MAX_FRAMES} (shorten the scenario or take a larger dt)"
+        ));
+    }
+    Ok(n as u64)
+}
+
+/// Reads a whole file of at most [`MAX_INPUT_BYTES`]; a larger one (or one that never ends) is
+/// an error that says the cap, read no further than the cap.
+pub fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
+    let file = std::fs::File::open(path)?;
+    if file.metadata().is_ok_and(|m| m.is_dir()) {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "it is a directory; expected a file",
+        ));
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "it holds more than {} MiB, the most platbench reads from one input file; expected a level, map or tileset file",
+                MAX_INPUT_BYTES / (1024 * 1024)
+            ),
+        ));
+    }
+    Ok(bytes)
+}
+
+/// [`read_capped`] as UTF-8 text.
+pub fn read_text_capped(path: &Path) -> std::io::Result<String> {
+    String::from_utf8(read_capped(path)?).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("it is not UTF-8 text ({e})"),
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn timing_is_checked_before_anything_runs() {
+        assert_eq!(check_timing(1.0, 0.01), Ok(100));
+        // dt = 1e30 used to run zero steps; 1e-9 bypassed the frame cap.
+        assert!(check_timing(1.0, 1e30).unwrap_err().contains("dt"));
+        assert!(check_timing(10.0, 1e-9).unwrap_err().contains("dt"));
+        assert!(check_timing(0.001, 0.1).unwrap_err().contains("0 frames"));
+        assert!(check_timing(1e5, 1e-3).unwrap_err().contains("at most"));
+        assert!(check_timing(f64::NAN, 0.1).is_err());
+        assert!(check_timing(0.1, f64::INFINITY).is_err());
+    }
+}
