@@ -50,6 +50,22 @@ impl<E: std::error::Error + 'static> std::error::Error for ImportFailure<E> {
     }
 }
 
+/// A map imported without its scenarios, whatever its format: the level, its spawn points,
+/// where each came from, each layer's role and why, and the warnings raised on the way.
+#[derive(Clone, Debug)]
+pub struct MapImport {
+    /// The level, with no scenarios yet.
+    pub level: Level,
+    /// The spawn points, in the order of the file (or the fallback spawn `auto`).
+    pub spawns: Vec<SpawnPoint>,
+    /// Where each spawn point came from, one per spawn.
+    pub spawn_sources: Vec<String>,
+    /// Each layer with the role it was given and why.
+    pub layers: Vec<LayerReport>,
+    /// Everything that was ignored or assumed.
+    pub warnings: Vec<ImportWarning>,
+}
+
 /// What a layer is read as.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LayerRole {

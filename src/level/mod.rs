@@ -6,12 +6,13 @@
 //! ([`tiled`]) are imported into the same model.
 
 pub mod import;
+pub mod ldtk;
 mod parse;
 mod platform;
 pub mod probes;
 pub mod tiled;
 
-pub use import::{ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole};
+pub use import::{ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport};
 pub use parse::{parse_level, parse_scenarios, LevelError};
 pub use platform::{Platform, PlatformMotion};
 pub use probes::{probe_scenarios, ProbeConfig, SpawnPoint};
