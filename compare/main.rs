@@ -179,7 +179,8 @@ impl ImportArgs {
 
 #[derive(Args)]
 struct ReportArgs {
-    /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
+    /// Level files: TOML, Tiled maps (.tmx) or LDtk projects (.ldtk); the built-in set when
+    /// none is given.
     levels: Vec<PathBuf>,
     /// Directory for report.html and report.md (replaced as a whole; see --force).
     #[arg(long, default_value = "platbench-report")]
@@ -242,7 +243,8 @@ struct DiffArgs {
 #[derive(Args, Default)]
 #[command(allow_negative_numbers = true)]
 struct RunArgs {
-    /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
+    /// Level files: TOML, Tiled maps (.tmx) or LDtk projects (.ldtk); the built-in set when
+    /// none is given.
     levels: Vec<PathBuf>,
     /// Output directory, replaced as a whole once the run is complete. It must be missing,
     /// empty, or an earlier `platbench run` output (it holds a .platbench-output marker file);
