@@ -12,7 +12,7 @@ use std::time::Instant;
 use anyhow::{bail, Context as _, Result};
 use clap::{Args, Parser, Subcommand};
 
-use platbench::level::{load_tiled_map, parse_level, Level};
+use platbench::level::{parse_level, Level};
 use platbench::metrics::{evaluate_with, MetricRow};
 use platbench::report::{detail_table, notes, summary_table};
 use platbench::scenario::{BackendConfig, RunConfig, Runner};
@@ -90,11 +90,97 @@ enum Command {
     /// --allow-divergence); 2 on an error (a bad option, an unreadable or malformed file).
     /// A NaN where the other run has a number is a difference.
     Diff(DiffArgs),
+    /// Show what a Tiled (.tmx) or LDtk (.ldtk) map was read as: each layer with the role it
+    /// was given and why, the spawns, the moving platforms with their paths, the warnings, and
+    /// the collision grid in the level format's characters (`#` solid, `=` one-way, `H`
+    /// ladder, `/` `\` slopes, `.` empty).
+    Inspect(InspectArgs),
+}
+
+#[derive(Args)]
+struct InspectArgs {
+    /// The map file (.tmx or .ldtk).
+    map: PathBuf,
+    #[command(flatten)]
+    import: ImportArgs,
+}
+
+/// Overrides of the map importers' defaults (README, "Tiled maps" and "LDtk maps").
+#[derive(Args, Default, Clone)]
+#[command(allow_negative_numbers = true)]
+struct ImportArgs {
+    /// Read a map layer as ROLE: collision, solid, one_way, ladder, objects or decoration
+    /// (NAME in any case; repeatable). Overrides the layer's name and properties.
+    #[arg(long = "layer", value_name = "NAME=ROLE")]
+    layers: Vec<String>,
+    /// Read the tile layers no name or property marks as ROLE (collision or decoration).
+    #[arg(long, value_name = "ROLE")]
+    tile_layers: Option<String>,
+    /// Start the probes here instead of the map's spawns: feet position in tiles, y up
+    /// (repeatable).
+    #[arg(long = "spawn", value_name = "X,Y")]
+    spawns: Vec<String>,
+    /// LDtk: make an IntGrid value (its number or name) solid, one_way, ladder or empty
+    /// (repeatable).
+    #[arg(long = "intgrid", value_name = "VALUE=KIND")]
+    intgrid: Vec<String>,
+    /// LDtk: import this one level of the world (its identifier) instead of the whole world.
+    #[arg(long, value_name = "NAME")]
+    level: Option<String>,
+}
+
+impl ImportArgs {
+    fn options(&self) -> Result<platbench::level::ImportOptions> {
+        use platbench::level::import::parse_tile_kind;
+        use platbench::level::{ImportOptions, LayerRole};
+        let mut o = ImportOptions::default();
+        for l in &self.layers {
+            let Some((name, role)) = l.rsplit_once('=') else {
+                bail!("--layer {l}: expected NAME=ROLE");
+            };
+            let Some(r) = LayerRole::parse(role) else {
+                bail!("--layer {l}: {role:?} is no role; expected collision, solid, one_way, ladder, objects or decoration");
+            };
+            o.layer_roles.push((name.to_string(), r));
+        }
+        if let Some(t) = &self.tile_layers {
+            o.tile_layers = Some(LayerRole::parse(t).with_context(|| {
+                format!(
+                    "--tile-layers {t}: expected collision, solid, one_way, ladder or decoration"
+                )
+            })?);
+        }
+        for sp in &self.spawns {
+            let v: Vec<f32> = sp
+                .split(',')
+                .map(|x| x.trim().parse::<f32>())
+                .collect::<Result<_, _>>()
+                .map_err(|_| anyhow::anyhow!("--spawn {sp}: expected X,Y in tiles"))?;
+            match v[..] {
+                [x, y] if x.is_finite() && y.is_finite() => o.spawns.push(glam::Vec2::new(x, y)),
+                _ => bail!("--spawn {sp}: expected X,Y, two finite numbers of tiles"),
+            }
+        }
+        for g in &self.intgrid {
+            let Some((v, kind)) = g.rsplit_once('=') else {
+                bail!("--intgrid {g}: expected VALUE=KIND");
+            };
+            let Some(t) = parse_tile_kind(kind) else {
+                bail!(
+                    "--intgrid {g}: {kind:?} is no kind; expected solid, one_way, ladder or empty"
+                );
+            };
+            o.intgrid.push((v.to_string(), t));
+        }
+        o.level = self.level.clone();
+        Ok(o)
+    }
 }
 
 #[derive(Args)]
 struct ReportArgs {
-    /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
+    /// Level files: TOML, Tiled maps (.tmx) or LDtk projects (.ldtk); the built-in set when
+    /// none is given.
     levels: Vec<PathBuf>,
     /// Directory for report.html and report.md (replaced as a whole; see --force).
     #[arg(long, default_value = "platbench-report")]
@@ -117,6 +203,8 @@ struct ReportArgs {
     /// Include the stability table from this stability.csv (written by `platbench stress`).
     #[arg(long, value_name = "FILE")]
     stability: Option<PathBuf>,
+    #[command(flatten)]
+    import: ImportArgs,
 }
 
 #[derive(Args)]
@@ -155,7 +243,8 @@ struct DiffArgs {
 #[derive(Args, Default)]
 #[command(allow_negative_numbers = true)]
 struct RunArgs {
-    /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
+    /// Level files: TOML, Tiled maps (.tmx) or LDtk projects (.ldtk); the built-in set when
+    /// none is given.
     levels: Vec<PathBuf>,
     /// Output directory, replaced as a whole once the run is complete. It must be missing,
     /// empty, or an earlier `platbench run` output (it holds a .platbench-output marker file);
@@ -190,6 +279,8 @@ struct RunArgs {
     /// Rapier character shapes to run (repeat or comma-separate); all of them by default.
     #[arg(long = "shape", value_name = "SHAPE", value_delimiter = ',', value_parser = ["capsule", "cuboid", "ball", "round-cuboid"])]
     shapes: Vec<String>,
+    #[command(flatten)]
+    import: ImportArgs,
 }
 
 fn main() -> ExitCode {
@@ -202,6 +293,7 @@ fn main() -> ExitCode {
         Some(Command::Sweep { out, force, levels }) => sweep_settings(&out, force, &levels),
         Some(Command::Report(args)) => report(&args),
         Some(Command::Diff(args)) => return diff(&args),
+        Some(Command::Inspect(args)) => inspect(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -223,19 +315,50 @@ fn builtin_levels() -> Result<Vec<Level>> {
         .collect()
 }
 
-fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
-    if paths.is_empty() {
-        return builtin_levels();
-    }
-    let mut levels: Vec<Level> = Vec::new();
-    for p in paths {
-        let is_tiled = p.extension().is_some_and(|e| e.eq_ignore_ascii_case("tmx"));
-        let level = if is_tiled {
-            let (level, warnings) = load_tiled_map(p)?;
+/// Whether `p` names a map file of `ext` (any case).
+fn has_ext(p: &std::path::Path, ext: &str) -> bool {
+    p.extension().is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
+/// Loads a Tiled or LDtk map with the import overrides, printing its warnings — those gathered
+/// before a failure too.
+fn load_map(p: &std::path::Path, opts: &platbench::level::ImportOptions) -> Result<Level> {
+    let result = if has_ext(p, "ldtk") {
+        platbench::level::ldtk::load_ldtk_with(p, opts)
+            .map_err(|f| (anyhow::Error::new(f.error), f.warnings))
+    } else {
+        platbench::level::load_tiled_map_with(p, opts)
+            .map_err(|f| (anyhow::Error::new(f.error), f.warnings))
+    };
+    match result {
+        Ok((level, warnings)) => {
             for w in warnings {
                 eprintln!("warning: {w}");
             }
-            level
+            Ok(level)
+        }
+        Err((e, warnings)) => {
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+            Err(e)
+        }
+    }
+}
+
+fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
+    load_levels_with(paths, &ImportArgs::default())
+}
+
+fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result<Vec<Level>> {
+    if paths.is_empty() {
+        return builtin_levels();
+    }
+    let opts = import.options()?;
+    let mut levels: Vec<Level> = Vec::new();
+    for p in paths {
+        let level = if has_ext(p, "tmx") || has_ext(p, "ldtk") {
+            load_map(p, &opts)?
         } else {
             let text = platbench::limits::read_text_capped(p)
                 .with_context(|| format!("cannot read level file {}", p.display()))?;
@@ -350,7 +473,7 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
             bail!("--dt {dt}: expected a time step in seconds, {lo} <= dt <= {hi}");
         }
     }
-    let mut levels = load_levels(&args.levels)?;
+    let mut levels = load_levels_with(&args.levels, &args.import)?;
     if let Some(dt) = args.dt {
         // The frame caps hold for the step given here as for a step in the file.
         for l in &mut levels {
@@ -583,7 +706,7 @@ fn report(args: &ReportArgs) -> Result<()> {
         tradeoff: args.tradeoff.as_deref().map(read_tradeoff).transpose()?,
         stability: args.stability.as_deref().map(read_rows).transpose()?,
     };
-    let levels = load_levels(&args.levels)?;
+    let levels = load_levels_with(&args.levels, &args.import)?;
     let configs = configs(&RunArgs {
         backends: args.backends.clone(),
         shapes: args.shapes.clone(),
@@ -726,5 +849,104 @@ fn list_levels() -> Result<()> {
             out(&format!("    {}  ({} s)", s.name, s.duration));
         }
     }
+    Ok(())
+}
+
+/// `platbench inspect MAP`: what the import read, for a user to compare with their game.
+fn inspect(args: &InspectArgs) -> Result<()> {
+    use platbench::level::import::ascii_map;
+    let opts = args.import.options()?;
+    let p = &args.map;
+    let r = if has_ext(p, "ldtk") {
+        platbench::level::ldtk::import_ldtk_with(p, &opts).map_err(|f| {
+            for w in &f.warnings {
+                eprintln!("warning: {w}");
+            }
+            anyhow::Error::new(f.error)
+        })?
+    } else {
+        let t = platbench::level::import_tiled_map_with(p, &opts).map_err(|f| {
+            for w in &f.warnings {
+                eprintln!("warning: {w}");
+            }
+            anyhow::Error::new(f.error)
+        })?;
+        platbench::level::import::MapImport {
+            level: t.level,
+            spawns: t.spawns,
+            spawn_sources: t.spawn_sources,
+            layers: t.layers,
+            warnings: t.warnings,
+        }
+    };
+    let l = &r.level;
+    let mut text = format!(
+        "{}: level {:?}, {} x {} tiles{}\n",
+        p.display(),
+        l.name,
+        l.width,
+        l.height,
+        if l.features.names().is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", l.features.names().join(", "))
+        }
+    );
+    text.push_str("\nlayers:\n");
+    for layer in &r.layers {
+        text.push_str(&format!(
+            "  {:?} ({}): {} — {}\n",
+            layer.name,
+            layer.kind,
+            layer.role.name(),
+            layer.why
+        ));
+    }
+    text.push_str("\nspawns (feet, tiles, y up):\n");
+    if r.spawns.is_empty() {
+        text.push_str("  none\n");
+    }
+    for (s, why) in r.spawns.iter().zip(&r.spawn_sources) {
+        text.push_str(&format!(
+            "  {} at ({}, {}) — {why}\n",
+            s.name, s.position.x, s.position.y
+        ));
+    }
+    text.push_str("\nplatforms:\n");
+    if l.platforms.is_empty() {
+        text.push_str("  none\n");
+    }
+    for (k, pl) in l.platforms.iter().enumerate() {
+        let path = match &pl.motion {
+            platbench::level::PlatformMotion::Waypoints { points, speed } => format!(
+                "path {} at {speed} tiles/s",
+                points
+                    .iter()
+                    .map(|q| format!("({}, {})", q.x, q.y))
+                    .collect::<Vec<_>>()
+                    .join(" -> ")
+            ),
+            other => format!("{other:?}"),
+        };
+        text.push_str(&format!(
+            "  {k}: {} x {} at ({}, {}){}, {path}\n",
+            pl.size.x,
+            pl.size.y,
+            pl.start.x,
+            pl.start.y,
+            if pl.one_way { ", one-way" } else { "" }
+        ));
+    }
+    text.push_str(&format!("\nwarnings: {}\n", r.warnings.len()));
+    for w in &r.warnings {
+        text.push_str(&format!("  {}: {}\n", w.subject, w.message));
+    }
+    let (map, legend) = ascii_map(l);
+    text.push_str("\ngrid (top row first; # solid, = one-way, H ladder, / \\ slopes, . empty):\n");
+    text.push_str(&map);
+    for (c, s) in legend {
+        text.push_str(&format!("  {c} = {s:?}\n"));
+    }
+    out(text.trim_end());
     Ok(())
 }

@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec2;
 use platbench::level::{
-    import_tiled_map, load_tiled_map, PlatformMotion, Slope, Tile, TiledError, TiledImport,
+    import_tiled_map, import_tiled_map_with, load_tiled_map, load_tiled_map_with, ImportOptions,
+    LayerRole, PlatformMotion, Slope, Tile, TiledError, TiledImport,
 };
 
 fn shipped(name: &str) -> PathBuf {
@@ -122,13 +123,15 @@ fn every_tile_rule_maps_to_its_tile() {
     assert_eq!(r.level.tile(0, 1), Tile::Empty);
     let f = r.level.features;
     assert!(f.slopes && f.one_way && f.ladders && !f.moving_platforms);
-    // The unknown property is named with its tile, once.
-    assert_eq!(r.warnings.len(), 1, "{:?}", r.warnings);
+    // The unknown property is named with its tile, once; the map marks no spawn, so the
+    // fallback spawn is said aloud.
+    assert_eq!(r.warnings.len(), 2, "{:?}", r.warnings);
     let w = r.warnings[0].to_string();
     assert!(
         w.contains("tileset \"rules\" tile 10") && w.contains("\"damage\""),
         "{w}"
     );
+    assert!(r.warnings[1].message.starts_with("no spawn point found"));
     assert_eq!(r.level.name, "rules");
     assert!(r.level.source.ends_with("rules.tmx"));
 }
@@ -273,11 +276,35 @@ fn a_side_file_replaces_the_probes() {
 }
 
 #[test]
-fn a_map_without_spawns_or_side_file_is_an_error() {
+fn a_map_without_spawns_starts_at_a_standable_cell_or_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
+    // A floor of 3 tiles: the leftmost standable cell is (0, 1), feet at (0.5, 1).
     let path = MapText::default().write(dir.path());
-    let e = load_tiled_map(&path).unwrap_err().to_string();
+    let (l, warnings) = load_tiled_map(&path).unwrap();
+    assert_eq!(l.scenarios[0].name, "auto-drop");
+    assert_eq!(l.scenarios[0].spawn, Vec2::new(0.5, 1.0));
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.message.contains("no spawn point found")
+                && w.message.contains("class \"spawn\"")
+                && w.message.contains("--spawn")),
+        "{warnings:?}"
+    );
+    // Nothing to stand on: an error that says what to add, and the warnings so far.
+    let path = MapText {
+        rows: &["0,0,0", "0,0,0"],
+        ..MapText::default()
+    }
+    .write(dir.path());
+    let f = load_tiled_map_with(&path, &ImportOptions::default()).unwrap_err();
+    let e = f.error.to_string();
     assert!(e.contains("no spawn points") && e.contains("m.toml"), "{e}");
+    assert!(
+        f.warnings.iter().any(|w| w.message.contains("no solids")),
+        "{:?}",
+        f.warnings
+    );
 }
 
 const SPAWN: &str = r#"<object id="1" name="s" class="spawn" x="8" y="16"><point/></object>"#;
@@ -478,15 +505,20 @@ fn unsupported_maps_and_layers_are_errors() {
         iso.contains("orientation is isometric") && iso.contains("orthogonal"),
         "{iso}"
     );
+    // Tile art larger than the map's cells is one cell each, with a note.
     let big = MapText {
         tileset_size: 32,
         ..MapText::default()
     }
-    .error();
+    .import()
+    .unwrap();
+    assert_eq!(row0(&big.level), vec![Tile::Solid; 3]);
     assert!(
-        big.contains("tileset \"t\" tile 0")
-            && big.contains("32 x 32 pixels but the map's are 16 x 16"),
-        "{big}"
+        big.warnings
+            .iter()
+            .any(|w| w.subject == "tileset \"t\"" && w.message.contains("32 x 32")),
+        "{:?}",
+        big.warnings
     );
     // A second tile layer that puts a ladder where the first has a solid.
     let dir = tempfile::tempdir().unwrap();
@@ -497,7 +529,7 @@ fn unsupported_maps_and_layers_are_errors() {
     .text()
     .replace(
         " <objectgroup",
-        " <layer id=\"3\" name=\"more\" width=\"3\" height=\"2\"><data encoding=\"csv\">0,0,0,2,0,0</data></layer>\n <objectgroup",
+        " <layer id=\"3\" name=\"more walls\" width=\"3\" height=\"2\"><data encoding=\"csv\">0,0,0,2,0,0</data></layer>\n <objectgroup",
     );
     let path = dir.path().join("m.tmx");
     std::fs::write(&path, text).unwrap();
@@ -665,17 +697,22 @@ fn run_mixes_toml_and_tiled_files_and_prints_warnings() {
     assert!(out_dir
         .join("traces/mine.start-walk_right.sweep.csv")
         .exists());
-    // A map with nothing to run (rules.tmx without its side file) is an error that says what
-    // to add, with exit code 2.
+    // A map that marks no spawn (rules.tmx without its side file) runs from the fallback
+    // spawn, and says so.
     let bare = dir.path().join("bare.tmx");
     std::fs::copy(shipped("rules.tmx"), &bare).unwrap();
-    let out = platbench().arg("run").arg(&bare).output().unwrap();
+    let out = platbench()
+        .arg("run")
+        .arg(&bare)
+        .args(["--backend", "sweep", "--out"])
+        .arg(dir.path().join("bare-out"))
+        .output()
+        .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
     assert!(
-        stderr.contains("bare.tmx")
-            && stderr.contains("no spawn points")
-            && stderr.contains("add a point object of class \"spawn\""),
+        stderr.contains("bare.tmx: map: no spawn point found")
+            && stderr.contains("class \"spawn\""),
         "{stderr}"
     );
     // The shipped map runs on its own, through its side file rules.toml.
@@ -691,4 +728,123 @@ fn run_mixes_toml_and_tiled_files_and_prints_warnings() {
     assert!(rules_out
         .join("traces/rules.walk_over_the_rules.sweep.csv")
         .exists());
+}
+
+/// The level's tiles as the level format writes them, top row first.
+fn grid(l: &platbench::level::Level) -> String {
+    platbench::level::import::ascii_map(l).0
+}
+
+fn spawns_of(r: &TiledImport) -> Vec<(&str, Vec2)> {
+    r.spawns
+        .iter()
+        .map(|s| (s.name.as_str(), s.position))
+        .collect()
+}
+
+#[test]
+fn collision_rectangles_in_named_object_layers_make_the_grid() {
+    // tests/maps/object_collision.tmx: a floor and a wall as rectangles in
+    // "Platform-Colliders", a 4 px one-way rectangle at the top of row 2 in "OneWay", a coin
+    // in "Coins", one rectangle in "PlayerSpawn"; the tile layers are art.
+    let r = import_tiled_map(&shipped("object_collision.tmx")).unwrap();
+    assert_eq!(
+        grid(&r.level),
+        "..........\n..........\n...==....#\n.........#\n##########\n"
+    );
+    // The spawn layer's rectangle at (16, 48) px, 16 x 16: feet at its bottom centre.
+    assert_eq!(spawns_of(&r), [("spawn5", Vec2::new(1.5, 1.0))]);
+    let role = |name: &str| r.layers.iter().find(|l| l.name == name).unwrap().role;
+    assert_eq!(role("Background"), LayerRole::Decoration);
+    assert_eq!(role("Tile Layer 1"), LayerRole::Decoration);
+    assert_eq!(role("Platform-Colliders"), LayerRole::Collision);
+    assert_eq!(role("OneWay"), LayerRole::OneWay);
+    assert_eq!(role("Coins"), LayerRole::Decoration);
+    let why = &r
+        .layers
+        .iter()
+        .find(|l| l.name == "Tile Layer 1")
+        .unwrap()
+        .why;
+    assert!(why.contains("Platform-Colliders"), "{why}");
+    // Overridden on the command line (names in any case): the unmarked tile layer is read
+    // again, and the one-way layer left out (its rectangle would meet the tile layer's solids).
+    let opts = ImportOptions {
+        layer_roles: vec![
+            ("tile layer 1".into(), LayerRole::Collision),
+            ("oneway".into(), LayerRole::Decoration),
+        ],
+        ..ImportOptions::default()
+    };
+    let r = import_tiled_map_with(&shipped("object_collision.tmx"), &opts).unwrap();
+    assert_eq!(
+        (r.level.tile(0, 4), r.level.tile(3, 2)),
+        (Tile::Solid, Tile::Solid)
+    );
+    // Without the second override the two layers disagree on a cell: an error naming both.
+    let opts = ImportOptions {
+        layer_roles: vec![("Tile Layer 1".into(), LayerRole::Collision)],
+        ..ImportOptions::default()
+    };
+    let e = import_tiled_map_with(&shipped("object_collision.tmx"), &opts)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("object 3") && e.contains("layer \"Tile Layer 1\""),
+        "{e}"
+    );
+}
+
+#[test]
+fn tile_layers_are_picked_by_name_and_bool_properties_mark_tiles() {
+    // tests/maps/named_tiles.tmx: "Ground" is read; "bg", "Water" and the unmarked
+    // "Tile Layer 3" are not. Tiles marked collidable or isSolid are solid, oneway one-way, and
+    // the unmarked tile 1 in a tileset that marks with bools is empty.
+    let r = import_tiled_map(&shipped("named_tiles.tmx")).unwrap();
+    assert_eq!(grid(&r.level), "........\n....==.#\n.......#\n###..###\n");
+    // The object named "Player" (no class) is the spawn; the enemy is warned about.
+    assert_eq!(spawns_of(&r), [("Player", Vec2::new(1.5, 1.0))]);
+    assert!(r.warnings.iter().any(|w| w.subject == "object 2 \"enemy\""));
+    // With --tile-layers collision, the unmarked layer's tile appears at the top-left.
+    let opts = ImportOptions {
+        tile_layers: Some(LayerRole::Collision),
+        ..ImportOptions::default()
+    };
+    let r = import_tiled_map_with(&shipped("named_tiles.tmx"), &opts).unwrap();
+    assert_eq!(r.level.tile(0, 3), Tile::Solid);
+}
+
+#[test]
+fn the_loader_is_tolerant_where_tiled_is() {
+    // tests/maps/tolerant.tmx: tileset "old" has no tilecount (2 computed from its 32 x 16
+    // image), "ground" is in the XML cell encoding, tolerant.tsj is a JSON tileset (tile 0
+    // solid = true, tile 1 a ramp drawn in the collision editor), the 32 x 48 crate of an image
+    // collection is one cell, "platforms" is offset by (16, -16) px: one tile right and one up.
+    let r = import_tiled_map(&shipped("tolerant.tmx")).unwrap();
+    assert_eq!(grid(&r.level), "......\n.==...\n.....#\n###/##\n");
+    // The tile object of class "spawn" at (32, 48) px, 16 wide: feet at (40, 48) px.
+    assert_eq!(spawns_of(&r), [("spawn1", Vec2::new(2.5, 1.0))]);
+    let text: Vec<String> = r.warnings.iter().map(|w| w.to_string()).collect();
+    for what in [
+        "no tilecount",
+        "XML cell encoding",
+        "JSON tileset",
+        "offset by (16, -16)",
+        "32 x 48",
+    ] {
+        assert!(text.iter().any(|w| w.contains(what)), "{what}: {text:#?}");
+    }
+}
+
+#[test]
+fn an_infinite_map_is_cropped_to_its_chunks() {
+    // tests/maps/infinite.tmx: one 16 x 16 chunk at Tiled cell (-16, -16); the floor on its
+    // bottom row, a post at each end of the row above; the spawn at (-200, -16) px.
+    let r = import_tiled_map(&shipped("infinite.tmx")).unwrap();
+    assert_eq!((r.level.width, r.level.height), (16, 16));
+    assert!((0..16).all(|i| r.level.tile(i, 0) == Tile::Solid));
+    assert_eq!(r.level.tile(0, 1), Tile::Solid);
+    assert_eq!(r.level.tile(15, 1), Tile::Solid);
+    assert_eq!(r.level.tile(1, 1), Tile::Empty);
+    assert_eq!(spawns_of(&r), [("start", Vec2::new(3.5, 1.0))]);
 }

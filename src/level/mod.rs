@@ -5,15 +5,21 @@
 //! points up. The text format ([`parse`]) lists map rows top to bottom; Tiled maps
 //! ([`tiled`]) are imported into the same model.
 
+pub mod import;
+pub mod ldtk;
 mod parse;
 mod platform;
 pub mod probes;
 pub mod tiled;
 
+pub use import::{ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport};
 pub use parse::{parse_level, parse_scenarios, LevelError};
 pub use platform::{Platform, PlatformMotion};
 pub use probes::{probe_scenarios, ProbeConfig, SpawnPoint};
-pub use tiled::{import_tiled_map, load_tiled_map, TiledError, TiledImport, TiledWarning};
+pub use tiled::{
+    import_tiled_map, import_tiled_map_with, load_tiled_map, load_tiled_map_with, TiledError,
+    TiledImport, TiledWarning,
+};
 
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;

@@ -27,7 +27,7 @@ fn attr(e: &BytesStart, name: &str) -> Option<String> {
 }
 
 /// The line of byte offset `pos` in `text`.
-fn line_of(text: &str, pos: usize) -> usize {
+pub(super) fn line_of(text: &str, pos: usize) -> usize {
     text.as_bytes()[..pos.min(text.len())]
         .iter()
         .filter(|&&b| b == b'\n')
@@ -46,22 +46,41 @@ struct Data {
     chunked: bool,
 }
 
-/// Checks the map's size and every tile layer's data length. The XML's own errors are left to
-/// the `tiled` crate, which names them.
-pub(super) fn scan_map(text: &str) -> Result<(), ScanError> {
+/// The line of the first XML syntax error in `text`, if it has one.
+pub(super) fn xml_error_line(text: &str) -> Option<usize> {
+    let mut reader = quick_xml::Reader::from_str(text);
+    loop {
+        match reader.read_event() {
+            Ok(Event::Eof) => return None,
+            Ok(_) => {}
+            Err(_) => return Some(line_of(text, reader.buffer_position())),
+        }
+    }
+}
+
+/// Checks the map's size and every tile layer's data length, and returns the `source` of each
+/// external tileset. The XML's own errors are left to the `tiled` crate (and
+/// [`xml_error_line`]).
+pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
     let mut reader = quick_xml::Reader::from_str(text);
     let mut layer: Option<(String, u64)> = None;
     let mut data: Option<Data> = None;
+    let mut sources = Vec::new();
     loop {
         let pos = reader.buffer_position();
         let event = match reader.read_event() {
             Ok(e) => e,
-            // Malformed XML: the tiled crate reports it, with its position.
-            Err(_) => return Ok(()),
+            // Malformed XML: the tiled crate reports it, and xml_error_line finds the line.
+            Err(_) => return Ok(sources),
         };
         match event {
-            Event::Eof => return Ok(()),
+            Event::Eof => return Ok(sources),
             Event::Start(e) | Event::Empty(e) => match e.name().as_ref() {
+                b"tileset" => {
+                    if let Some(s) = attr(&e, "source") {
+                        sources.push(s);
+                    }
+                }
                 b"map" => {
                     let dim = |n: &str| attr(&e, n).and_then(|v| v.trim().parse::<u64>().ok());
                     if let (Some(w), Some(h)) = (dim("width"), dim("height")) {

@@ -1,0 +1,692 @@
+//! Import of LDtk projects (`.ldtk`, levels inline or in external `.ldtkl` files; the JSON of
+//! LDtk 0.9.3 to 1.5.3, read with serde, every field the import does not need ignored).
+//!
+//! Collision comes from the IntGrid layers: every non-zero cell is solid unless its value's
+//! name says one-way (`platform`, `oneway`, ...), ladder, or hazard (`water`, `spikes`, `acid`,
+//! ...: not solid); a separate IntGrid layer named like platforms is one-way; `--intgrid` and
+//! `--layer` override. Spawns are entities named `Player`, `Spawn`, `SpawnPoint`, `PlayerSpawn`,
+//! `Start_Point` (see [`super::import::SPAWN_NAMES`]), feet at the bottom centre of the box
+//! their pivot places. A world in a GridVania or Free layout is one level in world
+//! coordinates; a linear world's first level is imported; `--level NAME` picks one. Tile units,
+//! y up, as for Tiled (LDtk is y-down pixels).
+
+use std::path::Path;
+
+use glam::Vec2;
+use serde::Deserialize;
+
+use super::import::{
+    fallback_spawn_point, is_spawn_name, no_solids_warning, normalize, role_from_name, says,
+    ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport, HAZARD_WORDS,
+    LADDER_WORDS, ONE_WAY_WORDS,
+};
+use super::probes::{probe_scenarios, ProbeConfig, SpawnPoint};
+use super::DEFAULT_CHARACTER_SIZE;
+use super::{character_box, parse_scenarios, valid_name, Level, LevelError, Tile};
+
+/// An LDtk project platbench cannot run as it is.
+#[derive(Debug, thiserror::Error)]
+pub enum LdtkError {
+    /// The file (project or external level) could not be read.
+    #[error("{file}: cannot read the LDtk file: {message}")]
+    Read {
+        /// The file.
+        file: String,
+        /// The system's message.
+        message: String,
+    },
+    /// The file is not the JSON of an LDtk project or level.
+    #[error("{file}:{line}:{column}: not an LDtk project: {message}")]
+    Json {
+        /// The file.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The parser's message.
+        message: String,
+    },
+    /// Something in the project platbench cannot use, with what was expected.
+    #[error("{file}: {message}")]
+    Project {
+        /// The file.
+        file: String,
+        /// What was found and what was expected.
+        message: String,
+    },
+    /// The side file's scenarios are invalid (file, line and column inside).
+    #[error(transparent)]
+    SideFile(#[from] LevelError),
+}
+
+#[derive(Deserialize)]
+struct Project {
+    #[serde(rename = "worldLayout", default)]
+    world_layout: Option<String>,
+    #[serde(default)]
+    levels: Vec<LdLevel>,
+    #[serde(default)]
+    worlds: Vec<World>,
+    #[serde(default)]
+    defs: Defs,
+}
+
+#[derive(Deserialize)]
+struct World {
+    #[serde(default)]
+    identifier: String,
+    #[serde(rename = "worldLayout", default)]
+    world_layout: Option<String>,
+    #[serde(default)]
+    levels: Vec<LdLevel>,
+}
+
+#[derive(Deserialize, Default)]
+struct Defs {
+    #[serde(default)]
+    layers: Vec<LayerDef>,
+}
+
+#[derive(Deserialize)]
+struct LayerDef {
+    #[serde(default)]
+    uid: i64,
+    #[serde(rename = "intGridValues", default)]
+    int_grid_values: Vec<IntGridValueDef>,
+}
+
+#[derive(Deserialize)]
+struct IntGridValueDef {
+    #[serde(default)]
+    value: Option<i64>,
+    #[serde(default)]
+    identifier: Option<String>,
+}
+
+#[derive(Deserialize)]
+struct LdLevel {
+    #[serde(default)]
+    identifier: String,
+    #[serde(rename = "worldX", default)]
+    world_x: i64,
+    #[serde(rename = "worldY", default)]
+    world_y: i64,
+    #[serde(rename = "pxWid", default)]
+    px_wid: i64,
+    #[serde(rename = "pxHei", default)]
+    px_hei: i64,
+    #[serde(rename = "layerInstances", default)]
+    layer_instances: Option<Vec<LayerInstance>>,
+    #[serde(rename = "externalRelPath", default)]
+    external_rel_path: Option<String>,
+}
+
+#[derive(Deserialize)]
+struct LayerInstance {
+    #[serde(rename = "__identifier", default)]
+    identifier: String,
+    #[serde(rename = "__type", default)]
+    kind: String,
+    #[serde(rename = "__cWid", default)]
+    c_wid: i64,
+    #[serde(rename = "__cHei", default)]
+    c_hei: i64,
+    #[serde(rename = "__gridSize", default)]
+    grid_size: i64,
+    #[serde(rename = "__pxTotalOffsetX", default)]
+    px_offset_x: i64,
+    #[serde(rename = "__pxTotalOffsetY", default)]
+    px_offset_y: i64,
+    #[serde(rename = "layerDefUid", default)]
+    layer_def_uid: i64,
+    #[serde(rename = "intGridCsv", default)]
+    int_grid_csv: Option<Vec<i64>>,
+    /// LDtk before 0.7: the non-zero cells as (cell index, value index from 0).
+    #[serde(rename = "intGrid", default)]
+    int_grid: Option<Vec<OldCell>>,
+    #[serde(rename = "entityInstances", default)]
+    entity_instances: Vec<Entity>,
+}
+
+#[derive(Deserialize)]
+struct OldCell {
+    #[serde(rename = "coordId")]
+    coord_id: i64,
+    v: i64,
+}
+
+#[derive(Deserialize)]
+struct Entity {
+    #[serde(rename = "__identifier", default)]
+    identifier: String,
+    #[serde(rename = "__pivot", default)]
+    pivot: Vec<f64>,
+    #[serde(default)]
+    px: Vec<f64>,
+    #[serde(default)]
+    width: f64,
+    #[serde(default)]
+    height: f64,
+}
+
+const HOW_TO_SPAWN: &str =
+    "add an entity named Player, Spawn or PlayerSpawn in an Entities layer in LDtk";
+const HOW_TO_COLLIDE: &str =
+    "paint the walls in an IntGrid layer, or pass --intgrid VALUE=solid or --layer NAME=collision";
+
+fn parse_json<T: for<'de> Deserialize<'de>>(text: &str, file: &str) -> Result<T, LdtkError> {
+    serde_json::from_str(text).map_err(|e| LdtkError::Json {
+        file: file.into(),
+        line: e.line(),
+        column: e.column(),
+        message: e.to_string(),
+    })
+}
+
+/// Loads an LDtk project as a runnable level with the command line's overrides: its geometry,
+/// and the scenarios of the side file `MAP.toml` next to it, else the standard probes at each
+/// spawn. On failure the warnings gathered so far come with the error.
+pub fn load_ldtk_with(
+    path: &Path,
+    opts: &ImportOptions,
+) -> Result<(Level, Vec<ImportWarning>), ImportFailure<LdtkError>> {
+    let MapImport {
+        mut level,
+        spawns,
+        mut warnings,
+        ..
+    } = import_ldtk_with(path, opts)?;
+    let side = path.with_extension("toml");
+    if side.is_file() {
+        let fail = |error: LdtkError, warnings| ImportFailure { error, warnings };
+        let text = match crate::limits::read_text_capped(&side) {
+            Ok(t) => t,
+            Err(e) => {
+                return Err(fail(
+                    LdtkError::Read {
+                        file: side.display().to_string(),
+                        message: e.to_string(),
+                    },
+                    warnings,
+                ))
+            }
+        };
+        match parse_scenarios(&text, &side.display().to_string(), &level) {
+            Ok(s) => level.scenarios = s,
+            Err(e) => return Err(fail(e.into(), warnings)),
+        }
+        warnings.retain(|w| !w.message.starts_with("no spawn point found"));
+        return Ok((level, warnings));
+    }
+    if spawns.is_empty() {
+        return Err(ImportFailure {
+            error: LdtkError::Project {
+                file: path.display().to_string(),
+                message: format!("no spawn entity and no cell to stand on, so nothing can run; {HOW_TO_SPAWN}, pass --spawn X,Y, or write {} with [[scenario]] entries", side.display()),
+            },
+            warnings,
+        });
+    }
+    let (scenarios, notes) = probe_scenarios(&level, &spawns, &ProbeConfig::default());
+    level.scenarios = scenarios;
+    let file = path.display().to_string();
+    warnings.extend(notes.into_iter().map(|(subject, message)| ImportWarning {
+        file: file.clone(),
+        subject,
+        message,
+    }));
+    Ok((level, warnings))
+}
+
+/// Reads an LDtk project's geometry and spawns (no scenarios) with the command line's
+/// overrides. On failure the warnings gathered so far come with the error.
+pub fn import_ldtk_with(
+    path: &Path,
+    opts: &ImportOptions,
+) -> Result<MapImport, ImportFailure<LdtkError>> {
+    let mut warnings = Vec::new();
+    match import(path, opts, &mut warnings) {
+        Ok(mut m) => {
+            warnings.append(&mut m.warnings);
+            m.warnings = warnings;
+            Ok(m)
+        }
+        Err(error) => Err(ImportFailure { error, warnings }),
+    }
+}
+
+fn read(path: &Path) -> Result<String, LdtkError> {
+    crate::limits::read_text_capped(path).map_err(|e| LdtkError::Read {
+        file: path.display().to_string(),
+        message: e.to_string(),
+    })
+}
+
+fn import(
+    path: &Path,
+    opts: &ImportOptions,
+    warnings: &mut Vec<ImportWarning>,
+) -> Result<MapImport, LdtkError> {
+    let file = path.display().to_string();
+    let perr = |message: String| LdtkError::Project {
+        file: file.clone(),
+        message,
+    };
+    let mut warn = |subject: &str, message: String| {
+        warnings.push(ImportWarning {
+            file: file.clone(),
+            subject: subject.into(),
+            message,
+        })
+    };
+    let project: Project = parse_json(&read(path)?, &file)?;
+    let (mut levels, layout) = if !project.levels.is_empty() || project.worlds.is_empty() {
+        (project.levels, project.world_layout.clone())
+    } else {
+        let mut worlds = project.worlds;
+        if worlds.len() > 1 {
+            warn(
+                "project",
+                format!(
+                    "{} worlds; the first, {:?}, is imported",
+                    worlds.len(),
+                    worlds[0].identifier
+                ),
+            );
+        }
+        let w = worlds.swap_remove(0);
+        (w.levels, w.world_layout)
+    };
+    if levels.is_empty() {
+        return Err(perr("the project has no level".into()));
+    }
+    let names: Vec<String> = levels.iter().map(|l| l.identifier.clone()).collect();
+    // Which levels: the one --level names, the whole world, or a linear world's first.
+    let spatial = matches!(layout.as_deref(), Some("GridVania" | "Free"));
+    let picked: Vec<usize> = match &opts.level {
+        Some(n) => match levels
+            .iter()
+            .position(|l| normalize(&l.identifier) == normalize(n))
+        {
+            Some(k) => vec![k],
+            None => {
+                return Err(perr(format!(
+                    "--level {n}: no level has that identifier; the levels are {}",
+                    names.join(", ")
+                )))
+            }
+        },
+        None if spatial || levels.len() == 1 => (0..levels.len()).collect(),
+        None => {
+            warn("project", format!(
+                "a {} world: its first level, {:?}, is imported (levels: {}); pass --level NAME for another",
+                layout.as_deref().unwrap_or("linear"),
+                names[0],
+                names.join(", ")
+            ));
+            vec![0]
+        }
+    };
+    // External levels.
+    for &k in &picked {
+        if levels[k].layer_instances.is_none() {
+            let Some(rel) = levels[k].external_rel_path.clone() else {
+                return Err(perr(format!(
+                    "level {:?} has no layers and no external file",
+                    levels[k].identifier
+                )));
+            };
+            let p = path
+                .parent()
+                .map_or_else(|| Path::new(&rel).to_path_buf(), |d| d.join(&rel));
+            let lvl: LdLevel = parse_json(&read(&p)?, &p.display().to_string())?;
+            levels[k].layer_instances = lvl.layer_instances;
+        }
+    }
+    let single = picked.len() == 1;
+    // The grid: the first IntGrid layer's cell size.
+    let grid = picked
+        .iter()
+        .flat_map(|&k| levels[k].layer_instances.iter().flatten())
+        .find(|l| l.kind == "IntGrid")
+        .map(|l| l.grid_size)
+        .ok_or_else(|| perr(format!("no IntGrid layer in {}; platbench reads collision from IntGrid layers (paint the walls in one)", if single { format!("level {:?}", levels[picked[0]].identifier) } else { "the world".into() })))?;
+    if grid <= 0 {
+        return Err(perr(format!(
+            "the IntGrid cell size is {grid} pixels; expected a positive size"
+        )));
+    }
+    let origin = |l: &LdLevel| {
+        if single {
+            (0, 0)
+        } else {
+            (l.world_x, l.world_y)
+        }
+    };
+    let (mut x0, mut y0, mut x1, mut y1) = (i64::MAX, i64::MAX, i64::MIN, i64::MIN);
+    for &k in &picked {
+        let l = &levels[k];
+        let (ox, oy) = origin(l);
+        x0 = x0.min(ox.div_euclid(grid));
+        y0 = y0.min(oy.div_euclid(grid));
+        x1 = x1.max((ox + l.px_wid.max(0) + grid - 1).div_euclid(grid));
+        y1 = y1.max((oy + l.px_hei.max(0) + grid - 1).div_euclid(grid));
+    }
+    let (w, h) = ((x1 - x0).max(0) as u64, (y1 - y0).max(0) as u64);
+    if w == 0 || h == 0 || w.saturating_mul(h) > crate::limits::MAX_TILES {
+        return Err(perr(format!(
+            "the {} is {w} x {h} cells of {grid} pixels; expected 1 to {} cells",
+            if single { "level" } else { "world" },
+            crate::limits::MAX_TILES
+        )));
+    }
+    let mut tiles = vec![Tile::Empty; (w * h) as usize];
+    let mut reports: Vec<LayerReport> = Vec::new();
+    let mut raw_spawns: Vec<(String, Vec2, String)> = Vec::new();
+    let int_layers: usize = {
+        let mut seen: Vec<&str> = Vec::new();
+        for &k in &picked {
+            for l in levels[k].layer_instances.iter().flatten() {
+                if l.kind == "IntGrid" && !seen.contains(&l.identifier.as_str()) {
+                    seen.push(&l.identifier);
+                }
+            }
+        }
+        seen.len()
+    };
+    for &k in &picked {
+        let lvl = &levels[k];
+        let (ox, oy) = origin(lvl);
+        let prefix = if single {
+            String::new()
+        } else {
+            format!("{}/", lvl.identifier)
+        };
+        for layer in lvl.layer_instances.iter().flatten() {
+            let lname = format!("{prefix}{}", layer.identifier);
+            let report = |role: LayerRole, why: String| LayerReport {
+                name: lname.clone(),
+                kind: layer.kind.to_lowercase(),
+                role,
+                why,
+            };
+            match layer.kind.as_str() {
+                "IntGrid" => {
+                    let by_name = role_from_name(&layer.identifier);
+                    let named_platforms = says(&layer.identifier, &["platform", "platforms"]);
+                    let (role, why) = if let Some(r) = opts.role_of(&layer.identifier) {
+                        (r, format!("--layer {}={}", layer.identifier, r.name()))
+                    } else if int_layers > 1 && named_platforms {
+                        (
+                            LayerRole::OneWay,
+                            "a separate IntGrid layer named like platforms: one-way".into(),
+                        )
+                    } else {
+                        match by_name {
+                            Some((r @ (LayerRole::OneWay | LayerRole::Ladder | LayerRole::Decoration), w)) => (r, format!("its name says {w:?}")),
+                            _ => (LayerRole::Collision, "an IntGrid layer: non-zero cells are solid unless the value's name says one-way, ladder or hazard".into()),
+                        }
+                    };
+                    if layer.grid_size != grid {
+                        warn(
+                            &format!("layer {lname:?}"),
+                            format!(
+                                "cells of {} pixels, not the collision grid's {grid}; left out",
+                                layer.grid_size
+                            ),
+                        );
+                        reports.push(report(
+                            LayerRole::Decoration,
+                            "its cell size differs from the collision grid's".into(),
+                        ));
+                        continue;
+                    }
+                    reports.push(report(role, why));
+                    if role == LayerRole::Decoration || role == LayerRole::Objects {
+                        continue;
+                    }
+                    let names: Vec<(i64, String)> = project
+                        .defs
+                        .layers
+                        .iter()
+                        .find(|d| d.uid == layer.layer_def_uid)
+                        .map(|d| {
+                            d.int_grid_values
+                                .iter()
+                                .enumerate()
+                                .map(|(i, v)| {
+                                    (
+                                        v.value.unwrap_or(i as i64 + 1),
+                                        v.identifier.clone().unwrap_or_default(),
+                                    )
+                                })
+                                .collect()
+                        })
+                        .unwrap_or_default();
+                    let kind_of = |v: i64| -> (Tile, Option<String>) {
+                        let name = names
+                            .iter()
+                            .find(|(n, _)| *n == v)
+                            .map(|(_, s)| s.as_str())
+                            .unwrap_or("");
+                        if let Some((_, t)) = opts.intgrid.iter().rev().find(|(key, _)| {
+                            key.trim() == v.to_string()
+                                || (!name.is_empty() && normalize(key) == normalize(name))
+                        }) {
+                            return (*t, None);
+                        }
+                        if let Some(t) = role.forced_tile() {
+                            return (t, None);
+                        }
+                        if says(name, ONE_WAY_WORDS) || says(name, &["platform", "platforms"]) {
+                            (Tile::OneWay, Some(format!("value {v} {name:?}: one-way")))
+                        } else if says(name, LADDER_WORDS) {
+                            (Tile::Ladder, Some(format!("value {v} {name:?}: ladder")))
+                        } else if says(name, HAZARD_WORDS) {
+                            (
+                                Tile::Empty,
+                                Some(format!("value {v} {name:?}: a hazard, not solid")),
+                            )
+                        } else {
+                            (Tile::Solid, None)
+                        }
+                    };
+                    let (cw, ch) = (layer.c_wid.max(0), layer.c_hei.max(0));
+                    let mut cells: Vec<(i64, i64)> = Vec::new();
+                    if let Some(csv) = &layer.int_grid_csv {
+                        if csv.len() as i64 != cw * ch {
+                            return Err(perr(format!("layer {lname:?}: intGridCsv holds {} cells; expected {cw} x {ch} = {}", csv.len(), cw * ch)));
+                        }
+                        cells.extend(
+                            csv.iter()
+                                .enumerate()
+                                .filter(|(_, v)| **v != 0)
+                                .map(|(i, v)| (i as i64, *v)),
+                        );
+                    } else if let Some(old) = &layer.int_grid {
+                        cells.extend(old.iter().map(|c| (c.coord_id, c.v + 1)));
+                    }
+                    let mut noted: Vec<i64> = Vec::new();
+                    for (idx, v) in cells {
+                        if idx < 0 || idx >= cw * ch {
+                            continue;
+                        }
+                        let (t, note) = kind_of(v);
+                        if let Some(n) = note {
+                            if !noted.contains(&v) {
+                                noted.push(v);
+                                warn(&format!("layer {lname:?}"), n);
+                            }
+                        }
+                        let cx = (ox + layer.px_offset_x).div_euclid(grid) + idx % cw - x0;
+                        let cy = (oy + layer.px_offset_y).div_euclid(grid) + idx / cw - y0;
+                        if cx < 0 || cy < 0 || cx >= w as i64 || cy >= h as i64 {
+                            continue;
+                        }
+                        let j = h as i64 - 1 - cy;
+                        let cell = &mut tiles[(j as u64 * w + cx as u64) as usize];
+                        *cell = match (*cell, t) {
+                            (Tile::Empty, t) => t,
+                            (_, Tile::Solid) => Tile::Solid,
+                            (Tile::OneWay, Tile::Ladder) => Tile::Ladder,
+                            (c, _) => c,
+                        };
+                    }
+                }
+                "Entities" => {
+                    reports.push(report(
+                        LayerRole::Objects,
+                        "entities: those named like a spawn are spawns".into(),
+                    ));
+                    let mut others = 0;
+                    for e in &layer.entity_instances {
+                        if !is_spawn_name(&e.identifier) {
+                            others += 1;
+                            continue;
+                        }
+                        let (px, py) = (
+                            e.px.first().copied().unwrap_or(0.0),
+                            e.px.get(1).copied().unwrap_or(0.0),
+                        );
+                        let (pvx, pvy) = (
+                            e.pivot.first().copied().unwrap_or(0.0),
+                            e.pivot.get(1).copied().unwrap_or(0.0),
+                        );
+                        // Feet: the bottom centre of the box the pivot places.
+                        let fx =
+                            px - pvx * e.width + e.width * 0.5 + (ox + layer.px_offset_x) as f64;
+                        let fy = py - pvy * e.height + e.height + (oy + layer.px_offset_y) as f64;
+                        let g = grid as f64;
+                        let feet = Vec2::new(
+                            (fx / g - x0 as f64) as f32,
+                            (h as f64 - (fy / g - y0 as f64)) as f32,
+                        );
+                        raw_spawns.push((
+                            e.identifier.clone(),
+                            feet,
+                            format!("entity {:?} in layer {lname:?}, by its pivot", e.identifier),
+                        ));
+                    }
+                    if others > 0 {
+                        warn(&format!("layer {lname:?}"), format!("{others} entit(ies) not named like a spawn (Player, Spawn, PlayerSpawn, Start_Point); ignored"));
+                    }
+                }
+                _ => reports.push(report(
+                    LayerRole::Decoration,
+                    format!("a {} layer: art, no collision", layer.kind),
+                )),
+            }
+        }
+    }
+    let name = {
+        let base = if single {
+            levels[picked[0]].identifier.clone()
+        } else {
+            path.file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        };
+        let safe: String = base
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        if valid_name(&safe) {
+            safe
+        } else {
+            "ldtk".into()
+        }
+    };
+    let mut level = Level::from_tiles(&name, w as u32, h as u32, tiles);
+    level.source = file.clone();
+    level.description = format!(
+        "LDtk {}",
+        if single {
+            format!("level {:?}", levels[picked[0]].identifier)
+        } else {
+            format!("world of {} levels", picked.len())
+        }
+    );
+    let mut spawns = Vec::new();
+    let mut sources = Vec::new();
+    for (k, (id, feet, why)) in raw_spawns.into_iter().enumerate() {
+        let inside = feet.is_finite()
+            && feet.x >= 0.0
+            && feet.y >= 0.0
+            && feet.x <= w as f32
+            && feet.y <= h as f32;
+        let in_solid = level
+            .solids_overlapping(&character_box(feet, DEFAULT_CHARACTER_SIZE))
+            .next()
+            .is_some();
+        if !inside || in_solid {
+            warn(
+                &format!("entity {id:?}"),
+                format!(
+                    "its feet at ({}, {}) tiles are {}; not a spawn",
+                    feet.x,
+                    feet.y,
+                    if inside {
+                        "inside a solid cell"
+                    } else {
+                        "outside the level"
+                    }
+                ),
+            );
+            continue;
+        }
+        let base = if valid_name(&id) {
+            id.clone()
+        } else {
+            "spawn".into()
+        };
+        let n = if spawns.iter().any(|s: &SpawnPoint| s.name == base) {
+            format!("{base}{}", k + 1)
+        } else {
+            base
+        };
+        spawns.push(SpawnPoint {
+            name: n,
+            position: feet,
+        });
+        sources.push(why);
+    }
+    let mut extra = Vec::new();
+    if let Some(wn) = no_solids_warning(&level, &file, HOW_TO_COLLIDE) {
+        extra.push(wn);
+    }
+    if !opts.spawns.is_empty() {
+        spawns = opts
+            .spawns
+            .iter()
+            .enumerate()
+            .map(|(k, p)| SpawnPoint {
+                name: format!("spawn{}", k + 1),
+                position: *p,
+            })
+            .collect();
+        sources = vec!["--spawn on the command line".into(); spawns.len()];
+    } else if spawns.is_empty() {
+        let (s, wn) = fallback_spawn_point(&level, &file, HOW_TO_SPAWN);
+        extra.push(wn);
+        if let Some(s) = s {
+            spawns.push(s);
+            sources.push(
+                "fallback: the lowest standable cell of the leftmost column that has one".into(),
+            );
+        }
+    }
+    Ok(MapImport {
+        level,
+        spawns,
+        spawn_sources: sources,
+        layers: reports,
+        warnings: extra,
+    })
+}

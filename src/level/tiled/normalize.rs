@@ -1,0 +1,494 @@
+//! Where Tiled itself is tolerant and the `tiled` crate is not, the map and tileset text is made
+//! into what the crate reads before it reads it: a tileset without `tilecount` (older Tiled
+//! versions) gets one computed from its image or its tiles, a tile layer in the old XML cell
+//! encoding (`<tile gid=".."/>` per cell) becomes CSV, and a JSON tileset (`.tsj`, `.json`)
+//! becomes its TSX twin. Each change is a note the import passes on as a warning.
+
+use quick_xml::events::{BytesStart, Event};
+use serde_json::Value;
+
+use super::scan::ScanError;
+use crate::limits;
+
+/// The text the crate reads, and what was changed.
+pub(super) struct Normalized {
+    /// The text to hand to the crate.
+    pub text: String,
+    /// What was changed, one note each.
+    pub notes: Vec<String>,
+}
+
+fn attr(e: &BytesStart, name: &str) -> Option<String> {
+    e.attributes()
+        .filter_map(|a| a.ok())
+        .find(|a| a.key.as_ref() == name.as_bytes())
+        .and_then(|a| a.unescape_value().ok().map(|v| v.into_owned()))
+}
+
+fn line_of(text: &str, pos: usize) -> usize {
+    text.as_bytes()[..pos.min(text.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+/// A tileset element being read: what a missing `tilecount` is computed from.
+struct TilesetInfo {
+    name: String,
+    /// Byte offset just after `<tileset`, where a computed attribute goes.
+    insert_at: usize,
+    tilecount: Option<u64>,
+    tile_width: u64,
+    tile_height: u64,
+    spacing: u64,
+    margin: u64,
+    image: Option<(u64, u64)>,
+    max_id: Option<u64>,
+    line: usize,
+    depth: usize,
+}
+
+/// The number of tiles of an image tileset (columns x rows that fit, as Tiled counts them), or
+/// of an image collection (highest tile id + 1).
+fn count_tiles(t: &TilesetInfo) -> u64 {
+    match t.image {
+        Some((w, h)) => {
+            let fit = |size: u64, tile: u64| {
+                if tile == 0 {
+                    0
+                } else {
+                    (size.saturating_sub(2 * t.margin) + t.spacing) / (tile + t.spacing)
+                }
+            };
+            fit(w, t.tile_width) * fit(h, t.tile_height)
+        }
+        None => t.max_id.map_or(0, |m| m + 1),
+    }
+}
+
+/// Makes a map's or tileset's XML readable by the crate (see the module docs). XML errors are
+/// left to the crate; what the crate would allocate without bound (a tilecount beyond
+/// [`limits::MAX_TILES`]) is an error with its line.
+pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
+    let mut reader = quick_xml::Reader::from_str(text);
+    let mut edits: Vec<(usize, usize, String)> = Vec::new();
+    let mut notes = Vec::new();
+    let mut stack: Vec<Vec<u8>> = Vec::new();
+    let mut tileset: Option<TilesetInfo> = None;
+    // An XML-encoded layer: (layer name, start of <data>, gids so far).
+    let mut xml_data: Option<(String, usize, Vec<String>)> = None;
+    let mut layer_name = String::new();
+    loop {
+        let pos = reader.buffer_position();
+        let event = match reader.read_event() {
+            Ok(e) => e,
+            Err(_) => break,
+        };
+        let (e, empty) = match &event {
+            Event::Eof => break,
+            Event::Start(e) => (Some(e.clone()), false),
+            Event::Empty(e) => (Some(e.clone()), true),
+            Event::End(end) => {
+                let name = end.name().as_ref().to_vec();
+                stack.pop();
+                if name == b"tileset" {
+                    close_tileset(&mut tileset, stack.len(), &mut edits, &mut notes)?;
+                }
+                if name == b"data" {
+                    if let Some((layer, start, gids)) = xml_data.take() {
+                        let end_pos = reader.buffer_position();
+                        let lines = text[start..end_pos].matches('\n').count();
+                        edits.push((
+                            start,
+                            end_pos,
+                            format!(
+                                "<data encoding=\"csv\">{}{}</data>",
+                                gids.join(","),
+                                "\n".repeat(lines)
+                            ),
+                        ));
+                        notes.push(format!("layer {layer:?} is in the old XML cell encoding; read as CSV (Tiled: Map > Map Properties > Tile Layer Format to change it)"));
+                    }
+                }
+                continue;
+            }
+            _ => continue,
+        };
+        let Some(e) = e else { continue };
+        let name = e.name().as_ref().to_vec();
+        let parent = stack.last().cloned();
+        match name.as_slice() {
+            b"tileset" if attr(&e, "source").is_none() => {
+                let num = |n: &str| attr(&e, n).and_then(|v| v.trim().parse::<u64>().ok());
+                tileset = Some(TilesetInfo {
+                    name: attr(&e, "name").unwrap_or_default(),
+                    insert_at: pos + "<tileset".len(),
+                    tilecount: num("tilecount"),
+                    tile_width: num("tilewidth").unwrap_or(0),
+                    tile_height: num("tileheight").unwrap_or(0),
+                    spacing: num("spacing").unwrap_or(0),
+                    margin: num("margin").unwrap_or(0),
+                    image: None,
+                    max_id: None,
+                    line: line_of(text, pos),
+                    depth: stack.len(),
+                });
+                if empty {
+                    close_tileset(&mut tileset, stack.len(), &mut edits, &mut notes)?;
+                }
+            }
+            b"image" if parent.as_deref() == Some(b"tileset") => {
+                if let Some(t) = &mut tileset {
+                    let num = |n: &str| attr(&e, n).and_then(|v| v.trim().parse::<u64>().ok());
+                    if let (Some(w), Some(h)) = (num("width"), num("height")) {
+                        t.image = Some((w, h));
+                    }
+                }
+            }
+            b"tile" if parent.as_deref() == Some(b"tileset") => {
+                if let Some(t) = &mut tileset {
+                    if let Some(id) = attr(&e, "id").and_then(|v| v.trim().parse::<u64>().ok()) {
+                        t.max_id = Some(t.max_id.map_or(id, |m| m.max(id)));
+                    }
+                }
+            }
+            b"tile" if parent.as_deref() == Some(b"data") => {
+                if let Some((_, _, gids)) = &mut xml_data {
+                    gids.push(attr(&e, "gid").unwrap_or_else(|| "0".into()));
+                }
+            }
+            b"layer" => layer_name = attr(&e, "name").unwrap_or_default(),
+            b"data" if !empty && attr(&e, "encoding").is_none() => {
+                xml_data = Some((layer_name.clone(), pos, Vec::new()));
+            }
+            _ => {}
+        }
+        if !empty {
+            stack.push(name);
+        }
+    }
+    if edits.is_empty() {
+        return Ok(Normalized {
+            text: text.to_string(),
+            notes,
+        });
+    }
+    edits.sort_by_key(|e| e.0);
+    let mut out = String::with_capacity(text.len());
+    let mut at = 0;
+    for (start, end, with) in edits {
+        if start < at {
+            continue;
+        }
+        out.push_str(&text[at..start]);
+        out.push_str(&with);
+        at = end;
+    }
+    out.push_str(&text[at..]);
+    Ok(Normalized { text: out, notes })
+}
+
+fn close_tileset(
+    tileset: &mut Option<TilesetInfo>,
+    depth: usize,
+    edits: &mut Vec<(usize, usize, String)>,
+    notes: &mut Vec<String>,
+) -> Result<(), ScanError> {
+    let Some(t) = tileset.take_if(|t| t.depth == depth) else {
+        return Ok(());
+    };
+    let count = match t.tilecount {
+        Some(c) => c,
+        None => {
+            let c = count_tiles(&t);
+            edits.push((t.insert_at, t.insert_at, format!(" tilecount=\"{c}\"")));
+            notes.push(format!(
+                "tileset {:?} has no tilecount (written by an older Tiled); {c} computed from its {}",
+                t.name,
+                if t.image.is_some() { "image" } else { "tiles" }
+            ));
+            c
+        }
+    };
+    if count > limits::MAX_TILES {
+        return Err(ScanError {
+            line: t.line,
+            message: format!(
+                "tileset {:?} has {count} tiles; expected at most {} (the most tiles platbench reads)",
+                t.name,
+                limits::MAX_TILES
+            ),
+        });
+    }
+    Ok(())
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn scalar(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        Value::Null => String::new(),
+        other => other.to_string(),
+    }
+}
+
+/// `<properties>` of a JSON properties list (`[{name, type, value}]`, Tiled 1.2+) or object
+/// (older: `{name: value}`).
+fn properties_xml(v: Option<&Value>) -> String {
+    let mut out = String::new();
+    let mut push = |name: &str, ty: &str, value: &Value| {
+        let ty = match ty {
+            "" => match value {
+                Value::Bool(_) => "bool",
+                Value::Number(n) if n.is_i64() || n.is_u64() => "int",
+                Value::Number(_) => "float",
+                _ => "string",
+            },
+            t => t,
+        };
+        if ty == "class" {
+            return;
+        }
+        out.push_str(&format!(
+            "<property name=\"{}\" type=\"{}\" value=\"{}\"/>",
+            esc(name),
+            esc(ty),
+            esc(&scalar(value))
+        ));
+    };
+    match v {
+        Some(Value::Array(list)) => {
+            for p in list {
+                let name = p.get("name").and_then(Value::as_str).unwrap_or_default();
+                let ty = p.get("type").and_then(Value::as_str).unwrap_or("");
+                push(name, ty, p.get("value").unwrap_or(&Value::Null));
+            }
+        }
+        Some(Value::Object(map)) => {
+            for (k, value) in map {
+                push(k, "", value);
+            }
+        }
+        _ => {}
+    }
+    if out.is_empty() {
+        out
+    } else {
+        format!("<properties>{out}</properties>")
+    }
+}
+
+fn num_attr(v: &Value, key: &str) -> Option<f64> {
+    v.get(key).and_then(Value::as_f64)
+}
+
+/// One collision object of a JSON tile as TSX.
+fn object_xml(o: &Value) -> String {
+    let n = |k: &str| num_attr(o, k).unwrap_or(0.0);
+    let mut attrs = format!(
+        "id=\"{}\" x=\"{}\" y=\"{}\"",
+        n("id") as i64,
+        n("x"),
+        n("y")
+    );
+    if n("width") != 0.0 || n("height") != 0.0 {
+        attrs.push_str(&format!(
+            " width=\"{}\" height=\"{}\"",
+            n("width"),
+            n("height")
+        ));
+    }
+    if n("rotation") != 0.0 {
+        attrs.push_str(&format!(" rotation=\"{}\"", n("rotation")));
+    }
+    let points = |key: &str| -> Option<String> {
+        let list = o.get(key)?.as_array()?;
+        let p: Vec<String> = list
+            .iter()
+            .map(|p| {
+                format!(
+                    "{},{}",
+                    num_attr(p, "x").unwrap_or(0.0),
+                    num_attr(p, "y").unwrap_or(0.0)
+                )
+            })
+            .collect();
+        Some(p.join(" "))
+    };
+    let inner = if let Some(p) = points("polygon") {
+        format!("<polygon points=\"{p}\"/>")
+    } else if let Some(p) = points("polyline") {
+        format!("<polyline points=\"{p}\"/>")
+    } else if o.get("ellipse").and_then(Value::as_bool) == Some(true) {
+        "<ellipse/>".into()
+    } else if o.get("point").and_then(Value::as_bool) == Some(true) {
+        "<point/>".into()
+    } else {
+        String::new()
+    };
+    format!(
+        "<object {attrs}>{}{inner}</object>",
+        properties_xml(o.get("properties"))
+    )
+}
+
+/// A JSON tileset (Tiled's `.tsj`, or `.json` from older versions) as the TSX the crate reads.
+/// `Err` says what is wrong, with the line and column of a JSON syntax error.
+pub(super) fn json_tileset_to_tsx(text: &str) -> Result<Normalized, String> {
+    let v: Value = serde_json::from_str(text).map_err(|e| {
+        format!(
+            "line {}, column {}: not a JSON tileset: {e}",
+            e.line(),
+            e.column()
+        )
+    })?;
+    if !v.is_object() {
+        return Err("not a JSON tileset: expected an object at the top".into());
+    }
+    let mut notes = vec!["a JSON tileset; read through its TSX equivalent".to_string()];
+    let n = |k: &str| num_attr(&v, k).map(|x| x.max(0.0) as u64);
+    let name = v.get("name").and_then(Value::as_str).unwrap_or_default();
+    let (tw, th) = (n("tilewidth").unwrap_or(0), n("tileheight").unwrap_or(0));
+    let image = v.get("image").and_then(Value::as_str);
+    let mut tiles: Vec<(u64, &Value)> = Vec::new();
+    match v.get("tiles") {
+        Some(Value::Array(list)) => {
+            for t in list {
+                if let Some(id) = num_attr(t, "id") {
+                    tiles.push((id.max(0.0) as u64, t));
+                }
+            }
+        }
+        Some(Value::Object(map)) => {
+            for (k, t) in map {
+                if let Ok(id) = k.parse::<u64>() {
+                    tiles.push((id, t));
+                }
+            }
+        }
+        _ => {}
+    }
+    let info = TilesetInfo {
+        name: name.to_string(),
+        insert_at: 0,
+        tilecount: n("tilecount"),
+        tile_width: tw,
+        tile_height: th,
+        spacing: n("spacing").unwrap_or(0),
+        margin: n("margin").unwrap_or(0),
+        image: image.map(|_| (n("imagewidth").unwrap_or(0), n("imageheight").unwrap_or(0))),
+        max_id: tiles.iter().map(|t| t.0).max(),
+        line: 1,
+        depth: 0,
+    };
+    let count = match info.tilecount {
+        Some(c) => c,
+        None => {
+            let c = count_tiles(&info);
+            notes.push(format!("it has no tilecount; {c} computed"));
+            c
+        }
+    };
+    if count > limits::MAX_TILES {
+        return Err(format!(
+            "it has {count} tiles; expected at most {}",
+            limits::MAX_TILES
+        ));
+    }
+    let mut out = format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<tileset name=\"{}\" tilewidth=\"{tw}\" tileheight=\"{th}\" tilecount=\"{count}\" spacing=\"{}\" margin=\"{}\"",
+        esc(name),
+        info.spacing,
+        info.margin
+    );
+    if let Some(c) = n("columns") {
+        out.push_str(&format!(" columns=\"{c}\""));
+    }
+    out.push('>');
+    out.push_str(&properties_xml(v.get("properties")));
+    if let Some(img) = image {
+        out.push_str(&format!(
+            "<image source=\"{}\" width=\"{}\" height=\"{}\"/>",
+            esc(img),
+            info.image.map_or(0, |i| i.0),
+            info.image.map_or(0, |i| i.1)
+        ));
+    }
+    for (id, t) in tiles {
+        let class = t
+            .get("class")
+            .or_else(|| t.get("type"))
+            .and_then(Value::as_str)
+            .unwrap_or_default();
+        out.push_str(&format!("<tile id=\"{id}\""));
+        if !class.is_empty() {
+            out.push_str(&format!(" type=\"{}\"", esc(class)));
+        }
+        out.push('>');
+        out.push_str(&properties_xml(t.get("properties")));
+        if let Some(img) = t.get("image").and_then(Value::as_str) {
+            out.push_str(&format!(
+                "<image source=\"{}\" width=\"{}\" height=\"{}\"/>",
+                esc(img),
+                num_attr(t, "imagewidth").unwrap_or(0.0) as u64,
+                num_attr(t, "imageheight").unwrap_or(0.0) as u64
+            ));
+        }
+        if let Some(objs) = t
+            .get("objectgroup")
+            .and_then(|g| g.get("objects"))
+            .and_then(Value::as_array)
+        {
+            out.push_str("<objectgroup>");
+            for o in objs {
+                out.push_str(&object_xml(o));
+            }
+            out.push_str("</objectgroup>");
+        }
+        out.push_str("</tile>");
+    }
+    out.push_str("</tileset>\n");
+    Ok(Normalized { text: out, notes })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_missing_tilecount_is_computed_from_the_image() {
+        // A 64 x 32 image of 16 px tiles: 4 columns x 2 rows.
+        let t = "<map><tileset firstgid=\"1\" name=\"t\" tilewidth=\"16\" tileheight=\"16\"><image source=\"a.png\" width=\"64\" height=\"32\"/></tileset></map>";
+        let n = normalize_xml(t).ok().unwrap();
+        assert!(
+            n.text.contains("<tileset tilecount=\"8\" firstgid"),
+            "{}",
+            n.text
+        );
+        // An image collection: highest id + 1.
+        let t = "<tileset name=\"c\" tilewidth=\"16\" tileheight=\"16\"><tile id=\"0\"/><tile id=\"4\"/></tileset>";
+        assert!(normalize_xml(t)
+            .ok()
+            .unwrap()
+            .text
+            .contains("tilecount=\"5\""));
+    }
+
+    #[test]
+    fn xml_cells_become_csv_on_the_same_lines() {
+        let t = "<map><layer name=\"g\" width=\"2\" height=\"1\"><data>\n<tile gid=\"1\"/>\n<tile/>\n</data></layer></map>";
+        let n = normalize_xml(t).ok().unwrap();
+        assert!(
+            n.text.contains("<data encoding=\"csv\">1,0\n\n\n</data>"),
+            "{}",
+            n.text
+        );
+    }
+}

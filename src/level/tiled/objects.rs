@@ -1,0 +1,522 @@
+//! Object layers: collision shapes (rectangles and ramp polygons in layers whose name or
+//! property says collision), spawn points (by class, type or name, or every object of a layer
+//! named like a spawn; points, rectangles and tile objects, feet at the bottom centre) and
+//! moving platforms (a rectangle with a `path`). Everything else is a warning.
+
+use std::collections::{BTreeMap, HashMap};
+
+use glam::Vec2;
+use tiled::{ObjectShape, PropertyValue};
+
+use super::{kind_of, names, ramp, shape_name, Importer, TiledError, SHAPE_TOLERANCE_PX};
+use crate::level::import::{is_spawn_name, LayerRole};
+use crate::level::probes::SpawnPoint;
+use crate::level::DEFAULT_CHARACTER_SIZE;
+use crate::level::{character_box, valid_name, Level, Platform, PlatformMotion, Slope, Tile};
+
+/// An object layer kept for reading once the tiles are known.
+pub(super) struct ObjectLayer<'m> {
+    /// Its name (`group/child` inside groups).
+    pub name: String,
+    /// What it was read as.
+    pub role: LayerRole,
+    /// Its name says spawn: each object is a spawn.
+    pub spawn_layer: bool,
+    /// Offset in pixels, groups included.
+    pub offset: Vec2,
+    /// Left out by a property or flag: not even spawns are read from it.
+    pub excluded: bool,
+    /// Its objects.
+    pub objects: Vec<tiled::Object<'m>>,
+}
+
+/// The cells a span from `a` to `b` (tiles) covers: edges rounded to whole tiles, at least one
+/// cell (the one below `b`, for a thin platform drawn at a cell's top).
+fn span(a: f32, b: f32) -> (i64, i64) {
+    let (lo, hi) = (a.round() as i64, b.round() as i64);
+    if hi > lo {
+        (lo, hi)
+    } else {
+        (b.ceil() as i64 - 1, b.ceil() as i64)
+    }
+}
+
+impl<'m> Importer<'m> {
+    /// Tiled pixels (y down, from the grid's top-left) to level tiles (y up).
+    fn to_level(&self, x: f32, y: f32) -> Vec2 {
+        let (tw, th) = (self.map.tile_width as f32, self.map.tile_height as f32);
+        Vec2::new(
+            x / tw - self.grid.x0 as f32,
+            self.grid.h as f32 - (y / th - self.grid.y0 as f32),
+        )
+    }
+
+    fn obj_err(&self, o: &tiled::Object, message: String) -> TiledError {
+        TiledError::Object {
+            file: self.file.clone(),
+            id: o.id(),
+            name: o.name.clone(),
+            message,
+        }
+    }
+
+    /// Rectangles and ramp polygons of the collision object layers into the level's cells.
+    pub(super) fn collision_objects(&mut self) -> Result<(), TiledError> {
+        let layers = std::mem::take(&mut self.objects);
+        let result = self.collision_objects_of(&layers);
+        self.objects = layers;
+        result
+    }
+
+    fn collision_objects_of(&mut self, layers: &[ObjectLayer<'m>]) -> Result<(), TiledError> {
+        for l in layers {
+            let tile = match l.role {
+                LayerRole::Collision | LayerRole::Solid => Tile::Solid,
+                LayerRole::OneWay => Tile::OneWay,
+                LayerRole::Ladder => Tile::Ladder,
+                _ => continue,
+            };
+            let mut snapped = 0;
+            for o in &l.objects {
+                if !Self::is_collision_object(o) {
+                    continue;
+                }
+                let subject = format!("object {} {:?}", o.id(), o.name);
+                if o.rotation != 0.0 {
+                    self.warn(subject, format!("a collision shape rotated by {} degrees; platbench reads axis-aligned rectangles and ramps only; ignored", o.rotation));
+                    continue;
+                }
+                let (x, y) = (o.x + l.offset.x, o.y + l.offset.y);
+                let by = format!("object {} {:?} in layer {:?}", o.id(), o.name, l.name);
+                let cells: Vec<(i64, i64, Tile)> = match &o.shape {
+                    ObjectShape::Rect { width, height } => {
+                        let a = self.to_level(x, y + height);
+                        let b = self.to_level(x + width, y);
+                        if !(a.is_finite() && b.is_finite()) {
+                            return Err(
+                                self.obj_err(o, "its position or size is not finite".into())
+                            );
+                        }
+                        let (i0, i1) = span(a.x, b.x);
+                        let (j0, j1) = span(a.y, b.y);
+                        let (tw, th) = (self.map.tile_width as f32, self.map.tile_height as f32);
+                        let off = |v: f32| (v - v.round()).abs();
+                        if off(a.x) * tw > SHAPE_TOLERANCE_PX
+                            || off(b.x) * tw > SHAPE_TOLERANCE_PX
+                            || off(a.y) * th > SHAPE_TOLERANCE_PX
+                            || off(b.y) * th > SHAPE_TOLERANCE_PX
+                        {
+                            snapped += 1;
+                        }
+                        let mut v = Vec::new();
+                        for j in j0.max(0)..j1.min(self.grid.h as i64) {
+                            for i in i0.max(0)..i1.min(self.grid.w as i64) {
+                                v.push((i, j, tile));
+                            }
+                        }
+                        v
+                    }
+                    ObjectShape::Polygon { points } => {
+                        let pts: Vec<Vec2> = points
+                            .iter()
+                            .map(|&(px, py)| self.to_level(x + px, y + py))
+                            .collect();
+                        match self.ramp_cells(&pts, tile) {
+                            Some(c) => c,
+                            None => {
+                                self.warn(subject, "a collision polygon that is not a ramp (a horizontal bottom on the tile grid, vertical sides, one straight top from side to side); ignored".into());
+                                continue;
+                            }
+                        }
+                    }
+                    _ => continue,
+                };
+                for (i, j, t) in cells {
+                    let k = j as usize * self.grid.w as usize + i as usize;
+                    if let Err(m) = self.set_cell(k, t, by.clone()) {
+                        return Err(self.obj_err(o, format!("at cell i = {i}, j = {j}: {m}")));
+                    }
+                }
+            }
+            if snapped > 0 {
+                self.warn(
+                    format!("layer {:?}", l.name),
+                    format!("{snapped} collision rectangle(s) not on the tile grid (by more than {SHAPE_TOLERANCE_PX} pixel); each edge moved to the nearest tile edge"),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether an object of a collision layer is a collision shape (not a spawn, a platform or
+    /// a tile object).
+    fn is_collision_object(o: &tiled::Object) -> bool {
+        o.tile_data().is_none()
+            && matches!(
+                o.shape,
+                ObjectShape::Rect { .. } | ObjectShape::Polygon { .. }
+            )
+            && !o.properties.contains_key(names::PATH)
+            && o.user_type != names::PLATFORM
+            && !is_spawn_name(&o.user_type)
+            && !is_spawn_name(&o.name)
+    }
+
+    /// The cells of a ramp polygon (level tiles, y up) spanning whole tiles across: solids
+    /// under its top line, line slopes where the line crosses a row. `None` if it is no ramp.
+    fn ramp_cells(&self, pts: &[Vec2], tile: Tile) -> Option<Vec<(i64, i64, Tile)>> {
+        if pts.len() < 3 || pts.iter().any(|p| !p.is_finite()) {
+            return None;
+        }
+        let lo = pts.iter().fold(Vec2::splat(f32::MAX), |a, p| a.min(*p));
+        let hi = pts.iter().fold(Vec2::splat(f32::MIN), |a, p| a.max(*p));
+        let (x0, x1, y0) = (lo.x.round(), hi.x.round(), lo.y.round());
+        let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+        if x1 <= x0 || h <= 0.0 || (w * h) as f64 > crate::limits::MAX_TILES as f64 {
+            return None;
+        }
+        // As one big tile in pixels, y down, for `ramp`.
+        let (tw, th) = (self.map.tile_width as f32, self.map.tile_height as f32);
+        let local: Vec<Vec2> = pts
+            .iter()
+            .map(|p| Vec2::new((p.x - lo.x) * tw, (hi.y - p.y) * th))
+            .collect();
+        let Slope::Line { left, right } = ramp(&local, w * tw, h * th)? else {
+            return None;
+        };
+        if tile != Tile::Solid {
+            // A one-way or ladder ramp is not a thing platbench models.
+            return None;
+        }
+        let top = |x: f32| y0 + h * (left + (right - left) * (x - x0) / (x1 - x0));
+        let mut out = Vec::new();
+        for i in x0 as i64..x1 as i64 {
+            if i < 0 || i >= self.grid.w as i64 {
+                continue;
+            }
+            let (hl, hr) = (top(i as f32), top(i as f32 + 1.0));
+            let j_top = hl.max(hr).ceil() as i64;
+            for j in (y0 as i64).max(0)..j_top.min(self.grid.h as i64) {
+                let jf = j as f32;
+                let t = if jf + 1.0 <= hl.min(hr) + 1e-4 {
+                    Tile::Solid
+                } else {
+                    Tile::Slope(Slope::Line {
+                        left: hl - jf,
+                        right: hr - jf,
+                    })
+                };
+                out.push((i, j, t));
+            }
+        }
+        Some(out)
+    }
+
+    /// Spawn points and platforms from the object layers; everything else is warned about.
+    /// Returns the spawns and where each came from.
+    pub(super) fn objects(
+        &mut self,
+        level: &mut Level,
+    ) -> Result<(Vec<SpawnPoint>, Vec<String>), TiledError> {
+        let layers = std::mem::take(&mut self.objects);
+        let all: HashMap<u32, &tiled::Object<'m>> = layers
+            .iter()
+            .flat_map(|l| l.objects.iter())
+            .map(|o| (o.id(), o))
+            .collect();
+        let mut used_paths: Vec<u32> = Vec::new();
+        let mut spawns: Vec<(SpawnPoint, u32, String)> = Vec::new();
+        let mut polylines: Vec<&tiled::Object<'m>> = Vec::new();
+        for l in &layers {
+            if l.excluded {
+                continue;
+            }
+            let mut ignored = 0;
+            for o in &l.objects {
+                let subject = format!("object {} {:?}", o.id(), o.name);
+                let class = o.user_type.as_str();
+                let by_class = is_spawn_name(class);
+                let by_name = is_spawn_name(&o.name);
+                let is_platform =
+                    class == names::PLATFORM || o.properties.contains_key(names::PATH);
+                let spawn_shape = o.tile_data().is_some()
+                    || matches!(o.shape, ObjectShape::Point(..) | ObjectShape::Rect { .. });
+                let is_spawn =
+                    !is_platform && (by_class || by_name || (l.spawn_layer && spawn_shape));
+                if is_spawn {
+                    let why = if by_class {
+                        format!("object {} {:?}: its class {class:?}", o.id(), o.name)
+                    } else if by_name {
+                        format!("object {} {:?}: its name", o.id(), o.name)
+                    } else {
+                        format!(
+                            "object {} {:?}: in layer {:?}, named like a spawn layer",
+                            o.id(),
+                            o.name,
+                            l.name
+                        )
+                    };
+                    let s = self.spawn(o, l.offset, level)?;
+                    // Several objects named "Player" are each a spawn, named by id after the first.
+                    let unique = spawns.iter().all(|(s, _, _)| s.name != o.name);
+                    let name = if valid_name(&o.name) && (!by_name || unique) {
+                        o.name.clone()
+                    } else {
+                        format!("spawn{}", o.id())
+                    };
+                    if let Some((_, other, _)) = spawns.iter().find(|(s, _, _)| s.name == name) {
+                        return Err(self.obj_err(o, format!("spawn name {name:?} is also the name of object {other}; expected unique spawn names (they name the scenarios)")));
+                    }
+                    for key in o.properties.keys() {
+                        self.warn(subject.clone(), format!("property {key:?} is not one platbench reads on a spawn point; ignored"));
+                    }
+                    spawns.push((SpawnPoint { name, position: s }, o.id(), why));
+                } else if is_platform {
+                    let p = self.platform(o, l.offset, &all, &mut used_paths)?;
+                    level.platforms.push(p);
+                } else if matches!(
+                    l.role,
+                    LayerRole::Collision | LayerRole::Solid | LayerRole::OneWay | LayerRole::Ladder
+                ) && Self::is_collision_object(o)
+                {
+                    // Read by collision_objects.
+                } else if o.tile_data().is_some() {
+                    if l.role == LayerRole::Decoration {
+                        ignored += 1;
+                    } else {
+                        self.warn(subject, "a tile object (a placed sprite) that is not a spawn holds no collision platbench reads; ignored".into());
+                    }
+                } else {
+                    match &o.shape {
+                        ObjectShape::Polyline { .. } => polylines.push(o),
+                        _ if l.role == LayerRole::Decoration => ignored += 1,
+                        other => {
+                            let class_text = if class.is_empty() {
+                                "no class".to_string()
+                            } else {
+                                format!("class {class:?}")
+                            };
+                            self.warn(subject, format!(
+                                "{} with {class_text} in layer {:?} is neither a spawn point (class or name \"spawn\", \"player\", \"start\") nor a moving platform (a rectangle with a \"path\" property) nor in a collision layer; ignored",
+                                shape_name(other), l.name
+                            ));
+                        }
+                    }
+                }
+            }
+            if ignored > 0 {
+                self.warn(
+                    format!("layer {:?}", l.name),
+                    format!("{ignored} object(s) in a decoration layer; ignored"),
+                );
+            }
+        }
+        for o in polylines {
+            if !used_paths.contains(&o.id()) {
+                self.warn(
+                    format!("object {} {:?}", o.id(), o.name),
+                    "a polyline that no platform's \"path\" property names; ignored".into(),
+                );
+            }
+        }
+        self.objects = layers;
+        let sources = spawns.iter().map(|s| s.2.clone()).collect();
+        Ok((spawns.into_iter().map(|(s, _, _)| s).collect(), sources))
+    }
+
+    /// Where a spawn object puts the character's feet: a point is the feet; a rectangle's or
+    /// tile object's bottom centre is (a tile object's position is its bottom-left corner).
+    fn spawn(&self, o: &tiled::Object, offset: Vec2, level: &Level) -> Result<Vec2, TiledError> {
+        if o.rotation != 0.0 {
+            return Err(self.obj_err(
+                o,
+                format!(
+                    "a spawn point is rotated by {} degrees; expected no rotation",
+                    o.rotation
+                ),
+            ));
+        }
+        let (x, y) = (o.x + offset.x, o.y + offset.y);
+        let feet = match (&o.shape, o.tile_data().is_some()) {
+            (ObjectShape::Rect { width, .. }, true) => self.to_level(x + width * 0.5, y),
+            (ObjectShape::Point(..), _) => self.to_level(x, y),
+            (ObjectShape::Rect { width, height }, false) => {
+                self.to_level(x + width * 0.5, y + height)
+            }
+            (other, _) => {
+                return Err(self.obj_err(
+                    o,
+                    format!("a spawn point is {}; expected a point (the feet), a rectangle or a tile object (feet at its bottom centre)", shape_name(other)),
+                ))
+            }
+        };
+        if !(feet.x.is_finite() && feet.y.is_finite()) {
+            return Err(self.obj_err(o, "its position is not finite".into()));
+        }
+        let (w, h) = (level.width as f32, level.height as f32);
+        if !(feet.x >= 0.0 && feet.x <= w && feet.y >= 0.0 && feet.y <= h) {
+            return Err(self.obj_err(o, format!(
+                "the spawn point's feet are at ({}, {}) tiles, outside the map (0 <= x <= {w}, 0 <= y <= {h}); expected a spawn inside the map, on or above open space",
+                feet.x, feet.y
+            )));
+        }
+        let b = character_box(feet, DEFAULT_CHARACTER_SIZE);
+        if let Some(t) = level.solids_overlapping(&b).next() {
+            return Err(self.obj_err(o, format!(
+                "the spawn point at ({}, {}) puts the {} x {} character inside the solid tile at ({}, {}); expected empty space (the point is the feet)",
+                feet.x, feet.y, DEFAULT_CHARACTER_SIZE.x, DEFAULT_CHARACTER_SIZE.y, t.mins.x, t.mins.y
+            )));
+        }
+        Ok(feet)
+    }
+
+    /// A moving platform from a rectangle with `path` and `speed`.
+    fn platform(
+        &mut self,
+        o: &tiled::Object<'m>,
+        offset: Vec2,
+        all: &HashMap<u32, &tiled::Object<'m>>,
+        used_paths: &mut Vec<u32>,
+    ) -> Result<Platform, TiledError> {
+        let (tw, th) = (self.map.tile_width as f32, self.map.tile_height as f32);
+        let file = self.file.clone();
+        let obj_err = |o: &tiled::Object, message: String| TiledError::Object {
+            file: file.clone(),
+            id: o.id(),
+            name: o.name.clone(),
+            message,
+        };
+        let subject = format!("object {} {:?}", o.id(), o.name);
+        let ObjectShape::Rect { width, height } = o.shape else {
+            return Err(obj_err(
+                o,
+                format!(
+                    "a moving platform is {}; expected a rectangle",
+                    shape_name(&o.shape)
+                ),
+            ));
+        };
+        if o.rotation != 0.0 {
+            return Err(obj_err(
+                o,
+                format!(
+                    "the platform is rotated by {} degrees; expected no rotation",
+                    o.rotation
+                ),
+            ));
+        }
+        if !(width > 0.0 && height > 0.0 && width.is_finite() && height.is_finite()) {
+            return Err(obj_err(
+                o,
+                format!("the platform is {width} x {height} pixels; expected a positive size"),
+            ));
+        }
+        let start = self.to_level(o.x + offset.x, o.y + offset.y + height);
+        let size = Vec2::new(width / tw, height / th);
+        let mut speed = None;
+        let mut path = None;
+        let mut one_way = false;
+        let props: BTreeMap<_, _> = o.properties.iter().collect();
+        for (key, value) in props {
+            match (key.as_str(), value) {
+                (names::PATH, PropertyValue::ObjectValue(id)) => path = Some(*id),
+                (names::SPEED, PropertyValue::FloatValue(v)) => speed = Some(*v),
+                (names::SPEED, PropertyValue::IntValue(v)) => speed = Some(*v as f32),
+                (names::ONE_WAY, PropertyValue::BoolValue(b)) => one_way = *b,
+                (names::PATH, other) => return Err(obj_err(o, format!("property \"path\" is {}; expected an object reference to a polyline", kind_of(other)))),
+                (names::SPEED, other) => return Err(obj_err(o, format!("property \"speed\" is {}; expected a float (tiles/s)", kind_of(other)))),
+                (names::ONE_WAY, other) => return Err(obj_err(o, format!("property \"one_way\" is {}; expected a bool", kind_of(other)))),
+                _ => self.warn(subject.clone(), format!("property {key:?} is not one platbench reads on a platform (it reads \"path\", \"speed\", \"one_way\"); ignored")),
+            }
+        }
+        let path_id = match path {
+            Some(id) if id != 0 => id,
+            _ => return Err(obj_err(o, "a moving platform needs a \"path\" property (an object reference to a polyline); none is set".into())),
+        };
+        let speed = match speed {
+            Some(s) if s.is_finite() && s > 0.0 && s as f64 <= crate::limits::MAX_SPEED => s,
+            Some(s) => {
+                return Err(obj_err(
+                    o,
+                    format!(
+                        "speed = {s}; expected 0 < speed <= {} (tiles/s)",
+                        crate::limits::MAX_SPEED
+                    ),
+                ))
+            }
+            None => {
+                return Err(obj_err(
+                    o,
+                    "a moving platform needs a \"speed\" property (float, tiles/s)".into(),
+                ))
+            }
+        };
+        let Some(p) = all.get(&path_id) else {
+            return Err(obj_err(o, format!("its path names object {path_id}, which is not in any object layer platbench reads")));
+        };
+        let ObjectShape::Polyline { points } = &p.shape else {
+            return Err(obj_err(
+                o,
+                format!(
+                    "its path names object {path_id} {:?}, which is {}; expected a polyline",
+                    p.name,
+                    shape_name(&p.shape)
+                ),
+            ));
+        };
+        if p.rotation != 0.0 {
+            return Err(obj_err(
+                o,
+                format!(
+                    "its path, object {path_id} {:?}, is rotated; expected no rotation",
+                    p.name
+                ),
+            ));
+        }
+        let Some(&(x0, y0)) = points.first() else {
+            return Err(obj_err(
+                o,
+                format!("its path, object {path_id} {:?}, has no points", p.name),
+            ));
+        };
+        // The path's shape, moved so that its first point is the platform's start: where the
+        // polyline is drawn does not matter, only its legs.
+        let waypoints: Vec<Vec2> = points
+            .iter()
+            .map(|&(x, y)| start + Vec2::new((x - x0) / tw, -(y - y0) / th))
+            .collect();
+        let far =
+            |v: Vec2| v.abs().max_element() as f64 > crate::limits::MAX_COORD || !v.is_finite();
+        if far(start) || far(size) || waypoints.iter().any(|w| far(*w)) {
+            return Err(obj_err(
+                o,
+                format!(
+                    "the platform or its path reaches beyond {} tiles from the map's corner; expected a platform near the map",
+                    crate::limits::MAX_COORD
+                ),
+            ));
+        }
+        if waypoints.iter().any(|w| !w.is_finite()) {
+            return Err(obj_err(
+                o,
+                format!(
+                    "its path, object {path_id} {:?}, has a point that is not finite",
+                    p.name
+                ),
+            ));
+        }
+        if waypoints.len() < 2 || waypoints.windows(2).all(|w| w[0] == w[1]) {
+            return Err(obj_err(o, format!("its path, object {path_id} {:?}, has zero length; expected at least 2 different points", p.name)));
+        }
+        used_paths.push(path_id);
+        Ok(Platform {
+            start,
+            size,
+            motion: PlatformMotion::Waypoints {
+                points: waypoints,
+                speed,
+            },
+            one_way,
+        })
+    }
+}

@@ -1,0 +1,502 @@
+//! What one tileset tile is: its properties (platbench's own `collision` string, the bool
+//! properties games use, slope properties), its class, else its collision shape; and how a flip
+//! changes it.
+
+use std::collections::BTreeMap;
+
+use glam::Vec2;
+use tiled::{ObjectShape, PropertyValue};
+
+use super::{kind_of, names, number, shape_name, SHAPE_TOLERANCE_PX};
+use crate::level::import::parse_tile_kind;
+use crate::level::{Slope, Tile};
+
+/// Bool tile properties games mark collision with (compared in lower case): true makes the tile
+/// solid, false empty.
+pub(crate) const SOLID_BOOLS: &[&str] = &[
+    "collision",
+    "collidable",
+    "issolid",
+    "solid",
+    "collides",
+    "blocked",
+    "wall",
+];
+/// Bool tile properties that make a tile a one-way platform when true.
+pub(crate) const ONE_WAY_BOOLS: &[&str] =
+    &["one_way", "oneway", "isoneway", "jumpthrough", "platform"];
+/// Bool tile properties that make a tile a ladder when true.
+pub(crate) const LADDER_BOOLS: &[&str] = &["ladder", "isladder", "climbable"];
+
+/// Whether a property marks collision with a bool (see [`SOLID_BOOLS`], [`ONE_WAY_BOOLS`],
+/// [`LADDER_BOOLS`]).
+pub(crate) fn is_bool_mark(key: &str, value: &PropertyValue) -> bool {
+    let k = key.to_lowercase();
+    matches!(value, PropertyValue::BoolValue(_))
+        && (SOLID_BOOLS.contains(&k.as_str())
+            || ONE_WAY_BOOLS.contains(&k.as_str())
+            || LADDER_BOOLS.contains(&k.as_str()))
+}
+
+/// A tileset tile's meaning from its properties, else its class (`solid`, `one_way`, `ladder`,
+/// `empty`), else its collision shape; `None` when it says nothing (the caller's default then
+/// holds: solid, or empty in a tileset that marks its solid tiles with a bool property).
+/// Properties take precedence over a collision shape, which is then not read (a warning says
+/// so). Returns the tile and the warnings about it; `Err` is the message for an unsupported
+/// tile. `tw` x `th` is the tile's own size in pixels (its image's, in an image collection).
+pub(crate) fn tile_kind(
+    props: &tiled::Properties,
+    class: &str,
+    shape: Option<&tiled::ObjectLayerData>,
+    tw: f32,
+    th: f32,
+) -> Result<(Option<Tile>, Vec<String>), String> {
+    let mut notes = Vec::new();
+    let mut collision = None;
+    let mut marked: Option<(String, Tile)> = None;
+    let mut left = None;
+    let mut right = None;
+    let mut heights = None;
+    let sorted: BTreeMap<_, _> = props.iter().collect();
+    for (key, value) in sorted {
+        let lower = key.to_lowercase();
+        if let PropertyValue::BoolValue(b) = value {
+            let t = if SOLID_BOOLS.contains(&lower.as_str()) {
+                Some(if *b { Tile::Solid } else { Tile::Empty })
+            } else if ONE_WAY_BOOLS.contains(&lower.as_str()) {
+                b.then_some(Tile::OneWay)
+            } else if LADDER_BOOLS.contains(&lower.as_str()) {
+                b.then_some(Tile::Ladder)
+            } else {
+                None
+            };
+            let known = SOLID_BOOLS.contains(&lower.as_str())
+                || ONE_WAY_BOOLS.contains(&lower.as_str())
+                || LADDER_BOOLS.contains(&lower.as_str());
+            if known {
+                match (&marked, t) {
+                    (_, None) => {}
+                    (None, Some(t)) => marked = Some((key.clone(), t)),
+                    (Some((_, Tile::Empty)), Some(t)) => marked = Some((key.clone(), t)),
+                    (Some(_), Some(Tile::Empty)) => {}
+                    (Some((k0, t0)), Some(t)) if *t0 != t => {
+                        return Err(format!(
+                            "property {k0:?} makes it {} and property {key:?} makes it {}; expected one",
+                            super::tile_name(t0),
+                            super::tile_name(&t)
+                        ))
+                    }
+                    _ => {}
+                }
+                continue;
+            }
+        }
+        match key.as_str() {
+            names::COLLISION => match value {
+                PropertyValue::StringValue(s) => collision = Some(s.clone()),
+                other => return Err(format!("property \"collision\" is {}; expected a string (solid, one_way, ladder or empty) or a bool", kind_of(other))),
+            },
+            names::SLOPE_LEFT | names::SLOPE_RIGHT => {
+                let v = number(value).ok_or_else(|| {
+                    format!("property {key:?} is {}; expected a float (height in tiles)", kind_of(value))
+                })?;
+                if !(v.is_finite() && v.abs() <= 16.0) {
+                    return Err(format!("property {key:?} = {v}; expected a height between -16 and 16 tiles"));
+                }
+                if key == names::SLOPE_LEFT {
+                    left = Some(v);
+                } else {
+                    right = Some(v);
+                }
+            }
+            names::HEIGHTS => match value {
+                PropertyValue::StringValue(s) => heights = Some(parse_heights(s)?),
+                other => return Err(format!("property \"heights\" is {}; expected a string of 16 comma-separated integers 0..16", kind_of(other))),
+            },
+            _ => notes.push(format!(
+                "property {key:?} is not one platbench reads (it reads collision, slope_left, slope_right, heights, and the bools collidable, isSolid, solid, collides, blocked, one_way, ladder); ignored"
+            )),
+        }
+    }
+    let slope = match (left, right, heights) {
+        (None, None, None) => None,
+        (Some(l), Some(r), None) => Some(Slope::Line { left: l, right: r }),
+        (None, None, Some(h)) => Some(Slope::Heights(h)),
+        (Some(_), None, None) | (None, Some(_), None) => {
+            return Err("it has only one of slope_left and slope_right; expected both (a line slope)".into())
+        }
+        _ => return Err("it has both a height array (heights) and a line slope (slope_left/slope_right); expected one".into()),
+    };
+    let from_string = match collision.as_deref() {
+        None => None,
+        Some(c) => match parse_tile_kind(c) {
+            Some(t) => Some(t),
+            None => {
+                return Err(format!(
+                    "collision = {c:?}; expected solid, one_way, ladder or empty"
+                ))
+            }
+        },
+    };
+    let from_props = match (from_string, slope, &marked) {
+        (Some(_), Some(_), _) => {
+            return Err(format!("it has collision = {:?} and slope properties; expected one of them (a slope needs no collision property)", collision.unwrap_or_default()))
+        }
+        (None, Some(s), _) => Some(Tile::Slope(s)),
+        (Some(t), None, Some((k, m))) if t != *m => {
+            return Err(format!(
+                "it has collision = {:?} and property {k:?} that makes it {}; expected one",
+                collision.unwrap_or_default(),
+                super::tile_name(m)
+            ))
+        }
+        (Some(t), None, _) => Some(t),
+        (None, None, Some((_, m))) => Some(*m),
+        (None, None, None) => None,
+    };
+    let objects = shape.map_or(&[][..], |s| s.object_data());
+    if let Some(t) = from_props {
+        if !objects.is_empty() {
+            notes.push("its properties say what it is, so its collision shape is not read".into());
+        }
+        return Ok((Some(t), notes));
+    }
+    if !class.is_empty() {
+        if let Some(t) = parse_tile_kind(class) {
+            return Ok((Some(t), notes));
+        }
+    }
+    let t = match objects {
+        [] => None,
+        [o] => Some(shape_kind(o, tw, th)?),
+        many => {
+            return Err(format!(
+                "its collision shape has {} objects; expected one: a rectangle covering the tile (solid) or a ramp polygon (slope)",
+                many.len()
+            ))
+        }
+    };
+    Ok((t, notes))
+}
+
+fn parse_heights(s: &str) -> Result<[u8; 16], String> {
+    let expected =
+        "expected 16 comma-separated integers 0..16 (sixteenths of a tile, left to right)";
+    let vals: Vec<&str> = s.split(',').map(str::trim).collect();
+    if vals.len() != 16 {
+        return Err(format!(
+            "heights = {s:?} has {} entries; {expected}",
+            vals.len()
+        ));
+    }
+    let mut out = [0u8; 16];
+    for (k, v) in vals.iter().enumerate() {
+        match v.parse::<u8>() {
+            Ok(h) if h <= 16 => out[k] = h,
+            _ => {
+                return Err(format!(
+                    "heights = {s:?}: entry {} is {v:?}; {expected}",
+                    k + 1
+                ))
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The meaning of a tile's single collision object: a rectangle over the whole tile is solid,
+/// a ramp polygon is a line slope.
+fn shape_kind(o: &tiled::ObjectData, tw: f32, th: f32) -> Result<Tile, String> {
+    if o.rotation != 0.0 {
+        return Err(format!(
+            "its collision shape is rotated by {} degrees; expected no rotation",
+            o.rotation
+        ));
+    }
+    let (tol_x, tol_y) = (SHAPE_TOLERANCE_PX, SHAPE_TOLERANCE_PX);
+    match &o.shape {
+        ObjectShape::Rect { width, height } => {
+            let full = o.x.abs() <= tol_x
+                && o.y.abs() <= tol_y
+                && (o.x + width - tw).abs() <= tol_x
+                && (o.y + height - th).abs() <= tol_y;
+            if full {
+                Ok(Tile::Solid)
+            } else {
+                Err(format!(
+                    "its collision shape is a rectangle at ({}, {}) of {} x {} pixels, which does not cover the {tw} x {th} tile; expected a full-tile rectangle (solid) or a ramp polygon (slope)",
+                    o.x, o.y, width, height
+                ))
+            }
+        }
+        ObjectShape::Polygon { points } => {
+            let pts: Vec<Vec2> = points
+                .iter()
+                .map(|&(x, y)| Vec2::new(o.x + x, o.y + y))
+                .collect();
+            ramp(&pts, tw, th).map(Tile::Slope).ok_or_else(|| {
+                format!(
+                    "its collision shape is a polygon {} that is not a ramp; expected the tile's bottom edge, its two sides and one straight top line from the left side to the right side (within {SHAPE_TOLERANCE_PX} pixel)",
+                    points_text(&pts)
+                )
+            })
+        }
+        other => Err(format!(
+            "its collision shape is {}; expected a full-tile rectangle (solid) or a ramp polygon (slope)",
+            shape_name(other)
+        )),
+    }
+}
+
+fn points_text(pts: &[Vec2]) -> String {
+    let p: Vec<String> = pts.iter().map(|p| format!("({}, {})", p.x, p.y)).collect();
+    format!("[{}]", p.join(", "))
+}
+
+/// Recognises a ramp: a polygon (tile pixels, y down) whose corners, once points on a straight
+/// edge are dropped, are the tile's two bottom corners, next to each other, and one point on
+/// each side (or on one side only, for a triangle), all within [`SHAPE_TOLERANCE_PX`]. Returns
+/// the line slope through the top points, heights in tiles.
+pub(crate) fn ramp(pts: &[Vec2], tw: f32, th: f32) -> Option<Slope> {
+    // Tile-local, y up, in tiles; tolerances in the same units.
+    let tol = Vec2::new(SHAPE_TOLERANCE_PX / tw, SHAPE_TOLERANCE_PX / th);
+    let mut p: Vec<Vec2> = pts
+        .iter()
+        .map(|q| Vec2::new(q.x / tw, 1.0 - q.y / th))
+        .collect();
+    if p.iter().any(|q| !q.is_finite()) {
+        return None;
+    }
+    let near = |a: Vec2, b: Vec2| (a.x - b.x).abs() <= tol.x && (a.y - b.y).abs() <= tol.y;
+    // Drop repeated points and points on the straight line between their neighbours.
+    let mut changed = true;
+    while changed && p.len() >= 3 {
+        changed = false;
+        for k in 0..p.len() {
+            let n = p.len();
+            let (a, b, c) = (p[(k + n - 1) % n], p[k], p[(k + 1) % n]);
+            let ac = c - a;
+            let off = if ac.length() < 1e-9 {
+                (b - a).length()
+            } else {
+                (ac.perp_dot(b - a) / ac.length()).abs()
+            };
+            if near(a, b) || off <= tol.min_element() * 0.5 {
+                p.remove(k);
+                changed = true;
+                break;
+            }
+        }
+    }
+    if !(3..=4).contains(&p.len()) {
+        return None;
+    }
+    let n = p.len();
+    let bl = p.iter().position(|q| near(*q, Vec2::ZERO))?;
+    let br = p.iter().position(|q| near(*q, Vec2::X))?;
+    // The bottom edge is one edge of the polygon.
+    if (bl + 1) % n != br && (br + 1) % n != bl {
+        return None;
+    }
+    let mut left = 0.0f32;
+    let mut right = 0.0f32;
+    for (k, q) in p.iter().enumerate() {
+        if k == bl || k == br {
+            continue;
+        }
+        if q.y < -tol.y || q.y > 1.0 + tol.y {
+            return None;
+        }
+        let h = q.y.clamp(0.0, 1.0);
+        if q.x.abs() <= tol.x {
+            left = h;
+        } else if (q.x - 1.0).abs() <= tol.x {
+            right = h;
+        } else {
+            return None;
+        }
+    }
+    let snap = |h: f32, t: f32| {
+        if h <= t {
+            0.0
+        } else if h >= 1.0 - t {
+            1.0
+        } else {
+            h
+        }
+    };
+    let (left, right) = (snap(left, tol.y), snap(right, tol.y));
+    (left > 0.0 || right > 0.0).then_some(Slope::Line { left, right })
+}
+
+/// A tile's meaning once flipped: mirroring a slope mirrors its surface; flips that turn a
+/// slope upside down or sideways (vertical, diagonal) are not representable; solids, ladders,
+/// empty and one-way tiles keep their meaning under any flip (a one-way cell blocks from above
+/// however its art is turned).
+pub(crate) fn apply_flips(t: Tile, h: bool, v: bool, d: bool) -> Result<Tile, String> {
+    match t {
+        // A one-way tile blocks from above whichever way its art is drawn: games read the
+        // cell's property, not the picture.
+        Tile::Empty | Tile::Solid | Tile::Ladder | Tile::OneWay => Ok(t),
+        Tile::Slope(_) if v || d => Err(
+            "it is a slope drawn flipped vertically or rotated, which makes a ceiling or wall slope; expected it unflipped or flipped horizontally (the mirrored ramp)".into(),
+        ),
+        Tile::Slope(s) if h => Ok(Tile::Slope(match s {
+            Slope::Line { left, right } => Slope::Line {
+                left: right,
+                right: left,
+            },
+            Slope::Heights(mut a) => {
+                a.reverse();
+                Slope::Heights(a)
+            }
+        })),
+        Tile::Slope(_) => Ok(t),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn px(points: &[(f32, f32)]) -> Vec<Vec2> {
+        points.iter().map(|&(x, y)| Vec2::new(x, y)).collect()
+    }
+
+    #[test]
+    fn ramp_polygons_become_line_slopes_both_ways() {
+        // 16 px tiles, y down: bottom-left (0, 16), bottom-right (16, 16).
+        let up = ramp(&px(&[(0.0, 16.0), (16.0, 16.0), (16.0, 0.0)]), 16.0, 16.0);
+        assert_eq!(
+            up,
+            Some(Slope::Line {
+                left: 0.0,
+                right: 1.0
+            })
+        );
+        let down = ramp(&px(&[(0.0, 0.0), (0.0, 16.0), (16.0, 16.0)]), 16.0, 16.0);
+        assert_eq!(
+            down,
+            Some(Slope::Line {
+                left: 1.0,
+                right: 0.0
+            })
+        );
+        // A trapezoid, the other winding, half a pixel off: 0.25 to 0.75 of the tile.
+        let trap = ramp(
+            &px(&[(0.0, 12.0), (16.0, 4.0), (16.0, 16.0), (0.3, 15.6)]),
+            16.0,
+            16.0,
+        );
+        assert_eq!(
+            trap,
+            Some(Slope::Line {
+                left: 0.25,
+                right: 0.75
+            })
+        );
+        // A point in the middle of the bottom edge is dropped.
+        let mid = ramp(
+            &px(&[(0.0, 16.0), (8.0, 16.0), (16.0, 16.0), (16.0, 0.0)]),
+            16.0,
+            16.0,
+        );
+        assert_eq!(
+            mid,
+            Some(Slope::Line {
+                left: 0.0,
+                right: 1.0
+            })
+        );
+    }
+
+    #[test]
+    fn polygons_that_are_not_ramps_are_refused() {
+        // A triangle hanging from the top (a ceiling slope).
+        assert_eq!(
+            ramp(&px(&[(0.0, 0.0), (16.0, 0.0), (16.0, 16.0)]), 16.0, 16.0),
+            None
+        );
+        // A bow tie over the four corners.
+        assert_eq!(
+            ramp(
+                &px(&[(0.0, 16.0), (16.0, 0.0), (16.0, 16.0), (0.0, 0.0)]),
+                16.0,
+                16.0
+            ),
+            None
+        );
+        // A bump in the middle of the top.
+        assert_eq!(
+            ramp(
+                &px(&[
+                    (0.0, 16.0),
+                    (16.0, 16.0),
+                    (16.0, 8.0),
+                    (8.0, 2.0),
+                    (0.0, 8.0)
+                ]),
+                16.0,
+                16.0
+            ),
+            None
+        );
+        // A peak that leaves the tile.
+        assert_eq!(
+            ramp(&px(&[(0.0, 16.0), (16.0, 16.0), (16.0, -4.0)]), 16.0, 16.0),
+            None
+        );
+        // Flat along the bottom: no surface.
+        assert_eq!(
+            ramp(&px(&[(0.0, 16.0), (16.0, 16.0), (16.0, 15.9)]), 16.0, 16.0),
+            None
+        );
+    }
+
+    #[test]
+    fn a_mirrored_ramp_is_the_mirror_and_other_flips_are_refused() {
+        let up = Tile::Slope(Slope::Line {
+            left: 0.0,
+            right: 0.5,
+        });
+        assert_eq!(
+            apply_flips(up, true, false, false),
+            Ok(Tile::Slope(Slope::Line {
+                left: 0.5,
+                right: 0.0
+            }))
+        );
+        assert!(apply_flips(up, false, true, false).is_err());
+        assert!(apply_flips(up, false, false, true).is_err());
+        let mut h = [0u8; 16];
+        h[0] = 16;
+        let mut r = [0u8; 16];
+        r[15] = 16;
+        assert_eq!(
+            apply_flips(Tile::Slope(Slope::Heights(h)), true, false, false),
+            Ok(Tile::Slope(Slope::Heights(r)))
+        );
+        assert_eq!(apply_flips(Tile::Solid, true, true, true), Ok(Tile::Solid));
+        // A rotated one-way tile is still one-way (it was refused without need).
+        assert_eq!(
+            apply_flips(Tile::OneWay, false, true, true),
+            Ok(Tile::OneWay)
+        );
+        assert_eq!(
+            apply_flips(Tile::OneWay, true, false, false),
+            Ok(Tile::OneWay)
+        );
+    }
+
+    #[test]
+    fn height_strings_need_sixteen_sixteenths() {
+        assert_eq!(
+            parse_heights("0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,16").map(|h| h[15]),
+            Ok(16)
+        );
+        assert!(parse_heights("1,2").unwrap_err().contains("has 2 entries"));
+        assert!(parse_heights("0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,17")
+            .unwrap_err()
+            .contains("entry 16"));
+    }
+}
