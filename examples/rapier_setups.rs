@@ -37,6 +37,13 @@ fn setups() -> Vec<(&'static str, RapierConfig)> {
             },
         ),
         (
+            "grounded=push6",
+            RapierConfig {
+                grounded_move: GroundedMove::Constant(6.0),
+                ..d()
+            },
+        ),
+        (
             "offset=0.02",
             RapierConfig {
                 offset: Length::Absolute(0.02),

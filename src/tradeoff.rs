@@ -187,12 +187,15 @@ pub fn grid() -> Vec<Setting> {
         };
         g.push(rapier(name, c, 1, Some(1.0 / 60.0)));
     }
-    // How a grounded step is fed (`GroundedMove`): the bevy_rapier example's feed, and the
-    // variant that keeps the controller's platform carry.
-    for (name, grounded_move) in [
-        ("none", GroundedMove::None),
-        ("none-but-platforms", GroundedMove::NoneExceptOnPlatforms),
+    // How a grounded step is fed (`GroundedMove`): the bevy_rapier example's feed, the variant
+    // that keeps the controller's platform carry, and Rapier's 2D testbed's constant push at
+    // the walking speed.
+    for grounded_move in [
+        GroundedMove::None,
+        GroundedMove::NoneExceptOnPlatforms,
+        GroundedMove::Constant(6.0),
     ] {
+        let name = grounded_move.label();
         let c = RapierConfig {
             grounded_move,
             ..r()

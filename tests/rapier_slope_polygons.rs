@@ -6,13 +6,13 @@
 
 mod common;
 
-use glam::Vec2;
+use glam::{DVec2, Vec2};
 use platbench::level::{load_tiled_map, Level, Slope, Tile};
 use platbench::rapier::{ColliderBuilding, StaticWorld};
 
-/// Coordinates are tile units of order 1..100 in f32: 1e-6 is a few units in the last place
-/// at the levels' scale, far below the 0.17-tile step the old cut added.
-const TOL: f32 = 1e-5;
+/// The tolerance. Tile-local coordinates are computed here in f64 from the f32 world
+/// points; the levels' slope corners sit at whole or line-crossing coordinates below 100 tiles.
+const TOL: f64 = 1e-6;
 
 /// Every level to check: the built-in set and the Tiled test maps.
 fn all_levels() -> Vec<Level> {
@@ -21,36 +21,35 @@ fn all_levels() -> Vec<Level> {
     for entry in std::fs::read_dir(&dir).expect("tests/maps") {
         let path = entry.expect("entry").path();
         if path.extension().is_some_and(|e| e == "tmx") {
-            // A map that does not load on its own (it needs a side file, say) has no polygon.
-            if let Ok((level, _)) = load_tiled_map(&path) {
-                levels.push(level);
-            }
+            let (level, _) =
+                load_tiled_map(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            levels.push(level);
         }
     }
     levels
 }
 
 /// The polygon's area (shoelace formula).
-fn area(pts: &[Vec2]) -> f32 {
+fn area(pts: &[DVec2]) -> f64 {
     let n = pts.len();
     (0..n)
         .map(|k| pts[k].perp_dot(pts[(k + 1) % n]))
-        .sum::<f32>()
+        .sum::<f64>()
         .abs()
         * 0.5
 }
 
 /// The area under the clamped line over the tile, by a fine midpoint sum (the clamped line is
 /// piecewise linear with at most 3 pieces, so 10,000 samples are exact to about 1e-8).
-fn area_under(left: f32, right: f32) -> f32 {
+fn area_under(left: f64, right: f64) -> f64 {
     let n = 10_000;
     (0..n)
         .map(|k| {
-            let u = (k as f32 + 0.5) / n as f32;
+            let u = (k as f64 + 0.5) / n as f64;
             (left + (right - left) * u).clamp(0.0, 1.0)
         })
-        .sum::<f32>()
-        / n as f32
+        .sum::<f64>()
+        / n as f64
 }
 
 #[test]
@@ -76,12 +75,13 @@ fn per_tile_slope_polygons_are_the_tile_cut_by_the_line() {
             let Tile::Slope(Slope::Line { left, right }) = level.tile(i, j) else {
                 panic!("{}: polygon {pts:?} is not on a line slope", level.name);
             };
-            let local: Vec<Vec2> = pts
+            let local: Vec<DVec2> = pts
                 .iter()
-                .map(|p| *p - Vec2::new(i as f32, j as f32))
+                .map(|p| p.as_dvec2() - DVec2::new(i as f64, j as f64))
                 .collect();
-            let line = |u: f32| left + (right - left) * u;
-            let on_border = |p: Vec2| {
+            let (left, right) = (left as f64, right as f64);
+            let line = |u: f64| left + (right - left) * u;
+            let on_border = |p: DVec2| {
                 p.y.abs() < TOL
                     || (p.y - 1.0).abs() < TOL
                     || p.x.abs() < TOL

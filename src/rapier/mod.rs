@@ -33,10 +33,13 @@ pub use colliders::{one_way_top, ColliderBuilding, StaticWorld};
 pub use platforms::{PlatformCarry, Platforms};
 
 /// Added to [`MotionParams::max_climb_angle`] for Rapier's climb and slide angles, in radians.
-/// Rapier calls a slope at exactly its limit a wall (`angle >= max_slope_climb_angle`), while the
-/// shared limit is the steepest walkable slope; 0.001 rad is the margin Rapier's own climb test
-/// puts around its limit.
-pub const CLIMB_LIMIT_MARGIN: f32 = 1e-3;
+/// Rapier calls a slope at exactly its limit a wall (`angle >= max_slope_climb_angle`) and
+/// slides on one past it, while the shared limit is the steepest walkable, non-slipping slope.
+/// Rapier's own climb test puts 0.001 rad around its limit, on exact rotated cuboids; on a
+/// merged polyline the contact normals of a 45-degree ramp scatter by about 0.003 rad, so with
+/// 0.001 rad the ramp tips past the slide limit on some steps and a resting character creeps
+/// down it. 0.01 rad (0.57 degrees) clears that scatter.
+pub const CLIMB_LIMIT_MARGIN: f32 = 1e-2;
 
 /// How far beyond its offset Rapier's controller looks for ground, in tiles: its
 /// `predict_ground` adds this absolute 0.05 to the offset (rapier2d 0.36.1).
@@ -79,11 +82,12 @@ impl From<Length> for CharacterLength {
 /// How a grounded step's vertical move is fed to the controller. Rapier leaves this to its
 /// users, and its own examples differ; the choice decides whether a box sticks on a long merged
 /// floor (rapier #613: a cast at a glancing angle can miss the offset band).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum GroundedMove {
     /// Gravity every step: the shared motion's vertical velocity, reset to 0 when grounded, so
-    /// each grounded step asks to move down by `g * dt²`. The set-up of
-    /// `shared/reference/rapier-kcc-0.36.1.md` (`vy -= g * dt` each frame).
+    /// each grounded step asks to move down by `g * dt²`. What a game that integrates its own
+    /// gravity and hands the controller `v * dt` does (Rapier's docs leave the vertical move to
+    /// the user); the set-up `shared/reference/rapier-kcc-0.36.1.md` measured.
     Gravity,
     /// No vertical move while grounded (a jump still rises): the official bevy_rapier character
     /// example (`bevy_rapier3d/examples/character_controller3.rs`) zeroes its vertical movement
@@ -94,15 +98,20 @@ pub enum GroundedMove {
     /// As [`GroundedMove::None`], except on a moving platform (a kinematic body), where
     /// gravity is fed so that the controller's cast hits the platform and its carry runs.
     NoneExceptOnPlatforms,
+    /// A constant push down while grounded, in tiles/s (the step asks for `speed * dt`): Rapier's
+    /// own 2D testbed example (`examples2d/utils/character.rs`) subtracts its walking speed from
+    /// the vertical move every step, its "artificial gravity".
+    Constant(f32),
 }
 
 impl GroundedMove {
     /// Short label for configuration names.
-    pub fn label(self) -> &'static str {
+    pub fn label(self) -> String {
         match self {
-            GroundedMove::Gravity => "gravity",
-            GroundedMove::None => "none",
-            GroundedMove::NoneExceptOnPlatforms => "none-but-platforms",
+            GroundedMove::Gravity => "gravity".into(),
+            GroundedMove::None => "none".into(),
+            GroundedMove::NoneExceptOnPlatforms => "none-but-platforms".into(),
+            GroundedMove::Constant(v) => format!("push{v}"),
         }
     }
 }
@@ -217,7 +226,7 @@ impl RapierConfig {
         let mut label = format!("{} {}", self.colliders.label(), self.shape.label());
         if self.grounded_move != GroundedMove::Gravity {
             label += " grounded=";
-            label += self.grounded_move.label();
+            label += &self.grounded_move.label();
         }
         label
     }
@@ -470,6 +479,7 @@ impl RapierBackend {
                 GroundedMove::None => desired.y = 0.0,
                 GroundedMove::NoneExceptOnPlatforms if c.riding.is_none() => desired.y = 0.0,
                 GroundedMove::NoneExceptOnPlatforms => {}
+                GroundedMove::Constant(v) => desired.y = -v * dt,
             }
         }
         // The carry Rapier users add: the platform's coming displacement, when grounded on it.

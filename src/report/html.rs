@@ -352,9 +352,19 @@ pub fn recommendations(rows: &[MetricRow]) -> Vec<String> {
         if f > d {
             let frozen = rapier_rows(true, "rest_gap")
                 .map(|r| r.value)
-                .filter(|v| v.is_finite())
                 .fold(0.0f64, f64::max);
-            out.push(format!("A Rapier character that gets stuck on flat ground (per-tile rows fed gravity every step: worst {} of the commanded walk, {} stuck frames in all): give a grounded step no vertical move, except on a moving platform, as the official bevy_rapier character example feeds it (`grounded=none-but-platforms`): worst {}, {} stuck frames in all over the same shapes. Its price: where Rapier reports grounded on the corner of a wall's tiles the character now stops there, in the air (rest_gap up to {}). Rapier's docs' other advice, a larger offset, freed no shape as well (`cargo run --release --example rapier_setups`).", format_value(d), format_value(stuck(false)), format_value(f), format_value(stuck(true)), format_value(frozen)));
+            let frozen = if frozen.is_finite() {
+                format!("rest_gap up to {}", format_value(frozen))
+            } else {
+                "some never come to rest".to_string()
+            };
+            let pushed = rapier_rows(true, "max_penetration")
+                .map(|r| r.value)
+                .fold(0.0f64, f64::max);
+            let ladders = rapier_rows(true, "ladder_result");
+            let (failed, ladder_runs) =
+                ladders.fold((0, 0), |(f, n), r| (f + (r.value < 1.0) as usize, n + 1));
+            out.push(format!("A Rapier character that gets stuck on flat ground (per-tile rows fed gravity every step: worst {} of the commanded walk, {} stuck frames in all): give a grounded step no vertical move, except on a moving platform, as the official bevy_rapier character example feeds it (`grounded=none-but-platforms`): worst {}, {} stuck frames in all over the same shapes. Its price: where Rapier reports grounded on the corner of a wall's or a ladder shaft's tiles the character now stops there, in the air ({frozen}; {failed} of {ladder_runs} ladder runs fail); and a block closing on a standing character against a wall pushes it into the wall (max_penetration up to {}), because a zero desired move runs Rapier's depenetration. Rapier's docs' other advice, a larger offset, freed no shape as well (`cargo run --release --example rapier_setups`).", format_value(d), format_value(stuck(false)), format_value(f), format_value(stuck(true)), format_value(pushed)));
         }
     }
     let turning = |prefix: &str| {
