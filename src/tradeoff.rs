@@ -17,7 +17,7 @@ use svg::Document;
 
 use crate::backend::BackendError;
 use crate::level::Level;
-use crate::metrics::{evaluate_with, MetricRow};
+use crate::metrics::{evaluate_with, registry, MetricRow};
 use crate::motion::{JumpMode, MotionParams};
 use crate::rapier::{CharacterShape, ColliderBuilding, Length, RapierConfig};
 use crate::scenario::{time_scenario, BackendConfig, RunConfig, Runner};
@@ -190,32 +190,26 @@ pub fn grid() -> Vec<Setting> {
     g
 }
 
-/// The unit's "clearly wrong" size (see the module docs).
-fn scale(unit: &str) -> f64 {
-    match unit {
-        "tiles" | "ratio" | "tiles/s" => 0.01,
-        _ => 1.0,
-    }
-}
-
-/// The aggregate error of a setting's metric rows, in 0..=1 (see the module docs).
+/// The aggregate error of a setting's metric rows, in 0..=1 (see the module docs): each row's
+/// `min(1, |error| / scale)` weighted by its metric's default weight in the registry
+/// ([`crate::metrics::registry`]); a metric the registry does not know weighs 1.
 pub fn error_score(rows: &[MetricRow]) -> f64 {
-    let scored: Vec<f64> = rows
-        .iter()
-        .filter(|r| r.metric != "ns_per_character_step")
-        .map(|r| {
-            let e = r.error.abs() / scale(r.unit);
-            if e.is_finite() {
-                e.min(1.0)
-            } else {
-                1.0
-            }
-        })
-        .collect();
-    if scored.is_empty() {
+    let (mut sum, mut weights) = (0.0, 0.0);
+    for r in rows {
+        let (w, scale) = registry::get(r.metric).map_or((1.0, registry::unit_scale(r.unit)), |d| {
+            (d.weight, d.scale())
+        });
+        if w == 0.0 {
+            continue;
+        }
+        let e = r.error.abs() / scale;
+        sum += w * if e.is_finite() { e.min(1.0) } else { 1.0 };
+        weights += w;
+    }
+    if weights == 0.0 {
         0.0
     } else {
-        scored.iter().sum::<f64>() / scored.len() as f64
+        sum / weights
     }
 }
 

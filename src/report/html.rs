@@ -13,52 +13,11 @@ use svg::Document;
 use super::{format_setting, format_value, notes, worst_matrix};
 use crate::level::{Level, ScenarioSpec, Tile};
 use crate::metrics::ground::Ground;
-use crate::metrics::MetricRow;
+use crate::metrics::{registry, Behaviour, MetricRow};
 use crate::shape::CharacterShape;
 use crate::stress::{envelope, Envelope, StressRow};
 use crate::trace::Trace;
 use crate::tradeoff::{chart_svg, TradeoffRow};
-
-/// The behaviours the report is organised by, with their metrics.
-pub const BEHAVIOURS: &[(&str, &[&str])] = &[
-    (
-        "Landing and resting",
-        &[
-            "land_frame_error",
-            "rest_gap",
-            "max_penetration",
-            "rest_jitter",
-            "grounded_flicker",
-            "false_grounded",
-        ],
-    ),
-    ("Jumping", &["apex_error"]),
-    (
-        "Walking over tile seams",
-        &["progress_ratio", "stuck_frames"],
-    ),
-    (
-        "Slopes",
-        &[
-            "slope_airborne_frames",
-            "slope_gap_max",
-            "slope_speed_ratio",
-            "steep_blocked",
-        ],
-    ),
-    ("One-way platforms", &["oneway_result"]),
-    ("Ladders", &["ladder_speed_error", "ladder_result"]),
-    (
-        "Moving platforms",
-        &[
-            "carry_drift",
-            "carry_airborne_frames",
-            "push_penetration",
-            "crush_count",
-        ],
-    ),
-    ("Walls at speed", &["tunneled"]),
-];
 
 /// The configurations drawn in the scenario pictures, with their colours: the sweep and Rapier's
 /// two most telling shapes on both collider buildings.
@@ -448,8 +407,10 @@ pub fn render_report(
     html.push_str("</ul><h2>By behaviour</h2>");
     md.push_str("\n## By behaviour\n");
     let all_notes = notes(rows);
-    for (title, metrics) in BEHAVIOURS {
-        if let Some((t_html, t_md)) = behaviour_tables(rows, metrics) {
+    for b in Behaviour::ALL.into_iter().filter(|b| *b != Behaviour::Cost) {
+        let title = b.title();
+        let metrics: Vec<&str> = registry::of_behaviour(b).map(|d| d.name).collect();
+        if let Some((t_html, t_md)) = behaviour_tables(rows, &metrics) {
             let _ = write!(html, "<h3>{title}</h3>{t_html}");
             let _ = write!(md, "\n### {title}\n\n{t_md}\n");
             for n in all_notes
@@ -505,36 +466,4 @@ fn note_is_about(note: &str, metric: &str) -> bool {
         _ => return false,
     };
     note.contains(key)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::metrics::{CATALOG, GROUPS};
-
-    #[test]
-    fn every_behaviour_metric_is_in_the_catalog_once_and_in_one_summary_group() {
-        // The report's behaviours and the summary's groups are two partitions of the same
-        // catalog (timing aside, which has its own table): a metric added to one list and not to
-        // the others would silently vanish from a table.
-        let behaviour: Vec<&str> = BEHAVIOURS
-            .iter()
-            .flat_map(|(_, m)| m.iter().copied())
-            .collect();
-        let grouped: Vec<&str> = GROUPS.iter().flat_map(|(_, m)| m.iter().copied()).collect();
-        for m in CATALOG.iter().filter(|m| **m != "ns_per_character_step") {
-            assert_eq!(
-                behaviour.iter().filter(|b| *b == m).count(),
-                1,
-                "{m} in behaviours"
-            );
-            assert_eq!(
-                grouped.iter().filter(|g| *g == m).count(),
-                1,
-                "{m} in groups"
-            );
-        }
-        assert!(behaviour.iter().all(|b| CATALOG.contains(b)));
-        assert!(grouped.iter().all(|g| CATALOG.contains(g)));
-    }
 }

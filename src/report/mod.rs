@@ -7,7 +7,7 @@ pub mod html;
 
 use comfy_table::{presets, CellAlignment, Table};
 
-use crate::metrics::MetricRow;
+use crate::metrics::{registry, MetricRow};
 
 /// Formats a metric value compactly: integers as integers, small magnitudes in scientific form.
 pub fn format_value(v: f64) -> String {
@@ -64,16 +64,18 @@ fn new_table(header: Vec<String>) -> Table {
     t
 }
 
-/// The summary: one table per group of metrics ([`crate::metrics::GROUPS`]), each with one row
+/// The summary: one table per group of metrics ([`registry::SUMMARY_GROUPS`]), each with one row
 /// per configuration and one column per metric; each cell is the configuration's worst value
 /// over all scenarios (farthest from ideal), `*` marks the best configuration of each metric,
 /// and the first row gives the ideal value.
 pub fn summary_table(rows: &[MetricRow]) -> String {
     let mut out = String::new();
-    for (title, metrics) in crate::metrics::GROUPS {
+    for title in registry::SUMMARY_GROUPS {
         let group: Vec<MetricRow> = rows
             .iter()
-            .filter(|r| metrics.contains(&r.metric))
+            .filter(|r| {
+                registry::get(r.metric).is_some_and(|d| d.behaviour.summary_group() == title)
+            })
             .cloned()
             .collect();
         if group.is_empty() {
@@ -87,11 +89,7 @@ pub fn summary_table(rows: &[MetricRow]) -> String {
     }
     let others: Vec<MetricRow> = rows
         .iter()
-        .filter(|r| {
-            !crate::metrics::GROUPS
-                .iter()
-                .any(|(_, m)| m.contains(&r.metric))
-        })
+        .filter(|r| registry::get(r.metric).is_none())
         .cloned()
         .collect();
     if !others.is_empty() {
@@ -126,13 +124,7 @@ pub fn worst_matrix(rows: &[MetricRow]) -> WorstMatrix {
             metrics.push((r.metric, r.unit, r.reference));
         }
     }
-    let order = |m: &str| {
-        crate::metrics::CATALOG
-            .iter()
-            .position(|c| *c == m)
-            .unwrap_or(usize::MAX)
-    };
-    metrics.sort_by_key(|(m, _, _)| order(m));
+    metrics.sort_by_key(|(m, _, _)| registry::position(m));
     // worst[metric][config]
     let worst: Vec<Vec<Option<&MetricRow>>> = metrics
         .iter()
