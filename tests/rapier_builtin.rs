@@ -128,8 +128,19 @@ fn penetration_per_shape_and_collider_building() {
         let tag = format!("{building:?} {}", shape.label());
         for r in rows(&evals, "max_penetration") {
             let bound = match (building, shape, r.level.as_str()) {
-                // One-tile colliders: no shape ever overlaps a tile (measured 0 everywhere).
+                // The seed's height-array tile reaches Rapier as a polyline through its 16
+                // columns' midpoints (src/rapier), which cuts a column's corner by at most half
+                // of a step between neighbours (steps are 1/16 or 2/16 tiles): the true columns
+                // that max_penetration measures stick out of it by up to 1/16.
+                (_, _, "seed_tile") => 1.0 / 16.0,
+                // One-tile colliders: no shape ever overlaps a tile or a line slope (measured 0
+                // everywhere).
                 (ColliderBuilding::PerTile, _, _) => 0.0,
+                // A cuboid pressed into the merged 63.4-degree polyline (too steep to climb)
+                // ends inside it: measured 0.043 (walk_into_steep), visible since slopes count
+                // as solid (issue 17); pinned with the rounded shapes' bound below so that a
+                // change is reviewed.
+                (ColliderBuilding::Merged, CharacterShape::Cuboid, "slope_63_4") => 0.05,
                 // A cuboid on merged boxes sinks by at most about one offset when a glancing
                 // cast misses the offset band (reference: 0.008 on one long box).
                 (_, CharacterShape::Cuboid, _) => OFFSET,

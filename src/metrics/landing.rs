@@ -13,9 +13,9 @@ pub const REST_WINDOW: f32 = 0.5;
 /// (1% of a 0.9-tile character) so a controller that keeps a skin gap is not penalised.
 pub const FLICKER_SUPPORT_TOLERANCE: f32 = 0.1;
 
-/// `max_penetration`: deepest overlap of the character's shape with any solid tile over the
-/// whole run, in tiles, from parry's contact query between the shape and each tile's square
-/// (not from a backend's contacts).
+/// `max_penetration`: deepest overlap of the character's shape with the level's solid geometry
+/// (solid tiles' squares and slope tiles' true solid parts, nothing left out) over the whole run,
+/// in tiles, from parry's contact query (not from a backend's contacts).
 pub fn max_penetration(g: &Ground, rows: &[TraceRow]) -> Measure {
     let worst = rows
         .iter()

@@ -86,12 +86,7 @@ pub struct Context<'a> {
 /// Computes every metric that applies to the scenario.
 pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     let rows: Vec<TraceRow> = ctx.trace.character(0).copied().collect();
-    let ground = Ground::new(
-        ctx.level,
-        ctx.shape,
-        ctx.spec.size,
-        ctx.params.max_climb_angle,
-    );
+    let ground = Ground::new(ctx.level, ctx.shape, ctx.spec.size);
     let g = &ground;
     let mut out = Vec::new();
     let mut push = |m: Option<Measure>| {
@@ -122,6 +117,7 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     let on_slope = slopes::slope_frames(ctx, &rows);
     push(slopes::slope_airborne_frames(ctx, &rows, &on_slope));
     push(slopes::slope_gap_max(ctx, g, &rows, &on_slope));
+    push(slopes::slope_overlap(ctx, g, &rows));
     push(slopes::slope_speed_ratio(ctx, &rows, &on_slope));
     push(slopes::steep_blocked(ctx, &rows));
     push(oneway::oneway_result(ctx, &rows));

@@ -77,21 +77,44 @@ pub fn slope_airborne_frames(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> O
     })
 }
 
-/// `slope_gap_max`: the largest gap between the character's shape and the ground over a
-/// walkable slope while reported grounded, in tiles (0 if it never stood on one).
+/// `slope_gap_max`: over the frames reported grounded over a walkable slope, the signed gap
+/// between the character's shape and the level's surface that is farthest from touching, in
+/// tiles: positive a gap above the surface, negative the depth inside it (the seed's box
+/// overhanging a ramp reads as inside it). 0 if it never stood on one.
 pub fn slope_gap_max(ctx: &Context, g: &Ground, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
     if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
         return None;
     }
-    let gaps: Vec<f32> = rows
+    let worst = rows
         .iter()
         .zip(on)
         .filter(|(r, o)| **o && r.is_grounded())
         .map(|(r, _)| g.gap(pos(r)))
-        .collect();
+        .fold(0.0f32, |a, b| if b.abs() > a.abs() { b } else { a });
     Some(Measure {
         metric: "slope_gap_max",
-        value: gaps.iter().fold(0.0f32, |a, b| a.max(*b)) as f64,
+        value: worst as f64,
+        reference: 0.0,
+    })
+}
+
+/// `slope_overlap`: on a level with slopes, the deepest overlap of the character's shape with a
+/// slope tile's solid part over the run, in tiles (parry's penetration depth). The seed's
+/// centre-column rule stands the sweep's box on a slope by the surface under its centre, so its
+/// box overhangs the ramp by up to half its width times the gradient (0.4 tiles vertically on a
+/// 45-degree ramp for a 0.8-wide box, 0.28 along the ramp's normal): this is that overlap, by
+/// design, reported as what it is.
+pub fn slope_overlap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<Measure> {
+    if !ctx.level.features.slopes {
+        return None;
+    }
+    let worst = rows
+        .iter()
+        .map(|r| g.slope_penetration(pos(r)))
+        .fold(0.0f32, f32::max);
+    Some(Measure {
+        metric: "slope_overlap",
+        value: worst as f64,
         reference: 0.0,
     })
 }

@@ -51,8 +51,8 @@ fn escape(s: &str) -> String {
 }
 
 /// The level around the scenario with each drawn configuration's path. Airborne frames are
-/// hollow dots; frames where the character's shape is inside a solid tile (as `max_penetration`
-/// measures it, more than 1e-3 tiles) are red dots.
+/// hollow dots; frames where the character's shape is inside the level's solid geometry (tiles
+/// or slopes, as `max_penetration` measures it, more than 1e-3 tiles) are red dots.
 pub fn scenario_svg(s: &ScenarioTraces) -> String {
     let level = s.level;
     let size = s.spec.size;
@@ -161,7 +161,7 @@ pub fn scenario_svg(s: &ScenarioTraces) -> String {
             .next()
             .and_then(CharacterShape::from_label)
             .unwrap_or(CharacterShape::Cuboid);
-        let ground = Ground::new(level, shape, size, std::f32::consts::FRAC_PI_4);
+        let ground = Ground::new(level, shape, size);
         let pts: Vec<(f32, f32)> = t
             .rows
             .iter()
@@ -441,7 +441,7 @@ pub fn render_report(
         );
         let _ = write!(md, " {b} {c} ({colour});");
     }
-    html.push_str("<span>hollow dots: airborne; red dots: inside a solid tile</span></p>");
+    html.push_str("<span>hollow dots: airborne; red dots: inside a solid tile or slope</span></p>");
     md.push('\n');
     for s in scenarios {
         let id = format!("{}.{}", s.level.name, s.spec.name);
@@ -456,6 +456,7 @@ pub fn render_report(
 fn note_is_about(note: &str, metric: &str) -> bool {
     let key = match metric {
         "rest_gap" => "rest_gap",
+        "slope_overlap" => "slope_overlap",
         "land_frame_error" => "lands early",
         "max_penetration" => "sinks into",
         "false_grounded" => "false_grounded",

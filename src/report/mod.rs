@@ -240,6 +240,12 @@ pub fn notes(rows: &[MetricRow]) -> Vec<String> {
     }
     if rows
         .iter()
+        .any(|r| r.backend == "sweep" && r.metric == "slope_overlap" && r.value > 1e-3)
+    {
+        out.push("sweep slope_overlap: the seed's centre-column rule stands the box on the surface under its centre, so the box overhangs a ramp by half its width times the gradient (0.4 sin(angle) along the ramp's normal: 0.28 tiles at 45 degrees); by design, and counted in max_penetration, rest_gap and slope_gap_max too, as any shape inside a slope is.".into());
+    }
+    if rows
+        .iter()
         .any(|r| r.metric == "apex_error" && r.config.contains("jump=continuous"))
     {
         out.push("jump=continuous is the seed's v = sqrt(2 g h): exact for continuous motion, short by up to v*dt/2 under symplectic Euler; the default solves the impulse for the discrete apex.".into());
