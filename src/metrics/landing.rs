@@ -121,7 +121,16 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
     }
 }
 
-/// `rest_jitter`: max minus min of y over the resting frames, in tiles.
+/// The settled part of the rest frames `rest`: its last [`REST_WINDOW`] seconds, as `stress`
+/// judges a stable rest (a landing and its settling are `land_frame_error`'s business, so a
+/// landing is charged once).
+pub(super) fn settled(ctx: &Context, rest: std::ops::Range<usize>) -> std::ops::Range<usize> {
+    let needed = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
+    rest.start.max(rest.end.saturating_sub(needed))..rest.end
+}
+
+/// `rest_jitter`: max minus min of y over the settled resting frames (see [`settled`]), in
+/// tiles.
 pub(super) fn rest_jitter(rows: &[TraceRow]) -> Measure {
     let (lo, hi) = rows
         .iter()

@@ -108,7 +108,7 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     let rest = landing::rest_frames(ctx, g, &rows);
     push(rest.clone().map(|r| landing::rest_gap(ctx, g, &rows[r])));
     push(Some(landing::max_penetration(g, &rows)));
-    push(rest.map(|r| landing::rest_jitter(&rows[r])));
+    push(rest.map(|r| landing::rest_jitter(&rows[landing::settled(ctx, r)])));
     push(Some(landing::grounded_flicker(ctx, g, &rows)));
     push(Some(landing::false_grounded(g, &rows)));
     push(jumping::apex_error(ctx, &rows));
@@ -319,12 +319,15 @@ map = """
     fn penetration_rest_gap_and_jitter_are_measured() {
         let s = spec(Vec2::new(2.5, 1.0), vec![], 1.0);
         let mut pts = vec![(2.5, 1.0, true); 11];
-        pts[4].1 = 0.97; // sank 0.03 into the floor
+        pts[4].1 = 0.97; // sank 0.03 into the floor while settling
+        pts[8].1 = 0.99; // dips 0.01 in the last half second, at rest
         pts[10].1 = 1.02; // ends 0.02 above it
         let rows = measure(&s, &trace(&pts));
         assert!((value(&rows, "max_penetration").unwrap() - 0.03).abs() < 1e-6);
         assert!((value(&rows, "rest_gap").unwrap() - 0.02).abs() < 1e-6);
-        assert!((value(&rows, "rest_jitter").unwrap() - 0.05).abs() < 1e-6);
+        // Jitter counts from the settled rest (the last 0.5 s, rows 6 to 10): 1.02 - 0.99. The
+        // settling dip at row 4 is the landing's business, not the rest's.
+        assert!((value(&rows, "rest_jitter").unwrap() - 0.03).abs() < 1e-6);
     }
 
     #[test]

@@ -191,7 +191,7 @@ pub const METRICS: &[MetricDef] = &[
         "rest_jitter",
         "tiles",
         Landing,
-        "max minus min of the feet's height over the resting frames",
+        "max minus min of the feet's height over the settled rest (its last 0.5 s, as stress judges it)",
         "scenarios ending with at least 0.5 s of idle input, not riding a platform",
         "a still rest",
         1.0,

@@ -201,15 +201,10 @@ pub fn scenario_svg(s: &ScenarioTraces) -> String {
 
 /// The metric table of one behaviour, as HTML rows and as Markdown.
 fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, String)> {
-    let subset: Vec<MetricRow> = rows
-        .iter()
-        .filter(|r| metrics.contains(&r.metric))
-        .cloned()
-        .collect();
-    if subset.is_empty() {
+    if !rows.iter().any(|r| metrics.contains(&r.metric)) {
         return None;
     }
-    let m = worst_matrix(&subset);
+    let m = worst_matrix(rows, |name| metrics.contains(&name));
     let mut html = String::from("<table><thead><tr><th>configuration</th>");
     let mut md = String::from("| configuration |");
     for (name, unit, _) in &m.metrics {
@@ -225,8 +220,12 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
         let _ = write!(md, " {} |", format_value(*ideal));
     }
     html.push_str("</tr>");
-    for (c, row) in m.configs.iter().zip(&m.cells) {
-        let _ = write!(html, "<tr><td>{}</td>", escape(c));
+    for (ci, row) in m.cells.iter().enumerate() {
+        if row.iter().all(|c| c.is_none()) {
+            continue;
+        }
+        let c = m.label(ci);
+        let _ = write!(html, "<tr><td>{}</td>", escape(&c));
         let _ = write!(md, "\n| {c} |");
         for cell in row {
             match cell {
@@ -395,7 +394,7 @@ pub fn render_report(
     let mut html = String::new();
     let mut md = String::new();
     html.push_str("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>platbench report</title><style>\nbody{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\ntable{border-collapse:collapse;margin:0.5em 0 1em;font-size:13px}\nth,td{border:1px solid #ccc;padding:3px 6px;text-align:right}\nth:first-child,td:first-child{text-align:left}\ntd.best{background:#c8e6c9;font-weight:bold}\ntr.ideal td{color:#777;font-style:italic}\nsvg.scenario{background:#fafafa;border:1px solid #ddd;max-width:100%;height:auto}\n.legend span{display:inline-block;margin-right:1em}\n.legend i{display:inline-block;width:1.5em;height:3px;vertical-align:middle;margin-right:0.3em}\n</style></head><body>\n");
-    let configs = worst_matrix(rows).configs.len();
+    let configs = worst_matrix(rows, |_| false).configs.len();
     let _ = write!(html, "<h1>platbench report</h1><p>{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; the best is highlighted.</p>", scenarios.len());
     let _ = write!(md, "# platbench report\n\n{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; **best** marks the best.\n", scenarios.len());
     html.push_str("<h2 id=\"which\">Which backend for which game</h2><ul>");
