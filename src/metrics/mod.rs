@@ -12,6 +12,7 @@
 //! Only character 0 is measured.
 
 pub mod ground;
+pub mod idle;
 pub mod jumping;
 pub mod ladders;
 pub mod landing;
@@ -132,6 +133,7 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     push(platforms::push_penetration(ctx, &rows));
     push(platforms::crush_count(ctx, &rows));
     push(Some(walls::tunneled(ctx, &rows)));
+    push(idle::idle_drift(ctx, &rows));
     out
 }
 
@@ -290,7 +292,8 @@ map = """
                 "grounded_flicker",
                 "false_grounded",
                 "stuck_frames",
-                "tunneled"
+                "tunneled",
+                "idle_drift"
             ]
         );
         for r in &rows {

@@ -94,7 +94,7 @@ impl Behaviour {
 
 /// The summary's tables, in print order.
 pub const SUMMARY_GROUPS: [&str; 4] = [
-    "landing, jumping, walking, walls",
+    "landing, jumping, walking, walls, standing still",
     "slopes, one-way platforms, ladders",
     "moving platforms",
     "cost (run --timing)",
@@ -356,6 +356,15 @@ pub const METRICS: &[MetricDef] = &[
         "1 if the character passed wholly through a solid tile between two frames, else 0",
         "every scenario",
         "never",
+        1.0,
+    ),
+    def(
+        "idle_drift",
+        "tiles",
+        Idle,
+        "largest displacement of a settled character with no input, off ladders, riding no platform and pushed by none, over each idle span",
+        "every scenario with an idle step that rides no platform",
+        "standing still",
         1.0,
     ),
     def(

@@ -456,6 +456,7 @@ fn note_is_about(note: &str, metric: &str) -> bool {
     let key = match metric {
         "rest_gap" => "rest_gap",
         "slope_overlap" => "slope_overlap",
+        "idle_drift" => "idle_drift",
         "land_frame_error" => "lands early",
         "max_penetration" => "sinks into",
         "false_grounded" => "false_grounded",

@@ -282,6 +282,9 @@ pub fn notes(rows: &[MetricRow]) -> Vec<String> {
     if rapier("progress_ratio").any(|r| r.value < 0.99) {
         out.push("rapier loses progress on flat ground: the shape catches on tile seams and, when it starts inside its offset band (spawned flush, walk_right_flush), creeps back out by only 1e-4 tiles a step.".into());
     }
+    if rapier("idle_drift").any(|r| r.value > 1e-3) {
+        out.push("rapier idle_drift: a standing Rapier character moves with no input: spawned flush it creeps out to its offset (up to 0.009 tiles, 1e-4 a step), on a slope at rest it slides, and a wall sliding flush past its side pushes it away (moving_wall).".into());
+    }
     if rows
         .iter()
         .any(|r| r.backend == "sweep" && r.metric == "slope_overlap" && r.value > 1e-3)
