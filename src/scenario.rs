@@ -4,6 +4,7 @@
 use crate::backend::{Backend, BackendError, CharacterSpec};
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::{Input, JumpMode, MotionParams};
+use glam::Vec2;
 use std::rc::Rc;
 
 use crate::rapier::{ColliderBuilding, RapierBackend, RapierConfig, StaticWorld};
@@ -37,6 +38,29 @@ impl BackendConfig {
         }
     }
 
+    /// The contact this configuration declares it keeps, for a character of outer `size`
+    /// (tiles) with climb limit `max_climb_angle` (radians): what its documentation promises,
+    /// so a metric can score it on keeping that promise.
+    pub fn declared_contact(&self, size: Vec2, max_climb_angle: f32) -> DeclaredContact {
+        match self {
+            BackendConfig::Sweep(c) => match c.positions {
+                crate::sweep::Positions::Float => DeclaredContact {
+                    gap: 0.0,
+                    overlap_tolerance: c.epsilon,
+                    slope_overhang: size.x * 0.5 * max_climb_angle.tan(),
+                },
+                crate::sweep::Positions::Integer { .. } => DeclaredContact::default(),
+            },
+            BackendConfig::Rapier(c) => DeclaredContact {
+                gap: match c.offset {
+                    crate::rapier::Length::Absolute(v) => v,
+                    crate::rapier::Length::Relative(v) => v * size.y,
+                },
+                ..DeclaredContact::default()
+            },
+        }
+    }
+
     /// Builds the backend over `level`.
     pub fn build(
         &self,
@@ -56,6 +80,22 @@ impl BackendConfig {
             )?)),
         }
     }
+}
+
+/// The contact a configuration promises to keep with the level (see
+/// [`BackendConfig::declared_contact`]); all lengths in tiles.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DeclaredContact {
+    /// Gap kept to obstacles along their normal: Rapier's `offset` ("must not be zero"), 0 for
+    /// a controller that snaps flush.
+    pub gap: f32,
+    /// Overlap tolerated before a contact counts: the sweep's epsilon (the seed's "overlap
+    /// tolerance").
+    pub overlap_tolerance: f32,
+    /// How far the character's shape may overhang into a slope, vertically: the seed's
+    /// centre-column rule stands a box on the surface under its centre, so its corner may be
+    /// half its width times the climb gradient inside a walkable ramp.
+    pub slope_overhang: f32,
 }
 
 /// One column of a comparison: a backend configuration and the motion parameters it runs with.

@@ -6,7 +6,7 @@
 mod common;
 
 use common::{evaluate_all, level, rows};
-use platbench::metrics::{compute, Context, MetricRow};
+use platbench::metrics::{compute, Context, DeclaredContact, MetricRow};
 use platbench::motion::MotionParams;
 use platbench::scenario::{effective_params, RunConfig};
 use platbench::shape::CharacterShape;
@@ -42,7 +42,7 @@ fn the_sweeps_box_overlaps_each_ramp_by_its_designed_overhang() {
 }
 
 /// The metrics of `t` on `spec`, recomputed.
-fn metrics_of(name: &str, scenario: &str, t: &Trace) -> Vec<MetricRow> {
+fn metrics_of(name: &str, scenario: &str, t: &Trace, declared: DeclaredContact) -> Vec<MetricRow> {
     let level = level(name);
     let spec = level
         .scenarios
@@ -56,6 +56,7 @@ fn metrics_of(name: &str, scenario: &str, t: &Trace) -> Vec<MetricRow> {
         spec,
         params: &params,
         trace: t,
+        declared,
     })
 }
 
@@ -81,7 +82,10 @@ fn feet_moved_below_a_slope_are_seen() {
             .iter()
             .find(|(n, _)| n.ends_with(&format!(".{scenario}")))
             .expect("scenario ran");
-        let before = metrics_of("slope_45", scenario, &e.trace);
+        let sweep = RunConfig::sweep_default()
+            .backend
+            .declared_contact(glam::Vec2::new(0.8, 0.9), std::f32::consts::FRAC_PI_4);
+        let before = metrics_of("slope_45", scenario, &e.trace, sweep);
         let mut sunk = e.trace.clone();
         let mut moved = 0;
         for r in &mut sunk.rows {
@@ -92,7 +96,7 @@ fn feet_moved_below_a_slope_are_seen() {
             }
         }
         assert!(moved > 10, "{scenario}: {moved} frames over the ramp");
-        let after = metrics_of("slope_45", scenario, &sunk);
+        let after = metrics_of("slope_45", scenario, &sunk, sweep);
         for m in ["slope_overlap", "max_penetration"] {
             let (b, a) = (value(&before, m), value(&after, m));
             assert!(a >= b + deeper, "{scenario} {m}: {b} -> {a}");
@@ -102,6 +106,18 @@ fn feet_moved_below_a_slope_are_seen() {
             value(&after, "slope_gap_max"),
         );
         assert!(a <= b - deeper, "{scenario} slope_gap_max: {b} -> {a}");
+        // Against the sweep's own promise (overhang at most 0.4 vertically at the 45-degree
+        // climb limit, plus epsilon): kept before (0), broken after by the depth beyond it:
+        // 0.4 sin 45 + 0.2 cos 45 - 0.4 - 0.001 = 0.0233 along the normal (1e-3: f32).
+        let (b, a) = (
+            value(&before, "penetration_beyond_declared"),
+            value(&after, "penetration_beyond_declared"),
+        );
+        assert_eq!(b, 0.0, "{scenario}");
+        assert!(
+            a >= 0.0233 - 1e-3,
+            "{scenario} penetration_beyond_declared {a}"
+        );
         if scenario == "rest_on_slope" {
             let (b, a) = (value(&before, "rest_gap"), value(&after, "rest_gap"));
             assert!(a <= b - deeper, "rest_gap: {b} -> {a}");

@@ -42,6 +42,7 @@ fn a_character_dragged_by_the_passing_wall_is_seen() {
             spec,
             params: &params,
             trace: t,
+            declared: Default::default(),
         })
         .into_iter()
         .find(|r| r.metric == "idle_drift")

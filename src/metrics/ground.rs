@@ -92,6 +92,11 @@ impl<'a> Ground<'a> {
         self.deepest(feet, true, true)
     }
 
+    /// Deepest overlap of the shape with a solid tile's square, in tiles (0 if none).
+    pub fn square_penetration(&self, feet: Vec2) -> f32 {
+        self.deepest(feet, true, false)
+    }
+
     /// Deepest overlap of the shape with a slope tile's solid part, in tiles (0 if none).
     pub fn slope_penetration(&self, feet: Vec2) -> f32 {
         self.deepest(feet, false, true)

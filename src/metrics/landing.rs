@@ -121,6 +121,61 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
     }
 }
 
+/// `rest_gap_declared`: the `rest_gap` minus the gap of the stance the configuration declares
+/// (so 0 is a promise kept, positive farther than promised, negative closer or deeper): its declared gap along the ground's normal (Rapier's `offset`:
+/// `offset / cos(angle)` vertically on a slope), or, for a controller that stands a box on the
+/// surface under its centre (the seed), the gap of that stance (inside a slope by its overhang).
+pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+    let rest = rest_gap(ctx, g, rows);
+    let feet = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
+    let under = ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5);
+    let reference = match under {
+        Some((h, Some(_))) if ctx.declared.slope_overhang > 0.0 => {
+            g.gap(glam::Vec2::new(feet.x, h)) as f64
+        }
+        Some((_, Some((i, j)))) => {
+            let n = ctx.level.slope_normal(i, j, feet.x);
+            (ctx.declared.gap / n.y.max(1e-3)) as f64
+        }
+        _ => ctx.declared.gap as f64,
+    };
+    Measure {
+        metric: "rest_gap_declared",
+        value: rest.value - reference,
+        reference: 0.0,
+    }
+}
+
+/// `penetration_beyond_declared`: over the run, the deepest overlap with the level beyond what
+/// the configuration declares it may overlap, in tiles: its overlap tolerance (the sweep's
+/// epsilon) everywhere, plus, while it overlaps a slope or stands over one (the surface under its
+/// centre within the overhang is a slope), its declared overhang (the seed's box, up to half its
+/// width times the climb gradient into the ramp and the ground that continues it). A controller
+/// keeping its promise scores 0.
+pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+    let d = ctx.declared;
+    let worst = rows
+        .iter()
+        .map(|r| {
+            let p = pos(r);
+            let slopes = g.slope_penetration(p);
+            let over_slope = slopes > 0.0
+                || matches!(
+                    ctx.level
+                        .surface_at(p.x, p.y + d.slope_overhang, 2.0 * d.slope_overhang),
+                    Some((_, Some(_)))
+                );
+            let allowed = d.overlap_tolerance + if over_slope { d.slope_overhang } else { 0.0 };
+            (g.square_penetration(p).max(slopes) - allowed).max(0.0)
+        })
+        .fold(0.0f32, f32::max);
+    Measure {
+        metric: "penetration_beyond_declared",
+        value: worst as f64,
+        reference: 0.0,
+    }
+}
+
 /// The settled part of the rest frames `rest`: its last [`REST_WINDOW`] seconds, as `stress`
 /// judges a stable rest (a landing and its settling are `land_frame_error`'s business, so a
 /// landing is charged once).

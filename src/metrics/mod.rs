@@ -31,6 +31,7 @@ use serde::Serialize;
 
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::MotionParams;
+pub use crate::scenario::DeclaredContact;
 use crate::shape::CharacterShape;
 use crate::trace::{Trace, TraceRow};
 use glam::Vec2;
@@ -82,6 +83,9 @@ pub struct Context<'a> {
     pub params: &'a MotionParams,
     /// The trace.
     pub trace: &'a Trace,
+    /// The contact the configuration declares it keeps (Rapier's offset, the sweep's slope
+    /// overhang), for the metrics that score a controller against its own promise.
+    pub declared: DeclaredContact,
 }
 
 /// Computes every metric that applies to the scenario.
@@ -108,7 +112,12 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     push(landing::land_frame_error(ctx, &rows));
     let rest = landing::rest_frames(ctx, g, &rows);
     push(rest.clone().map(|r| landing::rest_gap(ctx, g, &rows[r])));
+    push(
+        rest.clone()
+            .map(|r| landing::rest_gap_declared(ctx, g, &rows[r])),
+    );
     push(Some(landing::max_penetration(g, &rows)));
+    push(Some(landing::penetration_beyond_declared(ctx, g, &rows)));
     push(rest.map(|r| landing::rest_jitter(&rows[landing::settled(ctx, r)])));
     push(Some(landing::grounded_flicker(ctx, g, &rows)));
     push(Some(landing::false_grounded(g, &rows)));
@@ -119,7 +128,9 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     push(slopes::slope_airborne_frames(ctx, &rows, &on_slope));
     push(slopes::slope_gap_max(ctx, g, &rows, &on_slope));
     push(slopes::slope_overlap(ctx, g, &rows));
-    push(slopes::slope_speed_ratio(ctx, &rows, &on_slope));
+    let [horizontal, along] = slopes::slope_speed_ratios(ctx, &rows, &on_slope);
+    push(horizontal);
+    push(along);
     push(slopes::steep_blocked(ctx, &rows));
     push(oneway::oneway_result(ctx, &rows));
     push(ladders::ladder_speed_error(ctx, &rows));
@@ -195,6 +206,9 @@ pub fn evaluate_with(
         spec,
         params: &params,
         trace: &trace,
+        declared: run
+            .backend
+            .declared_contact(spec.size, params.max_climb_angle),
     });
     Ok(Evaluation { trace, metrics })
 }
@@ -268,6 +282,7 @@ map = """
             spec: s,
             params: &p,
             trace: t,
+            declared: DeclaredContact::default(),
         })
     }
 
@@ -287,7 +302,9 @@ map = """
             names,
             [
                 "rest_gap",
+                "rest_gap_declared",
                 "max_penetration",
+                "penetration_beyond_declared",
                 "rest_jitter",
                 "grounded_flicker",
                 "false_grounded",

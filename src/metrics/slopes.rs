@@ -131,17 +131,26 @@ pub(super) fn rest_on_slope(ctx: &Context) -> bool {
         )
 }
 
-/// `slope_speed_ratio`: mean horizontal speed over a walkable slope while walking at full run
-/// speed, over the run speed (the horizontal speed the same input gives on flat ground).
-pub fn slope_speed_ratio(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
+/// The speed over a walkable slope against two models, each over the run speed (the speed the
+/// same input gives on flat ground), as the mean over the steps walked over a slope at full
+/// commanded speed:
+///
+/// - `slope_speed_ratio`: the horizontal speed, against constant horizontal speed (the seed:
+///   the box moves along x at run speed and its height follows the surface);
+/// - `slope_surface_speed_ratio`: the speed along the path (x and y), against constant speed
+///   along the surface (Godot's `floor_constant_speed`).
+///
+/// A controller is not wrong for following either model: the report shows both. 0 if it never
+/// walked the slope at full speed.
+pub fn slope_speed_ratios(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> [Option<Measure>; 2] {
     // A walk into a too-steep rise is steep_blocked's business, not a speed.
     if !walks_over_slopes(ctx) || steep_ahead(ctx) {
-        return None;
+        return [None, None];
     }
     let script = input_script(ctx.spec);
     // Steps at full commanded speed: the same direction held since the ramp-up ended.
     let ramp = (ctx.params.run_speed / (ctx.params.run_accel * ctx.spec.dt)).ceil() as usize + 1;
-    let speeds: Vec<f64> = (1..rows.len())
+    let steps: Vec<usize> = (1..rows.len())
         .filter(|&k| {
             let dir = script[k - 1].horizontal();
             dir != 0.0
@@ -152,19 +161,30 @@ pub fn slope_speed_ratio(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> Optio
                     .iter()
                     .all(|i| i.horizontal() == dir)
         })
-        .map(|k| ((rows[k].x - rows[k - 1].x) as f64 / ctx.spec.dt as f64).abs())
         .collect();
-    // Never on a slope at full speed: it did not walk the slope.
-    let mean = if speeds.is_empty() {
-        0.0
-    } else {
-        speeds.iter().sum::<f64>() / speeds.len() as f64
+    let dt = ctx.spec.dt as f64;
+    let mean = |speed: &dyn Fn(usize) -> f64| {
+        if steps.is_empty() {
+            0.0
+        } else {
+            steps.iter().map(|&k| speed(k)).sum::<f64>() / steps.len() as f64
+        }
     };
-    Some(Measure {
-        metric: "slope_speed_ratio",
-        value: mean / ctx.params.run_speed as f64,
-        reference: 1.0,
-    })
+    let horizontal = mean(&|k| ((rows[k].x - rows[k - 1].x) as f64 / dt).abs());
+    let along = mean(&|k| (pos(&rows[k]) - pos(&rows[k - 1])).length() as f64 / dt);
+    let run = ctx.params.run_speed as f64;
+    [
+        Some(Measure {
+            metric: "slope_speed_ratio",
+            value: horizontal / run,
+            reference: 1.0,
+        }),
+        Some(Measure {
+            metric: "slope_surface_speed_ratio",
+            value: along / run,
+            reference: 1.0,
+        }),
+    ]
 }
 
 /// Whether the commanded walk reaches a slope rising more steeply than the climb limit.
