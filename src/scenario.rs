@@ -61,6 +61,22 @@ impl BackendConfig {
         }
     }
 
+    /// The outer size of the box the configuration really moves for a character of requested
+    /// `size` (tiles): integer positions round it up to whole subpixels (0.8 x 0.9 tiles at 32
+    /// per tile is 26 x 29 subpixels, 0.8125 x 0.90625 tiles), so the metrics measure that box.
+    pub fn moved_size(&self, size: Vec2) -> Vec2 {
+        match self {
+            BackendConfig::Sweep(SweepConfig {
+                positions: crate::sweep::Positions::Integer { per_tile },
+                ..
+            }) => {
+                let n = crate::sweep::grid::subpixel_size(size, *per_tile as i64);
+                n.as_vec2() / *per_tile as f32
+            }
+            _ => size,
+        }
+    }
+
     /// Builds the backend over `level`.
     pub fn build(
         &self,

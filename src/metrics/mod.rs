@@ -200,15 +200,19 @@ pub fn evaluate_with(
     let level = runner.level();
     let trace = runner.run(spec, run)?;
     let params = crate::scenario::effective_params(&run.params, spec);
+    // Measured on the box the configuration really moves (integer positions round it up to
+    // whole subpixels).
+    let mut moved = spec.clone();
+    moved.size = run.backend.moved_size(spec.size);
     let metrics = compute(&Context {
         shape: run.shape(),
         level,
-        spec,
+        spec: &moved,
         params: &params,
         trace: &trace,
         declared: run
             .backend
-            .declared_contact(spec.size, params.max_climb_angle),
+            .declared_contact(moved.size, params.max_climb_angle),
     });
     Ok(Evaluation { trace, metrics })
 }
