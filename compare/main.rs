@@ -54,6 +54,11 @@ enum Command {
         out: PathBuf,
         /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
         levels: Vec<PathBuf>,
+        /// The error score: METRIC[=WEIGHT],... (weight 1 if omitted; unlisted metrics weigh
+        /// 0). Default: the registry's weights, which charge no controller for its declared
+        /// design (Rapier's offset, the sweep's box overhanging a slope).
+        #[arg(long)]
+        score: Option<String>,
     },
     /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
     /// tunneling, stable rest, no grounded flicker, carry without drift) at the extremes, one
@@ -160,7 +165,9 @@ fn main() -> ExitCode {
         Some(Command::Run(args)) => run(&args, true),
         Some(Command::Levels) => list_levels(),
         Some(Command::Stress { out }) => stress(&out),
-        Some(Command::Sweep { out, levels }) => sweep_settings(&out, &levels),
+        Some(Command::Sweep { out, levels, score }) => {
+            sweep_settings(&out, &levels, score.as_deref())
+        }
         Some(Command::Report(args)) => report(&args),
         Some(Command::Diff(args)) => return diff(&args),
     };
@@ -492,12 +499,22 @@ fn report(args: &ReportArgs) -> Result<()> {
     Ok(())
 }
 
-fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<()> {
-    use platbench::tradeoff::{chart_svg, grid, run_tradeoff};
+fn sweep_settings(
+    out_dir: &std::path::Path,
+    level_files: &[PathBuf],
+    score: Option<&str>,
+) -> Result<()> {
+    use platbench::metrics::score::Score;
+    use platbench::tradeoff::{chart_svg_scope, grid, run_tradeoff, scored_behaviours, ALL};
+    let score = match score {
+        Some(s) => Score::parse(s)?,
+        None => Score::default(),
+    };
+    eprintln!("error score: {}", score.describe());
     let levels = load_levels(level_files)?;
     let settings = grid();
     let started = Instant::now();
-    let rows = run_tradeoff(&levels, &settings, |done, total, label| {
+    let rows = run_tradeoff(&levels, &settings, &score, |done, total, label| {
         let width = 30;
         let filled = done * width / total.max(1);
         eprintln!(
@@ -516,7 +533,7 @@ fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<
         "error score",
         "Pareto",
     ]);
-    for r in &rows {
+    for r in rows.iter().filter(|r| r.scope == ALL) {
         t.add_row(vec![
             r.backend.clone(),
             r.setting.clone(),
@@ -537,10 +554,16 @@ fn sweep_settings(out_dir: &std::path::Path, level_files: &[PathBuf]) -> Result<
     drop(w);
     csv_tmp.persist(out_dir.join("tradeoff.csv"))?;
     let mut svg_tmp = tempfile::NamedTempFile::new_in(out_dir)?;
-    std::io::Write::write_all(&mut svg_tmp, chart_svg(&rows).as_bytes())?;
+    std::io::Write::write_all(&mut svg_tmp, chart_svg_scope(&rows, ALL).as_bytes())?;
     svg_tmp.persist(out_dir.join("tradeoff.svg"))?;
+    // The front per behaviour: tradeoff.<behaviour>.svg.
+    for b in scored_behaviours() {
+        let mut tmp = tempfile::NamedTempFile::new_in(out_dir)?;
+        std::io::Write::write_all(&mut tmp, chart_svg_scope(&rows, b.key()).as_bytes())?;
+        tmp.persist(out_dir.join(format!("tradeoff.{}.svg", b.key())))?;
+    }
     eprintln!(
-        "wrote tradeoff.csv and tradeoff.svg to {}",
+        "wrote tradeoff.csv, tradeoff.svg and tradeoff.<behaviour>.svg to {}",
         out_dir.display()
     );
     Ok(())

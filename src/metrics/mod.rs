@@ -20,6 +20,7 @@ pub mod oneway;
 pub mod platforms;
 mod reference;
 pub mod registry;
+pub mod score;
 pub mod seams;
 pub mod slopes;
 pub mod walls;

@@ -116,8 +116,15 @@ pub struct MetricDef {
     /// The model it measures against (what "ideal" means), where controllers could differ by
     /// design.
     pub reference: &'static str,
-    /// Its weight in the default error score of `platbench sweep` (0: not scored).
+    /// Its weight in the default error score of `platbench sweep` (0: not scored). The default
+    /// charges no controller for its declared design: the touching-model geometric metrics
+    /// (`rest_gap`, `max_penetration`, `slope_gap_max`, `slope_overlap`) weigh 0 and their
+    /// declared-model twins (`rest_gap_declared`, `penetration_beyond_declared`) 1.
     pub weight: f64,
+    /// Metrics that measure the same behaviour against different models share a group: the
+    /// error score charges a scenario only the closest model's error (a controller following
+    /// either model of slope speed is not wrong).
+    pub model_group: Option<&'static str>,
 }
 
 impl MetricDef {
@@ -153,6 +160,10 @@ const fn def(
         applies,
         reference,
         weight,
+        model_group: match name.as_bytes() {
+            b"slope_speed_ratio" | b"slope_surface_speed_ratio" => Some("slope_speed"),
+            _ => None,
+        },
     }
 }
 
@@ -176,7 +187,7 @@ pub const METRICS: &[MetricDef] = &[
         "signed gap from the character's shape down to the ground at the end of a rest (negative: sunk)",
         "scenarios ending with at least 0.5 s of idle input, not riding a platform",
         "touching (gap 0)",
-        1.0,
+        0.0,
     ),
     def(
         "rest_gap_declared",
@@ -194,7 +205,7 @@ pub const METRICS: &[MetricDef] = &[
         "deepest overlap of the character's shape with the level's solid tiles and slopes over the run",
         "every scenario",
         "no overlap",
-        1.0,
+        0.0,
     ),
     def(
         "penetration_beyond_declared",
@@ -275,7 +286,7 @@ pub const METRICS: &[MetricDef] = &[
         "signed gap between the shape and the surface farthest from touching over a walkable slope while grounded (negative: inside)",
         "a walk over, or a rest on, a slope within the climb limit",
         "touching (gap 0)",
-        1.0,
+        0.0,
     ),
     def(
         "slope_overlap",
@@ -284,7 +295,7 @@ pub const METRICS: &[MetricDef] = &[
         "deepest overlap of the character's shape with a slope tile's solid part (penetration depth)",
         "every scenario on a level with slopes",
         "touching; the seed's centre-column rule overhangs a box by half its width times the gradient, by design",
-        1.0,
+        0.0,
     ),
     def(
         "slope_speed_ratio",

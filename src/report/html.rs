@@ -334,7 +334,10 @@ fn tradeoff_section(rows: &[TradeoffRow]) -> (String, String) {
     let mut md = String::from("\n## Speed against accuracy\n\nThe chart is in the HTML report. Settings on the Pareto front (no other setting is both cheaper and more accurate):\n\n| backend | setting | us per character per game second | error score |\n|---|---|---:|---:|\n");
     html.push_str(&chart_svg(rows));
     html.push_str("<table><thead><tr><th>backend</th><th>setting</th><th>us per character per game second</th><th>error score</th></tr></thead><tbody>");
-    let mut front: Vec<&TradeoffRow> = rows.iter().filter(|r| r.pareto).collect();
+    let mut front: Vec<&TradeoffRow> = rows
+        .iter()
+        .filter(|r| r.pareto && r.scope == crate::tradeoff::ALL)
+        .collect();
     front.sort_by(|a, b| a.cost_us.total_cmp(&b.cost_us));
     for r in front {
         let (b, s) = (escape(&r.backend), escape(&r.setting));
@@ -348,6 +351,32 @@ fn tradeoff_section(rows: &[TradeoffRow]) -> (String, String) {
             "| {} | {} | {:.1} | {:.4} |",
             r.backend, r.setting, r.cost_us, r.error
         );
+    }
+    html.push_str("</tbody></table>");
+    // The front of each behaviour's own score, cheapest first.
+    html.push_str("<p>The front of each behaviour's own score (its metrics alone), cheapest first:</p><table><thead><tr><th>behaviour</th><th>settings on its front</th></tr></thead><tbody>");
+    md.push_str("\nThe front of each behaviour's own score (its metrics alone), cheapest first:\n\n| behaviour | settings on its front |\n|---|---|\n");
+    for b in crate::tradeoff::scored_behaviours() {
+        let mut f: Vec<&TradeoffRow> = rows
+            .iter()
+            .filter(|r| r.pareto && r.scope == b.key())
+            .collect();
+        if f.is_empty() {
+            continue;
+        }
+        f.sort_by(|x, y| x.cost_us.total_cmp(&y.cost_us));
+        let list = f
+            .iter()
+            .map(|r| format!("{} {}", r.backend, r.setting))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let _ = write!(
+            html,
+            "<tr><td>{}</td><td>{}</td></tr>",
+            b.title(),
+            escape(&list)
+        );
+        let _ = writeln!(md, "| {} | {list} |", b.title());
     }
     html.push_str("</tbody></table>");
     (html, md)
