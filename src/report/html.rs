@@ -251,60 +251,10 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
     Some((html, md))
 }
 
-/// The worst value of `metric` over all scenarios for configurations whose label starts with
-/// `prefix`, by distance from the ideal.
-fn worst(rows: &[MetricRow], prefix: &str, metric: &str) -> Option<f64> {
-    rows.iter()
-        .filter(|r| r.metric == metric && format!("{} {}", r.backend, r.config).starts_with(prefix))
-        .max_by(|a, b| a.error.abs().total_cmp(&b.error.abs()))
-        .map(|r| r.value)
-}
-
-/// "Which backend for which game": statements derived from the measured worst values, each
-/// with its numbers; only those the measurements support are made.
+/// "Which backend for which game": the statements of [`super::rules::RULES`], each evaluated
+/// for every configuration on its worst values, with the numbers.
 pub fn recommendations(rows: &[MetricRow]) -> Vec<String> {
-    let mut out = Vec::new();
-    let v = |p: &str, m: &str| worst(rows, p, m);
-    if let (Some(sg), Some(rg)) = (v("sweep default", "rest_gap"), v("rapier", "rest_gap")) {
-        if sg.abs() <= 1e-4 && rg.abs() > 1e-3 {
-            out.push(format!("Flush, pixel-exact contact (tile games whose sprites must touch the ground): sweep rests at {} tiles from the ground, Rapier up to {} (its offset along the surface normal, by design).", format_value(sg), format_value(rg)));
-        }
-    }
-    if let (Some(s), Some(c)) = (
-        v("sweep default", "progress_ratio"),
-        v("rapier merged cuboid", "progress_ratio"),
-    ) {
-        if c < 0.5 {
-            out.push(format!("A box-shaped hero on Rapier needs per-tile colliders or a rounded shape: on one long merged floor the cuboid covers as little as {} of the commanded walk (sweep {}).", format_value(c), format_value(s)));
-        }
-    }
-    if let Some(c) = v("rapier merged capsule", "progress_ratio") {
-        out.push(format!("Rounded characters on Rapier: the capsule walks merged floors (worst {} of the commanded walk), but keep merged boxes short: on a 2,000-tile box rounded shapes sink (max_penetration {}).", format_value(c), format_value(v("rapier merged capsule", "max_penetration").unwrap_or(0.0))));
-    }
-    if let (Some(s), Some(r)) = (
-        v("sweep default", "slope_airborne_frames"),
-        v("rapier", "steep_blocked"),
-    ) {
-        if r < 1.0 {
-            out.push(format!("Slopes with a strict climb limit: sweep ({} airborne frames walking slopes, every too-steep slope blocked); Rapier on merged colliders climbs too-steep slopes that rise to the left.", format_value(s)));
-        }
-    }
-    let turning = |prefix: &str| {
-        rows.iter()
-            .filter(|r| {
-                r.metric == "carry_airborne_frames"
-                    && (r.scenario == "diagonal" || r.scenario == "circle")
-                    && format!("{} {}", r.backend, r.config).starts_with(prefix)
-            })
-            .map(|r| r.value)
-            .fold(None, |a: Option<f64>, v| Some(a.map_or(v, |a| a.max(v))))
-    };
-    if let (Some(s), Some(r)) = (turning("sweep default"), turning("rapier")) {
-        if r > s {
-            out.push(format!("Moving platforms on diagonal or circular paths: the sweep keeps its rider on ({} airborne frames); Rapier's controller loses it (up to {} airborne frames).", format_value(s), format_value(r)));
-        }
-    }
-    out
+    super::rules::evaluate(super::rules::RULES, rows)
 }
 
 /// Results of the slower commands the report can include: `platbench sweep`'s `tradeoff.csv`
