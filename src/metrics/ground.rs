@@ -177,6 +177,19 @@ impl<'a> Ground<'a> {
         if sunk > 0.0 {
             return -sunk;
         }
+        self.cast_down(feet).0
+    }
+
+    /// The normal of the ground the shape would touch dropping straight down from `feet` (the
+    /// surface's outward normal at the first contact), if any is within [`GROUND_SEARCH`].
+    pub fn ground_normal(&self, feet: Vec2) -> Option<Vec2> {
+        let (toi, n) = self.cast_down(feet);
+        toi.is_finite().then_some(n)
+    }
+
+    /// The distance the shape can drop from `feet` before it touches the static ground, and the
+    /// ground's outward normal there (infinite and up if nothing is within reach).
+    fn cast_down(&self, feet: Vec2) -> (f32, Vec2) {
         let pose = CharacterShape::pose(feet, self.size);
         let half = self.size.x * 0.5;
         // Columns the shape spans (a wall touching its side is not under it), rows from mid-body
@@ -185,7 +198,7 @@ impl<'a> Ground<'a> {
         let i1 = (feet.x + half - 1e-4).floor() as i64;
         let j_top = (feet.y + self.size.y * 0.5).floor() as i64;
         let j_low = (feet.y - GROUND_SEARCH).floor() as i64;
-        let mut best = f32::INFINITY;
+        let mut best = (f32::INFINITY, Vec2::Y);
         for i in i0..=i1 {
             for j in (j_low..=j_top).rev() {
                 let origin = Vec2::new(i as f32, j as f32);
@@ -217,7 +230,10 @@ impl<'a> Ground<'a> {
                     tile_shape,
                     options,
                 ) {
-                    best = best.min(hit.time_of_impact);
+                    if hit.time_of_impact < best.0 {
+                        // Tiles are posed by translation only: the local normal is the world's.
+                        best = (hit.time_of_impact, hit.normal2);
+                    }
                 }
             }
         }

@@ -8,6 +8,7 @@ use crate::scenario::input_script;
 use crate::shape::CharacterShape;
 use crate::trace::TraceRow;
 use parry2d::bounding_volume::Aabb;
+use parry2d::shape::SharedShape;
 
 /// How much two boxes must overlap across an axis to be side by side along it, in tiles: above
 /// f32 rounding of a flush contact, so a wall sliding flush past a character's side is beside
@@ -18,14 +19,19 @@ pub const SIDE_OVERLAP: f32 = 1e-4;
 /// not on a ladder, riding no platform (as the trace says, or standing on one: feet within
 /// [`ON_PLATFORM`] plus the platform's step of its top over it, since not every backend names
 /// the platform it rides), and not pushed (see [`pushed`]).
-fn idle_frame(ctx: &Context, script: &[Input], rows: &[TraceRow], k: usize) -> bool {
+fn idle_frame(
+    ctx: &Context,
+    shape: &SharedShape,
+    script: &[Input],
+    rows: &[TraceRow],
+    k: usize,
+) -> bool {
     let r = &rows[k];
     let idle = script.get(k - 1).is_some_and(|i| *i == Input::default());
     if !idle || !r.is_grounded() || r.ladder != 0 || r.platform.is_some() {
         return false;
     }
     // The shape's own box (a ball is as wide as it is tall).
-    let shape = ctx.shape.build(ctx.spec.size);
     let shape_box = |feet| shape.compute_aabb(&CharacterShape::pose(feet, ctx.spec.size));
     let before = shape_box(pos(&rows[k - 1]));
     let half = before.half_extents().x;
@@ -82,16 +88,17 @@ pub fn idle_drift(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     let commanded = commanded_steps(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt);
     let still = ctx.params.run_speed * ctx.spec.dt * 0.01;
     let settle = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
+    let shape = ctx.shape.build(ctx.spec.size);
     let mut worst: Option<f32> = None;
     let mut k = 1;
     while k < rows.len() {
-        if !idle_frame(ctx, &script, rows, k) {
+        if !idle_frame(ctx, &shape, &script, rows, k) {
             k += 1;
             continue;
         }
         let mut glide_end: Option<usize> = None;
         let mut anchor: Option<usize> = None;
-        while k < rows.len() && idle_frame(ctx, &script, rows, k) {
+        while k < rows.len() && idle_frame(ctx, &shape, &script, rows, k) {
             let moved = (pos(&rows[k]) - pos(&rows[k - 1])).length();
             // The glide is over when neither the commanded walk nor the velocity the
             // controller reports (a jump off a ladder, a push) moves it by STOPPED_STEP a step.

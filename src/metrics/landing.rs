@@ -122,7 +122,8 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
 }
 
 /// `rest_gap_declared`: the `rest_gap` minus the gap of the stance the configuration declares
-/// (so 0 is a promise kept, positive farther than promised, negative closer or deeper): its declared gap along the ground's normal (Rapier's `offset`:
+/// (so 0 is a promise kept, positive farther than promised, negative closer or deeper): its
+/// declared gap along the normal of the ground a straight drop meets (Rapier's `offset`:
 /// `offset / cos(angle)` vertically on a slope), or, for a controller that stands a box on the
 /// surface under its centre (the seed), the gap of that stance (inside a slope by its overhang).
 pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
@@ -133,11 +134,12 @@ pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) ->
         Some((h, Some(_))) if ctx.declared.slope_overhang > 0.0 => {
             g.gap(glam::Vec2::new(feet.x, h)) as f64
         }
-        Some((_, Some((i, j)))) => {
-            let n = ctx.level.slope_normal(i, j, feet.x);
-            (ctx.declared.gap / n.y.max(1e-3)) as f64
+        // A gap kept along the normal of the ground the shape rests on reads vertically as
+        // gap / cos(angle) (the normal a straight drop meets; a wall's is clamped at 84 degrees).
+        _ => {
+            let n = g.ground_normal(feet).unwrap_or(glam::Vec2::Y);
+            (ctx.declared.gap / n.y.max(0.1)) as f64
         }
-        _ => ctx.declared.gap as f64,
     };
     Measure {
         metric: "rest_gap_declared",
