@@ -145,7 +145,8 @@ impl<'a> Ground<'a> {
             return best;
         }
         let pose = CharacterShape::pose(feet, self.size);
-        let half = self.size.x * 0.5;
+        // The shape's own half-width (a ball is as wide as it is tall).
+        let half = self.shape.compute_aabb(&pose).half_extents().x;
         for p in &self.level.platforms {
             let b = p.aabb(t);
             // Under the shape: its top at most half the character's height above the feet (a
@@ -191,7 +192,8 @@ impl<'a> Ground<'a> {
     /// ground's outward normal there (infinite and up if nothing is within reach).
     fn cast_down(&self, feet: Vec2) -> (f32, Vec2) {
         let pose = CharacterShape::pose(feet, self.size);
-        let half = self.size.x * 0.5;
+        // The shape's own half-width (a ball is as wide as it is tall).
+        let half = self.shape.compute_aabb(&pose).half_extents().x;
         // Columns the shape spans (a wall touching its side is not under it), rows from mid-body
         // down to the search depth.
         let i0 = (feet.x - half + 1e-4).floor() as i64;
