@@ -531,14 +531,23 @@ fn sweep_settings(
         "setting",
         "us per character per game second",
         "error score",
+        "scenarios",
         "Pareto",
     ]);
+    // A setting that ran fewer scenarios is measured over another set: said, and never on the
+    // front.
+    let most = rows.iter().map(|r| r.scenarios).max().unwrap_or(0);
     for r in rows.iter().filter(|r| r.scope == ALL) {
         t.add_row(vec![
             r.backend.clone(),
             r.setting.clone(),
             format!("{:.1}", r.cost_us),
             format!("{:.4}", r.error),
+            if r.scenarios < most {
+                format!("over {} of {most}", r.scenarios)
+            } else {
+                r.scenarios.to_string()
+            },
             if r.pareto { "*".into() } else { String::new() },
         ]);
     }

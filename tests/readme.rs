@@ -51,3 +51,77 @@ fn integer_positions_are_compared_over_39_of_63_scenarios() {
     let evals = evaluate_all(&levels, &RunConfig::sweep_default());
     assert_eq!(evals.len(), 63);
 }
+
+/// The rows of the committed `platbench sweep --out compare/tradeoff` run.
+fn committed_tradeoff() -> Vec<platbench::tradeoff::TradeoffRow> {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("compare/tradeoff/tradeoff.csv");
+    csv::Reader::from_path(&path)
+        .expect("compare/tradeoff/tradeoff.csv")
+        .deserialize()
+        .collect::<Result<_, _>>()
+        .expect("parses")
+}
+
+#[test]
+fn the_readme_trade_figures_are_the_committed_sweep_run() {
+    use platbench::tradeoff::{scored_behaviours, ALL};
+    let rows = committed_tradeoff();
+    let text = readme().split_whitespace().collect::<Vec<_>>().join(" ");
+    let all: Vec<_> = rows.iter().filter(|r| r.scope == ALL).collect();
+    let of = |backend: &str| -> Vec<_> { all.iter().filter(|r| r.backend == backend).collect() };
+    for backend in ["sweep", "rapier"] {
+        let rs = of(backend);
+        assert!(!rs.is_empty(), "{backend}");
+        let cheapest = rs
+            .iter()
+            .min_by(|a, b| a.cost_us.total_cmp(&b.cost_us))
+            .unwrap();
+        let dearest = rs
+            .iter()
+            .max_by(|a, b| a.cost_us.total_cmp(&b.cost_us))
+            .unwrap();
+        let lo = rs.iter().map(|r| r.error).fold(f64::INFINITY, f64::min);
+        let hi = rs.iter().map(|r| r.error).fold(0.0, f64::max);
+        for figure in [
+            format!("{:.1} ({})", cheapest.cost_us, cheapest.setting),
+            format!("{:.1} ({})", dearest.cost_us, dearest.setting),
+            format!("error scores {lo:.4} to {hi:.4}"),
+        ] {
+            assert!(text.contains(&figure), "README lacks {figure:?}");
+        }
+    }
+    // "4 substeps buy a little accuracy (A to B for the per-tile capsule) at R times the cost".
+    let setting = |s: &str| all.iter().find(|r| r.setting == s).expect(s);
+    let (one, four) = (
+        setting("per-tile capsule dt=1/60"),
+        setting("per-tile capsule substeps=4"),
+    );
+    let figure = format!(
+        "({:.4} to {:.4} for the per-tile capsule) at {:.1} times the cost",
+        one.error,
+        four.error,
+        four.cost_us / one.cost_us
+    );
+    assert!(text.contains(&figure), "README lacks {figure:?}");
+    // "Per behaviour the fronts are the sweep's too, except jumping, where Rapier's merged
+    // cuboid is on the front with the sweep."
+    for b in scored_behaviours() {
+        let front: Vec<_> = rows
+            .iter()
+            .filter(|r| r.scope == b.key() && r.pareto)
+            .collect();
+        assert!(front.iter().any(|r| r.backend == "sweep"), "{}", b.key());
+        let rapier: Vec<&str> = front
+            .iter()
+            .filter(|r| r.backend == "rapier")
+            .map(|r| r.setting.as_str())
+            .collect();
+        let expected: &[&str] = if b.key() == "jumping" {
+            &["merged cuboid"]
+        } else {
+            &[]
+        };
+        assert_eq!(rapier, expected, "{}", b.key());
+    }
+}
