@@ -329,6 +329,17 @@ fn tradeoff_section(rows: &[TradeoffRow]) -> (String, String) {
         let _ = writeln!(md, "| {} | {list} |", b.title());
     }
     html.push_str("</tbody></table>");
+    // Each behaviour's front drawn, as platbench sweep draws it (tradeoff.<behaviour>.svg).
+    for b in crate::tradeoff::scored_behaviours() {
+        if rows.iter().any(|r| r.scope == b.key()) {
+            let _ = write!(
+                html,
+                "<h3>Speed against accuracy: {}</h3>{}",
+                b.title(),
+                crate::tradeoff::chart_svg_scope(rows, b.key())
+            );
+        }
+    }
     (html, md)
 }
 
