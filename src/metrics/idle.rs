@@ -72,11 +72,11 @@ fn pushed(ch: &Aabb, plat: &Aabb, step: glam::Vec2) -> bool {
 /// tiles: the glide after releasing a direction is the model's, not a drift.
 pub const STOPPED_STEP: f64 = 1e-6;
 
-/// `idle_drift`: over each idle span (consecutive frames of [`idle_frame`]), the largest
-/// displacement from where the character stood once it settled, in tiles; the largest over the
-/// spans. It settles at its first frame where neither the shared motion model's commanded walk
-/// nor its reported horizontal velocity glides it by [`STOPPED_STEP`] any more and it moved less
-/// than 1% of the run speed, or
+/// `idle_drift`: over each idle span (consecutive frames with no input, grounded, off ladders,
+/// riding and pushed by no platform), the largest displacement from where the character stood
+/// once it settled, in tiles; the largest over the spans. It settles at its first frame where
+/// neither the shared motion model's commanded walk nor its reported horizontal velocity glides
+/// it by [`STOPPED_STEP`] any more and it moved less than 1% of the run speed, or
 /// [`REST_WINDOW`] seconds after the glide ended if it never stops moving (0 if it never stands
 /// idle). Reported for every scenario whose script has an idle step and that rides no platform,
 /// whatever the controller does, so every configuration is measured on the same scenarios.
