@@ -15,6 +15,7 @@ pub const LEVELS: &[(&str, &str)] = &[
     ("oneway.toml", include_str!("levels/oneway.toml")),
     ("ladders.toml", include_str!("levels/ladders.toml")),
     ("platforms.toml", include_str!("levels/platforms.toml")),
+    ("moving_wall.toml", include_str!("levels/moving_wall.toml")),
     ("long_floor.toml", include_str!("levels/long_floor.toml")),
     (
         "very_long_floor.toml",

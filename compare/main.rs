@@ -61,6 +61,11 @@ enum Command {
         force: bool,
         /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
         levels: Vec<PathBuf>,
+        /// The error score: METRIC[=WEIGHT],... (weight 1 if omitted; unlisted metrics weigh
+        /// 0). Default: the registry's weights, which charge no controller for its declared
+        /// design (Rapier's offset, the sweep's box overhanging a slope).
+        #[arg(long)]
+        score: Option<String>,
     },
     /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
     /// tunneling, stable rest, no grounded flicker, carry without drift) at the extremes, one
@@ -290,7 +295,12 @@ fn main() -> ExitCode {
         Some(Command::Run(args)) => run(&args, true),
         Some(Command::Levels) => list_levels(),
         Some(Command::Stress { out, force }) => stress(&out, force),
-        Some(Command::Sweep { out, force, levels }) => sweep_settings(&out, force, &levels),
+        Some(Command::Sweep {
+            out,
+            force,
+            levels,
+            score,
+        }) => sweep_settings(&out, force, &levels, score.as_deref()),
         Some(Command::Report(args)) => report(&args),
         Some(Command::Diff(args)) => return diff(&args),
         Some(Command::Inspect(args)) => inspect(&args),
@@ -608,10 +618,14 @@ fn diff(args: &DiffArgs) -> ExitCode {
     let mut tols = std::collections::BTreeMap::new();
     for t in &args.tolerances {
         if let Some((m, _)) = t.split_once('=') {
-            if !platbench::metrics::CATALOG.contains(&m) {
+            if platbench::metrics::registry::get(m).is_none() {
+                let names: Vec<&str> = platbench::metrics::registry::METRICS
+                    .iter()
+                    .map(|d| d.name)
+                    .collect();
                 eprintln!(
                     "error: --tol {t}: no metric is named {m:?}; expected one of {}",
-                    platbench::metrics::CATALOG.join(", ")
+                    names.join(", ")
                 );
                 return ExitCode::from(2);
             }
@@ -755,13 +769,24 @@ fn report(args: &ReportArgs) -> Result<()> {
     Ok(())
 }
 
-fn sweep_settings(out_dir: &std::path::Path, force: bool, level_files: &[PathBuf]) -> Result<()> {
-    use platbench::tradeoff::{chart_svg, grid, run_tradeoff};
+fn sweep_settings(
+    out_dir: &std::path::Path,
+    force: bool,
+    level_files: &[PathBuf],
+    score: Option<&str>,
+) -> Result<()> {
+    use platbench::metrics::score::Score;
+    use platbench::tradeoff::{chart_svg_scope, grid, run_tradeoff, scored_behaviours, ALL};
     output::check_target(out_dir, output::Kind::Sweep, force)?;
+    let score = match score {
+        Some(s) => Score::parse(s)?,
+        None => Score::default(),
+    };
+    eprintln!("error score: {}", score.describe());
     let levels = load_levels(level_files)?;
     let settings = grid();
     let started = Instant::now();
-    let rows = run_tradeoff(&levels, &settings, |done, total, label| {
+    let rows = run_tradeoff(&levels, &settings, &score, |done, total, label| {
         let width = 30;
         let filled = done * width / total.max(1);
         eprintln!(
@@ -778,24 +803,44 @@ fn sweep_settings(out_dir: &std::path::Path, force: bool, level_files: &[PathBuf
         "setting",
         "us per character per game second",
         "error score",
+        "scenarios",
         "Pareto",
     ]);
-    for r in &rows {
+    // A setting that ran fewer scenarios is measured over another set: said, and never on the
+    // front.
+    let most = rows.iter().map(|r| r.scenarios).max().unwrap_or(0);
+    for r in rows.iter().filter(|r| r.scope == ALL) {
         t.add_row(vec![
             r.backend.clone(),
             r.setting.clone(),
             format!("{:.1}", r.cost_us),
             format!("{:.4}", r.error),
+            if r.scenarios < most {
+                format!("over {} of {most}", r.scenarios)
+            } else {
+                r.scenarios.to_string()
+            },
             if r.pareto { "*".into() } else { String::new() },
         ]);
     }
     out(&t.to_string());
     output::write_output(out_dir, output::Kind::Sweep, force, |dir| {
         output::write_csv(&dir.join("tradeoff.csv"), &rows)?;
-        output::write_file(&dir.join("tradeoff.svg"), chart_svg(&rows).as_bytes())
+        output::write_file(
+            &dir.join("tradeoff.svg"),
+            chart_svg_scope(&rows, ALL).as_bytes(),
+        )?;
+        // The front per behaviour: tradeoff.<behaviour>.svg.
+        for b in scored_behaviours() {
+            output::write_file(
+                &dir.join(format!("tradeoff.{}.svg", b.key())),
+                chart_svg_scope(&rows, b.key()).as_bytes(),
+            )?;
+        }
+        Ok(())
     })?;
     eprintln!(
-        "wrote tradeoff.csv and tradeoff.svg to {}",
+        "wrote tradeoff.csv, tradeoff.svg and tradeoff.<behaviour>.svg to {}",
         out_dir.display()
     );
     Ok(())

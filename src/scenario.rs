@@ -4,6 +4,7 @@
 use crate::backend::{Backend, BackendError, CharacterSpec};
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::{Input, JumpMode, MotionParams};
+use glam::Vec2;
 use std::rc::Rc;
 
 use crate::rapier::{ColliderBuilding, GroundedMove, RapierBackend, RapierConfig, StaticWorld};
@@ -56,6 +57,42 @@ impl BackendConfig {
         crate::backend::require_supported(self.name(), "", level.features, supported).is_ok()
     }
 
+    /// The contact this configuration declares it keeps, for a character of outer `size`
+    /// (tiles) with climb limit `max_climb_angle` (radians): what its documentation promises,
+    /// so a metric can score it on keeping that promise.
+    pub fn declared_contact(&self, size: Vec2, max_climb_angle: f32) -> DeclaredContact {
+        match self {
+            BackendConfig::Sweep(c) => match c.positions {
+                crate::sweep::Positions::Float => DeclaredContact {
+                    gap: 0.0,
+                    overlap_tolerance: c.epsilon,
+                    slope_overhang: size.x * 0.5 * max_climb_angle.tan(),
+                },
+                crate::sweep::Positions::Integer { .. } => DeclaredContact::default(),
+            },
+            BackendConfig::Rapier(c) => DeclaredContact {
+                gap: c.offset.eval(size.y),
+                ..DeclaredContact::default()
+            },
+        }
+    }
+
+    /// The outer size of the box the configuration really moves for a character of requested
+    /// `size` (tiles): integer positions round it up to whole subpixels (0.8 x 0.9 tiles at 32
+    /// per tile is 26 x 29 subpixels, 0.8125 x 0.90625 tiles), so the metrics measure that box.
+    pub fn moved_size(&self, size: Vec2) -> Vec2 {
+        match self {
+            BackendConfig::Sweep(SweepConfig {
+                positions: crate::sweep::Positions::Integer { per_tile },
+                ..
+            }) => {
+                let n = crate::sweep::grid::subpixel_size(size, *per_tile as i64);
+                n.as_vec2() / *per_tile as f32
+            }
+            _ => size,
+        }
+    }
+
     /// Builds the backend over `level`.
     pub fn build(
         &self,
@@ -75,6 +112,22 @@ impl BackendConfig {
             )?)),
         }
     }
+}
+
+/// The contact a configuration promises to keep with the level (see
+/// [`BackendConfig::declared_contact`]); all lengths in tiles.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DeclaredContact {
+    /// Gap kept to obstacles along their normal: Rapier's `offset` ("must not be zero"), 0 for
+    /// a controller that snaps flush.
+    pub gap: f32,
+    /// Overlap tolerated before a contact counts: the sweep's epsilon (the seed's "overlap
+    /// tolerance").
+    pub overlap_tolerance: f32,
+    /// How far the character's shape may overhang into a slope, vertically: the seed's
+    /// centre-column rule stands a box on the surface under its centre, so its corner may be
+    /// half its width times the climb gradient inside a walkable ramp.
+    pub slope_overhang: f32,
 }
 
 /// One column of a comparison: a backend configuration and the motion parameters it runs with.

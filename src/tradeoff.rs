@@ -4,10 +4,11 @@
 //! - **Cost**: microseconds of computation per character per second of game time (so a smaller
 //!   dt or more substeps cost what they really cost), timed in process as the minimum of 3
 //!   repeats of each scenario, averaged over the scenarios.
-//! - **Error**: the mean over every (scenario, metric) row of `min(1, |error| / scale)`, where
-//!   `scale` is the metric unit's "clearly wrong" size: 0.01 tiles, 0.01 for ratios, 0.01
-//!   tiles/s, one frame, one count, one boolean. 0 is every metric ideal; 1 is every metric
-//!   clearly wrong. Timing rows are not part of it.
+//! - **Error**: a [`Score`] of the setting's metric rows (by default the registry's weights,
+//!   which charge no controller for its declared design; `platbench sweep --score` changes it):
+//!   0 is every scored metric ideal, 1 every one clearly wrong. Timing rows are not part of it.
+//!   Each setting has a row for the whole score (`scope = all`) and one per behaviour (the score
+//!   of that behaviour's metrics), each with its own Pareto front.
 
 use std::fmt::Write as _;
 
@@ -17,7 +18,8 @@ use svg::Document;
 
 use crate::backend::BackendError;
 use crate::level::Level;
-use crate::metrics::{evaluate_with, MetricRow};
+use crate::metrics::score::Score;
+use crate::metrics::{evaluate_with, Behaviour, MetricRow};
 use crate::motion::{JumpMode, MotionParams};
 use crate::rapier::{CharacterShape, ColliderBuilding, GroundedMove, Length, RapierConfig};
 use crate::scenario::{time_scenario, BackendConfig, RunConfig, Runner};
@@ -222,33 +224,22 @@ pub fn grid() -> Vec<Setting> {
     g
 }
 
-/// The unit's "clearly wrong" size (see the module docs).
-fn scale(unit: &str) -> f64 {
-    match unit {
-        "tiles" | "ratio" | "tiles/s" => 0.01,
-        _ => 1.0,
-    }
+/// The aggregate error of a setting's metric rows under the default score (see
+/// [`Score::default`]).
+pub fn error_score(rows: &[MetricRow]) -> f64 {
+    Score::default().error(rows)
 }
 
-/// The aggregate error of a setting's metric rows, in 0..=1 (see the module docs).
-pub fn error_score(rows: &[MetricRow]) -> f64 {
-    let scored: Vec<f64> = rows
-        .iter()
-        .filter(|r| r.metric != "ns_per_character_step")
-        .map(|r| {
-            let e = r.error.abs() / scale(r.unit);
-            if e.is_finite() {
-                e.min(1.0)
-            } else {
-                1.0
-            }
-        })
-        .collect();
-    if scored.is_empty() {
-        0.0
-    } else {
-        scored.iter().sum::<f64>() / scored.len() as f64
-    }
+/// The `scope` of a row that scores every behaviour.
+pub const ALL: &str = "all";
+
+fn all_scope() -> String {
+    ALL.to_string()
+}
+
+/// The behaviours a setting gets a row of its own for (every one but cost).
+pub fn scored_behaviours() -> impl Iterator<Item = Behaviour> {
+    Behaviour::ALL.into_iter().filter(|b| *b != Behaviour::Cost)
 }
 
 /// One row of `tradeoff.csv`.
@@ -270,12 +261,18 @@ pub struct TradeoffRow {
     /// left out of the Pareto front, its figures being over another set.
     #[serde(default)]
     pub scenarios: usize,
+    /// What `error` scores: [`ALL`], or one behaviour's key (`landing`, `slopes`...): the score
+    /// of that behaviour's metrics alone. Fronts are marked within a scope.
+    #[serde(default = "all_scope")]
+    pub scope: String,
 }
 
-/// Runs every setting over the levels' scenarios; `progress` gets `(done, total, label)`.
+/// Runs every setting over the levels' scenarios and scores it with `score`, whole and per
+/// behaviour; `progress` gets `(done, total, label)`.
 pub fn run_tradeoff(
     levels: &[Level],
     settings: &[Setting],
+    score: &Score,
     mut progress: impl FnMut(usize, usize, &str),
 ) -> Result<Vec<TradeoffRow>, BackendError> {
     let mut out = Vec::new();
@@ -300,14 +297,19 @@ pub fn run_tradeoff(
                 n += 1;
             }
         }
-        out.push(TradeoffRow {
+        let row = |scope: &str, error: f64| TradeoffRow {
             backend: s.run.backend.name().to_string(),
             setting: s.label.clone(),
             cost_us: cost / n.max(1) as f64,
-            error: error_score(&rows),
+            error,
             pareto: false,
             scenarios: n,
-        });
+            scope: scope.to_string(),
+        };
+        out.push(row(ALL, score.error(&rows)));
+        for b in scored_behaviours() {
+            out.push(row(b.key(), score.error_of(&rows, b)));
+        }
     }
     progress(settings.len(), settings.len(), "done");
     mark_pareto(&mut out);
@@ -316,6 +318,7 @@ pub fn run_tradeoff(
 
 /// Marks the rows no other row dominates (as cheap or cheaper and as accurate or more, and
 /// strictly better in one).
+/// Rows are compared only with rows of the same `scope`.
 pub fn mark_pareto(rows: &mut [TradeoffRow]) {
     // Only rows measured over the whole scenario set are compared.
     let full = rows.iter().map(|r| r.scenarios).max().unwrap_or(0);
@@ -323,17 +326,28 @@ pub fn mark_pareto(rows: &mut [TradeoffRow]) {
         .iter()
         .map(|r| (r.scenarios == full).then_some((r.cost_us, r.error)))
         .collect();
+    let scopes: Vec<String> = rows.iter().map(|r| r.scope.clone()).collect();
     for (i, r) in rows.iter_mut().enumerate() {
         r.pareto = points[i].is_some_and(|(c, e)| {
             !points.iter().enumerate().any(|(j, p)| {
-                p.is_some_and(|(cj, ej)| j != i && cj <= c && ej <= e && (cj < c || ej < e))
+                scopes[j] == scopes[i]
+                    && p.is_some_and(|(cj, ej)| j != i && cj <= c && ej <= e && (cj < c || ej < e))
             })
         });
     }
 }
 
-/// Cost (log scale) against error, one dot per setting, the Pareto front joined.
+/// Cost (log scale) against the whole error score ([`ALL`]), one dot per setting, the Pareto
+/// front joined.
 pub fn chart_svg(rows: &[TradeoffRow]) -> String {
+    chart_svg_scope(rows, ALL)
+}
+
+/// Cost (log scale) against the error of one `scope` ([`ALL`] or a behaviour's key), one dot
+/// per setting, that scope's Pareto front joined.
+pub fn chart_svg_scope(rows: &[TradeoffRow], scope: &str) -> String {
+    let rows: Vec<TradeoffRow> = rows.iter().filter(|r| r.scope == scope).cloned().collect();
+    let rows = &rows[..];
     let (w, h, m) = (720.0f64, 420.0f64, 60.0f64);
     let costs: Vec<f64> = rows.iter().map(|r| r.cost_us.max(1e-3).log10()).collect();
     let (c0, c1) = costs.iter().fold((f64::MAX, f64::MIN), |(a, b), &c| {
@@ -376,10 +390,14 @@ pub fn chart_svg(rows: &[TradeoffRow]) -> String {
                 .set("font-size", 12),
         )
         .add(
-            Text::new("error score")
-                .set("x", 8)
-                .set("y", m - 20.0)
-                .set("font-size", 12),
+            Text::new(if scope == ALL {
+                "error score".to_string()
+            } else {
+                format!("error score: {scope}")
+            })
+            .set("x", 8)
+            .set("y", m - 20.0)
+            .set("font-size", 12),
         );
     for k in 0..=4 {
         let e = e1 * k as f64 / 4.0;
@@ -485,6 +503,7 @@ mod tests {
             error,
             pareto: false,
             scenarios: 1,
+            scope: ALL.into(),
         }
     }
 

@@ -89,8 +89,16 @@ fn missing_file_and_bad_flags_are_errors() {
 #[test]
 fn levels_lists_the_builtins() {
     let out = platbench().arg("levels").output().unwrap();
+    assert_success(&out);
     let s = String::from_utf8_lossy(&out.stdout);
-    for l in ["flat_seams", "drops", "jumps", "corridor", "thin_wall"] {
+    for l in [
+        "flat_seams",
+        "drops",
+        "jumps",
+        "corridor",
+        "thin_wall",
+        "moving_wall",
+    ] {
         assert!(s.contains(l), "{s}");
     }
 }

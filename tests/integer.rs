@@ -28,7 +28,7 @@ fn integer_levels() -> Vec<platbench::level::Level> {
 fn rest_gap_penetration_and_jitter_are_exactly_zero_on_every_scenario_it_runs() {
     let levels = integer_levels();
     // flat_seams, drops, jumps, corridor, thin_wall, oneway, ladders, long_floor,
-    // very_long_floor: nine of the fifteen built-in levels.
+    // very_long_floor: nine of the sixteen built-in levels.
     assert_eq!(levels.len(), 9, "levels run");
     let evals = evaluate_all(&levels, &RunConfig::sweep_integer(PER_TILE));
     // Issue 12: exactly 0, no tolerance: the grid snaps flush in integers.
@@ -107,4 +107,30 @@ fn a_level_with_slopes_or_moving_platforms_is_refused_naming_the_feature() {
         // The float mode runs the same level.
         assert!(evaluate(&l, &l.scenarios[0], &RunConfig::sweep_default()).is_ok());
     }
+}
+
+#[test]
+fn the_metrics_measure_the_box_the_integer_mode_moves() {
+    // 0.8 x 0.9 tiles at 32 per tile is 25.6 x 28.8 subpixels, rounded up to 26 x 29:
+    // 0.8125 x 0.90625 tiles (README, "The sweep on integer positions").
+    let run = RunConfig::sweep_integer(PER_TILE);
+    let moved = run.backend.moved_size(glam::Vec2::new(0.8, 0.9));
+    assert_eq!(moved, glam::Vec2::new(0.8125, 0.90625));
+    // Float positions move the box they are given.
+    let float = RunConfig::sweep_default().backend;
+    assert_eq!(
+        float.moved_size(glam::Vec2::new(0.8, 0.9)),
+        glam::Vec2::new(0.8, 0.9)
+    );
+    // That is the box that ends flush: walking into the corridor's right wall (x = 19), the feet
+    // stop half the moved width from it, not half the requested width.
+    let corridor = level("corridor");
+    let spec = corridor
+        .scenarios
+        .iter()
+        .find(|s| s.name == "walk_into_right_wall")
+        .expect("scenario");
+    let e = evaluate(&corridor, spec, &run).expect("runs");
+    let last = e.trace.rows.last().expect("rows");
+    assert_eq!(last.x + moved.x * 0.5, 19.0);
 }

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{builtin_levels, evaluate_all, level, rows};
+use common::{builtin_levels, evaluate_all, level, rows, some_rows};
 use platbench::metrics::Evaluation;
 use platbench::rapier::{CharacterShape, ColliderBuilding, RapierConfig};
 use platbench::scenario::RunConfig;
@@ -71,13 +71,13 @@ fn every_scenario_has_the_same_metrics_on_every_configuration() {
 fn rapier_never_tunnels_nor_produces_nan_and_rests_at_its_offset() {
     for (shape, building, evals) in all_rapier() {
         let tag = format!("{building:?} {}", shape.label());
-        for r in rows(&evals, "tunneled") {
+        for r in some_rows(&evals, "tunneled") {
             // Rapier's shape casts cover the whole move: no tunneling even at 1000 tiles/s.
             assert_eq!(r.value, 0.0, "{tag} {}: tunneled", r.scenario);
         }
         // Flat solid floors only: slopes and platforms have their own tests.
         let plain = |l: &str| !l.starts_with("slope_") && l != "seed_tile" && l != "platforms";
-        for r in rows(&evals, "rest_gap")
+        for r in some_rows(&evals, "rest_gap")
             .into_iter()
             .filter(|r| plain(&r.level))
         {
@@ -91,7 +91,7 @@ fn rapier_never_tunnels_nor_produces_nan_and_rests_at_its_offset() {
             };
             assert!(ok, "{tag} {}: rest_gap {}", r.scenario, r.value);
         }
-        for r in rows(&evals, "apex_error") {
+        for r in some_rows(&evals, "apex_error") {
             // Free flight follows the shared motion; a take-off from inside the offset band adds
             // the push back out to the offset (measured +0.0077 on the cuboid's running jump).
             assert!(
@@ -101,7 +101,7 @@ fn rapier_never_tunnels_nor_produces_nan_and_rests_at_its_offset() {
                 r.value
             );
         }
-        for r in rows(&evals, "land_frame_error") {
+        for r in some_rows(&evals, "land_frame_error") {
             // Rapier reports grounded up to its snap distance above the floor: early by up to 2
             // frames (measured), never late.
             assert!(
@@ -127,10 +127,21 @@ fn rapier_never_tunnels_nor_produces_nan_and_rests_at_its_offset() {
 fn penetration_per_shape_and_collider_building() {
     for (shape, building, evals) in all_rapier() {
         let tag = format!("{building:?} {}", shape.label());
-        for r in rows(&evals, "max_penetration") {
+        for r in some_rows(&evals, "max_penetration") {
             let bound = match (building, shape, r.level.as_str()) {
-                // One-tile colliders: no shape ever overlaps a tile (measured 0 everywhere).
+                // The seed's height-array tile reaches Rapier as a polyline through its 16
+                // columns' midpoints (src/rapier), which cuts a column's corner by at most half
+                // of a step between neighbours (steps are 1/16 or 2/16 tiles): the true columns
+                // that max_penetration measures stick out of it by up to 1/16.
+                (_, _, "seed_tile") => 1.0 / 16.0,
+                // One-tile colliders: no shape ever overlaps a tile or a line slope (measured 0
+                // everywhere).
                 (ColliderBuilding::PerTile, _, _) => 0.0,
+                // A cuboid pressed into the merged 63.4-degree polyline (too steep to climb)
+                // ends inside it: measured 0.043 (walk_into_steep), visible since slopes count
+                // as solid (issue 17); pinned with the rounded shapes' bound below so that a
+                // change is reviewed.
+                (ColliderBuilding::Merged, CharacterShape::Cuboid, "slope_63_4") => 0.05,
                 // A cuboid on merged boxes sinks by at most about one offset when a glancing
                 // cast misses the offset band (reference: 0.008 on one long box).
                 (_, CharacterShape::Cuboid, _) => OFFSET,
@@ -257,7 +268,7 @@ fn a_merged_box_stops_a_cuboid_where_a_capsule_walks() {
         std::slice::from_ref(&long),
         &RunConfig::rapier(ColliderBuilding::Merged, CharacterShape::Capsule),
     );
-    for r in rows(&capsule, "progress_ratio") {
+    for r in some_rows(&capsule, "progress_ratio") {
         assert!(r.value >= 0.85, "capsule {}: {}", r.scenario, r.value);
     }
 }

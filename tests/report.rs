@@ -80,6 +80,7 @@ fn report_includes_the_tradeoff_chart_and_the_stability_table_when_given() {
             error,
             pareto,
             scenarios: 62,
+            scope: platbench::tradeoff::ALL.into(),
         };
     write_csv(
         &dir.path().join("tradeoff.csv"),

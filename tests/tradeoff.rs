@@ -2,7 +2,8 @@
 //! range, a Pareto front that is not empty and contains the cheapest setting.
 
 use platbench::level::parse_level;
-use platbench::tradeoff::{chart_svg, grid, run_tradeoff};
+use platbench::metrics::score::Score;
+use platbench::tradeoff::{chart_svg, grid, run_tradeoff, ALL};
 
 #[test]
 fn tradeoff_measures_every_setting_and_marks_a_front() {
@@ -12,7 +13,18 @@ fn tradeoff_measures_every_setting_and_marks_a_front() {
     )
     .unwrap();
     let settings = grid();
-    let rows = run_tradeoff(std::slice::from_ref(&level), &settings, |_, _, _| {}).unwrap();
+    let all_rows = run_tradeoff(
+        std::slice::from_ref(&level),
+        &settings,
+        &Score::default(),
+        |_, _, _| {},
+    )
+    .unwrap();
+    let rows: Vec<_> = all_rows
+        .iter()
+        .filter(|r| r.scope == ALL)
+        .cloned()
+        .collect();
     assert_eq!(rows.len(), settings.len());
     for r in &rows {
         assert!(r.cost_us.is_finite() && r.cost_us > 0.0, "{r:?}");

@@ -1,13 +1,12 @@
-//! Where the ground is under a character, for every shape: how far the shape can drop before it
-//! touches the level's geometry (solid tiles as squares, slope tiles as their solid part, and
-//! one-way platforms and ladder tops for a shape above them). Used
-//! by the metrics that ask whether a character stands on something and how far above it.
-//!
-//! The sweep stands the centre of its box on a slope and lets the box overhang the ground by up
-//! to half its width times the climb gradient (the seed's model); an overlap with a ramp (a
-//! slope tile's solid part, a solid tile carrying a slope, or a solid whose top is within that
-//! overhang above the slope under the centre) therefore reads as touching (gap 0), while an
-//! overlap with any other solid tile reads as sinking (negative gap, its depth).
+//! Where the ground is under a character, for every shape, and how deep the shape is inside the
+//! level: the same geometry for every backend. Solid tiles are squares, slope tiles their true
+//! solid part (the convex polygon under a line, the seed's 16 columns of a height array), and
+//! one-way platforms and ladder tops are ground for a shape above them. Nothing is left out:
+//! the sweep's box, which the seed's centre-column rule stands on a slope by its centre so that
+//! it overhangs the ramp by up to half its width times the gradient, reads as inside the ramp
+//! by that much (negative gap, positive penetration), as any other shape inside it would; the
+//! part of an overlap that is with a slope is also reported on its own
+//! ([`Ground::slope_penetration`], the `slope_overlap` metric).
 
 use std::collections::HashMap;
 
@@ -16,7 +15,7 @@ use parry2d::math::Pose;
 use parry2d::query::{cast_shapes, contact, ShapeCastOptions};
 use parry2d::shape::{Cuboid, SharedShape};
 
-use crate::level::{character_box, Level, Slope, Tile};
+use crate::level::{Level, Slope, Tile};
 use crate::shape::CharacterShape;
 
 /// How far below the feet the ground is looked for, in tiles.
@@ -29,9 +28,6 @@ pub struct Ground<'a> {
     size: Vec2,
     slopes: HashMap<(i64, i64), SharedShape>,
     tile: Cuboid,
-    /// How far a box standing on a slope overhangs the ground: half its width times the
-    /// climb gradient.
-    overhang: f32,
 }
 
 /// A slope tile's solid part as a parry shape, in tile-local coordinates: the convex polygon
@@ -64,8 +60,8 @@ fn slope_shape(s: &Slope) -> Option<SharedShape> {
 }
 
 impl<'a> Ground<'a> {
-    /// The ground of `level` for a character of `shape` and outer `size`.
-    pub fn new(level: &'a Level, shape: CharacterShape, size: Vec2, max_climb_angle: f32) -> Self {
+    /// The ground of `level` for a character of `shape` and outer `size` (tiles).
+    pub fn new(level: &'a Level, shape: CharacterShape, size: Vec2) -> Self {
         let slopes = level
             .slopes()
             .filter_map(|(i, j, s)| slope_shape(&s).map(|sh| ((i, j), sh)))
@@ -76,35 +72,62 @@ impl<'a> Ground<'a> {
             size,
             slopes,
             tile: Cuboid::new(Vec2::splat(0.5)),
-            overhang: size.x * 0.5 * max_climb_angle.tan(),
         }
     }
 
-    /// Deepest overlap of the shape with a solid tile that carries no slope, in tiles (0 if
-    /// none).
+    /// Deepest overlap of the shape with the level's solid geometry (solid tiles and slopes'
+    /// solid parts), in tiles (0 if none): parry's penetration depth, the shortest move that
+    /// separates them.
     pub fn solid_penetration(&self, feet: Vec2) -> f32 {
+        self.deepest(feet, true, true)
+    }
+
+    /// Deepest overlap of the shape with a solid tile's square, in tiles (0 if none).
+    pub fn square_penetration(&self, feet: Vec2) -> f32 {
+        self.deepest(feet, true, false)
+    }
+
+    /// Deepest overlap of the shape with a slope tile's solid part, in tiles (0 if none).
+    pub fn slope_penetration(&self, feet: Vec2) -> f32 {
+        self.deepest(feet, false, true)
+    }
+
+    /// Deepest overlap with solid tiles (`squares`) and slope tiles (`slopes`) under the
+    /// shape's bounding box.
+    fn deepest(&self, feet: Vec2, squares: bool, slopes: bool) -> f32 {
         let pose = CharacterShape::pose(feet, self.size);
-        let slope_under = self
-            .level
-            .surface_at(feet.x, feet.y + self.overhang, self.overhang + 1.0)
-            .and_then(|(h, slope)| slope.map(|_| h));
-        self.level
-            .solids_overlapping(&character_box(feet, self.size))
-            .filter(|t| !self.level.supports_slope(t.mins.x as i64, t.mins.y as i64))
-            .filter(|t| !slope_under.is_some_and(|h| t.maxs.y <= h + self.overhang + 1e-3))
-            .map(|t| {
-                let tile_pose = Pose::from_translation(t.center());
-                match contact(&pose, &*self.shape, &tile_pose, &self.tile, 0.0) {
-                    Ok(Some(c)) if c.dist < 0.0 => -c.dist,
-                    _ => 0.0,
+        let bb = self.shape.compute_aabb(&pose);
+        let (i0, i1) = (bb.mins.x.floor() as i64, bb.maxs.x.ceil() as i64);
+        let (j0, j1) = (bb.mins.y.floor() as i64, bb.maxs.y.ceil() as i64);
+        let mut worst = 0.0f32;
+        for j in j0..j1 {
+            for i in i0..i1 {
+                let origin = Vec2::new(i as f32, j as f32);
+                let (tile_pose, tile_shape): (Pose, &dyn parry2d::shape::Shape) =
+                    match self.level.tile(i, j) {
+                        Tile::Solid if squares => (
+                            Pose::from_translation(origin + Vec2::splat(0.5)),
+                            &self.tile,
+                        ),
+                        Tile::Slope(_) if slopes => match self.slopes.get(&(i, j)) {
+                            Some(s) => (Pose::from_translation(origin), &**s),
+                            None => continue,
+                        },
+                        _ => continue,
+                    };
+                if let Ok(Some(c)) = contact(&pose, &*self.shape, &tile_pose, tile_shape, 0.0) {
+                    if c.dist < 0.0 {
+                        worst = worst.max(-c.dist);
+                    }
                 }
-            })
-            .fold(0.0, f32::max)
+            }
+        }
+        worst
     }
 
     /// Signed gap from the shape down to the ground at time `t` (moving platforms included), in
-    /// tiles: the distance it can drop before touching (0 when touching or resting its corners in
-    /// a slope), minus the depth it has sunk into a solid tile. Infinite if no ground is within
+    /// tiles: the distance it can drop before touching (0 when touching), or minus the depth it
+    /// is inside the level's solid geometry (tiles and slopes alike). Infinite if no ground is within
     /// [`GROUND_SEARCH`].
     pub fn gap_at(&self, feet: Vec2, t: f64) -> f32 {
         let mut best = self.gap(feet);
@@ -112,7 +135,8 @@ impl<'a> Ground<'a> {
             return best;
         }
         let pose = CharacterShape::pose(feet, self.size);
-        let half = self.size.x * 0.5;
+        // The shape's own half-width (a ball is as wide as it is tall).
+        let half = self.shape.compute_aabb(&pose).half_extents().x;
         for p in &self.level.platforms {
             let b = p.aabb(t);
             // Under the shape: its top at most half the character's height above the feet (a
@@ -144,15 +168,29 @@ impl<'a> Ground<'a> {
         if sunk > 0.0 {
             return -sunk;
         }
+        self.cast_down(feet).0
+    }
+
+    /// The normal of the ground the shape would touch dropping straight down from `feet` (the
+    /// surface's outward normal at the first contact), if any is within [`GROUND_SEARCH`].
+    pub fn ground_normal(&self, feet: Vec2) -> Option<Vec2> {
+        let (toi, n) = self.cast_down(feet);
+        toi.is_finite().then_some(n)
+    }
+
+    /// The distance the shape can drop from `feet` before it touches the static ground, and the
+    /// ground's outward normal there (infinite and up if nothing is within reach).
+    fn cast_down(&self, feet: Vec2) -> (f32, Vec2) {
         let pose = CharacterShape::pose(feet, self.size);
-        let half = self.size.x * 0.5;
+        // The shape's own half-width (a ball is as wide as it is tall).
+        let half = self.shape.compute_aabb(&pose).half_extents().x;
         // Columns the shape spans (a wall touching its side is not under it), rows from mid-body
         // down to the search depth.
         let i0 = (feet.x - half + 1e-4).floor() as i64;
         let i1 = (feet.x + half - 1e-4).floor() as i64;
         let j_top = (feet.y + self.size.y * 0.5).floor() as i64;
         let j_low = (feet.y - GROUND_SEARCH).floor() as i64;
-        let mut best = f32::INFINITY;
+        let mut best = (f32::INFINITY, Vec2::Y);
         for i in i0..=i1 {
             for j in (j_low..=j_top).rev() {
                 let origin = Vec2::new(i as f32, j as f32);
@@ -184,7 +222,10 @@ impl<'a> Ground<'a> {
                     tile_shape,
                     options,
                 ) {
-                    best = best.min(hit.time_of_impact);
+                    if hit.time_of_impact < best.0 {
+                        // Tiles are posed by translation only: the local normal is the world's.
+                        best = (hit.time_of_impact, hit.normal2);
+                    }
                 }
             }
         }
@@ -198,28 +239,40 @@ mod tests {
     use crate::level::parse_level;
 
     #[test]
+    fn a_line_leaving_through_the_bottom_is_solid_only_where_it_is_above_it() {
+        // The 22.5-degree ramp's tile 'y' (slope_22_5.toml): its line falls from 0.071 to
+        // -0.343, crossing the bottom at u = 0.0711 / 0.4142 = 0.1716. Its solid part is the
+        // triangle left of that; at u = 0.5 the tile is empty.
+        let s = Slope::Line {
+            left: 0.07107,
+            right: -0.34315,
+        };
+        let shape = slope_shape(&s).unwrap();
+        let inside = |p: Vec2| shape.contains_point(&Pose::IDENTITY, p);
+        assert!(inside(Vec2::new(0.05, 0.02)));
+        assert!(!inside(Vec2::new(0.5, 0.01)));
+        assert!(!inside(Vec2::new(0.9, 0.001)));
+    }
+
+    #[test]
     fn gap_is_shape_aware_on_floors_and_slopes() {
         let level = parse_level("map = \"\"\"\n.....\n../##\n#####\n\"\"\"\n", "g.toml").unwrap();
         let size = Vec2::new(0.8, 0.9);
-        let boxy = Ground::new(
-            &level,
-            CharacterShape::Cuboid,
-            size,
-            std::f32::consts::FRAC_PI_4,
-        );
+        let boxy = Ground::new(&level, CharacterShape::Cuboid, size);
         assert!((boxy.gap(Vec2::new(0.5, 1.25)) - 0.25).abs() < 1e-4);
         assert!((boxy.gap(Vec2::new(0.5, 0.97)) + 0.03).abs() < 1e-4);
-        // The box's centre on the '/' surface at x = 2.5 (height 1.5): its right corner
-        // overhangs the slope, which reads as touching.
-        assert_eq!(boxy.gap(Vec2::new(2.5, 1.5)), 0.0);
+        // The box's centre on the '/' surface at x = 2.5 (height 1.5), as the seed stands it:
+        // its right corner is 0.4 tiles (half the width times the gradient 1) below the
+        // surface, inside the ramp; the shortest way out is along the ramp's normal, 0.4 cos 45
+        // (the corner's distance to the 45-degree line), so that is the depth.
+        let depth = 0.4 * std::f32::consts::FRAC_1_SQRT_2;
+        assert!((boxy.gap(Vec2::new(2.5, 1.5)) + depth).abs() < 1e-4);
+        assert!((boxy.slope_penetration(Vec2::new(2.5, 1.5)) - depth).abs() < 1e-4);
+        // Lifted by 0.4 the corner touches the surface: no overlap, gap 0.
+        assert!(boxy.gap(Vec2::new(2.5, 1.9)).abs() < 1e-4);
         // A ball of radius 0.45 above the 45-degree surface rests where its bottom point is
         // r (sqrt 2 - 1) above the surface under its centre.
-        let ball = Ground::new(
-            &level,
-            CharacterShape::Ball,
-            size,
-            std::f32::consts::FRAC_PI_4,
-        );
+        let ball = Ground::new(&level, CharacterShape::Ball, size);
         let lift = 0.45 * (2f32.sqrt() - 1.0);
         assert!(ball.gap(Vec2::new(2.5, 1.5 + lift + 0.1)) - 0.1 < 1e-3);
         assert!(boxy.gap(Vec2::new(0.5, 5.0)).is_infinite());

@@ -301,10 +301,11 @@ pub fn diff_runs(
     let base_keys: std::collections::BTreeSet<_> = b.iter().map(|r| r.key()).collect();
     let mut out = RunDiff::default();
     for br in &b {
-        let tol = tolerances
-            .get(&br.metric)
-            .copied()
-            .unwrap_or_else(|| default_tolerance(&br.unit));
+        let tol = tolerances.get(&br.metric).copied().unwrap_or_else(|| {
+            default_tolerance(
+                crate::metrics::registry::get(&br.metric).map_or(&br.unit, |d| d.unit),
+            )
+        });
         let label = |r: &MetricRecord| {
             (
                 format!("{}.{}", r.level, r.scenario),

@@ -13,52 +13,11 @@ use svg::Document;
 use super::{format_setting, format_value, notes, worst_matrix};
 use crate::level::{Level, ScenarioSpec, Tile};
 use crate::metrics::ground::Ground;
-use crate::metrics::MetricRow;
+use crate::metrics::{registry, Behaviour, MetricRow};
 use crate::shape::CharacterShape;
 use crate::stress::{envelope, Envelope, StressRow};
 use crate::trace::Trace;
 use crate::tradeoff::{chart_svg, TradeoffRow};
-
-/// The behaviours the report is organised by, with their metrics.
-pub const BEHAVIOURS: &[(&str, &[&str])] = &[
-    (
-        "Landing and resting",
-        &[
-            "land_frame_error",
-            "rest_gap",
-            "max_penetration",
-            "rest_jitter",
-            "grounded_flicker",
-            "false_grounded",
-        ],
-    ),
-    ("Jumping", &["apex_error"]),
-    (
-        "Walking over tile seams",
-        &["progress_ratio", "stuck_frames"],
-    ),
-    (
-        "Slopes",
-        &[
-            "slope_airborne_frames",
-            "slope_gap_max",
-            "slope_speed_ratio",
-            "steep_blocked",
-        ],
-    ),
-    ("One-way platforms", &["oneway_result"]),
-    ("Ladders", &["ladder_speed_error", "ladder_result"]),
-    (
-        "Moving platforms",
-        &[
-            "carry_drift",
-            "carry_airborne_frames",
-            "push_penetration",
-            "crush_count",
-        ],
-    ),
-    ("Walls at speed", &["tunneled"]),
-];
 
 /// The configurations drawn in the scenario pictures, with their colours: the sweep and Rapier's
 /// two most telling shapes on both collider buildings.
@@ -92,8 +51,8 @@ fn escape(s: &str) -> String {
 }
 
 /// The level around the scenario with each drawn configuration's path. Airborne frames are
-/// hollow dots; frames where the character's shape is inside a solid tile (as `max_penetration`
-/// measures it, more than 1e-3 tiles) are red dots.
+/// hollow dots; frames where the character's shape is inside the level's solid geometry (tiles
+/// or slopes, as `max_penetration` measures it, more than 1e-3 tiles) are red dots.
 pub fn scenario_svg(s: &ScenarioTraces) -> String {
     let level = s.level;
     let size = s.spec.size;
@@ -202,7 +161,7 @@ pub fn scenario_svg(s: &ScenarioTraces) -> String {
             .next()
             .and_then(CharacterShape::from_label)
             .unwrap_or(CharacterShape::Cuboid);
-        let ground = Ground::new(level, shape, size, std::f32::consts::FRAC_PI_4);
+        let ground = Ground::new(level, shape, size);
         let pts: Vec<(f32, f32)> = t
             .rows
             .iter()
@@ -242,15 +201,10 @@ pub fn scenario_svg(s: &ScenarioTraces) -> String {
 
 /// The metric table of one behaviour, as HTML rows and as Markdown.
 fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, String)> {
-    let subset: Vec<MetricRow> = rows
-        .iter()
-        .filter(|r| metrics.contains(&r.metric))
-        .cloned()
-        .collect();
-    if subset.is_empty() {
+    if !rows.iter().any(|r| metrics.contains(&r.metric)) {
         return None;
     }
-    let m = worst_matrix(&subset);
+    let m = worst_matrix(rows, |name| metrics.contains(&name));
     let mut html = String::from("<table><thead><tr><th>configuration</th>");
     let mut md = String::from("| configuration |");
     for (name, unit, _) in &m.metrics {
@@ -266,8 +220,12 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
         let _ = write!(md, " {} |", format_value(*ideal));
     }
     html.push_str("</tr>");
-    for (c, row) in m.configs.iter().zip(&m.cells) {
-        let _ = write!(html, "<tr><td>{}</td>", escape(c));
+    for (ci, row) in m.cells.iter().enumerate() {
+        if row.iter().all(|c| c.is_none()) {
+            continue;
+        }
+        let c = m.label(ci);
+        let _ = write!(html, "<tr><td>{}</td>", escape(&c));
         let _ = write!(md, "\n| {c} |");
         for cell in row {
             match cell {
@@ -293,95 +251,12 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
     Some((html, md))
 }
 
-/// The worst value of `metric` over all scenarios for configurations whose label starts with
-/// `prefix`, by distance from the ideal.
-fn worst(rows: &[MetricRow], prefix: &str, metric: &str) -> Option<f64> {
-    rows.iter()
-        .filter(|r| r.metric == metric && format!("{} {}", r.backend, r.config).starts_with(prefix))
-        .max_by(|a, b| a.error.abs().total_cmp(&b.error.abs()))
-        .map(|r| r.value)
-}
-
-/// "Which backend for which game": statements derived from the measured worst values, each
-/// with its numbers; only those the measurements support are made.
+/// "Which backend for which game": the statements of [`super::rules::RULES`], each evaluated
+/// for every configuration on its worst values, with the numbers; then what each setting that
+/// one configuration adds to another changes ([`super::rules::setting_effects`]).
 pub fn recommendations(rows: &[MetricRow]) -> Vec<String> {
-    let mut out = Vec::new();
-    let v = |p: &str, m: &str| worst(rows, p, m);
-    if let (Some(sg), Some(rg)) = (v("sweep default", "rest_gap"), v("rapier", "rest_gap")) {
-        if sg.abs() <= 1e-4 && rg.abs() > 1e-3 {
-            out.push(format!("Flush, pixel-exact contact (tile games whose sprites must touch the ground): sweep rests at {} tiles from the ground, Rapier up to {} (its offset along the surface normal, by design).", format_value(sg), format_value(rg)));
-        }
-    }
-    if let (Some(s), Some(c)) = (
-        v("sweep default", "progress_ratio"),
-        v("rapier merged cuboid", "progress_ratio"),
-    ) {
-        if c < 0.5 {
-            out.push(format!("A box-shaped hero on Rapier needs per-tile colliders or a rounded shape: on one long merged floor the cuboid covers as little as {} of the commanded walk (sweep {}).", format_value(c), format_value(s)));
-        }
-    }
-    if let Some(c) = v("rapier merged capsule", "progress_ratio") {
-        out.push(format!("Rounded characters on Rapier: the capsule walks merged floors (worst {} of the commanded walk), but keep merged boxes short: on a 2,000-tile box rounded shapes sink (max_penetration {}).", format_value(c), format_value(v("rapier merged capsule", "max_penetration").unwrap_or(0.0))));
-    }
-    if let (Some(s), Some(r)) = (
-        v("sweep default", "slope_airborne_frames"),
-        v("rapier", "steep_blocked"),
-    ) {
-        if r < 1.0 {
-            out.push(format!("Slopes with a strict climb limit: sweep ({} airborne frames walking slopes, every too-steep slope blocked); Rapier climbs too-steep slopes that rise to the left, on every collider building (its 2D slope angle is signed).", format_value(s)));
-        }
-    }
-    // Which remedy fixes a Rapier character that sticks, with the numbers of both: the same
-    // per-tile rows, fed gravity every step and fed as the remedy says.
-    let rapier_rows = |remedy: bool, metric: &'static str| {
-        rows.iter().filter(move |r| {
-            r.backend == "rapier"
-                && r.metric == metric
-                && r.config.starts_with("per-tile")
-                && r.config.contains("grounded=none-but-platforms") == remedy
-        })
-    };
-    let worst_progress = |remedy: bool| {
-        rapier_rows(remedy, "progress_ratio")
-            .map(|r| r.value)
-            .fold(None, |a: Option<f64>, v| Some(a.map_or(v, |a| a.min(v))))
-    };
-    let stuck =
-        |remedy: bool| -> f64 { rapier_rows(remedy, "stuck_frames").map(|r| r.value).sum() };
-    if let (Some(d), Some(f)) = (worst_progress(false), worst_progress(true)) {
-        if f > d {
-            let frozen = rapier_rows(true, "rest_gap")
-                .map(|r| r.value)
-                .fold(0.0f64, f64::max);
-            let frozen = if frozen.is_finite() {
-                format!("rest_gap up to {}", format_value(frozen))
-            } else {
-                "some never come to rest".to_string()
-            };
-            let pushed = rapier_rows(true, "max_penetration")
-                .map(|r| r.value)
-                .fold(0.0f64, f64::max);
-            let ladders = rapier_rows(true, "ladder_result");
-            let (failed, ladder_runs) =
-                ladders.fold((0, 0), |(f, n), r| (f + (r.value < 1.0) as usize, n + 1));
-            out.push(format!("A Rapier character that gets stuck on flat ground (per-tile rows fed gravity every step: worst {} of the commanded walk, {} stuck frames in all): give a grounded step no vertical move, except on a moving platform, as the official bevy_rapier character example feeds it (`grounded=none-but-platforms`): worst {}, {} stuck frames in all over the same shapes. Its price: where Rapier reports grounded on the corner of a wall's or a ladder shaft's tiles the character now stops there, in the air ({frozen}; {failed} of {ladder_runs} ladder runs fail); and a block closing on a standing character against a wall pushes it into the wall (max_penetration up to {}), because a zero desired move runs Rapier's depenetration. Rapier's docs' other advice, a larger offset, freed no shape as well (`cargo run --release --example rapier_setups`).", format_value(d), format_value(stuck(false)), format_value(f), format_value(stuck(true)), format_value(pushed)));
-        }
-    }
-    let turning = |prefix: &str| {
-        rows.iter()
-            .filter(|r| {
-                r.metric == "carry_airborne_frames"
-                    && (r.scenario == "diagonal" || r.scenario == "circle")
-                    && format!("{} {}", r.backend, r.config).starts_with(prefix)
-            })
-            .map(|r| r.value)
-            .fold(None, |a: Option<f64>, v| Some(a.map_or(v, |a| a.max(v))))
-    };
-    if let (Some(s), Some(r)) = (turning("sweep default"), turning("rapier")) {
-        if r > s {
-            out.push(format!("Moving platforms on diagonal or circular paths: the sweep keeps its rider on ({} airborne frames); Rapier's controller loses it (up to {} airborne frames).", format_value(s), format_value(r)));
-        }
-    }
+    let mut out = super::rules::evaluate(super::rules::RULES, rows);
+    out.extend(super::rules::setting_effects(rows));
     out
 }
 
@@ -412,7 +287,10 @@ fn tradeoff_section(rows: &[TradeoffRow]) -> (String, String) {
     let mut md = String::from("\n## Speed against accuracy\n\nThe chart is in the HTML report. Settings on the Pareto front (no other setting is both cheaper and more accurate):\n\n| backend | setting | us per character per game second | error score |\n|---|---|---:|---:|\n");
     html.push_str(&chart_svg(rows));
     html.push_str("<table><thead><tr><th>backend</th><th>setting</th><th>us per character per game second</th><th>error score</th></tr></thead><tbody>");
-    let mut front: Vec<&TradeoffRow> = rows.iter().filter(|r| r.pareto).collect();
+    let mut front: Vec<&TradeoffRow> = rows
+        .iter()
+        .filter(|r| r.pareto && r.scope == crate::tradeoff::ALL)
+        .collect();
     front.sort_by(|a, b| a.cost_us.total_cmp(&b.cost_us));
     for r in front {
         let (b, s) = (escape(&r.backend), escape(&r.setting));
@@ -428,6 +306,43 @@ fn tradeoff_section(rows: &[TradeoffRow]) -> (String, String) {
         );
     }
     html.push_str("</tbody></table>");
+    // The front of each behaviour's own score, cheapest first.
+    html.push_str("<p>The front of each behaviour's own score (its metrics alone), cheapest first:</p><table><thead><tr><th>behaviour</th><th>settings on its front</th></tr></thead><tbody>");
+    md.push_str("\nThe front of each behaviour's own score (its metrics alone), cheapest first:\n\n| behaviour | settings on its front |\n|---|---|\n");
+    for b in crate::tradeoff::scored_behaviours() {
+        let mut f: Vec<&TradeoffRow> = rows
+            .iter()
+            .filter(|r| r.pareto && r.scope == b.key())
+            .collect();
+        if f.is_empty() {
+            continue;
+        }
+        f.sort_by(|x, y| x.cost_us.total_cmp(&y.cost_us));
+        let list = f
+            .iter()
+            .map(|r| format!("{} {}", r.backend, r.setting))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let _ = write!(
+            html,
+            "<tr><td>{}</td><td>{}</td></tr>",
+            b.title(),
+            escape(&list)
+        );
+        let _ = writeln!(md, "| {} | {list} |", b.title());
+    }
+    html.push_str("</tbody></table>");
+    // Each behaviour's front drawn, as platbench sweep draws it (tradeoff.<behaviour>.svg).
+    for b in crate::tradeoff::scored_behaviours() {
+        if rows.iter().any(|r| r.scope == b.key()) {
+            let _ = write!(
+                html,
+                "<h3>Speed against accuracy: {}</h3>{}",
+                b.title(),
+                crate::tradeoff::chart_svg_scope(rows, b.key())
+            );
+        }
+    }
     (html, md)
 }
 
@@ -472,7 +387,7 @@ pub fn render_report(
     let mut html = String::new();
     let mut md = String::new();
     html.push_str("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>platbench report</title><style>\nbody{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\ntable{border-collapse:collapse;margin:0.5em 0 1em;font-size:13px}\nth,td{border:1px solid #ccc;padding:3px 6px;text-align:right}\nth:first-child,td:first-child{text-align:left}\ntd.best{background:#c8e6c9;font-weight:bold}\ntr.ideal td{color:#777;font-style:italic}\nsvg.scenario{background:#fafafa;border:1px solid #ddd;max-width:100%;height:auto}\n.legend span{display:inline-block;margin-right:1em}\n.legend i{display:inline-block;width:1.5em;height:3px;vertical-align:middle;margin-right:0.3em}\n</style></head><body>\n");
-    let configs = worst_matrix(rows).configs.len();
+    let configs = worst_matrix(rows, |_| false).configs.len();
     let _ = write!(html, "<h1>platbench report</h1><p>{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; the best is highlighted.</p>", scenarios.len());
     let _ = write!(md, "# platbench report\n\n{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; **best** marks the best.\n", scenarios.len());
     html.push_str("<h2 id=\"which\">Which backend for which game</h2><ul>");
@@ -484,8 +399,10 @@ pub fn render_report(
     html.push_str("</ul><h2>By behaviour</h2>");
     md.push_str("\n## By behaviour\n");
     let all_notes = notes(rows);
-    for (title, metrics) in BEHAVIOURS {
-        if let Some((t_html, t_md)) = behaviour_tables(rows, metrics) {
+    for b in Behaviour::ALL.into_iter().filter(|b| *b != Behaviour::Cost) {
+        let title = b.title();
+        let metrics: Vec<&str> = registry::of_behaviour(b).map(|d| d.name).collect();
+        if let Some((t_html, t_md)) = behaviour_tables(rows, &metrics) {
             let _ = write!(html, "<h3>{title}</h3>{t_html}");
             let _ = write!(md, "\n### {title}\n\n{t_md}\n");
             for n in all_notes
@@ -516,7 +433,7 @@ pub fn render_report(
         );
         let _ = write!(md, " {b} {c} ({colour});");
     }
-    html.push_str("<span>hollow dots: airborne; red dots: inside a solid tile</span></p>");
+    html.push_str("<span>hollow dots: airborne; red dots: inside a solid tile or slope</span></p>");
     md.push('\n');
     for s in scenarios {
         let id = format!("{}.{}", s.level.name, s.spec.name);
@@ -531,6 +448,8 @@ pub fn render_report(
 fn note_is_about(note: &str, metric: &str) -> bool {
     let key = match metric {
         "rest_gap" => "rest_gap",
+        "slope_overlap" => "slope_overlap",
+        "idle_drift" => "idle_drift",
         "land_frame_error" => "lands early",
         "max_penetration" => "sinks into",
         "false_grounded" => "false_grounded",
@@ -541,36 +460,4 @@ fn note_is_about(note: &str, metric: &str) -> bool {
         _ => return false,
     };
     note.contains(key)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::metrics::{CATALOG, GROUPS};
-
-    #[test]
-    fn every_behaviour_metric_is_in_the_catalog_once_and_in_one_summary_group() {
-        // The report's behaviours and the summary's groups are two partitions of the same
-        // catalog (timing aside, which has its own table): a metric added to one list and not to
-        // the others would silently vanish from a table.
-        let behaviour: Vec<&str> = BEHAVIOURS
-            .iter()
-            .flat_map(|(_, m)| m.iter().copied())
-            .collect();
-        let grouped: Vec<&str> = GROUPS.iter().flat_map(|(_, m)| m.iter().copied()).collect();
-        for m in CATALOG.iter().filter(|m| **m != "ns_per_character_step") {
-            assert_eq!(
-                behaviour.iter().filter(|b| *b == m).count(),
-                1,
-                "{m} in behaviours"
-            );
-            assert_eq!(
-                grouped.iter().filter(|g| *g == m).count(),
-                1,
-                "{m} in groups"
-            );
-        }
-        assert!(behaviour.iter().all(|b| CATALOG.contains(b)));
-        assert!(grouped.iter().all(|g| CATALOG.contains(g)));
-    }
 }

@@ -75,15 +75,7 @@ impl Grid {
     /// A size in tiles as whole subpixels, rounded up (so the grid box holds the float box);
     /// a size already on the grid up to f32 rounding stays as it is.
     pub fn size(&self, size: Vec2) -> I64Vec2 {
-        let s = size.as_dvec2() * self.per_tile as f64;
-        let snap = |v: f64| {
-            if (v - v.round()).abs() < 1e-4 {
-                v.round()
-            } else {
-                v.ceil()
-            }
-        };
-        I64Vec2::new(snap(s.x) as i64, snap(s.y) as i64).max(I64Vec2::ONE)
+        subpixel_size(size, self.per_tile)
     }
 
     /// The box of size `size` (subpixels) whose feet (bottom centre) are nearest `feet`
@@ -223,6 +215,20 @@ pub fn move_axis_grid(
         p.b.max[a] = new_min + size;
     }
     closest.map(|(_, k)| k)
+}
+
+/// `size` (tiles) as whole subpixels of a `per_tile` grid, rounded up so the grid box holds the
+/// float box; a size already on the grid up to f32 rounding stays as it is (see [`Grid::size`]).
+pub fn subpixel_size(size: Vec2, per_tile: i64) -> I64Vec2 {
+    let s = size.as_dvec2() * per_tile as f64;
+    let snap = |v: f64| {
+        if (v - v.round()).abs() < 1e-4 {
+            v.round()
+        } else {
+            v.ceil()
+        }
+    };
+    I64Vec2::new(snap(s.x) as i64, snap(s.y) as i64).max(I64Vec2::ONE)
 }
 
 #[cfg(test)]

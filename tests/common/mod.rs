@@ -36,6 +36,14 @@ pub fn evaluate_all(levels: &[Level], run: &RunConfig) -> Vec<(String, Evaluatio
     out
 }
 
+/// All rows of metric `m`, which must exist: a loop over them asserts nothing if there are none,
+/// so a metric that stopped being measured fails here instead of passing silently.
+pub fn some_rows<'a>(evals: &'a [(String, Evaluation)], m: &str) -> Vec<&'a MetricRow> {
+    let r = rows(evals, m);
+    assert!(!r.is_empty(), "no {m} rows measured");
+    r
+}
+
 /// All rows of metric `m`.
 pub fn rows<'a>(evals: &'a [(String, Evaluation)], m: &str) -> Vec<&'a MetricRow> {
     evals

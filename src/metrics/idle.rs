@@ -1,0 +1,126 @@
+//! Standing still: a character with no input, off ladders and riding no platform, must stay put.
+
+use super::landing::REST_WINDOW;
+use super::platforms::ON_PLATFORM;
+use super::{commanded_steps, pos, Context, Measure};
+use crate::motion::Input;
+use crate::scenario::input_script;
+use crate::shape::CharacterShape;
+use crate::trace::TraceRow;
+use parry2d::bounding_volume::Aabb;
+use parry2d::shape::SharedShape;
+
+/// How much two boxes must overlap across an axis to be side by side along it, in tiles: above
+/// f32 rounding of a flush contact, so a wall sliding flush past a character's side is beside
+/// it, not against it.
+pub const SIDE_OVERLAP: f32 = 1e-4;
+
+/// Whether row `k` stands still of its own: no input on the step that produced it, grounded,
+/// not on a ladder, riding no platform (as the trace says, or standing on one: feet within
+/// [`ON_PLATFORM`] plus the platform's step of its top over it, since not every backend names
+/// the platform it rides), and not pushed (see [`pushed`]).
+fn idle_frame(
+    ctx: &Context,
+    shape: &SharedShape,
+    script: &[Input],
+    rows: &[TraceRow],
+    k: usize,
+) -> bool {
+    let r = &rows[k];
+    let idle = script.get(k - 1).is_some_and(|i| *i == Input::default());
+    if !idle || !r.is_grounded() || r.ladder != 0 || r.platform.is_some() {
+        return false;
+    }
+    // The shape's own box (a ball is as wide as it is tall).
+    let shape_box = |feet| shape.compute_aabb(&CharacterShape::pose(feet, ctx.spec.size));
+    let before = shape_box(pos(&rows[k - 1]));
+    let half = before.half_extents().x;
+    let dt = ctx.spec.dt as f64;
+    let carried_or_pushed = ctx.level.platforms.iter().any(|p| {
+        let (b0, b1) = (p.aabb((k - 1) as f64 * dt), p.aabb(k as f64 * dt));
+        let step = b1.mins - b0.mins;
+        // Before and after the step: a rider stands on the platform's top at either end.
+        let on = |b: Aabb, feet: &TraceRow| {
+            (feet.y - b.maxs.y).abs() <= ON_PLATFORM + step.length()
+                && feet.x + half > b.mins.x
+                && feet.x - half < b.maxs.x
+        };
+        on(b1, r) || on(b0, &rows[k - 1]) || (!p.one_way && pushed(&before, &b0, step))
+    });
+    !carried_or_pushed
+}
+
+/// Whether a platform of box `plat` moving by `step` pushes a character of box `ch`: along an
+/// axis where the two are side by side (overlapping across it by more than [`SIDE_OVERLAP`]), it
+/// moves toward the character and reaches within [`ON_PLATFORM`] (a contact gap such as Rapier's
+/// offset) of it, or into it. A wall sliding flush past a character's side does not push it.
+fn pushed(ch: &Aabb, plat: &Aabb, step: glam::Vec2) -> bool {
+    let o = ch.maxs.min(plat.maxs) - ch.mins.max(plat.mins);
+    (0..2).any(|a| {
+        let across = o[1 - a] > SIDE_OVERLAP;
+        let toward = if plat.center()[a] < ch.center()[a] {
+            step[a] > 0.0
+        } else {
+            step[a] < 0.0
+        };
+        // o[a] is minus the gap along the axis (positive: overlapping).
+        across && toward && -o[a] <= ON_PLATFORM + step[a].abs()
+    })
+}
+
+/// Below this commanded step the shared motion model's friction has stopped the character, in
+/// tiles: the glide after releasing a direction is the model's, not a drift.
+pub const STOPPED_STEP: f64 = 1e-6;
+
+/// `idle_drift`: over each idle span (consecutive frames with no input, grounded, off ladders,
+/// riding and pushed by no platform), the largest displacement from where the character stood
+/// once it settled, in tiles; the largest over the spans. It settles at its first frame where
+/// neither the shared motion model's commanded walk nor its reported horizontal velocity glides
+/// it by [`STOPPED_STEP`] any more and it moved less than 1% of the run speed, or
+/// [`REST_WINDOW`] seconds after the glide ended if it never stops moving (0 if it never stands
+/// idle). Reported for every scenario whose script has an idle step and that rides no platform,
+/// whatever the controller does, so every configuration is measured on the same scenarios.
+pub fn idle_drift(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let script = input_script(ctx.spec);
+    if ctx.spec.ride.is_some() || !script.iter().any(|i| *i == Input::default()) {
+        return None;
+    }
+    let commanded = commanded_steps(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt);
+    let still = ctx.params.run_speed * ctx.spec.dt * 0.01;
+    let settle = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
+    let shape = ctx.shape.build(ctx.spec.size);
+    let mut worst: Option<f32> = None;
+    let mut k = 1;
+    while k < rows.len() {
+        if !idle_frame(ctx, &shape, &script, rows, k) {
+            k += 1;
+            continue;
+        }
+        let mut glide_end: Option<usize> = None;
+        let mut anchor: Option<usize> = None;
+        while k < rows.len() && idle_frame(ctx, &shape, &script, rows, k) {
+            let moved = (pos(&rows[k]) - pos(&rows[k - 1])).length();
+            // The glide is over when neither the commanded walk nor the velocity the
+            // controller reports (a jump off a ladder, a push) moves it by STOPPED_STEP a step.
+            let stopped = commanded.get(k - 1).is_none_or(|c| c.abs() < STOPPED_STEP)
+                && ((rows[k].vx * ctx.spec.dt) as f64).abs() < STOPPED_STEP;
+            if stopped && glide_end.is_none() {
+                glide_end = Some(k);
+            }
+            let waited = glide_end.is_some_and(|g| k >= g + settle);
+            if anchor.is_none() && stopped && (moved < still || waited) {
+                anchor = Some(k);
+            }
+            if let Some(a) = anchor {
+                let d = (pos(&rows[k]) - pos(&rows[a])).length();
+                worst = Some(worst.map_or(d, |w| w.max(d)));
+            }
+            k += 1;
+        }
+    }
+    Some(Measure {
+        metric: "idle_drift",
+        value: worst.unwrap_or(0.0) as f64,
+        reference: 0.0,
+    })
+}

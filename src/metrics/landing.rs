@@ -1,0 +1,252 @@
+//! Landing and resting: when the character lands, how it rests (gap, jitter, penetration) and
+//! whether its grounded flag tells the truth.
+
+use super::ground::Ground;
+use super::{pos, predicted_landing_frame, Context, Measure};
+use crate::scenario::input_script;
+use crate::trace::TraceRow;
+
+/// Idle time at the end of a scenario needed for the rest metrics, in seconds.
+pub const REST_WINDOW: f32 = 0.5;
+/// How far below the feet the ground may be for a grounded-to-airborne switch to count as a
+/// flicker rather than leaving the ground, in tiles. Larger than Rapier's default offset
+/// (1% of a 0.9-tile character) so a controller that keeps a skin gap is not penalised.
+pub const FLICKER_SUPPORT_TOLERANCE: f32 = 0.1;
+
+/// `max_penetration`: deepest overlap of the character's shape with the level's solid geometry
+/// (solid tiles' squares and slope tiles' true solid parts, nothing left out) over the whole run,
+/// in tiles, from parry's contact query (not from a backend's contacts).
+pub fn max_penetration(g: &Ground, rows: &[TraceRow]) -> Measure {
+    let worst = rows
+        .iter()
+        .map(|r| g.solid_penetration(pos(r)))
+        .fold(0.0f32, f32::max);
+    Measure {
+        metric: "max_penetration",
+        value: worst as f64,
+        reference: 0.0,
+    }
+}
+
+/// `land_frame_error`: first grounded frame minus the frame the discrete integrator predicts,
+/// for a character that starts in the air, above ground, with no horizontal velocity and no
+/// input before it should land.
+pub fn land_frame_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let spec = ctx.spec;
+    if spec.velocity.x != 0.0 {
+        return None;
+    }
+    let half = spec.size.x * 0.5;
+    let top =
+        ctx.level
+            .support_below(spec.spawn.x - half, spec.spawn.x + half, spec.spawn.y, 0.0)?;
+    // Only onto flat solid ground: no slope between the feet and that top under the centre.
+    let flat = ctx
+        .level
+        .surface_at(spec.spawn.x, spec.spawn.y, spec.spawn.y - top + 0.5)
+        .is_some_and(|(h, slope)| slope.is_none() && h == top);
+    // Not onto a moving platform (the prediction reads the static level).
+    let over_platform = ctx.level.platforms.iter().any(|p| {
+        let b = p.aabb(0.0);
+        b.maxs.y <= spec.spawn.y && b.maxs.x > spec.spawn.x - half && b.mins.x < spec.spawn.x + half
+    });
+    if spec.spawn.y <= top || !flat || over_platform {
+        return None;
+    }
+    let predicted = predicted_landing_frame(
+        (spec.spawn.y - top) as f64,
+        spec.velocity.y as f64,
+        ctx.params.gravity as f64,
+        spec.dt as f64,
+    )?;
+    let script = input_script(spec);
+    if script
+        .iter()
+        .take(predicted)
+        .any(|i| *i != crate::motion::Input::default())
+    {
+        return None;
+    }
+    let landed = rows
+        .iter()
+        .skip(1)
+        .find(|r| r.is_grounded())
+        .map(|r| r.frame);
+    let value = landed.map_or(f64::INFINITY, |f| f as f64 - predicted as f64);
+    Some(Measure {
+        metric: "land_frame_error",
+        value,
+        reference: 0.0,
+    })
+}
+
+/// The frames over which the character should be at rest: from its first settled frame (grounded
+/// on real ground, moving less than 1% of the run speed) within the final idle window (or the window's last [`REST_WINDOW`] seconds if it never lands there)
+/// to the end. `None` if the scenario does not end with such a window.
+pub(super) fn rest_frames(
+    ctx: &Context,
+    g: &Ground,
+    rows: &[TraceRow],
+) -> Option<std::ops::Range<usize>> {
+    let script = input_script(ctx.spec);
+    let idle = crate::motion::Input::default();
+    let n = script.len();
+    let first_idle_step = script.iter().rposition(|i| *i != idle).map_or(0, |k| k + 1);
+    // Step k produces row k + 1; the idle window's rows are first_idle_step + 1 ..= n.
+    let window_rows = n.saturating_sub(first_idle_step);
+    let needed = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
+    // A rider rests on a moving platform: its height is the platform's business.
+    if window_rows < needed || rows.len() != n + 1 || ctx.spec.ride.is_some() {
+        return None;
+    }
+    let start = first_idle_step + 1;
+    // At rest: grounded on real ground and no longer sliding (moving less than 1% of the run
+    // speed), so deceleration along a slope is not counted as jitter.
+    let still = ctx.params.run_speed * ctx.spec.dt * 0.01;
+    let landed = (start..=n).find(|&k| {
+        rows[k].is_grounded() && supported(g, &rows[k]) && (rows[k].x - rows[k - 1].x).abs() < still
+    });
+    let from = landed.unwrap_or(n + 1 - needed);
+    Some(from..n + 1)
+}
+
+/// `rest_gap`: signed gap from the character's shape down to the ground at the last frame
+/// (negative: sunk into a solid), in tiles; see [`Ground::gap`].
+pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+    let last = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
+    Measure {
+        metric: "rest_gap",
+        value: g.gap_at(last, rows.last().map_or(0.0, |r| r.t as f64)) as f64,
+        reference: 0.0,
+    }
+}
+
+/// `rest_gap_declared`: the `rest_gap` minus the gap of the stance the configuration declares
+/// (so 0 is a promise kept, positive farther than promised, negative closer or deeper): its
+/// declared gap along the normal of the ground a straight drop meets (Rapier's `offset`:
+/// `offset / cos(angle)` vertically on a slope), or, for a controller that stands a box on the
+/// surface under its centre (the seed), the gap of that stance (inside a slope by its overhang).
+pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+    let rest = rest_gap(ctx, g, rows);
+    let feet = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
+    let under = ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5);
+    let reference = match under {
+        Some((h, Some(_))) if ctx.declared.slope_overhang > 0.0 => {
+            g.gap(glam::Vec2::new(feet.x, h)) as f64
+        }
+        // A gap kept along the normal of the ground the shape rests on reads vertically as
+        // gap / cos(angle) (the normal a straight drop meets; a wall's is clamped at 84 degrees).
+        _ => {
+            let n = g.ground_normal(feet).unwrap_or(glam::Vec2::Y);
+            (ctx.declared.gap / n.y.max(0.1)) as f64
+        }
+    };
+    Measure {
+        metric: "rest_gap_declared",
+        value: rest.value - reference,
+        reference: 0.0,
+    }
+}
+
+/// `penetration_beyond_declared`: over the run, the deepest overlap with the level beyond what
+/// the configuration declares it may overlap, in tiles: its overlap tolerance (the sweep's
+/// epsilon) everywhere, plus, while it overlaps a slope or stands over one (the surface under its
+/// centre within the overhang is a slope), its declared overhang (the seed's box, up to half its
+/// width times the climb gradient into the ramp and the ground that continues it). A controller
+/// keeping its promise scores 0.
+pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+    let d = ctx.declared;
+    let worst = rows
+        .iter()
+        .map(|r| {
+            let p = pos(r);
+            let slopes = g.slope_penetration(p);
+            let over_slope = slopes > 0.0
+                || matches!(
+                    ctx.level
+                        .surface_at(p.x, p.y + d.slope_overhang, 2.0 * d.slope_overhang),
+                    Some((_, Some(_)))
+                );
+            let allowed = d.overlap_tolerance + if over_slope { d.slope_overhang } else { 0.0 };
+            (g.square_penetration(p).max(slopes) - allowed).max(0.0)
+        })
+        .fold(0.0f32, f32::max);
+    Measure {
+        metric: "penetration_beyond_declared",
+        value: worst as f64,
+        reference: 0.0,
+    }
+}
+
+/// The settled part of the rest frames `rest`: its last [`REST_WINDOW`] seconds, as `stress`
+/// judges a stable rest (a landing and its settling are `land_frame_error`'s business, so a
+/// landing is charged once).
+pub(super) fn settled(ctx: &Context, rest: std::ops::Range<usize>) -> std::ops::Range<usize> {
+    let needed = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
+    rest.start.max(rest.end.saturating_sub(needed))..rest.end
+}
+
+/// `rest_jitter`: max minus min of y over the settled resting frames (see [`settled`]), in
+/// tiles.
+pub(super) fn rest_jitter(rows: &[TraceRow]) -> Measure {
+    let (lo, hi) = rows
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), r| {
+            (lo.min(r.y), hi.max(r.y))
+        });
+    Measure {
+        metric: "rest_jitter",
+        value: if rows.is_empty() {
+            0.0
+        } else {
+            (hi - lo) as f64
+        },
+        reference: 0.0,
+    }
+}
+
+/// Whether the character's shape is within [`FLICKER_SUPPORT_TOLERANCE`] of the ground (or in
+/// it).
+pub(super) fn supported(g: &Ground, r: &TraceRow) -> bool {
+    g.gap_at(pos(r), r.t as f64) <= FLICKER_SUPPORT_TOLERANCE
+}
+
+/// `false_grounded`: frames reported grounded with the ground farther than
+/// [`FLICKER_SUPPORT_TOLERANCE`] below the shape (standing on air, or on a wall's side). Not in
+/// DESIGN.md's catalog: added because a controller that calls itself grounded mid-air resets
+/// its fall and can jump from there.
+pub fn false_grounded(g: &Ground, rows: &[TraceRow]) -> Measure {
+    let count = rows
+        .iter()
+        .filter(|r| r.is_grounded() && !supported(g, r))
+        .count();
+    Measure {
+        metric: "false_grounded",
+        value: count as f64,
+        reference: 0.0,
+    }
+}
+
+/// `grounded_flicker`: grounded-to-airborne switches that no jump explains while the ground is
+/// still within [`FLICKER_SUPPORT_TOLERANCE`] under the feet.
+pub fn grounded_flicker(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+    let script = input_script(ctx.spec);
+    let mut count = 0u32;
+    for k in 1..rows.len() {
+        let (prev, cur) = (&rows[k - 1], &rows[k]);
+        if !prev.is_grounded() || cur.is_grounded() {
+            continue;
+        }
+        // Step k-1 produced row k: a jump pressed on that step explains leaving the ground.
+        let jumped = script.get(k - 1).is_some_and(|i| i.jump)
+            && (k < 2 || script.get(k - 2).is_none_or(|i| !i.jump));
+        if !jumped && supported(g, cur) {
+            count += 1;
+        }
+    }
+    Measure {
+        metric: "grounded_flicker",
+        value: count as f64,
+        reference: 0.0,
+    }
+}

@@ -1,0 +1,133 @@
+//! Moving platforms: carrying a rider, and pushing (or crushing) a character.
+
+use super::{pos, Context, Measure};
+use crate::level::character_box;
+use crate::scenario::input_script;
+use crate::trace::TraceRow;
+
+/// How close above a platform's top the feet count as on it, for the carry metrics, in tiles:
+/// above Rapier's offset.
+pub const ON_PLATFORM: f32 = 0.05;
+
+/// The frames of the ride: from the first frame the character stands on the scenario's platform
+/// (grounded, feet within [`ON_PLATFORM`] of its top, overlapping it in x) with idle input and no
+/// velocity of its own, to the end of that idle input (or the end); from the first step if it
+/// never stands on it. `None` if the scenario names no platform.
+pub(super) fn ride_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::Range<usize>> {
+    let p = ctx.level.platforms.get(ctx.spec.ride? as usize)?;
+    let script = input_script(ctx.spec);
+    let dt = ctx.spec.dt as f64;
+    let half = ctx.spec.size.x * 0.5;
+    let on = |k: usize| {
+        let r = &rows[k];
+        let b = p.aabb(k as f64 * dt);
+        r.is_grounded()
+            && (r.y - b.maxs.y).abs() <= ON_PLATFORM
+            && r.x + half > b.mins.x
+            && r.x - half < b.maxs.x
+    };
+    let idle = |k: usize| {
+        k == 0
+            || script
+                .get(k - 1)
+                .is_none_or(|i| *i == crate::motion::Input::default())
+    };
+    // From the first step's result (the spawn row has no contact yet) at which it stands on the
+    // platform, idle and not moving on its own (no walk or slide left over).
+    // A controller that never stands on it is measured over the whole run.
+    let start = (1..rows.len())
+        .find(|&k| on(k) && idle(k) && rows[k].vx.abs() < 1e-3)
+        .unwrap_or(1.min(rows.len()));
+    let end = (start..rows.len())
+        .find(|&k| !idle(k))
+        .unwrap_or(rows.len());
+    Some(start..end)
+}
+
+/// `carry_drift`: over the idle part of the ride, the largest change of the character's position
+/// relative to its platform, in tiles.
+pub fn carry_drift(ctx: &Context, rows: &[TraceRow], ride: &std::ops::Range<usize>) -> Measure {
+    let p = &ctx.level.platforms[ctx.spec.ride.unwrap_or(0) as usize];
+    let dt = ctx.spec.dt as f64;
+    let rel = |k: usize| pos(&rows[k]) - p.position(k as f64 * dt);
+    let first = rel(ride.start);
+    let drift = ride
+        .clone()
+        .map(|k| (rel(k) - first).length())
+        .fold(0.0f32, f32::max);
+    Measure {
+        metric: "carry_drift",
+        value: drift as f64,
+        reference: 0.0,
+    }
+}
+
+/// `carry_airborne_frames`: frames airborne during the idle part of the ride.
+pub fn carry_airborne_frames(rows: &[TraceRow], ride: &std::ops::Range<usize>) -> Measure {
+    Measure {
+        metric: "carry_airborne_frames",
+        value: ride.clone().filter(|&k| !rows[k].is_grounded()).count() as f64,
+        reference: 0.0,
+    }
+}
+
+/// `push_penetration`: on a level with moving platforms, the deepest overlap of the character's
+/// box with a platform that is not one-way, over the run, in tiles.
+pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    if ctx.level.platforms.is_empty() {
+        return None;
+    }
+    let dt = ctx.spec.dt as f64;
+    let deepest = rows
+        .iter()
+        .enumerate()
+        .flat_map(|(k, r)| {
+            let b = character_box(pos(r), ctx.spec.size);
+            ctx.level
+                .platforms
+                .iter()
+                .filter(|p| !p.one_way)
+                .map(move |p| {
+                    let pb = p.aabb(k as f64 * dt);
+                    let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
+                    o.x.min(o.y).max(0.0)
+                })
+        })
+        .fold(0.0f32, f32::max);
+    Some(Measure {
+        metric: "push_penetration",
+        value: deepest as f64,
+        reference: 0.0,
+    })
+}
+
+/// Overlap with a moving platform beyond which the character counts as crushed (or run
+/// through), in tiles: far beyond any contact tolerance.
+pub const CRUSH_DEPTH: f32 = 0.25;
+
+/// `crush_count`: on a level with moving platforms, how many times the character ended up inside
+/// a (not one-way) platform by more than [`CRUSH_DEPTH`]: crushed against the level, or run
+/// through by a platform that did not push it. Read from the geometry, so a backend without a
+/// crush event (Rapier) is counted the same way as the sweep, whose trace also flags the crush.
+pub fn crush_count(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    if ctx.level.platforms.is_empty() {
+        return None;
+    }
+    let dt = ctx.spec.dt as f64;
+    let inside = |k: usize| {
+        let b = character_box(pos(&rows[k]), ctx.spec.size);
+        ctx.level.platforms.iter().filter(|p| !p.one_way).any(|p| {
+            let pb = p.aabb(k as f64 * dt);
+            let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
+            o.x.min(o.y) > CRUSH_DEPTH
+        })
+    };
+    let count = (1..rows.len())
+        .filter(|&k| inside(k) && !inside(k - 1))
+        .count();
+    Some(Measure {
+        metric: "crush_count",
+        value: count as f64,
+        reference: 0.0,
+    })
+}

@@ -1,0 +1,470 @@
+//! The one registry of metric definitions: name, unit, behaviour, where it applies, the model
+//! it measures against, and its default weight in the error score. The metrics (units), the
+//! summary (tables and their order), the report (sections), `diff` (tolerances by unit) and
+//! `sweep` (the error score) all read it; a metric added here appears everywhere.
+
+/// The behaviour a metric measures: a section of the report, a part of a summary table, and a
+/// front of its own in `platbench sweep`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Behaviour {
+    /// Landing and resting on the ground.
+    Landing,
+    /// Jumping.
+    Jumping,
+    /// Walking over flat tiled ground and its seams.
+    Seams,
+    /// Slopes.
+    Slopes,
+    /// One-way platforms.
+    OneWay,
+    /// Ladders.
+    Ladders,
+    /// Moving platforms.
+    Platforms,
+    /// Walls hit at speed.
+    Walls,
+    /// Standing still with no input.
+    Idle,
+    /// Cost of a step (not part of the error score).
+    Cost,
+}
+
+impl Behaviour {
+    /// Every behaviour, in report order.
+    pub const ALL: [Behaviour; 10] = [
+        Behaviour::Landing,
+        Behaviour::Jumping,
+        Behaviour::Seams,
+        Behaviour::Slopes,
+        Behaviour::OneWay,
+        Behaviour::Ladders,
+        Behaviour::Platforms,
+        Behaviour::Walls,
+        Behaviour::Idle,
+        Behaviour::Cost,
+    ];
+
+    /// The report's section title.
+    pub fn title(self) -> &'static str {
+        match self {
+            Behaviour::Landing => "Landing and resting",
+            Behaviour::Jumping => "Jumping",
+            Behaviour::Seams => "Walking over tile seams",
+            Behaviour::Slopes => "Slopes",
+            Behaviour::OneWay => "One-way platforms",
+            Behaviour::Ladders => "Ladders",
+            Behaviour::Platforms => "Moving platforms",
+            Behaviour::Walls => "Walls at speed",
+            Behaviour::Idle => "Standing still",
+            Behaviour::Cost => "Cost",
+        }
+    }
+
+    /// A short lowercase name (`landing`, `seams`, `oneway`...), as the CLI and CSV files spell
+    /// it.
+    pub fn key(self) -> &'static str {
+        match self {
+            Behaviour::Landing => "landing",
+            Behaviour::Jumping => "jumping",
+            Behaviour::Seams => "seams",
+            Behaviour::Slopes => "slopes",
+            Behaviour::OneWay => "oneway",
+            Behaviour::Ladders => "ladders",
+            Behaviour::Platforms => "platforms",
+            Behaviour::Walls => "walls",
+            Behaviour::Idle => "idle",
+            Behaviour::Cost => "cost",
+        }
+    }
+
+    /// The summary table the behaviour's metrics are printed in (see [`SUMMARY_GROUPS`]).
+    pub fn summary_group(self) -> &'static str {
+        match self {
+            Behaviour::Landing
+            | Behaviour::Jumping
+            | Behaviour::Seams
+            | Behaviour::Walls
+            | Behaviour::Idle => SUMMARY_GROUPS[0],
+            Behaviour::Slopes | Behaviour::OneWay | Behaviour::Ladders => SUMMARY_GROUPS[1],
+            Behaviour::Platforms => SUMMARY_GROUPS[2],
+            Behaviour::Cost => SUMMARY_GROUPS[3],
+        }
+    }
+}
+
+/// The summary's tables, in print order.
+pub const SUMMARY_GROUPS: [&str; 4] = [
+    "landing, jumping, walking, walls, standing still",
+    "slopes, one-way platforms, ladders",
+    "moving platforms",
+    "cost (run --timing)",
+];
+
+/// One metric's definition.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MetricDef {
+    /// Its name, as `metrics.csv` spells it.
+    pub name: &'static str,
+    /// The unit of its values: `tiles`, `ratio`, `tiles/s`, `frames`, `count`, `bool` or `ns`.
+    pub unit: &'static str,
+    /// The behaviour it measures.
+    pub behaviour: Behaviour,
+    /// What it measures, in one sentence.
+    pub meaning: &'static str,
+    /// The scenarios it is reported for.
+    pub applies: &'static str,
+    /// The model it measures against (what "ideal" means), where controllers could differ by
+    /// design.
+    pub reference: &'static str,
+    /// Its weight in the default error score of `platbench sweep` (0: not scored). The default
+    /// charges no controller for its declared design: the touching-model geometric metrics
+    /// (`rest_gap`, `max_penetration`, `slope_gap_max`, `slope_overlap`) weigh 0 and their
+    /// declared-model twins (`rest_gap_declared`, `penetration_beyond_declared`) 1.
+    pub weight: f64,
+    /// Metrics that measure the same behaviour against different models share a group: the
+    /// error score charges a scenario only the closest model's error (a controller following
+    /// either model of slope speed is not wrong).
+    pub model_group: Option<&'static str>,
+}
+
+impl MetricDef {
+    /// The size of error that counts as clearly wrong in the error score, in the metric's unit:
+    /// 0.01 tiles, 0.01 for ratios, 0.01 tiles/s, one frame, count or boolean.
+    pub fn scale(&self) -> f64 {
+        unit_scale(self.unit)
+    }
+}
+
+/// The "clearly wrong" size of an error in `unit` (see [`MetricDef::scale`]).
+pub fn unit_scale(unit: &str) -> f64 {
+    match unit {
+        "tiles" | "ratio" | "tiles/s" => 0.01,
+        _ => 1.0,
+    }
+}
+
+const fn def(
+    name: &'static str,
+    unit: &'static str,
+    behaviour: Behaviour,
+    meaning: &'static str,
+    applies: &'static str,
+    reference: &'static str,
+    weight: f64,
+) -> MetricDef {
+    MetricDef {
+        name,
+        unit,
+        behaviour,
+        meaning,
+        applies,
+        reference,
+        weight,
+        model_group: match name.as_bytes() {
+            b"slope_speed_ratio" | b"slope_surface_speed_ratio" => Some("slope_speed"),
+            _ => None,
+        },
+    }
+}
+
+use Behaviour::*;
+
+/// Every metric this version computes, in catalog order (tables list them in this order).
+pub const METRICS: &[MetricDef] = &[
+    def(
+        "land_frame_error",
+        "frames",
+        Landing,
+        "first grounded frame minus the frame the discrete integrator predicts",
+        "a drop with no input and no horizontal speed onto flat static ground",
+        "the shared symplectic-Euler fall, grounded on the step that reaches the floor",
+        1.0,
+    ),
+    def(
+        "rest_gap",
+        "tiles",
+        Landing,
+        "signed gap from the character's shape down to the ground at the end of a rest (negative: sunk)",
+        "scenarios ending with at least 0.5 s of idle input, not riding a platform",
+        "touching (gap 0)",
+        0.0,
+    ),
+    def(
+        "rest_gap_declared",
+        "tiles",
+        Landing,
+        "the rest_gap minus the gap of the stance the configuration declares (0: promise kept)",
+        "scenarios ending with at least 0.5 s of idle input, not riding a platform",
+        "the configuration's declared contact: Rapier's offset along the ground's normal; the seed's box on the surface under its centre",
+        1.0,
+    ),
+    def(
+        "max_penetration",
+        "tiles",
+        Landing,
+        "deepest overlap of the character's shape with the level's solid tiles and slopes over the run",
+        "every scenario",
+        "no overlap",
+        0.0,
+    ),
+    def(
+        "penetration_beyond_declared",
+        "tiles",
+        Landing,
+        "deepest overlap with the level beyond what the configuration declares it may overlap",
+        "every scenario",
+        "the configuration's declared overlap: the sweep's epsilon, and its box's overhang into a slope (half its width times the climb gradient)",
+        1.0,
+    ),
+    def(
+        "rest_jitter",
+        "tiles",
+        Landing,
+        "max minus min of the feet's height over the settled rest (its last 0.5 s, as stress judges it)",
+        "scenarios ending with at least 0.5 s of idle input, not riding a platform",
+        "a still rest",
+        1.0,
+    ),
+    def(
+        "grounded_flicker",
+        "count",
+        Landing,
+        "grounded-to-airborne switches no jump explains while the ground is still under the feet",
+        "every scenario",
+        "no switch",
+        1.0,
+    ),
+    def(
+        "false_grounded",
+        "frames",
+        Landing,
+        "frames reported grounded with no ground within 0.1 tiles below the shape",
+        "every scenario",
+        "grounded only on ground",
+        1.0,
+    ),
+    def(
+        "apex_error",
+        "tiles",
+        Jumping,
+        "rise from take-off to the apex of the first jump minus the requested jump height",
+        "a jump with no solid within its reach above",
+        "the requested height",
+        1.0,
+    ),
+    def(
+        "progress_ratio",
+        "ratio",
+        Seams,
+        "distance walked over distance commanded",
+        "a walk over flat, open, supported tiled ground",
+        "the shared motion model's commanded distance",
+        1.0,
+    ),
+    def(
+        "stuck_frames",
+        "frames",
+        Seams,
+        "commanded, grounded steps that moved less than 1% of the commanded step with nothing blocking",
+        "every scenario",
+        "no stuck step",
+        1.0,
+    ),
+    def(
+        "slope_airborne_frames",
+        "frames",
+        Slopes,
+        "frames airborne over a walkable slope while walking, without a jump",
+        "a walk without a jump over a slope within the climb limit",
+        "grounded all the way",
+        1.0,
+    ),
+    def(
+        "slope_gap_max",
+        "tiles",
+        Slopes,
+        "signed gap between the shape and the surface farthest from touching over a walkable slope while grounded (negative: inside)",
+        "a walk over, or a rest on, a slope within the climb limit",
+        "touching (gap 0)",
+        0.0,
+    ),
+    def(
+        "slope_overlap",
+        "tiles",
+        Slopes,
+        "deepest overlap of the character's shape with a slope tile's solid part (penetration depth)",
+        "every scenario on a level with slopes",
+        "touching; the seed's centre-column rule overhangs a box by half its width times the gradient, by design",
+        0.0,
+    ),
+    def(
+        "slope_speed_ratio",
+        "ratio",
+        Slopes,
+        "mean horizontal speed over a walkable slope at full run speed over the run speed",
+        "a walk without a jump over a slope within the climb limit, not into a too-steep one",
+        "constant horizontal speed (the seed)",
+        1.0,
+    ),
+    def(
+        "slope_surface_speed_ratio",
+        "ratio",
+        Slopes,
+        "mean speed along the path over a walkable slope at full run speed over the run speed",
+        "a walk without a jump over a slope within the climb limit, not into a too-steep one",
+        "constant speed along the surface (Godot's floor_constant_speed)",
+        1.0,
+    ),
+    def(
+        "steep_blocked",
+        "bool",
+        Slopes,
+        "1 if a slope above the climb limit stopped the climb, else 0",
+        "a walk toward a slope steeper than the climb limit",
+        "blocked",
+        1.0,
+    ),
+    def(
+        "oneway_result",
+        "bool",
+        OneWay,
+        "1 if the character ended where the seed's rule puts it, else 0",
+        "scenarios on levels with one-way platforms that state an expected end height",
+        "the seed's one-way rule",
+        1.0,
+    ),
+    def(
+        "ladder_speed_error",
+        "tiles/s",
+        Ladders,
+        "worst climbing speed on the ladder minus the configured ladder speed",
+        "scenarios on levels with ladders that hold up or down",
+        "the configured ladder speed",
+        1.0,
+    ),
+    def(
+        "ladder_result",
+        "bool",
+        Ladders,
+        "1 if the character ended where the scenario says (top, bottom, floor), else 0",
+        "scenarios on levels with ladders that state an expected end height",
+        "the scenario's expected end",
+        1.0,
+    ),
+    def(
+        "carry_drift",
+        "tiles",
+        Platforms,
+        "largest change of the rider's position relative to its platform over the idle ride",
+        "scenarios that name a platform to ride",
+        "carried rigidly",
+        1.0,
+    ),
+    def(
+        "carry_airborne_frames",
+        "frames",
+        Platforms,
+        "frames airborne during the idle ride",
+        "scenarios that name a platform to ride",
+        "on the platform throughout",
+        1.0,
+    ),
+    def(
+        "push_penetration",
+        "tiles",
+        Platforms,
+        "deepest overlap of the character's box with a (not one-way) moving platform",
+        "levels with moving platforms",
+        "no overlap",
+        1.0,
+    ),
+    def(
+        "crush_count",
+        "count",
+        Platforms,
+        "times the character ended more than 0.25 tiles inside a moving platform",
+        "levels with moving platforms",
+        "never crushed or run through",
+        1.0,
+    ),
+    def(
+        "tunneled",
+        "bool",
+        Walls,
+        "1 if the character passed wholly through a solid tile between two frames, else 0",
+        "every scenario",
+        "never",
+        1.0,
+    ),
+    def(
+        "idle_drift",
+        "tiles",
+        Idle,
+        "largest displacement of a settled character with no input, off ladders, riding no platform and pushed by none, over each idle span",
+        "every scenario with an idle step that rides no platform",
+        "standing still",
+        1.0,
+    ),
+    def(
+        "ns_per_character_step",
+        "ns",
+        Cost,
+        "nanoseconds per character step, minimum of several in-process repeats",
+        "run --timing",
+        "none (a cost, not an error)",
+        0.0,
+    ),
+];
+
+/// The definition of metric `name`, if this version defines it.
+pub fn get(name: &str) -> Option<&'static MetricDef> {
+    METRICS.iter().find(|d| d.name == name)
+}
+
+/// The catalog position of metric `name` (unknown metrics sort last).
+pub fn position(name: &str) -> usize {
+    METRICS
+        .iter()
+        .position(|d| d.name == name)
+        .unwrap_or(usize::MAX)
+}
+
+/// The unit of metric `name` (empty if unknown).
+pub fn unit(name: &str) -> &'static str {
+    get(name).map_or("", |d| d.unit)
+}
+
+/// The metrics of one behaviour, in catalog order.
+pub fn of_behaviour(b: Behaviour) -> impl Iterator<Item = &'static MetricDef> {
+    METRICS.iter().filter(move |d| d.behaviour == b)
+}
+
+/// The metrics of one summary table (see [`SUMMARY_GROUPS`]), in catalog order.
+pub fn of_summary_group(group: &str) -> impl Iterator<Item = &'static MetricDef> + '_ {
+    METRICS
+        .iter()
+        .filter(move |d| d.behaviour.summary_group() == group)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_units_known() {
+        for (i, d) in METRICS.iter().enumerate() {
+            assert!(
+                METRICS[i + 1..].iter().all(|e| e.name != d.name),
+                "{} twice",
+                d.name
+            );
+            assert!(
+                ["tiles", "ratio", "tiles/s", "frames", "count", "bool", "ns"].contains(&d.unit),
+                "{}: {}",
+                d.name,
+                d.unit
+            );
+            assert!(d.weight >= 0.0 && d.weight.is_finite());
+        }
+    }
+}

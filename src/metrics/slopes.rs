@@ -1,0 +1,215 @@
+//! Slopes: staying grounded walking down, the gap to the surface, the speed along it, and the
+//! climb limit.
+
+use super::ground::Ground;
+use super::{commanded_distance, pos, Context, Measure};
+use crate::scenario::input_script;
+use crate::trace::TraceRow;
+
+/// Columns holding a slope that rises in direction `dir` (+1 right, -1 left) more steeply than
+/// the climb limit somewhere in the tile.
+pub(super) fn steep_columns<'a>(ctx: &'a Context, dir: f32) -> impl Iterator<Item = i64> + 'a {
+    let limit = ctx.params.max_climb_angle.tan() + 1e-3;
+    ctx.level.slopes().filter_map(move |(i, _, s)| {
+        let steep = (0..16).any(|k| {
+            let (a, b) = (k as f32 / 16.0, (k + 1) as f32 / 16.0);
+            (s.height_at(b) - s.height_at(a)) * 16.0 * dir > limit
+        });
+        steep.then_some(i)
+    })
+}
+
+/// For each row, whether the ground under the character's centre (from half a tile above its
+/// feet to one tile below) is a slope no steeper than the climb limit.
+pub(super) fn slope_frames(ctx: &Context, rows: &[TraceRow]) -> Vec<bool> {
+    let limit = ctx.params.max_climb_angle.tan() + 1e-3;
+    rows.iter()
+        .map(|r| match ctx.level.surface_at(r.x, r.y + 0.5, 1.5) {
+            Some((_, Some((i, j)))) => {
+                let n = ctx.level.slope_normal(i, j, r.x);
+                (n.x / n.y).abs() <= limit
+            }
+            _ => false,
+        })
+        .collect()
+}
+
+/// Whether the scenario walks (a direction held at some point) and never jumps.
+pub(super) fn walks_without_jumping(script: &[crate::motion::Input]) -> bool {
+    script.iter().any(|i| i.horizontal() != 0.0) && !script.iter().any(|i| i.jump)
+}
+
+/// Whether the scenario's walk, as commanded, crosses a column holding a slope no steeper than
+/// the climb limit: the slope metrics then apply, whatever the controller does.
+pub(super) fn walks_over_slopes(ctx: &Context) -> bool {
+    let script = input_script(ctx.spec);
+    if !walks_without_jumping(&script) {
+        return false;
+    }
+    let d = commanded_distance(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt) as f32;
+    let half = ctx.spec.size.x * 0.5;
+    let (a, b) = (ctx.spec.spawn.x, ctx.spec.spawn.x + d);
+    let (x0, x1) = (a.min(b) - half, a.max(b) + half);
+    let limit = ctx.params.max_climb_angle.tan() + 1e-3;
+    ctx.level.slopes().any(|(i, _, s)| {
+        let walkable = (0..16).any(|k| {
+            let (u, v) = (k as f32 / 16.0, (k + 1) as f32 / 16.0);
+            let grad = (s.height_at(v) - s.height_at(u)) * 16.0;
+            grad != 0.0 && grad.abs() <= limit
+        });
+        walkable && (i as f32) < x1 && (i as f32 + 1.0) > x0
+    })
+}
+
+/// `slope_airborne_frames`: frames airborne over a walkable slope while walking, without a jump.
+pub fn slope_airborne_frames(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
+    if !walks_over_slopes(ctx) {
+        return None;
+    }
+    let script = input_script(ctx.spec);
+    let count = (1..rows.len())
+        .filter(|&k| on[k] && script[k - 1].horizontal() != 0.0 && !rows[k].is_grounded())
+        .count();
+    Some(Measure {
+        metric: "slope_airborne_frames",
+        value: count as f64,
+        reference: 0.0,
+    })
+}
+
+/// `slope_gap_max`: over the frames reported grounded over a walkable slope, the signed gap
+/// between the character's shape and the level's surface that is farthest from touching, in
+/// tiles: positive a gap above the surface, negative the depth inside it (the seed's box
+/// overhanging a ramp reads as inside it). 0 if it never stood on one.
+pub fn slope_gap_max(ctx: &Context, g: &Ground, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
+    if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
+        return None;
+    }
+    let worst = rows
+        .iter()
+        .zip(on)
+        .filter(|(r, o)| **o && r.is_grounded())
+        .map(|(r, _)| g.gap(pos(r)))
+        .fold(0.0f32, |a, b| if b.abs() > a.abs() { b } else { a });
+    Some(Measure {
+        metric: "slope_gap_max",
+        value: worst as f64,
+        reference: 0.0,
+    })
+}
+
+/// `slope_overlap`: on a level with slopes, the deepest overlap of the character's shape with a
+/// slope tile's solid part over the run, in tiles (parry's penetration depth). The seed's
+/// centre-column rule stands the sweep's box on a slope by the surface under its centre, so its
+/// box overhangs the ramp by up to half its width times the gradient (0.4 tiles vertically on a
+/// 45-degree ramp for a 0.8-wide box, 0.28 along the ramp's normal): this is that overlap, by
+/// design, reported as what it is.
+pub fn slope_overlap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<Measure> {
+    if !ctx.level.features.slopes {
+        return None;
+    }
+    let worst = rows
+        .iter()
+        .map(|r| g.slope_penetration(pos(r)))
+        .fold(0.0f32, f32::max);
+    Some(Measure {
+        metric: "slope_overlap",
+        value: worst as f64,
+        reference: 0.0,
+    })
+}
+
+/// Whether the scenario drops the character onto a slope and leaves it there (no input).
+pub(super) fn rest_on_slope(ctx: &Context) -> bool {
+    input_script(ctx.spec)
+        .iter()
+        .all(|i| *i == crate::motion::Input::default())
+        && matches!(
+            ctx.level
+                .surface_at(ctx.spec.spawn.x, ctx.spec.spawn.y, ctx.spec.spawn.y),
+            Some((_, Some(_)))
+        )
+}
+
+/// The speed over a walkable slope against two models, each over the run speed (the speed the
+/// same input gives on flat ground), as the mean over the steps walked over a slope at full
+/// commanded speed:
+///
+/// - `slope_speed_ratio`: the horizontal speed, against constant horizontal speed (the seed:
+///   the box moves along x at run speed and its height follows the surface);
+/// - `slope_surface_speed_ratio`: the speed along the path (x and y), against constant speed
+///   along the surface (Godot's `floor_constant_speed`).
+///
+/// A controller is not wrong for following either model: the report shows both. 0 if it never
+/// walked the slope at full speed.
+pub fn slope_speed_ratios(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> [Option<Measure>; 2] {
+    // A walk into a too-steep rise is steep_blocked's business, not a speed.
+    if !walks_over_slopes(ctx) || steep_ahead(ctx) {
+        return [None, None];
+    }
+    let script = input_script(ctx.spec);
+    // Steps at full commanded speed: the same direction held since the ramp-up ended.
+    let ramp = (ctx.params.run_speed / (ctx.params.run_accel * ctx.spec.dt)).ceil() as usize + 1;
+    let steps: Vec<usize> = (1..rows.len())
+        .filter(|&k| {
+            let dir = script[k - 1].horizontal();
+            dir != 0.0
+                && on[k]
+                && on[k - 1]
+                && k > ramp
+                && script[k - 1 - ramp..k]
+                    .iter()
+                    .all(|i| i.horizontal() == dir)
+        })
+        .collect();
+    let dt = ctx.spec.dt as f64;
+    let mean = |speed: &dyn Fn(usize) -> f64| {
+        if steps.is_empty() {
+            0.0
+        } else {
+            steps.iter().map(|&k| speed(k)).sum::<f64>() / steps.len() as f64
+        }
+    };
+    let horizontal = mean(&|k| ((rows[k].x - rows[k - 1].x) as f64 / dt).abs());
+    let along = mean(&|k| (pos(&rows[k]) - pos(&rows[k - 1])).length() as f64 / dt);
+    let run = ctx.params.run_speed as f64;
+    [
+        Some(Measure {
+            metric: "slope_speed_ratio",
+            value: horizontal / run,
+            reference: 1.0,
+        }),
+        Some(Measure {
+            metric: "slope_surface_speed_ratio",
+            value: along / run,
+            reference: 1.0,
+        }),
+    ]
+}
+
+/// Whether the commanded walk reaches a slope rising more steeply than the climb limit.
+pub(super) fn steep_ahead(ctx: &Context) -> bool {
+    let script = input_script(ctx.spec);
+    let d = commanded_distance(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt) as f32;
+    let (a, b) = (ctx.spec.spawn.x, ctx.spec.spawn.x + d);
+    let (x0, x1) = (a.min(b), a.max(b));
+    steep_columns(ctx, d.signum()).any(|i| (i as f32) < x1 && (i as f32 + 1.0) > x0)
+}
+
+/// `steep_blocked`: for a walk toward a slope that rises more steeply than the climb limit, 1 if
+/// the character never got half a tile above where it started, else 0.
+pub fn steep_blocked(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+    let script = input_script(ctx.spec);
+    if !walks_without_jumping(&script) {
+        return None;
+    }
+    if !steep_ahead(ctx) {
+        return None;
+    }
+    let top = rows.iter().map(|r| r.y).fold(f32::NEG_INFINITY, f32::max);
+    Some(Measure {
+        metric: "steep_blocked",
+        value: (top < ctx.spec.spawn.y + 0.5) as u8 as f64,
+        reference: 1.0,
+    })
+}

@@ -1,0 +1,126 @@
+//! The geometric metrics (`max_penetration`, `rest_gap`, `slope_gap_max`, `slope_overlap`)
+//! measure every controller's real shape against the real level surface, slopes included
+//! (issue 17, item 1): the sweep's box overhanging a ramp by design is measured as what it is,
+//! and feet moved below a slope's surface are seen.
+
+mod common;
+
+use common::{evaluate_all, level, rows};
+use platbench::metrics::{compute, Context, DeclaredContact, MetricRow};
+use platbench::motion::MotionParams;
+use platbench::scenario::{effective_params, RunConfig};
+use platbench::shape::CharacterShape;
+use platbench::trace::Trace;
+
+/// The straight ramps of the built-in set and their gradients (the `line` heights of their
+/// legend rise by this much per tile).
+const RAMPS: [(&str, f64); 4] = [
+    ("slope_22_5", 0.41421),
+    ("slope_26_6", 0.5),
+    ("slope_45", 1.0),
+    ("slope_63_4", 2.0),
+];
+
+#[test]
+fn the_sweeps_box_overlaps_each_ramp_by_its_designed_overhang() {
+    for (name, gradient) in RAMPS {
+        let evals = evaluate_all(&[level(name)], &RunConfig::sweep_default());
+        let overlaps = rows(&evals, "slope_overlap");
+        assert!(!overlaps.is_empty(), "{name}: slope_overlap measured");
+        // The seed's centre-column rule stands the box's centre on the surface: its uphill
+        // corner is half the width (0.4) times the gradient below the surface, which is
+        // 0.4 sin(angle) along the ramp's normal (parry's penetration depth). Every scenario
+        // that stands on the ramp reaches it, none exceeds it (1e-4: f32 positions of a few
+        // tiles).
+        let designed = 0.4 * gradient.atan().sin();
+        let worst = overlaps.iter().map(|r| r.value).fold(0.0, f64::max);
+        assert!(
+            (worst - designed).abs() < 1e-4,
+            "{name}: overlap {worst}, designed {designed}"
+        );
+    }
+}
+
+/// The metrics of `t` on `spec`, recomputed.
+fn metrics_of(name: &str, scenario: &str, t: &Trace, declared: DeclaredContact) -> Vec<MetricRow> {
+    let level = level(name);
+    let spec = level
+        .scenarios
+        .iter()
+        .find(|s| s.name == scenario)
+        .expect("scenario exists");
+    let params = effective_params(&MotionParams::default(), spec);
+    compute(&Context {
+        shape: CharacterShape::Cuboid,
+        level: &level,
+        spec,
+        params: &params,
+        trace: t,
+        declared,
+    })
+}
+
+fn value(rows: &[MetricRow], m: &str) -> f64 {
+    rows.iter()
+        .find(|r| r.metric == m)
+        .unwrap_or_else(|| panic!("{m} measured"))
+        .value
+}
+
+#[test]
+fn feet_moved_below_a_slope_are_seen() {
+    // Take the sweep's own traces on the 45-degree ramp and move its feet 0.2 tiles down
+    // wherever it stands over the ramp: every geometric metric must move by the depth that
+    // adds. A box against a 45-degree line that moves down by d goes d cos 45 deeper along the
+    // line's normal (its deepest corner stays the same), so the depth grows by 0.2 cos 45 =
+    // 0.1414; 1e-3 allows the f32 positions.
+    let deeper = 0.2 * std::f64::consts::FRAC_PI_4.cos() - 1e-3;
+    let hill = level("slope_45");
+    for scenario in ["rest_on_slope", "walk_right"] {
+        let evals = evaluate_all(std::slice::from_ref(&hill), &RunConfig::sweep_default());
+        let (_, e) = evals
+            .iter()
+            .find(|(n, _)| n.ends_with(&format!(".{scenario}")))
+            .expect("scenario ran");
+        let sweep = RunConfig::sweep_default()
+            .backend
+            .declared_contact(glam::Vec2::new(0.8, 0.9), std::f32::consts::FRAC_PI_4);
+        let before = metrics_of("slope_45", scenario, &e.trace, sweep);
+        let mut sunk = e.trace.clone();
+        let mut moved = 0;
+        for r in &mut sunk.rows {
+            let over_ramp = matches!(hill.surface_at(r.x, r.y + 0.5, 1.5), Some((_, Some(_))));
+            if over_ramp {
+                r.y -= 0.2;
+                moved += 1;
+            }
+        }
+        assert!(moved > 10, "{scenario}: {moved} frames over the ramp");
+        let after = metrics_of("slope_45", scenario, &sunk, sweep);
+        for m in ["slope_overlap", "max_penetration"] {
+            let (b, a) = (value(&before, m), value(&after, m));
+            assert!(a >= b + deeper, "{scenario} {m}: {b} -> {a}");
+        }
+        let (b, a) = (
+            value(&before, "slope_gap_max"),
+            value(&after, "slope_gap_max"),
+        );
+        assert!(a <= b - deeper, "{scenario} slope_gap_max: {b} -> {a}");
+        // Against the sweep's own promise (overhang at most 0.4 vertically at the 45-degree
+        // climb limit, plus epsilon): kept before (0), broken after by the depth beyond it:
+        // 0.4 sin 45 + 0.2 cos 45 - 0.4 - 0.001 = 0.0233 along the normal (1e-3: f32).
+        let (b, a) = (
+            value(&before, "penetration_beyond_declared"),
+            value(&after, "penetration_beyond_declared"),
+        );
+        assert_eq!(b, 0.0, "{scenario}");
+        assert!(
+            a >= 0.0233 - 1e-3,
+            "{scenario} penetration_beyond_declared {a}"
+        );
+        if scenario == "rest_on_slope" {
+            let (b, a) = (value(&before, "rest_gap"), value(&after, "rest_gap"));
+            assert!(a <= b - deeper, "rest_gap: {b} -> {a}");
+        }
+    }
+}

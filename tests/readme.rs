@@ -1,0 +1,146 @@
+//! The README's metric catalog and summary claims, checked against the code (issue 17, item 10).
+
+mod common;
+
+use common::{builtin_levels, evaluate_all};
+use platbench::metrics::registry::METRICS;
+use platbench::report::summary_table;
+use platbench::scenario::RunConfig;
+
+fn readme() -> String {
+    std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
+        .expect("README.md")
+}
+
+#[test]
+fn the_readme_lists_every_metric_of_the_registry_with_its_unit() {
+    let text = readme();
+    assert!(!METRICS.is_empty());
+    for d in METRICS {
+        let row = format!("| `{}` ({}) |", d.name, d.unit);
+        assert!(text.contains(&row), "README misses {row}");
+    }
+}
+
+#[test]
+fn integer_positions_are_compared_over_39_of_63_scenarios() {
+    // README, summary: "over 39 of 63". The integer mode refuses slopes and moving platforms,
+    // so it runs the 39 scenarios of the 9 levels it models out of the built-in set's 63.
+    let levels = builtin_levels();
+    let total: usize = levels.iter().map(|l| l.scenarios.len()).sum();
+    assert_eq!(total, 63);
+    let mut rows = Vec::new();
+    for run in [RunConfig::sweep_default(), RunConfig::sweep_integer(32)] {
+        for l in &levels {
+            for s in &l.scenarios {
+                match platbench::metrics::evaluate(l, s, &run) {
+                    Ok(e) => rows.extend(e.metrics),
+                    Err(platbench::backend::BackendError::Unsupported { .. }) => {}
+                    Err(e) => panic!("{e}"),
+                }
+            }
+        }
+    }
+    let summary = summary_table(&rows);
+    assert!(
+        summary.contains("sweep positions=integer/32 (over 39 of 63)"),
+        "{summary}"
+    );
+    assert!(!summary.contains("sweep (over"), "{summary}");
+    // The same count the shared helper sees.
+    let evals = evaluate_all(&levels, &RunConfig::sweep_default());
+    assert_eq!(evals.len(), 63);
+}
+
+/// The rows of the committed `platbench sweep --out compare/tradeoff` run.
+fn committed_tradeoff() -> Vec<platbench::tradeoff::TradeoffRow> {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("compare/tradeoff/tradeoff.csv");
+    csv::Reader::from_path(&path)
+        .expect("compare/tradeoff/tradeoff.csv")
+        .deserialize()
+        .collect::<Result<_, _>>()
+        .expect("parses")
+}
+
+#[test]
+fn the_readme_trade_figures_are_the_committed_sweep_run() {
+    use platbench::tradeoff::{scored_behaviours, ALL};
+    let rows = committed_tradeoff();
+    let text = readme().split_whitespace().collect::<Vec<_>>().join(" ");
+    let all: Vec<_> = rows.iter().filter(|r| r.scope == ALL).collect();
+    let of = |backend: &str| -> Vec<_> { all.iter().filter(|r| r.backend == backend).collect() };
+    for backend in ["sweep", "rapier"] {
+        let rs = of(backend);
+        assert!(!rs.is_empty(), "{backend}");
+        let cheapest = rs
+            .iter()
+            .min_by(|a, b| a.cost_us.total_cmp(&b.cost_us))
+            .unwrap();
+        let dearest = rs
+            .iter()
+            .max_by(|a, b| a.cost_us.total_cmp(&b.cost_us))
+            .unwrap();
+        let lo = rs.iter().map(|r| r.error).fold(f64::INFINITY, f64::min);
+        let hi = rs.iter().map(|r| r.error).fold(0.0, f64::max);
+        for figure in [
+            format!("{:.1} ({})", cheapest.cost_us, cheapest.setting),
+            format!("{:.1} ({})", dearest.cost_us, dearest.setting),
+            format!("error scores {lo:.4} to {hi:.4}"),
+        ] {
+            assert!(text.contains(&figure), "README lacks {figure:?}");
+        }
+    }
+    // "4 substeps buy a little accuracy (A to B for the per-tile capsule) at R times the cost".
+    let setting = |s: &str| all.iter().find(|r| r.setting == s).expect(s);
+    let (one, four) = (
+        setting("per-tile capsule dt=1/60"),
+        setting("per-tile capsule substeps=4"),
+    );
+    let figure = format!(
+        "({:.4} to {:.4} for the per-tile capsule) at {:.1} times the cost",
+        one.error,
+        four.error,
+        four.cost_us / one.cost_us
+    );
+    assert!(text.contains(&figure), "README lacks {figure:?}");
+    // "Its most accurate setting is the grounded feed of the bevy_rapier example (..., A,
+    // against B fed gravity every step)".
+    let fed = setting("per-tile capsule grounded=none-but-platforms");
+    let best = all
+        .iter()
+        .filter(|r| r.backend == "rapier")
+        .min_by(|a, b| a.error.total_cmp(&b.error))
+        .expect("rapier rows");
+    assert_eq!(best.setting, fed.setting);
+    let figure = format!(
+        "grounded=none-but-platforms`, {:.4}, against {:.4} fed gravity every step)",
+        fed.error, one.error
+    );
+    assert!(text.contains(&figure), "README lacks {figure:?}");
+    // "Per behaviour the fronts are the sweep's too, except jumping, where four Rapier settings
+    // are on the front with the sweep."
+    for b in scored_behaviours() {
+        let front: Vec<_> = rows
+            .iter()
+            .filter(|r| r.scope == b.key() && r.pareto)
+            .collect();
+        assert!(front.iter().any(|r| r.backend == "sweep"), "{}", b.key());
+        let rapier: Vec<&str> = front
+            .iter()
+            .filter(|r| r.backend == "rapier")
+            .map(|r| r.setting.as_str())
+            .collect();
+        let expected: &[&str] = if b.key() == "jumping" {
+            &[
+                "per-tile capsule offset=0.005h",
+                "per-tile capsule snap=none",
+                "per-tile cuboid",
+                "merged cuboid",
+            ]
+        } else {
+            &[]
+        };
+        assert_eq!(rapier, expected, "{}", b.key());
+    }
+}
