@@ -66,12 +66,16 @@ impl BackendConfig {
                 crate::sweep::Positions::Float => DeclaredContact {
                     gap: 0.0,
                     overlap_tolerance: c.epsilon,
+                    gap_tolerance: c.epsilon,
                     slope_overhang: size.x * 0.5 * max_climb_angle.tan(),
                 },
                 crate::sweep::Positions::Integer { .. } => DeclaredContact::default(),
             },
             BackendConfig::Rapier(c) => DeclaredContact {
                 gap: c.offset.eval(size.y),
+                // Rapier adds its normal nudge along the contact normal after each cast hit, so
+                // a rest settles at the offset or up to one nudge further out.
+                gap_tolerance: c.normal_nudge_factor,
                 ..DeclaredContact::default()
             },
         }
@@ -124,6 +128,10 @@ pub struct DeclaredContact {
     /// Overlap tolerated before a contact counts: the sweep's epsilon (the seed's "overlap
     /// tolerance").
     pub overlap_tolerance: f32,
+    /// How far a rest may sit from `gap`, along the normal, and still keep the promise:
+    /// Rapier's normal nudge (1e-4 tiles by default), which it adds after each cast hit, so its
+    /// rest settles between the offset and one nudge beyond; the sweep's epsilon.
+    pub gap_tolerance: f32,
     /// How far the character's shape may overhang into a slope, vertically: the seed's
     /// centre-column rule stands a box on the surface under its centre, so its corner may be
     /// half its width times the climb gradient inside a walkable ramp.

@@ -106,16 +106,17 @@ fn feet_moved_below_a_slope_are_seen() {
             value(&after, "slope_gap_max"),
         );
         assert!(a <= b - deeper, "{scenario} slope_gap_max: {b} -> {a}");
-        // Against the sweep's own promise (overhang at most 0.4 vertically at the 45-degree
-        // climb limit, plus epsilon): kept before (0), broken after by the depth beyond it:
-        // 0.4 sin 45 + 0.2 cos 45 - 0.4 - 0.001 = 0.0233 along the normal (1e-3: f32).
+        // Against the sweep's own promise (its box standing on the surface under its centre,
+        // overlapping the ramp by 0.4 sin 45 along the normal, plus epsilon): kept before (0),
+        // broken after by the whole sinking: 0.2 cos 45 - 0.001 = 0.1404 along the normal
+        // (1e-3: f32).
         let (b, a) = (
             value(&before, "penetration_beyond_declared"),
             value(&after, "penetration_beyond_declared"),
         );
         assert_eq!(b, 0.0, "{scenario}");
         assert!(
-            a >= 0.0233 - 1e-3,
+            a >= 0.1404 - 1e-3,
             "{scenario} penetration_beyond_declared {a}"
         );
         if scenario == "rest_on_slope" {
@@ -123,4 +124,42 @@ fn feet_moved_below_a_slope_are_seen() {
             assert!(a <= b - deeper, "rest_gap: {b} -> {a}");
         }
     }
+}
+
+#[test]
+fn a_bounce_after_landing_is_charged() {
+    // The sweep's drop_3 lands and stays down (bounce_frames 0). Lift its trace off the
+    // floor for 12 frames right after it first touched ground, as a bouncing controller
+    // would: bounce_frames counts exactly those frames, while land_frame_error (first grounded
+    // frame) and rest_jitter (the settled last 0.5 s) do not see them.
+    let evals = evaluate_all(&[level("drops")], &RunConfig::sweep_default());
+    let (_, e) = evals
+        .iter()
+        .find(|(n, _)| n.ends_with(".drop_3"))
+        .expect("drop_3 ran");
+    let declared = DeclaredContact::default();
+    let value = |m: &[MetricRow], name: &str| {
+        m.iter()
+            .find(|r| r.metric == name)
+            .unwrap_or_else(|| panic!("{name}"))
+            .value
+    };
+    let before = metrics_of("drops", "drop_3", &e.trace, declared);
+    assert_eq!(value(&before, "bounce_frames"), 0.0);
+    let mut bounced = e.trace.clone();
+    let landed = bounced
+        .rows
+        .iter()
+        .position(|r| r.grounded != 0)
+        .expect("it lands");
+    for r in &mut bounced.rows[landed + 1..landed + 13] {
+        r.grounded = 0;
+        r.y += 0.5;
+    }
+    let after = metrics_of("drops", "drop_3", &bounced, declared);
+    assert_eq!(value(&after, "bounce_frames"), 12.0);
+    assert_eq!(
+        value(&after, "land_frame_error"),
+        value(&before, "land_frame_error")
+    );
 }

@@ -144,3 +144,18 @@ fn the_readme_trade_figures_are_the_committed_sweep_run() {
         assert_eq!(rapier, expected, "{}", b.key());
     }
 }
+
+#[test]
+fn the_readme_summary_is_what_platbench_prints() {
+    // README: "The built-in comparison today (`platbench`, this build)": every line the
+    // command prints (tables and the notes under them) appears in the README as printed.
+    let out = common::platbench().output().expect("platbench runs");
+    common::assert_success(&out);
+    let printed = String::from_utf8(out.stdout).expect("utf-8");
+    let text = readme();
+    let lines: Vec<&str> = printed.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert!(lines.len() > 20, "{printed}");
+    for l in lines {
+        assert!(text.contains(l), "README lacks the printed line {l:?}");
+    }
+}

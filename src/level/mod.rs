@@ -101,14 +101,28 @@ impl Slope {
         }
     }
 
+    /// Surface height just left of `u`, in tiles: the same as [`Slope::height_at`] except at a
+    /// column boundary of a height array, where it is the column to the left's.
+    pub fn height_left_of(&self, u: f32) -> f32 {
+        match self {
+            Slope::Heights(h) => {
+                let k = (u.clamp(0.0, 1.0) * 16.0).ceil() as usize;
+                h[k.clamp(1, 16) - 1] as f32 / 16.0
+            }
+            Slope::Line { .. } => self.height_at(u),
+        }
+    }
+
     /// Heights at the tile's left and right edges, in tiles.
     pub fn edges(&self) -> (f32, f32) {
         (self.height_at(0.0), self.height_at(1.0))
     }
 
     /// The surface as a polyline in tile-local coordinates (x and y in 0..=1), left to right:
-    /// the line itself, or for a height array the points at the centres of its 16 columns
-    /// extended flat to the edges (the smooth surface the steps approximate).
+    /// the line itself, or for a height array its 16 columns as steps (the flat top of each
+    /// column, with a vertical riser where two columns differ), the very surface the sweep
+    /// stands on and the metrics measure, so that every controller collides with the same
+    /// geometry.
     pub fn surface_points(&self) -> Vec<Vec2> {
         match self {
             Slope::Line { left, right } => {
@@ -128,13 +142,16 @@ impl Slope {
                     .collect()
             }
             Slope::Heights(h) => {
-                let mut pts = vec![Vec2::new(0.0, h[0] as f32 / 16.0)];
-                pts.extend(
-                    h.iter()
-                        .enumerate()
-                        .map(|(i, v)| Vec2::new((i as f32 + 0.5) / 16.0, *v as f32 / 16.0)),
-                );
-                pts.push(Vec2::new(1.0, h[15] as f32 / 16.0));
+                let mut pts: Vec<Vec2> = Vec::with_capacity(32);
+                for (i, v) in h.iter().enumerate() {
+                    let y = *v as f32 / 16.0;
+                    let (x0, x1) = (i as f32 / 16.0, (i + 1) as f32 / 16.0);
+                    // Extend the previous column's top when this one is as high.
+                    match pts.last_mut() {
+                        Some(last) if last.y == y => last.x = x1,
+                        _ => pts.extend([Vec2::new(x0, y), Vec2::new(x1, y)]),
+                    }
+                }
                 pts
             }
         }
@@ -607,7 +624,10 @@ mod tests {
         assert_eq!(seed.height_at(0.0), 12.0 / 16.0);
         assert_eq!(seed.height_at(3.5 / 16.0), 8.0 / 16.0);
         assert_eq!(seed.height_at(1.0), 1.0 / 16.0);
-        assert_eq!(seed.surface_points().len(), 18);
+        // 11 runs of equal heights (12, 11, 10, 8, 7, 6, 5 x5, 4, 3, 2, 1 x2), two points each.
+        assert_eq!(seed.surface_points().len(), 22);
+        assert_eq!(seed.height_left_of(3.0 / 16.0), 10.0 / 16.0);
+        assert_eq!(seed.height_at(3.0 / 16.0), 8.0 / 16.0);
     }
 
     #[test]

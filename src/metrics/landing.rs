@@ -130,50 +130,82 @@ pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) ->
     let rest = rest_gap(ctx, g, rows);
     let feet = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
     let under = ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5);
+    // A gap kept along the normal of the ground the shape rests on reads vertically as
+    // gap / cos(angle) (the normal a straight drop meets; a wall's is clamped at 84 degrees).
+    let n = g.ground_normal(feet).unwrap_or(glam::Vec2::Y);
+    let vertical = |along_normal: f32| (along_normal / n.y.max(0.1)) as f64;
     let reference = match under {
         Some((h, Some(_))) if ctx.declared.slope_overhang > 0.0 => {
             g.gap(glam::Vec2::new(feet.x, h)) as f64
         }
-        // A gap kept along the normal of the ground the shape rests on reads vertically as
-        // gap / cos(angle) (the normal a straight drop meets; a wall's is clamped at 84 degrees).
-        _ => {
-            let n = g.ground_normal(feet).unwrap_or(glam::Vec2::Y);
-            (ctx.declared.gap / n.y.max(0.1)) as f64
-        }
+        _ => vertical(ctx.declared.gap),
     };
+    // Within the declared tolerance of the promise counts as keeping it; beyond, the excess.
+    let off = rest.value - reference;
+    let tolerance = vertical(ctx.declared.gap_tolerance);
     Measure {
         metric: "rest_gap_declared",
-        value: rest.value - reference,
+        value: off.signum() * (off.abs() - tolerance).max(0.0),
         reference: 0.0,
     }
 }
 
 /// `penetration_beyond_declared`: over the run, the deepest overlap with the level beyond what
 /// the configuration declares it may overlap, in tiles: its overlap tolerance (the sweep's
-/// epsilon) everywhere, plus, while it overlaps a slope or stands over one (the surface under its
-/// centre within the overhang is a slope), its declared overhang (the seed's box, up to half its
-/// width times the climb gradient into the ramp and the ground that continues it). A controller
-/// keeping its promise scores 0.
+/// epsilon) everywhere, plus, for a controller that declares the seed's centre-column stance
+/// (`slope_overhang > 0`), the overlap its shape has when its feet stand on the surface under
+/// its centre: the designed overhang into a ramp (or the ground that continues it) at that very
+/// place, measured the same way as the overlap itself. Sunk below that stance, the difference
+/// counts. A controller keeping its promise scores 0.
 pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let d = ctx.declared;
     let worst = rows
         .iter()
         .map(|r| {
             let p = pos(r);
-            let slopes = g.slope_penetration(p);
-            let over_slope = slopes > 0.0
-                || matches!(
-                    ctx.level
-                        .surface_at(p.x, p.y + d.slope_overhang, 2.0 * d.slope_overhang),
-                    Some((_, Some(_)))
-                );
-            let allowed = d.overlap_tolerance + if over_slope { d.slope_overhang } else { 0.0 };
-            (g.square_penetration(p).max(slopes) - allowed).max(0.0)
+            let actual = g.square_penetration(p).max(g.slope_penetration(p));
+            let designed = if d.slope_overhang > 0.0 {
+                match ctx
+                    .level
+                    .surface_at(p.x, p.y + d.slope_overhang, 2.0 * d.slope_overhang)
+                {
+                    Some((h, _)) => {
+                        let stance = glam::Vec2::new(p.x, h);
+                        g.square_penetration(stance)
+                            .max(g.slope_penetration(stance))
+                    }
+                    None => 0.0,
+                }
+            } else {
+                0.0
+            };
+            (actual - d.overlap_tolerance - designed).max(0.0)
         })
         .fold(0.0f32, f32::max);
     Measure {
         metric: "penetration_beyond_declared",
         value: worst as f64,
+        reference: 0.0,
+    }
+}
+
+/// `bounce_frames`: in the final idle span (no input, as [`rest_frames`] finds it), the frames
+/// the character spends airborne after it first touched ground: a landing that bounces or lifts
+/// off again. `rest_jitter` judges only the settled rest and `land_frame_error` only the first
+/// grounded frame, so without this a bounce after landing would be charged nowhere.
+pub(super) fn bounce_frames(ctx: &Context, rows: &[TraceRow]) -> Measure {
+    let script = input_script(ctx.spec);
+    let idle = crate::motion::Input::default();
+    let first_idle_row = script.iter().rposition(|i| *i != idle).map_or(0, |k| k + 1) + 1;
+    let span = rows.get(first_idle_row.min(rows.len())..).unwrap_or(&[]);
+    let count = span
+        .iter()
+        .skip_while(|r| !r.is_grounded())
+        .filter(|r| !r.is_grounded())
+        .count();
+    Measure {
+        metric: "bounce_frames",
+        value: count as f64,
         reference: 0.0,
     }
 }

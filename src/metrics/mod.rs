@@ -119,7 +119,11 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     );
     push(Some(landing::max_penetration(g, &rows)));
     push(Some(landing::penetration_beyond_declared(ctx, g, &rows)));
-    push(rest.map(|r| landing::rest_jitter(&rows[landing::settled(ctx, r)])));
+    push(
+        rest.clone()
+            .map(|r| landing::rest_jitter(&rows[landing::settled(ctx, r)])),
+    );
+    push(rest.map(|_| landing::bounce_frames(ctx, &rows)));
     push(Some(landing::grounded_flicker(ctx, g, &rows)));
     push(Some(landing::false_grounded(g, &rows)));
     push(jumping::apex_error(ctx, &rows));
@@ -311,6 +315,7 @@ map = """
                 "max_penetration",
                 "penetration_beyond_declared",
                 "rest_jitter",
+                "bounce_frames",
                 "grounded_flicker",
                 "false_grounded",
                 "stuck_frames",

@@ -213,7 +213,7 @@ pub const METRICS: &[MetricDef] = &[
         Landing,
         "deepest overlap with the level beyond what the configuration declares it may overlap",
         "every scenario",
-        "the configuration's declared overlap: the sweep's epsilon, and its box's overhang into a slope (half its width times the climb gradient)",
+        "the configuration's declared overlap: the sweep's epsilon, and the overlap its box has standing on the surface under its centre (the seed's overhang into a slope)",
         1.0,
     ),
     def(
@@ -223,6 +223,15 @@ pub const METRICS: &[MetricDef] = &[
         "max minus min of the feet's height over the settled rest (its last 0.5 s, as stress judges it)",
         "scenarios ending with at least 0.5 s of idle input, not riding a platform",
         "a still rest",
+        1.0,
+    ),
+    def(
+        "bounce_frames",
+        "frames",
+        Landing,
+        "frames airborne after the character first touched ground in its final idle span (a landing that bounces or lifts off again)",
+        "scenarios ending with at least 0.5 s of idle input, not riding a platform",
+        "staying down once landed",
         1.0,
     ),
     def(

@@ -203,8 +203,10 @@ fn ramp_outline(level: &Level, a: i64, b: i64) -> Vec<Vec2> {
     let top = level.height as f32 + 1.0;
     // The ground's top at x, probed just inside [x0, x1] and evaluated exactly on the tile
     // found there (a slope's own line, or a solid's top).
-    let ground = |x: f32, probe: f32| match level.surface_at(probe, top, top + 1.0) {
+    // `left`: the limit from the left, which differs at a height array's column boundary.
+    let ground = |x: f32, probe: f32, left: bool| match level.surface_at(probe, top, top + 1.0) {
         Some((_, Some((i, j)))) => match level.tile(i, j) {
+            crate::level::Tile::Slope(s) if left => j as f32 + s.height_left_of(x - i as f32),
             crate::level::Tile::Slope(s) => j as f32 + s.height_at(x - i as f32),
             _ => 0.0,
         },
@@ -229,7 +231,13 @@ fn ramp_outline(level: &Level, a: i64, b: i64) -> Vec<Vec2> {
     let mut pts = vec![Vec2::new(x0, base(a))];
     for x in xs {
         let probe = x.clamp(x0 + nudge, x1 - nudge);
-        pts.push(Vec2::new(x, ground(x, probe)));
+        let at = ground(x, probe, false);
+        // A step of a height array (or between tiles): the riser, from the left's height.
+        let from_left = ground(x, (x - nudge).clamp(x0 + nudge, x1 - nudge), true);
+        if (from_left - at).abs() > 1e-6 {
+            pts.push(Vec2::new(x, from_left));
+        }
+        pts.push(Vec2::new(x, at));
     }
     pts.push(Vec2::new(x1, base(b)));
     // Drop points in the middle of straight runs.

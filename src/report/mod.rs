@@ -40,7 +40,7 @@ pub fn format_setting(v: f64) -> String {
 }
 
 /// A configuration as a column label: the backend, then its configuration unless default.
-fn column(r: &MetricRow) -> String {
+pub(crate) fn column(r: &MetricRow) -> String {
     if r.config == "default" {
         r.backend.clone()
     } else {
@@ -284,7 +284,7 @@ pub fn notes(rows: &[MetricRow]) -> Vec<String> {
         out.push("rapier loses progress on flat ground when fed gravity on every grounded step: the shape catches on tile seams; fed no vertical move while grounded (grounded=none-but-platforms) it walks.".into());
     }
     if rapier("idle_drift").any(|r| r.value > 1e-3) {
-        out.push("rapier idle_drift: a standing Rapier character moves with no input: spawned flush it creeps out to its offset (up to 0.009 tiles, 1e-4 a step), on a slope at rest it slides, and a wall sliding flush past its side pushes it away (moving_wall).".into());
+        out.push("rapier idle_drift: a standing Rapier character moves with no input: fed gravity every step, each cast hit adds the normal nudge (1e-4 tiles along the contact normal), which walks it down a slope at rest; and a wall sliding flush past its side pushes it away (moving_wall).".into());
     }
     if rows
         .iter()

@@ -164,23 +164,48 @@ pub fn evaluate(rules: &[Rule], rows: &[MetricRow]) -> Vec<String> {
 /// labels, so it names no backend or setting itself: this is how the report says which remedy
 /// fixes which failure, and at what price.
 pub fn setting_effects(rows: &[MetricRow]) -> Vec<String> {
-    let m = worst_matrix(rows, |name| name != "ns_per_character_step");
+    let keep = |name: &str| name != "ns_per_character_step";
+    let labels = worst_matrix(rows, keep).configs;
+    let ran = |c: &str| -> std::collections::BTreeSet<(&str, &str)> {
+        rows.iter()
+            .filter(|r| super::column(r) == c)
+            .map(|r| (r.level.as_str(), r.scenario.as_str()))
+            .collect()
+    };
     let mut out = Vec::new();
-    for (bi, b) in m.configs.iter().enumerate() {
-        for (ai, a) in m.configs.iter().enumerate() {
+    for b in &labels {
+        for a in &labels {
             let Some(setting) = b.strip_prefix(a.as_str()).and_then(|r| r.strip_prefix(' ')) else {
                 continue;
             };
             if setting.contains(' ') {
                 continue;
             }
+            // Both configurations' worst values over the scenarios both ran, and only those.
+            let (ra, rb) = (ran(a), ran(b));
+            let both: std::collections::BTreeSet<_> = ra.intersection(&rb).copied().collect();
+            let pair: Vec<MetricRow> = rows
+                .iter()
+                .filter(|r| {
+                    let c = super::column(r);
+                    (c == *a || c == *b) && both.contains(&(r.level.as_str(), r.scenario.as_str()))
+                })
+                .cloned()
+                .collect();
+            let m = worst_matrix(&pair, keep);
+            let (Some(ai), Some(bi)) = (
+                m.configs.iter().position(|c| c == a),
+                m.configs.iter().position(|c| c == b),
+            ) else {
+                continue;
+            };
             let (mut fixes, mut costs) = (Vec::new(), Vec::new());
             for (mi, (name, _, ideal)) in m.metrics.iter().enumerate() {
                 let (Some((va, _)), Some((vb, _))) = (m.cells[ai][mi], m.cells[bi][mi]) else {
                     continue;
                 };
                 let (da, db) = ((va - ideal).abs(), (vb - ideal).abs());
-                // Ties: f32 rounding, or 1% of the larger distance from ideal.
+                // Ties: f32 rounding, or 1% of the smaller distance from ideal.
                 let tie = super::TIE_TOLERANCE + 0.01 * da.min(db);
                 let change = format!("{name} {} -> {}", format_value(va), format_value(vb));
                 if db + tie < da {
@@ -200,10 +225,10 @@ pub fn setting_effects(rows: &[MetricRow]) -> Vec<String> {
                 }
             };
             out.push(format!(
-                "`{setting}` on {}: better {}; worse {} (worst values over the scenarios both ran).",
-                m.label(ai),
+                "`{setting}` on {a}: better {}; worse {} (worst values over the {} scenarios both ran).",
                 list(&fixes),
-                list(&costs)
+                list(&costs),
+                both.len()
             ));
         }
     }
@@ -252,5 +277,32 @@ mod tests {
                 r.metric
             );
         }
+    }
+
+    #[test]
+    fn a_setting_is_judged_only_over_the_scenarios_both_ran() {
+        let at = |scenario: &str, config: &str, value: f64| MetricRow {
+            scenario: scenario.into(),
+            ..row("sweep", config, "rest_gap", value)
+        };
+        // The base configuration is bad only on a scenario the other never ran.
+        let rows = vec![
+            at("hard", "default", 0.5),
+            at("easy", "default", 0.0),
+            at("easy", "positions=integer/32", 0.0),
+        ];
+        assert!(
+            setting_effects(&rows).is_empty(),
+            "{:?}",
+            setting_effects(&rows)
+        );
+        // Where both ran and it differs, it is reported, with both values.
+        let rows = vec![
+            at("easy", "default", 0.2),
+            at("easy", "positions=integer/32", 0.0),
+        ];
+        let e = setting_effects(&rows);
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert!(e[0].contains("rest_gap 0.2000 -> 0"), "{e:?}");
     }
 }
