@@ -125,14 +125,15 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
 /// (so 0 is a promise kept, positive farther than promised, negative closer or deeper): its
 /// declared gap along the normal of the ground a straight drop meets (Rapier's `offset`:
 /// `offset / cos(angle)` vertically on a slope), or, for a controller that stands a box on the
-/// surface under its centre (the seed), the gap of that stance (inside a slope by its overhang).
+/// surface under its centre (the seed), the gap of that stance (inside a slope by its overhang;
+/// on integer positions, on the surface rounded up to its subpixel, [`crate::scenario::DeclaredContact::stance_height`]).
 pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let rest = rest_gap(ctx, g, rows);
     let feet = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
     let under = ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5);
     let reference = match under {
         Some((h, Some(_))) if ctx.declared.slope_overhang > 0.0 => {
-            g.gap(glam::Vec2::new(feet.x, h)) as f64
+            g.gap(glam::Vec2::new(feet.x, ctx.declared.stance_height(h))) as f64
         }
         // A gap kept along the normal of the ground the shape rests on reads vertically as
         // gap / cos(angle) (the normal a straight drop meets; a wall's is clamped at 84 degrees).

@@ -106,18 +106,11 @@ impl Grid {
     }
 
     /// A height in level coordinates (tiles) as whole subpixels above the level's corner: the
-    /// one rounding of surface heights on the grid (slopes, resolve-up and follow-down). A
-    /// height within 1e-4 of a subpixel (f32 noise of a surface already on the grid) is that
-    /// subpixel; any other is rounded *up*, so feet put on a surface are never below it: the
-    /// centre column never sinks into a slope, and stands at most one subpixel above it.
+    /// one rounding of surface heights on the grid (slopes' resolve-up and follow-down),
+    /// [`crate::level::round_height_up`]: up to the next subpixel unless already on one, so
+    /// the centre column never sinks into a slope and stands at most one subpixel above it.
     pub fn round_height(&self, y: f32) -> i64 {
-        let v = y as f64 * self.per_tile as f64;
-        let r = v.round();
-        if (v - r).abs() < 1e-4 {
-            r as i64
-        } else {
-            v.ceil() as i64
-        }
+        crate::level::round_height_up(y, self.per_tile)
     }
 
     /// A broadphase box (world tiles, f32, faces on whole tiles) on the grid.

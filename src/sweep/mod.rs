@@ -49,8 +49,10 @@ pub enum Positions {
     /// f32 world coordinates with the seed's epsilon tolerance.
     Float,
     /// Whole subpixels (`per_tile` per tile) with the fractions carried between steps, snapping
-    /// flush in exact integer arithmetic ([`grid`]). Levels with slopes or moving platforms are
-    /// refused in this mode for now.
+    /// flush in exact integer arithmetic ([`grid`]). Slopes use the float mode's centre-column
+    /// rules with every surface height rounded up to a whole subpixel
+    /// ([`crate::level::round_height_up`]). Levels with moving platforms are refused in this
+    /// mode for now.
     Integer {
         /// Subpixels per tile (16 and 32 are what pixel-art platformers use).
         per_tile: u32,
@@ -59,7 +61,7 @@ pub enum Positions {
 
 /// The features the integer mode models.
 pub const INTEGER_SUPPORTED: Features = Features {
-    slopes: false,
+    slopes: true,
     one_way: true,
     ladders: true,
     moving_platforms: false,

@@ -163,6 +163,16 @@ pub(super) fn ground_on_slopes<S: Space>(
         s.set_feet_y(c, feet.y);
         return Some((g, true));
     }
+    let unit = s.unit();
+    if unit > 0.0 && !grounded && dy < 0.0 && feet.y == from {
+        // On the grid, a fall of less than a subpixel moves nothing, and feet put on a slope
+        // stand at most a subpixel above it (`Grid::round_height`): the slope is under them if
+        // it is within that subpixel (the grid's "collide check one pixel down", as for solids).
+        if let Some(g) = follow_down(w.level, s.origin(), &mut feet, unit) {
+            s.set_feet_y(c, feet.y);
+            return Some((g, false));
+        }
+    }
     if !grounded && was_grounded && dy <= 0.0 {
         let max_drop = rise_allow + w.snap_down - dy.min(0.0);
         if let Some(g) = follow_down(w.level, s.origin(), &mut feet, max_drop) {

@@ -36,6 +36,9 @@ pub trait Space {
 
     /// The overlap tolerance, in frame tiles: the seed's epsilon, or 0 on the grid.
     fn eps(&self) -> f32;
+    /// The smallest move the storage makes, in tiles: one subpixel on the grid, 0 in float (any
+    /// fall moves).
+    fn unit(&self) -> f32;
     /// The overlap tolerance as a [`Self::Coord`].
     fn eps_coord(&self) -> Self::Coord;
     /// Where the level's corner is in the frame (tiles).
@@ -92,6 +95,9 @@ impl Space for FloatSpace {
 
     fn eps(&self) -> f32 {
         self.eps
+    }
+    fn unit(&self) -> f32 {
+        0.0
     }
     fn eps_coord(&self) -> f32 {
         self.eps
@@ -162,6 +168,9 @@ impl Space for GridSpace {
 
     fn eps(&self) -> f32 {
         0.0
+    }
+    fn unit(&self) -> f32 {
+        1.0 / self.grid.per_tile as f32
     }
     fn eps_coord(&self) -> i64 {
         0
