@@ -111,8 +111,12 @@ pub(super) fn ramp_band_for_y<S: Space>(
 }
 
 /// How far the ground under the centre may rise during the x move that went from `start`:
-/// the climb gradient times the horizontal distance, plus the tolerance (frame tiles).
+/// the climb gradient times the horizontal distance, plus the tolerance (frame tiles);
+/// 0 on a level without slopes, where nothing reads it.
 pub(super) fn rise_allow<S: Space>(s: &S, w: &World, c: &Character, start: &S::Saved) -> f32 {
+    if !w.level.features.slopes {
+        return 0.0;
+    }
     w.climb_gradient * (s.feet(c).x - s.saved_feet(start).x).abs() + s.eps()
 }
 
@@ -136,6 +140,16 @@ pub(super) fn climb_limit<S: Space>(
         s.restore_x(c, start);
     }
     blocked
+}
+
+/// The feet's height before the y move (frame tiles), for [`ground_on_slopes`]; 0 on a level
+/// without slopes, where nothing reads it.
+pub(super) fn feet_before_y<S: Space>(s: &S, w: &World, c: &Character) -> f32 {
+    if w.level.features.slopes {
+        s.feet(c).y
+    } else {
+        0.0
+    }
 }
 
 /// Step 6, ground on slopes: feet that ended below the surface under the centre are put on it

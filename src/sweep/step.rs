@@ -42,7 +42,7 @@ pub(super) fn step<S: Space>(
 
     // 5. y move: sweep and snap flush; a one-way box blocks only a fall that started entirely
     //    above it.
-    let from = s.feet(c).y;
+    let from = slopes::feet_before_y(s, w, c);
     let ramp_band = slopes::ramp_band_for_y(s, w, c);
     if w.level.features.one_way || w.level.features.ladders {
         stats.one_way_steps += 1;
