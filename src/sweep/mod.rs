@@ -82,6 +82,26 @@ pub struct SweepConfig {
     /// How positions are stored: f32 tiles with the epsilon tolerance (default), or whole
     /// subpixels, where `epsilon` and `snap_down` play no part.
     pub positions: Positions,
+    /// How a rider follows the moving platform it stands on when the platform moves down
+    /// (default [`RiderFollow::Solid`], Celeste's rule: measured on every built-in platform
+    /// scenario, it keeps the rider where the gravity rule leaves it airborne, and agrees with
+    /// it everywhere else; `tests/platforms.rs`).
+    pub rider_follow: RiderFollow,
+}
+
+/// How a rider follows the moving platform it stands on (the seed: "on integrate platform,
+/// integrate objects in list too"; the rules differ only when the platform moves down).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RiderFollow {
+    /// A rider follows a descending platform only as far as it could fall in one step from
+    /// the platform's previous downward speed under gravity; a platform that drops away faster
+    /// (starts down, or turns from rising to falling, more sharply than gravity) leaves it
+    /// airborne, as a body resting on it would be in the world.
+    Gravity,
+    /// Celeste's rule: a rider is moved with every move of the solid it rides, down as well as
+    /// up, whatever the platform's acceleration; it leaves only by jumping or walking off.
+    #[default]
+    Solid,
 }
 
 impl Default for SweepConfig {
@@ -90,6 +110,7 @@ impl Default for SweepConfig {
             epsilon: 0.001,
             snap_down: 0.125,
             positions: Positions::Float,
+            rider_follow: RiderFollow::Solid,
         }
     }
 }
