@@ -16,6 +16,7 @@ pub const LEVELS: &[(&str, &str)] = &[
     ("ladders.toml", include_str!("levels/ladders.toml")),
     ("platforms.toml", include_str!("levels/platforms.toml")),
     ("moving_wall.toml", include_str!("levels/moving_wall.toml")),
+    ("elevator.toml", include_str!("levels/elevator.toml")),
     ("long_floor.toml", include_str!("levels/long_floor.toml")),
     (
         "very_long_floor.toml",

@@ -68,8 +68,15 @@ impl BackendConfig {
                     overlap_tolerance: c.epsilon,
                     gap_tolerance: c.epsilon,
                     slope_overhang: size.x * 0.5 * max_climb_angle.tan(),
+                    surface_grid: 0,
                 },
-                crate::sweep::Positions::Integer { .. } => DeclaredContact::default(),
+                // No gap and no tolerance (it snaps exactly), and the seed's centre-column stance
+                // on slopes for the box it really moves.
+                crate::sweep::Positions::Integer { per_tile } => DeclaredContact {
+                    slope_overhang: self.moved_size(size).x * 0.5 * max_climb_angle.tan(),
+                    surface_grid: per_tile,
+                    ..DeclaredContact::default()
+                },
             },
             BackendConfig::Rapier(c) => DeclaredContact {
                 gap: c.offset.eval(size.y),
@@ -136,6 +143,21 @@ pub struct DeclaredContact {
     /// centre-column rule stands a box on the surface under its centre, so its corner may be
     /// half its width times the climb gradient inside a walkable ramp.
     pub slope_overhang: f32,
+    /// Subpixels per tile to which the controller rounds the surface height under its centre
+    /// (integer positions: up to the next subpixel, [`crate::level::round_height_up`]); 0 for a
+    /// controller that stands on the exact surface.
+    pub surface_grid: u32,
+}
+
+impl DeclaredContact {
+    /// The height at which the controller declares it stands on a surface at height `h`
+    /// (tiles): `h` itself, or `h` rounded the controller's way onto its grid.
+    pub fn stance_height(&self, h: f32) -> f32 {
+        match self.surface_grid {
+            0 => h,
+            n => (crate::level::round_height_up(h, n as i64) as f64 / n as f64) as f32,
+        }
+    }
 }
 
 /// One column of a comparison: a backend configuration and the motion parameters it runs with.

@@ -23,12 +23,13 @@ fn the_readme_lists_every_metric_of_the_registry_with_its_unit() {
 }
 
 #[test]
-fn integer_positions_are_compared_over_39_of_63_scenarios() {
-    // README, summary: "over 39 of 63". The integer mode refuses slopes and moving platforms,
-    // so it runs the 39 scenarios of the 9 levels it models out of the built-in set's 63.
+fn integer_positions_are_compared_over_52_of_64_scenarios() {
+    // README, summary: "over 52 of 64". The integer mode refuses moving platforms, so it runs
+    // the 52 scenarios of the 14 levels it models out of the built-in set's 64 (the 12 of
+    // `platforms`, `moving_wall` and `elevator` skipped).
     let levels = builtin_levels();
     let total: usize = levels.iter().map(|l| l.scenarios.len()).sum();
-    assert_eq!(total, 63);
+    assert_eq!(total, 64);
     let mut rows = Vec::new();
     for run in [RunConfig::sweep_default(), RunConfig::sweep_integer(32)] {
         for l in &levels {
@@ -43,13 +44,13 @@ fn integer_positions_are_compared_over_39_of_63_scenarios() {
     }
     let summary = summary_table(&rows);
     assert!(
-        summary.contains("sweep positions=integer/32 (over 39 of 63)"),
+        summary.contains("sweep positions=integer/32 (over 52 of 64)"),
         "{summary}"
     );
     assert!(!summary.contains("sweep (over"), "{summary}");
     // The same count the shared helper sees.
     let evals = evaluate_all(&levels, &RunConfig::sweep_default());
-    assert_eq!(evals.len(), 63);
+    assert_eq!(evals.len(), 64);
 }
 
 /// The rows of the committed `platbench sweep --out compare/tradeoff` run.

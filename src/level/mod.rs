@@ -571,6 +571,21 @@ impl Level {
     }
 }
 
+/// A height `h` (tiles, from the level's corner) on a grid of `per_tile` steps per tile, as
+/// whole steps: the one rounding of surface heights that integer positions use (the sweep's
+/// `Grid::round_height`, and the metrics' declared stance for it). A height within 1e-4 of a
+/// step (f32 noise of a surface already on the grid) is that step; any other is rounded *up*,
+/// so feet put on a surface are never below it and at most one step above it.
+pub fn round_height_up(h: f32, per_tile: i64) -> i64 {
+    let v = h as f64 * per_tile as f64;
+    let r = v.round();
+    if (v - r).abs() < 1e-4 {
+        r as i64
+    } else {
+        v.ceil() as i64
+    }
+}
+
 /// The box of a character whose feet (bottom centre) are at `pos`.
 pub fn character_box(pos: Vec2, size: Vec2) -> Aabb {
     Aabb::new(
@@ -628,6 +643,15 @@ mod tests {
         assert_eq!(seed.surface_points().len(), 22);
         assert_eq!(seed.height_left_of(3.0 / 16.0), 10.0 / 16.0);
         assert_eq!(seed.height_at(3.0 / 16.0), 8.0 / 16.0);
+    }
+
+    #[test]
+    fn heights_round_up_to_the_grid_unless_on_it() {
+        // On the grid (up to f32 noise): that step. Off it: the next step up, never down.
+        assert_eq!(round_height_up(0.75, 32), 24);
+        assert_eq!(round_height_up(0.75 + 1e-7, 32), 24);
+        assert_eq!(round_height_up(0.414_213_57, 32), 14); // 13.25 subpixels
+        assert_eq!(round_height_up(-0.414_213_57, 32), -13);
     }
 
     #[test]

@@ -125,7 +125,8 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
 /// (so 0 is a promise kept, positive farther than promised, negative closer or deeper): its
 /// declared gap along the normal of the ground a straight drop meets (Rapier's `offset`:
 /// `offset / cos(angle)` vertically on a slope), or, for a controller that stands a box on the
-/// surface under its centre (the seed), the gap of that stance (inside a slope by its overhang).
+/// surface under its centre (the seed), the gap of that stance (inside a slope by its overhang;
+/// on integer positions, on the surface rounded up to its subpixel, [`crate::scenario::DeclaredContact::stance_height`]).
 pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let rest = rest_gap(ctx, g, rows);
     let feet = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
@@ -136,7 +137,7 @@ pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) ->
     let vertical = |along_normal: f32| (along_normal / n.y.max(0.1)) as f64;
     let reference = match under {
         Some((h, Some(_))) if ctx.declared.slope_overhang > 0.0 => {
-            g.gap(glam::Vec2::new(feet.x, h)) as f64
+            g.gap(glam::Vec2::new(feet.x, ctx.declared.stance_height(h))) as f64
         }
         _ => vertical(ctx.declared.gap),
     };
@@ -170,7 +171,7 @@ pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: &[Tra
                     .surface_at(p.x, p.y + d.slope_overhang, 2.0 * d.slope_overhang)
                 {
                     Some((h, _)) => {
-                        let stance = glam::Vec2::new(p.x, h);
+                        let stance = glam::Vec2::new(p.x, d.stance_height(h));
                         g.square_penetration(stance)
                             .max(g.slope_penetration(stance))
                     }

@@ -105,6 +105,14 @@ impl Grid {
         )
     }
 
+    /// A height in level coordinates (tiles) as whole subpixels above the level's corner: the
+    /// one rounding of surface heights on the grid (slopes' resolve-up and follow-down),
+    /// [`crate::level::round_height_up`]: up to the next subpixel unless already on one, so
+    /// the centre column never sinks into a slope and stands at most one subpixel above it.
+    pub fn round_height(&self, y: f32) -> i64 {
+        crate::level::round_height_up(y, self.per_tile)
+    }
+
     /// A broadphase box (world tiles, f32, faces on whole tiles) on the grid.
     pub fn from_aabb(&self, b: &Aabb) -> GridBox {
         let s = self.per_tile as f64;

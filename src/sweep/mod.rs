@@ -1,17 +1,35 @@
 //! The sweep-and-snap controller of the seed slides.
 //!
-//! One step per character: the shared motion integrates the velocity (symplectic Euler with a
-//! force accumulator, [`crate::motion`]), then [`resolve`] moves the box along x, then along
-//! y, each time snapping flush to the closest obstacle found through the parry2d broadphase
-//! ([`broadphase`]); the blocked axis loses its velocity and the other gets friction. Levels
-//! with slopes add the centre-column rules of [`slopes`]; a level without them runs none of
-//! that code ([`SweepStats`] counts it).
+//! One step per character, `step.rs`'s numbered steps in the order they run, each a named
+//! function in the file of its stage:
+//!
+//! 1. ladder enter (`ladders.rs`);
+//! 2. forces and integration, symplectic Euler with a force accumulator (`integrate.rs`, the
+//!    shared [`crate::motion`]);
+//! 3. the x move, swept and snapped flush to the closest obstacle found through the parry2d
+//!    broadphase ([`resolve`], [`broadphase`]), one-way boxes skipped (`oneway.rs`);
+//! 4. the climb limit ([`slopes`]);
+//! 5. the y move, one-way boxes blocking only a fall from entirely above (`oneway.rs`);
+//! 6. ground on slopes, the seed's centre column ([`slopes`]);
+//! 7. contacts: the blocked axis loses its velocity and the other gets friction
+//!    (`integrate.rs`);
+//! 8. ladder leave (`ladders.rs`);
+//!
+//! then, once every character has stepped, the moving platforms move and carry or push them
+//! ([`platforms`]). The step is generic over how positions are stored (`space.rs`): f32 with the
+//! seed's epsilon, or whole subpixels ([`grid`]). A level without slopes, one-way platforms,
+//! ladders or platforms runs none of their code ([`SweepStats`] counts it).
 
 pub mod broadphase;
 pub mod grid;
+mod integrate;
+mod ladders;
+mod oneway;
 pub mod platforms;
 pub mod resolve;
 pub mod slopes;
+mod space;
+mod step;
 
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
@@ -20,10 +38,10 @@ use crate::backend::{
     require_supported, Backend, BackendError, CharacterId, CharacterSpec, CharacterState,
 };
 use crate::level::{Features, Level};
-use crate::motion::{Contacts, Input, MotionParams, MotionState};
+use crate::motion::{Input, MotionParams, MotionState};
 use broadphase::{BoxKind, NearCache, StaticTiles};
-use grid::{move_axis_grid, Grid, GridBox, GridPos};
-use resolve::{move_axis, Axis};
+use grid::{Grid, GridPos};
+use space::{FloatSpace, GridSpace, Space};
 
 /// How the sweep stores positions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,8 +49,10 @@ pub enum Positions {
     /// f32 world coordinates with the seed's epsilon tolerance.
     Float,
     /// Whole subpixels (`per_tile` per tile) with the fractions carried between steps, snapping
-    /// flush in exact integer arithmetic ([`grid`]). Levels with slopes or moving platforms are
-    /// refused in this mode for now.
+    /// flush in exact integer arithmetic ([`grid`]). Slopes use the float mode's centre-column
+    /// rules with every surface height rounded up to a whole subpixel
+    /// ([`crate::level::round_height_up`]). Levels with moving platforms are refused in this
+    /// mode for now.
     Integer {
         /// Subpixels per tile (16 and 32 are what pixel-art platformers use).
         per_tile: u32,
@@ -41,7 +61,7 @@ pub enum Positions {
 
 /// The features the integer mode models.
 pub const INTEGER_SUPPORTED: Features = Features {
-    slopes: false,
+    slopes: true,
     one_way: true,
     ladders: true,
     moving_platforms: false,
@@ -62,6 +82,26 @@ pub struct SweepConfig {
     /// How positions are stored: f32 tiles with the epsilon tolerance (default), or whole
     /// subpixels, where `epsilon` and `snap_down` play no part.
     pub positions: Positions,
+    /// How a rider follows the moving platform it stands on when the platform moves down
+    /// (default [`RiderFollow::Solid`], Celeste's rule: measured on every built-in platform
+    /// scenario, it keeps the rider where the gravity rule leaves it airborne, and agrees with
+    /// it everywhere else; `tests/platforms.rs`).
+    pub rider_follow: RiderFollow,
+}
+
+/// How a rider follows the moving platform it stands on (the seed: "on integrate platform,
+/// integrate objects in list too"; the rules differ only when the platform moves down).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RiderFollow {
+    /// A rider follows a descending platform only as far as it could fall in one step from
+    /// the platform's previous downward speed under gravity; a platform that drops away faster
+    /// (starts down, or turns from rising to falling, more sharply than gravity) leaves it
+    /// airborne, as a body resting on it would be in the world.
+    Gravity,
+    /// Celeste's rule: a rider is moved with every move of the solid it rides, down as well as
+    /// up, whatever the platform's acceleration; it leaves only by jumping or walking off.
+    #[default]
+    Solid,
 }
 
 impl Default for SweepConfig {
@@ -70,6 +110,7 @@ impl Default for SweepConfig {
             epsilon: 0.001,
             snap_down: 0.125,
             positions: Positions::Float,
+            rider_follow: RiderFollow::Solid,
         }
     }
 }
@@ -199,255 +240,35 @@ impl SweepBackend {
     pub fn stats(&self) -> SweepStats {
         self.stats
     }
-
-    /// Moves one character by one step.
-    fn step_character(&mut self, id: usize, input: &Input, dt: f32) {
-        let eps = self.config.epsilon;
-        let slopes = self.level.features.slopes;
-        let p = &self.params;
-        let c = &mut self.characters[id];
-        if self.level.features.ladders {
-            self.stats.ladder_steps += 1;
-            crate::ladder::enter(
-                &self.level,
-                self.origin,
-                &mut c.motion,
-                &mut c.pos,
-                c.size,
-                input,
-            );
-        }
-        let was_grounded = c.motion.grounded;
-        let delta = c.motion.integrate(p, input, dt);
-        let start = c.pos;
-
-        // Standing on a slope, the box overhangs the ground by up to half its width times the
-        // climb gradient: solids within that height above the slope under the centre are the
-        // slope rules' business, not obstacles (the seed's centre model), and so is the mass
-        // under a ramp along x.
-        let overhang = c.size.x * 0.5 * self.climb_gradient + eps;
-        let under = |pos: Vec2| {
-            if slopes {
-                slopes::slope_under(&self.level, self.origin, pos, overhang)
-            } else {
-                None
-            }
-        };
-        let floor_x = under(c.pos);
-        // One-way platforms never block along x (the seed: "don't collide x axis step").
-        let skip_x = |t: &Aabb, kind: BoxKind| match kind {
-            BoxKind::UnderSlope | BoxKind::OneWay => true,
-            BoxKind::Platform { one_way, .. } => one_way,
-            BoxKind::Solid => floor_x.is_some_and(|h| t.maxs.y <= h + overhang),
-        };
-        let mut wall = move_axis(
-            &self.tiles,
-            &mut c.near,
-            &self.platform_boxes,
-            &mut c.pos,
-            c.size,
-            Axis::X,
-            delta.x,
-            eps,
-            skip_x,
-        )
-        .is_some();
-        // How far the ground under the centre may rise during this x move (the climb limit).
-        let rise_allow = self.climb_gradient * (c.pos.x - start.x).abs() + eps;
-        if slopes {
-            self.stats.slope_steps += 1;
-            if slopes::climb_blocked(&self.level, self.origin, c.pos.x, c.pos.y, rise_allow) {
-                c.pos.x = start.x;
-                wall = true;
-            }
-        }
-
-        let before_y = c.pos.y;
-        let floor_y = under(c.pos);
-        let one_way_level = self.level.features.one_way || self.level.features.ladders;
-        if one_way_level {
-            self.stats.one_way_steps += 1;
-        }
-        let dropping = c.motion.drop_through || c.motion.on_ladder;
-        // A one-way platform blocks only a fall that started entirely above it (the seed:
-        // "collide y only if previously entirely above platform"; "collide only if falling" is
-        // wrong, because a jump can start falling while inside the platform).
-        let skip_y = |t: &Aabb, kind: BoxKind| match kind {
-            BoxKind::OneWay | BoxKind::Platform { one_way: true, .. } => {
-                dropping || delta.y >= 0.0 || before_y < t.maxs.y - eps
-            }
-            BoxKind::Platform { .. } => false,
-            _ => floor_y.is_some_and(|h| t.maxs.y > h + eps && t.maxs.y <= h + overhang),
-        };
-        let hit_y = move_axis(
-            &self.tiles,
-            &mut c.near,
-            &self.platform_boxes,
-            &mut c.pos,
-            c.size,
-            Axis::Y,
-            delta.y,
-            eps,
-            skip_y,
-        );
-        let mut ground = hit_y.is_some() && delta.y < 0.0;
-        let ceiling = hit_y.is_some() && delta.y > 0.0;
-        let mut one_way = matches!(
-            hit_y,
-            Some(BoxKind::OneWay | BoxKind::Platform { one_way: true, .. })
-        );
-        c.riding = match hit_y {
-            Some(BoxKind::Platform { index, .. }) if ground => Some(index),
-            _ => None,
-        };
-        let mut normal = Vec2::Y;
-        if slopes {
-            if let Some(g) =
-                slopes::resolve_up(&self.level, self.origin, &mut c.pos, before_y, rise_allow)
-            {
-                (ground, normal, one_way) = (true, g.normal, false);
-            } else if !ground && was_grounded && delta.y <= 0.0 {
-                // Walking down: follow the ground by the drop the steepest walkable slope gives
-                // at this speed, plus this step's fall.
-                let max_drop = rise_allow + self.config.snap_down - delta.y.min(0.0);
-                if let Some(g) = slopes::follow_down(&self.level, self.origin, &mut c.pos, max_drop)
-                {
-                    (ground, normal) = (true, g.normal);
-                }
-            }
-        }
-        let contacts = Contacts {
-            wall,
-            ground,
-            ceiling,
-            one_way,
-        };
-        c.motion.apply_contacts(p, input, contacts);
-        if self.level.features.ladders {
-            crate::ladder::leave(
-                &self.level,
-                self.origin,
-                &mut c.motion,
-                c.pos,
-                c.size,
-                input,
-            );
-        }
-        c.ground_normal = if ground { normal } else { Vec2::ZERO };
-    }
 }
 
-impl SweepBackend {
-    /// Moves one character by one step on the subpixel grid: the same motion and contact rules
-    /// as [`Self::step_character`], with the moves made in whole subpixels ([`grid`]).
-    fn step_on_grid(&mut self, grid: &Grid, id: usize, input: &Input, dt: f32) {
-        let p = &self.params;
-        let features = self.level.features;
-        let c = &mut self.characters[id];
-        if features.ladders {
-            self.stats.ladder_steps += 1;
-            // The ladder rules work in level coordinates, exact for the feet on the grid.
-            let mut feet = grid.feet(&c.on_grid.b);
-            let before = feet;
-            crate::ladder::enter(
-                &self.level,
-                Vec2::ZERO,
-                &mut c.motion,
-                &mut feet,
-                c.size,
-                input,
-            );
-            if feet != before {
-                let size = c.on_grid.b.max - c.on_grid.b.min;
-                c.on_grid.b = grid.place(feet, size);
-                c.on_grid.remainder = Vec2::ZERO;
-            }
-        }
-        let delta = c.motion.integrate(p, input, dt);
+/// What a character's step reads of the backend: the level and its static and moving boxes,
+/// the motion and the settings the stages use.
+struct World<'a> {
+    tiles: &'a StaticTiles,
+    /// Moving platforms' boxes at the current frame.
+    platform_boxes: &'a [(Aabb, BoxKind)],
+    level: &'a Level,
+    params: &'a MotionParams,
+    /// `tan(max_climb_angle)`.
+    climb_gradient: f32,
+    /// [`SweepConfig::snap_down`], tiles.
+    snap_down: f32,
+}
 
-        let n = c.on_grid.whole_move(grid, Axis::X, delta.x);
-        // One-way platforms never block along x.
-        let skip_x = |_: &GridBox, kind: BoxKind| kind == BoxKind::OneWay;
-        let wall = move_axis_grid(
-            &self.tiles,
-            &mut c.near,
-            grid,
-            &mut c.on_grid,
-            Axis::X,
-            n,
-            true,
-            skip_x,
-        )
-        .is_some();
-        if wall {
-            c.on_grid.remainder.x = 0.0;
-        }
-
-        if features.one_way || features.ladders {
-            self.stats.one_way_steps += 1;
-        }
-        let bottom = c.on_grid.b.min.y;
-        let dropping = c.motion.drop_through || c.motion.on_ladder;
-        // A one-way platform blocks only a fall that started entirely above it: in whole
-        // subpixels, feet at or above its top.
-        let skip_y = |t: &GridBox, kind: BoxKind| match kind {
-            BoxKind::OneWay => dropping || delta.y >= 0.0 || bottom < t.max.y,
-            _ => false,
-        };
-        let mut n = c.on_grid.whole_move(grid, Axis::Y, delta.y);
-        if c.motion.drop_through && n == 0 {
-            // The first step of a drop through a one-way platform falls less than a subpixel;
-            // it must still leave the top, or the next step (no longer dropping) lands on it.
-            n = -1;
-            c.on_grid.remainder.y = 0.0;
-        }
-        let mut hit_y = move_axis_grid(
-            &self.tiles,
-            &mut c.near,
-            grid,
-            &mut c.on_grid,
-            Axis::Y,
-            n,
-            true,
-            skip_y,
-        );
-        if n == 0 && delta.y < 0.0 {
-            // A fall of less than a subpixel this step moves nothing: the ground is there if
-            // the box rests on it (Celeste's "collide check one pixel down"). A move of a
-            // subpixel or more that ends on a face has already reported it.
-            hit_y = move_axis_grid(
-                &self.tiles,
-                &mut c.near,
-                grid,
-                &mut c.on_grid,
-                Axis::Y,
-                -1,
-                false,
-                skip_y,
-            );
-        }
-        if hit_y.is_some() {
-            c.on_grid.remainder.y = 0.0;
-        }
-        let ground = hit_y.is_some() && delta.y < 0.0;
-        let contacts = Contacts {
-            wall,
-            ground,
-            ceiling: hit_y.is_some() && delta.y > 0.0,
-            one_way: hit_y == Some(BoxKind::OneWay),
-        };
-        c.motion.apply_contacts(p, input, contacts);
-        if features.ladders {
-            crate::ladder::leave(
-                &self.level,
-                Vec2::ZERO,
-                &mut c.motion,
-                grid.feet(&c.on_grid.b),
-                c.size,
-                input,
-            );
-        }
-        c.ground_normal = if ground { Vec2::Y } else { Vec2::ZERO };
+/// Steps every character in order (the platforms move after, in [`SweepBackend::step`]).
+fn step_all<S: Space>(
+    s: &S,
+    w: &World,
+    stats: &mut SweepStats,
+    characters: &mut [Character],
+    inputs: &[Input],
+    dt: f32,
+) {
+    for (id, c) in characters.iter_mut().enumerate() {
+        let input = inputs.get(id).copied().unwrap_or_default();
+        c.crushed = false;
+        step::step(s, w, stats, c, &input, dt);
     }
 }
 
@@ -475,12 +296,23 @@ impl Backend for SweepBackend {
     }
 
     fn step(&mut self, inputs: &[Input], dt: f32) {
-        for id in 0..self.characters.len() {
-            let input = inputs.get(id).copied().unwrap_or_default();
-            self.characters[id].crushed = false;
-            match self.grid {
-                Some(grid) => self.step_on_grid(&grid, id, &input, dt),
-                None => self.step_character(id, &input, dt),
+        let w = World {
+            tiles: &self.tiles,
+            platform_boxes: &self.platform_boxes,
+            level: &self.level,
+            params: &self.params,
+            climb_gradient: self.climb_gradient,
+            snap_down: self.config.snap_down,
+        };
+        let (stats, characters) = (&mut self.stats, &mut self.characters);
+        match self.grid {
+            Some(grid) => step_all(&GridSpace { grid }, &w, stats, characters, inputs, dt),
+            None => {
+                let s = FloatSpace {
+                    eps: self.config.epsilon,
+                    origin: self.origin,
+                };
+                step_all(&s, &w, stats, characters, inputs, dt)
             }
         }
         // The seed's order: platforms move after every character has moved.

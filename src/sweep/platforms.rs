@@ -9,16 +9,18 @@
 //! platform's riders are found by one pass over the characters, with no list to maintain and
 //! nothing allocated.
 //!
-//! A rider follows a descending platform only as far as it could fall from the platform's
-//! previous speed under gravity in one step; a platform that drops away faster (starts or speeds
-//! up downward more sharply than gravity) leaves its rider airborne, as it would in the world.
+//! How a rider follows a descending platform is a setting ([`super::RiderFollow`]): by default
+//! only as far as it could fall from the platform's previous speed under gravity in one step, so
+//! a platform that drops away faster (starts or speeds up downward more sharply than gravity)
+//! leaves its rider airborne, as it would in the world; or, Celeste's rule, with every move of
+//! the platform, so a rider stays on an elevator that turns from up to down.
 
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
 use super::broadphase::{BoxKind, StaticTiles};
 use super::resolve::{move_axis, Axis};
-use super::{Character, SweepBackend};
+use super::{Character, RiderFollow, SweepBackend};
 use crate::level::{character_box, Platform};
 
 /// A platform's motion and where it is.
@@ -76,6 +78,7 @@ impl SweepBackend {
     pub(super) fn move_platforms(&mut self, dt: f32) {
         let eps = self.config.epsilon;
         let g = self.params.gravity;
+        let rule = self.config.rider_follow;
         let t1 = (self.frame + 1) as f64 * dt as f64;
         for (i, p) in self.platforms.iter_mut().enumerate() {
             self.stats.platform_moves += 1;
@@ -88,7 +91,7 @@ impl SweepBackend {
             for c in self.characters.iter_mut() {
                 if c.riding == Some(i as u32) {
                     let mut carry = delta;
-                    let left_behind = delta.y < -follow;
+                    let left_behind = rule == RiderFollow::Gravity && delta.y < -follow;
                     if left_behind {
                         carry.y = -follow;
                     }

@@ -17,6 +17,9 @@ use glam::Vec2;
 use parry2d::bounding_volume::{Aabb, BoundingVolume};
 
 use super::broadphase::{BoxKind, NearCache, StaticTiles};
+use super::oneway;
+use super::space::Space;
+use super::{Character, World};
 
 /// The axis of a move.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -115,6 +118,50 @@ pub fn move_axis(
             Some(kind)
         }
     }
+}
+
+/// Step 3, the x move ("integrate x one step forward, x before y"): sweeps the box along x and
+/// snaps it flush to the closest obstacle. One-way boxes never block it (the seed: "don't
+/// collide x axis step"), nor does the mass under a ramp: solids carrying a slope, and solids
+/// whose top is at most `ramp_top` (the overhang above the slope under the centre, see
+/// [`super::slopes::ramp_top_for_x`]). Returns whether a wall stopped it.
+pub(super) fn move_x<S: Space>(
+    s: &S,
+    w: &World,
+    c: &mut Character,
+    dx: f32,
+    ramp_top: Option<S::Coord>,
+) -> bool {
+    s.move_axis(w, c, Axis::X, dx, false, |top, kind| match kind {
+        BoxKind::UnderSlope => true,
+        BoxKind::Solid => ramp_top.is_some_and(|l| top <= l),
+        k => oneway::is_one_way(k),
+    })
+    .is_some()
+}
+
+/// Step 5, the y move ("repeat for y"): sweeps the box along y and snaps it flush. One-way
+/// boxes block only as [`oneway::Fall`] says; moving platforms always block; solids with their
+/// top inside `ramp_band` (above its low end, at most its high end) belong to the slope rules.
+/// A drop through a one-way platform falls at least one storage unit. Returns what stopped it.
+pub(super) fn move_y<S: Space>(
+    s: &S,
+    w: &World,
+    c: &mut Character,
+    dy: f32,
+    fall: &oneway::Fall<S::Coord>,
+    ramp_band: Option<(S::Coord, S::Coord)>,
+) -> Option<BoxKind> {
+    let min_fall = c.motion.drop_through;
+    s.move_axis(w, c, Axis::Y, dy, min_fall, |top, kind| {
+        if oneway::is_one_way(kind) {
+            fall.passes(top)
+        } else if matches!(kind, BoxKind::Platform { .. }) {
+            false
+        } else {
+            ramp_band.is_some_and(|(lo, hi)| top > lo && top <= hi)
+        }
+    })
 }
 
 /// Whether `b` and `t` overlap by more than `epsilon` on axis `o`.

@@ -18,6 +18,8 @@
 
 use glam::Vec2;
 
+use super::space::Space;
+use super::{Character, SweepStats, World};
 use crate::level::Level;
 
 /// Ground found under the centre: its height (world) and normal.
@@ -73,4 +75,124 @@ pub fn follow_down(level: &Level, origin: Vec2, pos: &mut Vec2, max_drop: f32) -
     let g = ground(level, origin, pos.x, pos.y, max_drop)?;
     pos.y = g.y;
     Some(g)
+}
+
+/// The overhang of the seed's box over a slope, in frame tiles: half the moved width times the
+/// climb gradient, plus the storage's tolerance. Solids whose top lies within this height
+/// above the slope under the centre belong to the slope rules, not to the sweep.
+pub(super) fn overhang<S: Space>(s: &S, w: &World, c: &Character) -> f32 {
+    s.size(c).x * 0.5 * w.climb_gradient + s.eps()
+}
+
+/// Before the x move (step 3): the highest top, as a coordinate of the storage, of a solid the
+/// x move skips because it lies within the overhang above the slope under the centre (the mass
+/// under a ramp); `None` when no slope is under the centre or the level has none.
+pub(super) fn ramp_top_for_x<S: Space>(s: &S, w: &World, c: &Character) -> Option<S::Coord> {
+    if !w.level.features.slopes {
+        return None;
+    }
+    let overhang = overhang(s, w, c);
+    slope_under(w.level, s.origin(), s.feet(c), overhang).map(|h| s.coord_y(h + overhang))
+}
+
+/// Before the y move (step 5): the band of solid tops (above, at most) that the y move skips
+/// because the slope rules under the centre own them (steps up within the overhang).
+pub(super) fn ramp_band_for_y<S: Space>(
+    s: &S,
+    w: &World,
+    c: &Character,
+) -> Option<(S::Coord, S::Coord)> {
+    if !w.level.features.slopes {
+        return None;
+    }
+    let overhang = overhang(s, w, c);
+    slope_under(w.level, s.origin(), s.feet(c), overhang)
+        .map(|h| (s.coord_y(h + s.eps()), s.coord_y(h + overhang)))
+}
+
+/// How far the ground under the centre may rise during the x move that went from `start`:
+/// the climb gradient times the horizontal distance, plus the tolerance (frame tiles);
+/// 0 on a level without slopes, where nothing reads it.
+pub(super) fn rise_allow<S: Space>(s: &S, w: &World, c: &Character, start: &S::Saved) -> f32 {
+    if !w.level.features.slopes {
+        return 0.0;
+    }
+    w.climb_gradient * (s.feet(c).x - s.saved_feet(start).x).abs() + s.eps()
+}
+
+/// Step 4, the climb limit: if the ground under the centre rose more than `rise_allow` during
+/// the x move, the move is undone as a wall would stop it. Returns whether it was.
+pub(super) fn climb_limit<S: Space>(
+    s: &S,
+    w: &World,
+    stats: &mut SweepStats,
+    c: &mut Character,
+    start: &S::Saved,
+    rise_allow: f32,
+) -> bool {
+    if !w.level.features.slopes {
+        return false;
+    }
+    stats.slope_steps += 1;
+    let feet = s.feet(c);
+    let blocked = climb_blocked(w.level, s.origin(), feet.x, feet.y, rise_allow);
+    if blocked {
+        s.restore_x(c, start);
+    }
+    blocked
+}
+
+/// The feet's height before the y move (frame tiles), for [`ground_on_slopes`]; 0 on a level
+/// without slopes, where nothing reads it.
+pub(super) fn feet_before_y<S: Space>(s: &S, w: &World, c: &Character) -> f32 {
+    if w.level.features.slopes {
+        s.feet(c).y
+    } else {
+        0.0
+    }
+}
+
+/// Step 6, ground on slopes: feet that ended below the surface under the centre are put on it
+/// (walking uphill, or landing: "set object's y position to y index only if y position is
+/// lower"); a character that was grounded, found no ground this step and is not rising is put
+/// back on a surface within the drop that walking down the steepest walkable slope at this
+/// speed gives (plus `snap_down` and this step's fall). Returns the ground stood on, and
+/// whether it is the resolve-up case (which replaces a one-way landing).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn ground_on_slopes<S: Space>(
+    s: &S,
+    w: &World,
+    c: &mut Character,
+    from: f32,
+    rise_allow: f32,
+    grounded: bool,
+    was_grounded: bool,
+    dy: f32,
+) -> Option<(Ground, bool)> {
+    if !w.level.features.slopes {
+        return None;
+    }
+    let mut feet = s.feet(c);
+    if let Some(g) = resolve_up(w.level, s.origin(), &mut feet, from, rise_allow) {
+        s.set_feet_y(c, feet.y);
+        return Some((g, true));
+    }
+    let unit = s.unit();
+    if unit > 0.0 && !grounded && dy < 0.0 && feet.y == from {
+        // On the grid, a fall of less than a subpixel moves nothing, and feet put on a slope
+        // stand at most a subpixel above it (`Grid::round_height`): the slope is under them if
+        // it is within that subpixel (the grid's "collide check one pixel down", as for solids).
+        if let Some(g) = follow_down(w.level, s.origin(), &mut feet, unit) {
+            s.set_feet_y(c, feet.y);
+            return Some((g, false));
+        }
+    }
+    if !grounded && was_grounded && dy <= 0.0 {
+        let max_drop = rise_allow + w.snap_down - dy.min(0.0);
+        if let Some(g) = follow_down(w.level, s.origin(), &mut feet, max_drop) {
+            s.set_feet_y(c, feet.y);
+            return Some((g, false));
+        }
+    }
+    None
 }

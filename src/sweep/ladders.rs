@@ -1,0 +1,42 @@
+//! Ladders, the seed's two states: the steps that enter and leave the ladder state, around the
+//! move (the climbing itself, "no gravity, no left or right integration, only move up/down",
+//! is the shared motion's, [`crate::motion`]).
+//!
+//! The seed: "most code will be for exit/enter ladder state". To enter: the box overlaps a
+//! ladder and the player hits up, or stands on its top and hits down; x is clamped to the
+//! ladder's. To leave: the player jumps, or the feet are outside the ladder's y extent. The rules
+//! are [`crate::ladder`]'s, shared with every backend; here they run on the sweep's feet, in
+//! whichever storage the step uses.
+
+use super::space::Space;
+use super::{Character, SweepStats, World};
+use crate::motion::Input;
+
+/// Step 1: enters the ladder state if the input and position allow it, clamping x to the
+/// ladder's centre. Runs only on levels with ladders.
+pub(super) fn enter<S: Space>(
+    s: &S,
+    w: &World,
+    stats: &mut SweepStats,
+    c: &mut Character,
+    input: &Input,
+) {
+    if !w.level.features.ladders {
+        return;
+    }
+    stats.ladder_steps += 1;
+    let (origin, size) = (s.origin(), c.size);
+    s.with_feet(c, |feet, motion| {
+        crate::ladder::enter(w.level, origin, motion, feet, size, input)
+    });
+}
+
+/// The last step: leaves the ladder state when the character is past the ladder's top, off
+/// it, or on the ground while climbing down.
+pub(super) fn leave<S: Space>(s: &S, w: &World, c: &mut Character, input: &Input) {
+    if !w.level.features.ladders {
+        return;
+    }
+    let feet = s.feet(c);
+    crate::ladder::leave(w.level, s.origin(), &mut c.motion, feet, c.size, input);
+}
