@@ -14,8 +14,9 @@ use clap::{Args, Parser, Subcommand};
 
 use platbench::level::{parse_level, Level};
 use platbench::metrics::{evaluate_with, MetricRow};
-use platbench::report::{detail_table, notes, summary_table};
-use platbench::scenario::{BackendConfig, RunConfig, Runner};
+use platbench::registry::Registry;
+use platbench::report::{detail_table, summary_table};
+use platbench::scenario::{RunConfig, Runner};
 use platbench::trace::Trace;
 
 /// Compare 2D platformer character controllers on the same levels, side by side.
@@ -400,25 +401,34 @@ fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result<Vec<Level>
 }
 
 fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
-    let mut set = RunConfig::builtin_set();
+    let registry = Registry::builtin();
+    let mut set = registry.builtin_configs();
     if !args.backends.is_empty() {
-        set.retain(|c| args.backends.iter().any(|b| b == c.backend.name()));
+        set.retain(|c| args.backends.iter().any(|b| b == c.backend.backend()));
     }
+    // `--shape` picks among the shapes of the backends that offer a choice.
+    let has_choice = |c: &RunConfig| {
+        registry
+            .get(c.backend.backend())
+            .is_some_and(|k| k.shapes().len() > 1)
+    };
     if !args.shapes.is_empty() {
-        if !set
-            .iter()
-            .any(|c| matches!(c.backend, BackendConfig::Rapier(_)))
-        {
+        if !set.iter().any(has_choice) {
+            let offering: Vec<&str> = registry
+                .kinds()
+                .iter()
+                .filter(|k| k.shapes().len() > 1)
+                .map(|k| k.name())
+                .collect();
             bail!(
-                "--shape {} picks Rapier's character shapes, but no Rapier configuration runs (--backend {}); drop --shape, or add --backend rapier",
+                "--shape {} picks the character shapes of a backend that offers several ({}), but none of them runs (--backend {}); drop --shape, or add --backend {}",
                 args.shapes.join(","),
-                args.backends.join(",")
+                offering.join(", "),
+                args.backends.join(","),
+                offering.join(",")
             );
         }
-        set.retain(|c| match &c.backend {
-            BackendConfig::Rapier(r) => args.shapes.contains(&r.shape.label()),
-            _ => true,
-        });
+        set.retain(|c| !has_choice(c) || args.shapes.contains(&c.shape().label()));
     }
     if let Some(eps) = args.epsilon {
         if !platbench::limits::within(eps as f64, (0.0, platbench::limits::MAX_EPSILON)) {
@@ -428,8 +438,8 @@ fn configs(args: &RunArgs) -> Result<Vec<RunConfig>> {
             );
         }
         for c in &mut set {
-            if let BackendConfig::Sweep(s) = &mut c.backend {
-                s.epsilon = eps;
+            if let Some(b) = c.backend.with_epsilon(eps) {
+                c.backend = b;
             }
         }
     }
@@ -447,7 +457,7 @@ fn evaluate_or_skip(
     let level = runner.level();
     match evaluate_with(runner, spec, run) {
         Err(e @ platbench::backend::BackendError::Unsupported { .. }) => {
-            let note = format!("{} {}: {e}", run.backend.name(), run.label);
+            let note = format!("{} {}: {e}", run.backend.backend(), run.label);
             if !skipped.contains(&note) {
                 eprintln!("  skipped {note}");
                 skipped.push(note);
@@ -459,7 +469,7 @@ fn evaluate_or_skip(
                 "running {}.{} on {}/{}",
                 level.name,
                 spec.name,
-                run.backend.name(),
+                run.backend.backend(),
                 run.label
             )
         }),
@@ -541,7 +551,7 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
                         si + 1,
                         level.scenarios.len(),
                         spec.name,
-                        run.backend.name(),
+                        run.backend.backend(),
                         run.label,
                         platbench::scenario::step_count(spec)
                     );
@@ -572,7 +582,7 @@ fn run(args: &RunArgs, write: bool) -> Result<()> {
     }
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
     let mut text = summary_table(&metrics);
-    for n in notes(&metrics) {
+    for n in Registry::builtin().notes(&metrics) {
         text.push_str(&format!("\n- {n}"));
     }
     out(&text);
@@ -752,7 +762,7 @@ fn report(args: &ReportArgs) -> Result<()> {
             traces: traces.iter().collect(),
         })
         .collect();
-    let (html, md) = render_report(&metrics, &scenarios, &extras);
+    let (html, md) = render_report(&Registry::builtin(), &metrics, &scenarios, &extras);
     output::write_output(&args.out, output::Kind::Report, args.force, |dir| {
         for (name, text) in [("report.html", &html), ("report.md", &md)] {
             output::write_file(&dir.join(name), text.as_bytes())?;
@@ -847,15 +857,9 @@ fn sweep_settings(
 }
 
 fn stress(out_dir: &std::path::Path, force: bool) -> Result<()> {
-    use platbench::rapier::{CharacterShape, ColliderBuilding};
     use platbench::report::html::{breaks_list, value_list};
     use platbench::stress::{envelope, stress_matrix};
-    let runs = [
-        RunConfig::sweep_default(),
-        RunConfig::sweep_integer(32),
-        RunConfig::rapier(ColliderBuilding::PerTile, CharacterShape::Capsule),
-        RunConfig::rapier(ColliderBuilding::Merged, CharacterShape::Capsule),
-    ];
+    let runs = Registry::builtin().stress_configs();
     output::check_target(out_dir, output::Kind::Stress, force)?;
     let started = Instant::now();
     let rows = stress_matrix(&runs, |what| eprintln!("  {what}"))?;

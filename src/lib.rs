@@ -14,6 +14,7 @@ pub mod limits;
 pub mod metrics;
 pub mod motion;
 pub mod rapier;
+pub mod registry;
 pub mod report;
 pub mod scenario;
 pub mod shape;

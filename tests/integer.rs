@@ -30,7 +30,7 @@ fn rest_gap_penetration_and_jitter_are_exactly_zero_on_every_scenario_it_runs() 
     // flat_seams, drops, jumps, corridor, thin_wall, oneway, ladders, long_floor,
     // very_long_floor: nine of the sixteen built-in levels.
     assert_eq!(levels.len(), 9, "levels run");
-    let evals = evaluate_all(&levels, &RunConfig::sweep_integer(PER_TILE));
+    let evals = evaluate_all(&levels, &platbench::sweep::kind::run_integer(PER_TILE));
     // Issue 12: exactly 0, no tolerance: the grid snaps flush in integers.
     for m in ["rest_gap", "max_penetration", "rest_jitter"] {
         let rs = rows(&evals, m);
@@ -61,8 +61,8 @@ fn far_from_the_origin_the_integer_mode_rests_exactly_where_the_float_mode_sinks
             .map(|r| r.value)
             .unwrap_or_else(|| panic!("no {m}"))
     };
-    let float = RunConfig::sweep_default();
-    let int = RunConfig::sweep_integer(PER_TILE);
+    let float = platbench::sweep::kind::run_default();
+    let int = platbench::sweep::kind::run_integer(PER_TILE);
     // The float mode breaks there: its feet land a rounding of a whole tile off the floor's top
     // (`platbench stress`: it sinks 0.4 tiles). Its tolerance is its epsilon, 0.001.
     assert!(
@@ -76,7 +76,10 @@ fn far_from_the_origin_the_integer_mode_rests_exactly_where_the_float_mode_sinks
 
 #[test]
 fn the_exact_discrete_jump_reaches_its_height_to_the_subpixel() {
-    let evals = evaluate_all(&[level("jumps")], &RunConfig::sweep_integer(PER_TILE));
+    let evals = evaluate_all(
+        &[level("jumps")],
+        &platbench::sweep::kind::run_integer(PER_TILE),
+    );
     let apex = rows(&evals, "apex_error");
     assert!(apex.len() >= 6, "apex measured on {} jumps", apex.len());
     for r in apex {
@@ -96,16 +99,20 @@ fn the_exact_discrete_jump_reaches_its_height_to_the_subpixel() {
 fn a_level_with_slopes_or_moving_platforms_is_refused_naming_the_feature() {
     for (name, feature) in [("slope_45", "slopes"), ("platforms", "moving platforms")] {
         let l = level(name);
-        let err = evaluate(&l, &l.scenarios[0], &RunConfig::sweep_integer(PER_TILE))
-            .err()
-            .unwrap_or_else(|| panic!("{name} was expected to be refused"));
+        let err = evaluate(
+            &l,
+            &l.scenarios[0],
+            &platbench::sweep::kind::run_integer(PER_TILE),
+        )
+        .err()
+        .unwrap_or_else(|| panic!("{name} was expected to be refused"));
         assert!(
             matches!(&err, BackendError::Unsupported { feature: f, .. } if f.contains(feature)),
             "{name}: {err}"
         );
         assert!(err.to_string().contains("integer positions"), "{err}");
         // The float mode runs the same level.
-        assert!(evaluate(&l, &l.scenarios[0], &RunConfig::sweep_default()).is_ok());
+        assert!(evaluate(&l, &l.scenarios[0], &platbench::sweep::kind::run_default()).is_ok());
     }
 }
 
@@ -113,11 +120,11 @@ fn a_level_with_slopes_or_moving_platforms_is_refused_naming_the_feature() {
 fn the_metrics_measure_the_box_the_integer_mode_moves() {
     // 0.8 x 0.9 tiles at 32 per tile is 25.6 x 28.8 subpixels, rounded up to 26 x 29:
     // 0.8125 x 0.90625 tiles (README, "The sweep on integer positions").
-    let run = RunConfig::sweep_integer(PER_TILE);
+    let run = platbench::sweep::kind::run_integer(PER_TILE);
     let moved = run.backend.moved_size(glam::Vec2::new(0.8, 0.9));
     assert_eq!(moved, glam::Vec2::new(0.8125, 0.90625));
     // Float positions move the box they are given.
-    let float = RunConfig::sweep_default().backend;
+    let float = platbench::sweep::kind::run_default().backend;
     assert_eq!(
         float.moved_size(glam::Vec2::new(0.8, 0.9)),
         glam::Vec2::new(0.8, 0.9)

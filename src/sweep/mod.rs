@@ -9,6 +9,7 @@
 
 pub mod broadphase;
 pub mod grid;
+pub mod kind;
 pub mod platforms;
 pub mod resolve;
 pub mod slopes;
