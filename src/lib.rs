@@ -8,6 +8,9 @@
 #![warn(missing_docs)]
 
 pub mod backend;
+#[path = "../compare/builtin.rs"]
+pub mod builtin;
+pub mod cli;
 pub mod ladder;
 pub mod level;
 pub mod limits;
@@ -19,6 +22,7 @@ pub mod report;
 pub mod scenario;
 pub mod shape;
 pub mod stress;
+pub mod suite;
 pub mod sweep;
 pub mod trace;
 pub mod tradeoff;
