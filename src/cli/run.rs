@@ -41,7 +41,8 @@ pub(crate) struct RunArgs {
     /// Override every scenario's time step, in seconds.
     #[arg(long, value_name = "SECONDS")]
     pub(crate) dt: Option<f32>,
-    /// The sweep controller's overlap tolerance, in tiles.
+    /// The overlap tolerance of the configurations that have one (the sweep's epsilon), in
+    /// tiles.
     #[arg(long, value_name = "TILES")]
     pub(crate) epsilon: Option<f32>,
     /// Also time each scenario on each configuration (in process, minimum of 5 repeats) and
