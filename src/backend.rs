@@ -278,7 +278,7 @@ pub trait BackendKind: Send + Sync {
             .map(|run| crate::tradeoff::Setting {
                 label: run.label.clone(),
                 run,
-                dt: Some(1.0 / 60.0),
+                dt: None,
             })
             .collect()
     }

@@ -249,3 +249,27 @@ fn the_builtin_registry_is_the_builtin_set() {
     assert_eq!(labels[0], "sweep default");
     assert_eq!(labels[3], "rapier per-tile capsule");
 }
+
+#[test]
+fn the_sweep_grid_is_the_committed_tradeoff_csv() {
+    // compare/tradeoff/tradeoff.csv was written by `platbench sweep` before the registry: the
+    // registry's grid has the same settings, in the same order, with the same backends.
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/compare/tradeoff/tradeoff.csv"
+    ))
+    .unwrap();
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let committed: Vec<(String, String)> = r
+        .deserialize::<platbench::tradeoff::TradeoffRow>()
+        .map(|row| row.unwrap())
+        .filter(|row| row.scope == platbench::tradeoff::ALL)
+        .map(|row| (row.backend, row.setting))
+        .collect();
+    let grid: Vec<(String, String)> = Registry::builtin()
+        .tradeoff_settings()
+        .into_iter()
+        .map(|s| (s.run.backend.backend().to_string(), s.label))
+        .collect();
+    assert_eq!(grid, committed);
+}
