@@ -20,7 +20,11 @@ fn try_fresh(
     run: &RunConfig,
 ) -> Result<Box<dyn Backend>, BackendError> {
     let params = effective_params(&run.params, spec);
-    run.backend.build(level, &params)
+    run.backend.build(
+        level,
+        &params,
+        &mut platbench::backend::SharedGeometry::default(),
+    )
 }
 
 /// A backend for `spec` on `run` with its character added; only called for pairs
@@ -43,7 +47,7 @@ fn step_cost(c: &mut Criterion) {
             let script = input_script(spec);
             let mut group = c.benchmark_group(format!("step/{}.{}", level.name, spec.name));
             for run in RunConfig::builtin_set() {
-                let name = format!("{}/{}", run.backend.name(), run.label);
+                let name = format!("{}/{}", run.backend.backend(), run.label);
                 // A pair the configuration does not model is skipped, and said so (as `run` does).
                 if let Err(e) = try_fresh(&level, spec, &run) {
                     eprintln!("skipped {}.{} {name}: {e}", level.name, spec.name);

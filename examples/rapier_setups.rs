@@ -15,7 +15,7 @@ use platbench::metrics::{evaluate_with, MetricRow};
 use platbench::rapier::{
     CharacterShape, ColliderBuilding, GroundedMove, Length, PlatformOrder, RapierConfig,
 };
-use platbench::scenario::{BackendConfig, RunConfig, Runner};
+use platbench::scenario::{RunConfig, Runner};
 
 /// The set-ups compared, each a change from Rapier's defaults.
 fn setups() -> Vec<(&'static str, RapierConfig)> {
@@ -119,8 +119,8 @@ fn main() {
                 };
                 let run = RunConfig {
                     label: format!("{} {} {name}", building.label(), shape.label()),
-                    backend: BackendConfig::Rapier(config),
-                    ..RunConfig::sweep_default()
+                    backend: std::sync::Arc::new(config),
+                    ..platbench::sweep::kind::run_default()
                 };
                 let mut rows: Vec<MetricRow> = Vec::new();
                 for level in &levels {

@@ -1,4 +1,5 @@
-//! The interface both controllers implement, and what a character exposes after a step.
+//! The interface every controller implements ([`Backend`], [`BackendSettings`],
+//! [`BackendKind`]), and what a character exposes after a step.
 //!
 //! Both backends are driven identically: same level, same [`MotionParams`], same per-frame
 //! [`Input`] per character, same `dt`. A step moves every character (then, once levels have
@@ -7,10 +8,9 @@
 
 use glam::Vec2;
 
-use crate::level::Features;
-use crate::motion::Input;
-#[cfg(doc)]
-use crate::motion::MotionParams;
+use crate::level::{Features, Level};
+use crate::motion::{Input, MotionParams};
+use crate::shape::CharacterShape;
 
 /// Index of a character within one backend instance.
 pub type CharacterId = usize;
@@ -145,4 +145,174 @@ pub trait Backend {
     fn step(&mut self, inputs: &[Input], dt: f32);
     /// The state of character `id` after the last step.
     fn state(&self, id: CharacterId) -> CharacterState;
+}
+
+/// The contact a configuration promises to keep with the level (see
+/// [`BackendSettings::declared_contact`]); all lengths in tiles.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DeclaredContact {
+    /// Gap kept to obstacles along their normal: Rapier's `offset` ("must not be zero"), 0 for
+    /// a controller that snaps flush.
+    pub gap: f32,
+    /// Overlap tolerated before a contact counts: the sweep's epsilon (the seed's "overlap
+    /// tolerance").
+    pub overlap_tolerance: f32,
+    /// How far a rest may sit from `gap`, along the normal, and still keep the promise:
+    /// Rapier's normal nudge (1e-4 tiles by default), which it adds after each cast hit, so its
+    /// rest settles between the offset and one nudge beyond; the sweep's epsilon.
+    pub gap_tolerance: f32,
+    /// How far the character's shape may overhang into a slope, vertically: the seed's
+    /// centre-column rule stands a box on the surface under its centre, so its corner may be
+    /// half its width times the climb gradient inside a walkable ramp.
+    pub slope_overhang: f32,
+    /// Subpixels per tile to which the controller rounds the surface height under its centre
+    /// (integer positions: up to the next subpixel, [`crate::level::round_height_up`]); 0 for a
+    /// controller that stands on the exact surface.
+    pub surface_grid: u32,
+}
+
+impl DeclaredContact {
+    /// The height at which the controller declares it stands on a surface at height `h`
+    /// (tiles): `h` itself, or `h` rounded the controller's way onto its grid.
+    pub fn stance_height(&self, h: f32) -> f32 {
+        match self.surface_grid {
+            0 => h,
+            n => (crate::level::round_height_up(h, n as i64) as f64 / n as f64) as f32,
+        }
+    }
+}
+
+/// Level geometry a backend built once and shares between the configurations and scenarios a
+/// [`crate::scenario::Runner`] runs on one level (Rapier's colliders, built once per collider
+/// building whatever the character shape). Entries are keyed by a string the backend chooses
+/// (prefix it with the backend's name) and hold any type.
+#[derive(Default)]
+pub struct SharedGeometry {
+    entries: Vec<(String, std::rc::Rc<dyn std::any::Any>)>,
+}
+
+impl SharedGeometry {
+    /// The entry under `key`, built by `build` the first time it is asked for. An entry of
+    /// another type under the same key is replaced.
+    pub fn get_or_build<T: 'static>(
+        &mut self,
+        key: &str,
+        build: impl FnOnce() -> T,
+    ) -> std::rc::Rc<T> {
+        if let Some((_, e)) = self.entries.iter().find(|(k, _)| k == key) {
+            if let Ok(t) = e.clone().downcast::<T>() {
+                return t;
+            }
+        }
+        let t = std::rc::Rc::new(build());
+        self.entries.retain(|(k, _)| k != key);
+        self.entries.push((key.to_string(), t.clone()));
+        t
+    }
+}
+
+/// One configuration of a backend: its settings, and what the harness needs to know of them
+/// to build it, skip the levels it does not model and score it fairly. A configuration is held
+/// as `Arc<dyn BackendSettings>` in [`crate::scenario::RunConfig`].
+pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
+    /// The backend's short name, as in CSV files (the name of its [`BackendKind`]).
+    fn backend(&self) -> &'static str;
+    /// The character's collision shape in this configuration.
+    fn shape(&self) -> CharacterShape;
+    /// Whether this configuration models `level`. A level it does not model is refused by
+    /// [`BackendSettings::build`] (and skipped by the harness), so a run can count what it will
+    /// run beforehand.
+    fn supports(&self, level: &Level) -> bool;
+    /// The contact this configuration declares it keeps, for a character of outer `size`
+    /// (tiles) with climb limit `max_climb_angle` (radians): what its documentation promises,
+    /// so a metric can score it on keeping that promise.
+    fn declared_contact(&self, size: Vec2, max_climb_angle: f32) -> DeclaredContact;
+    /// The penetration `platbench stress` holds this configuration to for a character of outer
+    /// `size` (tiles): its own contact tolerance.
+    fn contact_tolerance(&self, size: Vec2) -> f64;
+    /// The outer size of the box the configuration really moves for a character of requested
+    /// `size` (tiles); the metrics measure that box. Default: `size`.
+    fn moved_size(&self, size: Vec2) -> Vec2 {
+        size
+    }
+    /// The overlap tolerance (tiles) this configuration has, if it has one that `--epsilon` and
+    /// the stress's epsilon dimension may vary. Default: none.
+    fn epsilon(&self) -> Option<f32> {
+        None
+    }
+    /// This configuration with its overlap tolerance set to `epsilon` (tiles), if it has one.
+    fn with_epsilon(&self, _epsilon: f32) -> Option<std::sync::Arc<dyn BackendSettings>> {
+        None
+    }
+    /// Builds the backend over `level` with `params`, reusing geometry from `shared` where
+    /// another configuration already built it.
+    fn build(
+        &self,
+        level: &Level,
+        params: &MotionParams,
+        shared: &mut SharedGeometry,
+    ) -> Result<Box<dyn Backend>, BackendError>;
+    /// The settings as `Any`, for a caller that knows the concrete type.
+    fn as_any(&self) -> &dyn std::any::Any;
+    /// Whether `other` is the same configuration (same backend, equal settings).
+    fn same_as(&self, other: &dyn BackendSettings) -> bool;
+}
+
+impl PartialEq for dyn BackendSettings {
+    fn eq(&self, other: &Self) -> bool {
+        self.same_as(other)
+    }
+}
+
+/// [`BackendSettings::same_as`] for a settings type with `PartialEq`.
+pub fn same_settings<T: PartialEq + 'static>(this: &T, other: &dyn BackendSettings) -> bool {
+    other.as_any().downcast_ref::<T>() == Some(this)
+}
+
+/// A kind of backend: a controller the harness knows. One [`crate::registry::Registry`] lists
+/// the kinds; the CLI and every command iterate it and never name a backend.
+pub trait BackendKind: Send + Sync {
+    /// The backend's short name, as in CSV files and `--backend`.
+    fn name(&self) -> &'static str;
+    /// One line on what it is, for `--help` and the report.
+    fn description(&self) -> &'static str {
+        ""
+    }
+    /// The character shapes it offers (`--shape` picks among them when there is a choice).
+    fn shapes(&self) -> Vec<CharacterShape>;
+    /// The level features it models; a level with others is skipped (a configuration may model
+    /// fewer, see [`BackendSettings::supports`]).
+    fn features(&self) -> Features;
+    /// The configurations it adds to the built-in comparison, with their labels.
+    fn builtin_configs(&self) -> Vec<crate::scenario::RunConfig>;
+    /// The configurations `platbench stress` checks (default: the first built-in one).
+    fn stress_configs(&self) -> Vec<crate::scenario::RunConfig> {
+        self.builtin_configs().into_iter().take(1).collect()
+    }
+    /// The settings `platbench sweep` measures (default: the built-in configurations, each at
+    /// its scenarios' own time step).
+    fn tradeoff_settings(&self) -> Vec<crate::tradeoff::Setting> {
+        self.builtin_configs()
+            .into_iter()
+            .map(|run| crate::tradeoff::Setting {
+                label: run.label.clone(),
+                run,
+                dt: None,
+            })
+            .collect()
+    }
+    /// The configurations drawn in the report's scenario pictures: `(config label, CSS
+    /// colour)` (default: none).
+    fn drawn(&self) -> Vec<(&'static str, &'static str)> {
+        Vec::new()
+    }
+    /// Its colour in charts (a CSS colour).
+    fn colour(&self) -> &'static str {
+        "#6a1b9a"
+    }
+    /// Explanations of this backend's rows that the metrics show, each only when the
+    /// measurements show the effect it explains (default: none).
+    fn notes(&self, _rows: &[crate::metrics::MetricRow]) -> Vec<String> {
+        Vec::new()
+    }
 }

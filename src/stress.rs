@@ -11,8 +11,7 @@ use serde::{Deserialize, Serialize};
 use crate::backend::BackendError;
 use crate::level::{InputEvent, Level, Platform, PlatformMotion, ScenarioSpec, Tile};
 use crate::metrics::{evaluate, MetricRow};
-use crate::scenario::{BackendConfig, RunConfig};
-use crate::sweep::Positions;
+use crate::scenario::RunConfig;
 
 /// One dimension of the stress matrix and the values it takes (the base case is the default
 /// everywhere else).
@@ -185,11 +184,7 @@ fn carry_drift(p: &Platform, origin: Vec2, trace: &crate::trace::Trace, dt: f32)
 /// snap exactly and have no epsilon), Rapier's offset (1% of the character's height) - each
 /// controller's own contact tolerance.
 fn penetration_tolerance(run: &RunConfig, size: Vec2) -> f64 {
-    match &run.backend {
-        BackendConfig::Sweep(c) if c.positions == Positions::Float => c.epsilon as f64,
-        BackendConfig::Sweep(_) => 0.0,
-        BackendConfig::Rapier(_) => 0.01 * size.y as f64,
-    }
+    run.backend.contact_tolerance(size)
 }
 
 /// Runs the matrix for `runs` (the epsilon dimension only on sweep configurations).
@@ -211,11 +206,13 @@ pub fn stress_matrix(
                     "speed" => speed = v as f32,
                     "width" => width = v as f32,
                     // The epsilon exists only in the sweep's float mode.
-                    _ => match &mut run.backend {
-                        BackendConfig::Sweep(c) if c.positions == Positions::Float => {
-                            c.epsilon = v as f32
-                        }
-                        _ => continue,
+                    _ => match run
+                        .backend
+                        .epsilon()
+                        .and(run.backend.with_epsilon(v as f32))
+                    {
+                        Some(b) => run.backend = b,
+                        None => continue,
                     },
                 }
                 let size = Vec2::new(width, width * 1.125);
@@ -279,7 +276,7 @@ pub fn stress_matrix(
                 }
                 let pen = if pen.is_nan() { f64::INFINITY } else { pen };
                 let row = |invariant: &str, holds, measured, tolerance| StressRow {
-                    backend: run.backend.name().to_string(),
+                    backend: run.backend.backend().to_string(),
                     config: run.label.clone(),
                     dimension: d.name.to_string(),
                     value: v,

@@ -20,10 +20,8 @@ use crate::backend::BackendError;
 use crate::level::Level;
 use crate::metrics::score::Score;
 use crate::metrics::{evaluate_with, Behaviour, MetricRow};
-use crate::motion::{JumpMode, MotionParams};
-use crate::rapier::{CharacterShape, ColliderBuilding, GroundedMove, Length, RapierConfig};
-use crate::scenario::{time_scenario, BackendConfig, RunConfig, Runner};
-use crate::sweep::SweepConfig;
+use crate::registry::Registry;
+use crate::scenario::{time_scenario, RunConfig, Runner};
 
 /// One setting of the grid: a configuration and, optionally, a time step for every scenario.
 #[derive(Clone, Debug)]
@@ -36,192 +34,34 @@ pub struct Setting {
     pub dt: Option<f32>,
 }
 
-fn sweep(
-    label: &str,
-    config: SweepConfig,
-    params: MotionParams,
-    substeps: u32,
-    dt: Option<f32>,
-) -> Setting {
-    Setting {
-        label: label.into(),
-        run: RunConfig {
-            label: label.into(),
-            backend: BackendConfig::Sweep(config),
-            params,
-            substeps,
-        },
-        dt,
-    }
-}
-
-fn rapier(label: &str, config: RapierConfig, substeps: u32, dt: Option<f32>) -> Setting {
-    Setting {
-        label: label.into(),
-        run: RunConfig {
-            label: label.into(),
-            backend: BackendConfig::Rapier(config),
-            params: MotionParams::default(),
-            substeps,
-        },
-        dt,
-    }
-}
-
-/// The grid: each setting varies one thing from the defaults (dt from 1/30 to 1/480 s,
-/// substeps, the sweep's epsilon and jump mode, Rapier's offset, snap distance, grounded feed,
-/// collider building and shape).
+/// The grid of [`Registry::builtin`]: each setting varies one thing from the defaults (for the
+/// sweep: dt from 1/30 to 1/480 s, substeps, epsilon, jump mode, integer positions; for
+/// Rapier: dt, substeps, offset, snap distance, grounded feed, collider building and shape).
 pub fn grid() -> Vec<Setting> {
-    let p = MotionParams::default;
-    let s = SweepConfig::default;
-    let r = RapierConfig::default;
-    let mut g = Vec::new();
-    for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
-        g.push(sweep(&format!("dt=1/{hz}"), s(), p(), 1, Some(1.0 / hz)));
+    Registry::builtin().tradeoff_settings()
+}
+
+/// Colours of the chart's backends, in the order they first appear in its rows (the built-in
+/// registry's order gives the sweep blue and Rapier green).
+pub const PALETTE: &[&str] = &[
+    "#1565c0", "#2e7d32", "#6a1b9a", "#ef6c00", "#c62828", "#00838f",
+];
+
+/// The backends of `rows`, in the order they first appear.
+fn backends_in_order(rows: &[TradeoffRow]) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for r in rows {
+        if !out.contains(&r.backend) {
+            out.push(r.backend.clone());
+        }
     }
-    for k in [2, 4] {
-        g.push(sweep(
-            &format!("substeps={k}"),
-            s(),
-            p(),
-            k,
-            Some(1.0 / 60.0),
-        ));
-    }
-    for eps in [1e-2f32, 1e-4, 1e-6] {
-        let c = SweepConfig {
-            epsilon: eps,
-            ..s()
-        };
-        g.push(sweep(
-            &format!("epsilon={eps}"),
-            c,
-            p(),
-            1,
-            Some(1.0 / 60.0),
-        ));
-    }
-    let continuous = MotionParams {
-        jump_mode: JumpMode::Continuous,
-        ..p()
-    };
-    g.push(sweep(
-        "jump=continuous",
-        s(),
-        continuous,
-        1,
-        Some(1.0 / 60.0),
-    ));
-    for per_tile in [16, 32] {
-        let c = SweepConfig {
-            positions: crate::sweep::Positions::Integer { per_tile },
-            ..s()
-        };
-        g.push(sweep(
-            &format!("positions=integer/{per_tile}"),
-            c,
-            p(),
-            1,
-            Some(1.0 / 60.0),
-        ));
-    }
-    for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
-        g.push(rapier(
-            &format!("per-tile capsule dt=1/{hz}"),
-            r(),
-            1,
-            Some(1.0 / hz),
-        ));
-    }
-    for k in [2, 4] {
-        g.push(rapier(
-            &format!("per-tile capsule substeps={k}"),
-            r(),
-            k,
-            Some(1.0 / 60.0),
-        ));
-    }
-    for off in [0.005f32, 0.02] {
-        let c = RapierConfig {
-            offset: Length::Relative(off),
-            ..r()
-        };
-        g.push(rapier(
-            &format!("per-tile capsule offset={off}h"),
-            c,
-            1,
-            Some(1.0 / 60.0),
-        ));
-    }
-    for (name, snap) in [("none", None), ("0.4h", Some(Length::Relative(0.4)))] {
-        let c = RapierConfig {
-            snap_to_ground: snap,
-            ..r()
-        };
-        g.push(rapier(
-            &format!("per-tile capsule snap={name}"),
-            c,
-            1,
-            Some(1.0 / 60.0),
-        ));
-    }
-    for (name, colliders, shape) in [
-        (
-            "merged capsule",
-            ColliderBuilding::Merged,
-            CharacterShape::Capsule,
-        ),
-        (
-            "per-tile cuboid",
-            ColliderBuilding::PerTile,
-            CharacterShape::Cuboid,
-        ),
-        (
-            "merged cuboid",
-            ColliderBuilding::Merged,
-            CharacterShape::Cuboid,
-        ),
-    ] {
-        let c = RapierConfig {
-            colliders,
-            shape,
-            ..r()
-        };
-        g.push(rapier(name, c, 1, Some(1.0 / 60.0)));
-    }
-    // How a grounded step is fed (`GroundedMove`): the bevy_rapier example's feed, the variant
-    // that keeps the controller's platform carry, and Rapier's 2D testbed's constant push at
-    // the walking speed.
-    for grounded_move in [
-        GroundedMove::None,
-        GroundedMove::NoneExceptOnPlatforms,
-        GroundedMove::Constant(6.0),
-    ] {
-        let name = grounded_move.label();
-        let c = RapierConfig {
-            grounded_move,
-            ..r()
-        };
-        g.push(rapier(
-            &format!("per-tile capsule grounded={name}"),
-            c,
-            1,
-            Some(1.0 / 60.0),
-        ));
-    }
-    for (name, offset) in [("0.02", 0.02f32), ("0.05", 0.05)] {
-        let c = RapierConfig {
-            offset: Length::Absolute(offset),
-            ..r()
-        };
-        g.push(rapier(
-            &format!("per-tile capsule offset={name}"),
-            c,
-            1,
-            Some(1.0 / 60.0),
-        ));
-    }
-    g
+    out
+}
+
+/// The colour of backend `name` among `backends`.
+fn backend_colour(backends: &[String], name: &str) -> String {
+    let k = backends.iter().position(|b| b == name).unwrap_or(0);
+    PALETTE[k % PALETTE.len()].to_string()
 }
 
 /// The aggregate error of a setting's metric rows under the default score (see
@@ -298,7 +138,7 @@ pub fn run_tradeoff(
             }
         }
         let row = |scope: &str, error: f64| TradeoffRow {
-            backend: s.run.backend.name().to_string(),
+            backend: s.run.backend.backend().to_string(),
             setting: s.label.clone(),
             cost_us: cost / n.max(1) as f64,
             error,
@@ -408,10 +248,9 @@ pub fn chart_svg_scope(rows: &[TradeoffRow], scope: &str) -> String {
                 .set("font-size", 10),
         );
     }
-    for (i, (name, colour)) in [("sweep", "#1565c0"), ("rapier", "#2e7d32")]
-        .iter()
-        .enumerate()
-    {
+    let backends = backends_in_order(rows);
+    for (i, name) in backends.iter().enumerate() {
+        let colour = backend_colour(&backends, name);
         let ly = 20.0 + 16.0 * i as f64;
         doc = doc
             .add(
@@ -419,10 +258,10 @@ pub fn chart_svg_scope(rows: &[TradeoffRow], scope: &str) -> String {
                     .set("cx", w - 150.0)
                     .set("cy", ly)
                     .set("r", 4.0)
-                    .set("fill", *colour),
+                    .set("fill", colour.as_str()),
             )
             .add(
-                Text::new(*name)
+                Text::new(name.as_str())
                     .set("x", w - 140.0)
                     .set("y", ly + 4.0)
                     .set("font-size", 11),
@@ -431,7 +270,7 @@ pub fn chart_svg_scope(rows: &[TradeoffRow], scope: &str) -> String {
     doc = doc.add(
         Text::new("filled: Pareto front (dashed)")
             .set("x", w - 150.0)
-            .set("y", 56.0)
+            .set("y", 24.0 + 16.0 * backends.len() as f64)
             .set("font-size", 10),
     );
     let mut decade = c0;
@@ -459,11 +298,7 @@ pub fn chart_svg_scope(rows: &[TradeoffRow], scope: &str) -> String {
             .set("stroke-dasharray", "4,3"),
     );
     for (r, c) in rows.iter().zip(&costs) {
-        let colour = if r.backend == "sweep" {
-            "#1565c0"
-        } else {
-            "#2e7d32"
-        };
+        let colour = backend_colour(&backends, &r.backend);
         let mut label = String::new();
         let _ = write!(
             label,
@@ -475,7 +310,7 @@ pub fn chart_svg_scope(rows: &[TradeoffRow], scope: &str) -> String {
                 .set("cx", x(*c))
                 .set("cy", y(r.error))
                 .set("r", if r.pareto { 5.0 } else { 3.5 })
-                .set("fill", if r.pareto { colour } else { "white" })
+                .set("fill", if r.pareto { colour.as_str() } else { "white" })
                 .set("stroke", colour)
                 .add(Title::new(label)),
         );

@@ -8,7 +8,7 @@ mod common;
 use common::{evaluate_all, level, rows};
 use platbench::metrics::{compute, Context, DeclaredContact, MetricRow};
 use platbench::motion::MotionParams;
-use platbench::scenario::{effective_params, RunConfig};
+use platbench::scenario::effective_params;
 use platbench::shape::CharacterShape;
 use platbench::trace::Trace;
 
@@ -24,7 +24,7 @@ const RAMPS: [(&str, f64); 4] = [
 #[test]
 fn the_sweeps_box_overlaps_each_ramp_by_its_designed_overhang() {
     for (name, gradient) in RAMPS {
-        let evals = evaluate_all(&[level(name)], &RunConfig::sweep_default());
+        let evals = evaluate_all(&[level(name)], &platbench::sweep::kind::run_default());
         let overlaps = rows(&evals, "slope_overlap");
         assert!(!overlaps.is_empty(), "{name}: slope_overlap measured");
         // The seed's centre-column rule stands the box's centre on the surface: its uphill
@@ -77,12 +77,15 @@ fn feet_moved_below_a_slope_are_seen() {
     let deeper = 0.2 * std::f64::consts::FRAC_PI_4.cos() - 1e-3;
     let hill = level("slope_45");
     for scenario in ["rest_on_slope", "walk_right"] {
-        let evals = evaluate_all(std::slice::from_ref(&hill), &RunConfig::sweep_default());
+        let evals = evaluate_all(
+            std::slice::from_ref(&hill),
+            &platbench::sweep::kind::run_default(),
+        );
         let (_, e) = evals
             .iter()
             .find(|(n, _)| n.ends_with(&format!(".{scenario}")))
             .expect("scenario ran");
-        let sweep = RunConfig::sweep_default()
+        let sweep = platbench::sweep::kind::run_default()
             .backend
             .declared_contact(glam::Vec2::new(0.8, 0.9), std::f32::consts::FRAC_PI_4);
         let before = metrics_of("slope_45", scenario, &e.trace, sweep);
@@ -132,7 +135,7 @@ fn a_bounce_after_landing_is_charged() {
     // floor for 12 frames right after it first touched ground, as a bouncing controller
     // would: bounce_frames counts exactly those frames, while land_frame_error (first grounded
     // frame) and rest_jitter (the settled last 0.5 s) do not see them.
-    let evals = evaluate_all(&[level("drops")], &RunConfig::sweep_default());
+    let evals = evaluate_all(&[level("drops")], &platbench::sweep::kind::run_default());
     let (_, e) = evals
         .iter()
         .find(|(n, _)| n.ends_with(".drop_3"))

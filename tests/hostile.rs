@@ -360,7 +360,7 @@ mod extremes {
     use platbench::level::parse_level;
     use platbench::limits::MAX_FRAMES;
     use platbench::metrics::evaluate;
-    use platbench::scenario::{step_count, RunConfig};
+    use platbench::scenario::step_count;
     use platbench::{rapier::ColliderBuilding, shape::CharacterShape};
     use proptest::prelude::*;
 
@@ -476,8 +476,8 @@ inputs = [ { t = {t}, right = true, jump = true } ]
             short.duration = short.duration.min(2000.0 * short.dt);
             let (tx, rx) = std::sync::mpsc::channel();
             let configs = [
-                RunConfig::sweep_default(),
-                RunConfig::rapier(ColliderBuilding::PerTile, CharacterShape::Capsule),
+                platbench::sweep::kind::run_default(),
+                platbench::rapier::kind::run(ColliderBuilding::PerTile, CharacterShape::Capsule),
             ];
             std::thread::spawn(move || {
                 for run in &configs {

@@ -6,12 +6,12 @@ mod common;
 use common::{builtin_levels, evaluate_all, level, rows};
 use platbench::metrics::{compute, Context};
 use platbench::motion::MotionParams;
-use platbench::scenario::{effective_params, RunConfig};
+use platbench::scenario::effective_params;
 use platbench::shape::CharacterShape;
 
 #[test]
 fn the_sweep_stands_still_wherever_it_stands_idle() {
-    let evals = evaluate_all(&builtin_levels(), &RunConfig::sweep_default());
+    let evals = evaluate_all(&builtin_levels(), &platbench::sweep::kind::run_default());
     let drifts = rows(&evals, "idle_drift");
     // Every scenario that ends standing has an idle span (drops, rests, walks that stop).
     assert!(drifts.len() >= 20, "{} scenarios measured", drifts.len());
@@ -31,7 +31,10 @@ fn the_sweep_stands_still_wherever_it_stands_idle() {
 #[test]
 fn a_character_dragged_by_the_passing_wall_is_seen() {
     let wall = level("moving_wall");
-    let evals = evaluate_all(std::slice::from_ref(&wall), &RunConfig::sweep_default());
+    let evals = evaluate_all(
+        std::slice::from_ref(&wall),
+        &platbench::sweep::kind::run_default(),
+    );
     let (_, e) = &evals[0];
     let spec = &wall.scenarios[0];
     let params = effective_params(&MotionParams::default(), spec);

@@ -29,7 +29,7 @@ fn rest_gap_penetration_and_jitter_are_exactly_zero_on_every_scenario_without_sl
     // flat_seams, drops, jumps, corridor, thin_wall, oneway, ladders, long_floor,
     // very_long_floor: the nine built-in levels without slopes or moving platforms.
     assert_eq!(levels.len(), 9, "levels run");
-    let evals = evaluate_all(&levels, &RunConfig::sweep_integer(PER_TILE));
+    let evals = evaluate_all(&levels, &platbench::sweep::kind::run_integer(PER_TILE));
     // Issue 12: exactly 0, no tolerance: the grid snaps flush in integers.
     for m in ["rest_gap", "max_penetration", "rest_jitter"] {
         let rs = rows(&evals, m);
@@ -49,7 +49,7 @@ fn on_every_slope_scenario_rest_penetration_and_jitter_are_exactly_zero_against_
     // slope_22_5, slope_26_6, slope_45, slope_63_4, seed_tile: every built-in level with
     // slopes (none of them has moving platforms).
     assert_eq!(levels.len(), 5, "slope levels run");
-    let evals = evaluate_all(&levels, &RunConfig::sweep_integer(PER_TILE));
+    let evals = evaluate_all(&levels, &platbench::sweep::kind::run_integer(PER_TILE));
     // Issue 23: exactly 0, no tolerance, measured on the box the integer mode moves (26 x 29
     // subpixels) against its declared stance: the seed's centre column on the surface rounded
     // up to its subpixel (`level::round_height_up`), the box overhanging the ramp by half its
@@ -89,7 +89,7 @@ fn a_surface_off_the_grid_is_stood_on_rounded_up_to_its_subpixel() {
         .iter()
         .find(|s| s.name == "rest_on_slope")
         .expect("slope_22_5.rest_on_slope");
-    let e = evaluate(&l, spec, &RunConfig::sweep_integer(PER_TILE)).expect("runs");
+    let e = evaluate(&l, spec, &platbench::sweep::kind::run_integer(PER_TILE)).expect("runs");
     let last = e.trace.rows.last().expect("rows");
     let (h, slope) = l
         .surface_at(last.x, last.y + 0.5, 1.5)
@@ -127,8 +127,8 @@ fn far_from_the_origin_the_integer_mode_rests_exactly_where_the_float_mode_sinks
             .map(|r| r.value)
             .unwrap_or_else(|| panic!("no {m}"))
     };
-    let float = RunConfig::sweep_default();
-    let int = RunConfig::sweep_integer(PER_TILE);
+    let float = platbench::sweep::kind::run_default();
+    let int = platbench::sweep::kind::run_integer(PER_TILE);
     // The float mode breaks there: its feet land a rounding of a whole tile off the floor's top
     // (`platbench stress`: it sinks 0.4 tiles). Its tolerance is its epsilon, 0.001.
     assert!(
@@ -142,7 +142,10 @@ fn far_from_the_origin_the_integer_mode_rests_exactly_where_the_float_mode_sinks
 
 #[test]
 fn the_exact_discrete_jump_reaches_its_height_to_the_subpixel() {
-    let evals = evaluate_all(&[level("jumps")], &RunConfig::sweep_integer(PER_TILE));
+    let evals = evaluate_all(
+        &[level("jumps")],
+        &platbench::sweep::kind::run_integer(PER_TILE),
+    );
     let apex = rows(&evals, "apex_error");
     assert!(apex.len() >= 6, "apex measured on {} jumps", apex.len());
     for r in apex {
@@ -161,7 +164,11 @@ fn the_exact_discrete_jump_reaches_its_height_to_the_subpixel() {
 #[test]
 fn a_level_with_moving_platforms_is_refused_naming_the_feature() {
     let l = level("platforms");
-    let Err(err) = evaluate(&l, &l.scenarios[0], &RunConfig::sweep_integer(PER_TILE)) else {
+    let Err(err) = evaluate(
+        &l,
+        &l.scenarios[0],
+        &platbench::sweep::kind::run_integer(PER_TILE),
+    ) else {
         panic!("platforms was expected to be refused");
     };
     assert!(
@@ -170,18 +177,18 @@ fn a_level_with_moving_platforms_is_refused_naming_the_feature() {
     );
     assert!(err.to_string().contains("integer positions"), "{err}");
     // The float mode runs the same level.
-    assert!(evaluate(&l, &l.scenarios[0], &RunConfig::sweep_default()).is_ok());
+    assert!(evaluate(&l, &l.scenarios[0], &platbench::sweep::kind::run_default()).is_ok());
 }
 
 #[test]
 fn the_metrics_measure_the_box_the_integer_mode_moves() {
     // 0.8 x 0.9 tiles at 32 per tile is 25.6 x 28.8 subpixels, rounded up to 26 x 29:
     // 0.8125 x 0.90625 tiles (README, "The sweep on integer positions").
-    let run = RunConfig::sweep_integer(PER_TILE);
+    let run = platbench::sweep::kind::run_integer(PER_TILE);
     let moved = run.backend.moved_size(glam::Vec2::new(0.8, 0.9));
     assert_eq!(moved, glam::Vec2::new(0.8125, 0.90625));
     // Float positions move the box they are given.
-    let float = RunConfig::sweep_default().backend;
+    let float = platbench::sweep::kind::run_default().backend;
     assert_eq!(
         float.moved_size(glam::Vec2::new(0.8, 0.9)),
         glam::Vec2::new(0.8, 0.9)

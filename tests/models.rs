@@ -7,7 +7,7 @@ mod common;
 use common::{evaluate_all, level, rows};
 use platbench::metrics::{compute, Context, DeclaredContact, MetricRow};
 use platbench::motion::MotionParams;
-use platbench::scenario::{effective_params, RunConfig};
+use platbench::scenario::effective_params;
 use platbench::shape::CharacterShape;
 use platbench::trace::Trace;
 
@@ -19,7 +19,7 @@ fn slope_speed_is_shown_against_both_models() {
         ("slope_26_6", 0.5),
         ("slope_45", 1.0),
     ] {
-        let evals = evaluate_all(&[level(name)], &RunConfig::sweep_default());
+        let evals = evaluate_all(&[level(name)], &platbench::sweep::kind::run_default());
         let horizontal = rows(&evals, "slope_speed_ratio");
         let along = rows(&evals, "slope_surface_speed_ratio");
         assert!(
@@ -76,7 +76,7 @@ fn rest_gaps(t: &Trace, declared: DeclaredContact) -> (f64, f64) {
 
 #[test]
 fn a_rest_is_scored_against_the_gap_the_configuration_declares() {
-    let evals = evaluate_all(&[level("drops")], &RunConfig::sweep_default());
+    let evals = evaluate_all(&[level("drops")], &platbench::sweep::kind::run_default());
     let (_, e) = evals
         .iter()
         .find(|(n, _)| n == "drops.drop_1")

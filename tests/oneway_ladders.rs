@@ -12,10 +12,10 @@ use platbench::scenario::RunConfig;
 use platbench::sweep::{SweepBackend, SweepConfig};
 
 fn every_config() -> Vec<RunConfig> {
-    let mut runs = vec![RunConfig::sweep_default()];
+    let mut runs = vec![platbench::sweep::kind::run_default()];
     for shape in CharacterShape::ALL {
         for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
-            runs.push(RunConfig::rapier(building, shape));
+            runs.push(platbench::rapier::kind::run(building, shape));
         }
     }
     runs
@@ -23,7 +23,7 @@ fn every_config() -> Vec<RunConfig> {
 
 #[test]
 fn one_way_scenarios_end_as_the_seed_intends_on_sweep() {
-    let evals = evaluate_all(&[level("oneway")], &RunConfig::sweep_default());
+    let evals = evaluate_all(&[level("oneway")], &platbench::sweep::kind::run_default());
     let results = rows(&evals, "oneway_result");
     // Jump through from below, land on top, drop through on down + jump, and the mid-jump fall.
     assert_eq!(results.len(), 4);
@@ -89,7 +89,7 @@ fn ladders_climb_at_the_configured_speed_and_are_entered_and_left() {
 
 #[test]
 fn the_ladder_state_has_no_gravity_and_no_horizontal_motion() {
-    let evals = evaluate_all(&[level("ladders")], &RunConfig::sweep_default());
+    let evals = evaluate_all(&[level("ladders")], &platbench::sweep::kind::run_default());
     let (_, climb) = evals.iter().find(|(n, _)| n.ends_with("climb_up")).unwrap();
     let on: Vec<_> = climb.trace.rows.iter().filter(|r| r.ladder == 1).collect();
     assert!(on.len() > 30, "{} frames on the ladder", on.len());

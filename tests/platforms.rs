@@ -6,7 +6,7 @@ mod common;
 use common::{evaluate_all, level, rows, some_rows, value};
 use platbench::metrics::Evaluation;
 use platbench::rapier::{CharacterShape, ColliderBuilding};
-use platbench::scenario::{BackendConfig, RunConfig};
+use platbench::scenario::RunConfig;
 use platbench::sweep::{RiderFollow, SweepConfig};
 
 fn find<'a>(evals: &'a [(String, Evaluation)], name: &str) -> &'a Evaluation {
@@ -27,7 +27,10 @@ const FOLLOWABLE: [&str; 7] = [
 
 #[test]
 fn sweep_carries_riders_without_drift() {
-    let evals = evaluate_all(&[level("platforms")], &RunConfig::sweep_default());
+    let evals = evaluate_all(
+        &[level("platforms")],
+        &platbench::sweep::kind::run_default(),
+    );
     for name in FOLLOWABLE {
         // Issue 5: carry_drift <= 1e-4 tiles, carry_airborne_frames = 0.
         let drift = value(&evals, name, "carry_drift");
@@ -60,7 +63,10 @@ fn a_platform_dropping_faster_than_gravity_leaves_its_rider_behind() {
 
 #[test]
 fn sweep_pushes_without_overlap_and_reports_a_crush() {
-    let evals = evaluate_all(&[level("platforms")], &RunConfig::sweep_default());
+    let evals = evaluate_all(
+        &[level("platforms")],
+        &platbench::sweep::kind::run_default(),
+    );
     let eps = SweepConfig::default().epsilon as f64;
     for r in some_rows(&evals, "push_penetration") {
         if r.scenario != "crushed_against_a_wall" {
@@ -89,7 +95,7 @@ fn sweep_pushes_without_overlap_and_reports_a_crush() {
 fn rapier_runs_every_platform_scenario_and_its_carry_is_pinned() {
     for shape in CharacterShape::ALL {
         for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
-            let run = RunConfig::rapier(building, shape);
+            let run = platbench::rapier::kind::run(building, shape);
             let evals = evaluate_all(&[level("platforms")], &run);
             assert_eq!(evals.len(), 10, "{}", run.label);
             // The platforms move before the characters (the default): the controller carries
@@ -128,12 +134,13 @@ fn rapier_runs_every_platform_scenario_and_its_carry_is_pinned() {
 
 /// The sweep with rider-follow rule `rule`, everything else default.
 fn with_rule(rule: RiderFollow) -> RunConfig {
-    let mut run = RunConfig::sweep_default();
-    run.backend = BackendConfig::Sweep(SweepConfig {
-        rider_follow: rule,
-        ..SweepConfig::default()
-    });
-    run
+    RunConfig::new(
+        "default",
+        SweepConfig {
+            rider_follow: rule,
+            ..SweepConfig::default()
+        },
+    )
 }
 
 #[test]

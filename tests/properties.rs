@@ -88,9 +88,9 @@ fn scenario(at: Vec2, inputs: Vec<InputEvent>, seconds: f32) -> ScenarioSpec {
 
 fn runs() -> Vec<RunConfig> {
     vec![
-        RunConfig::sweep_default(),
-        RunConfig::rapier(ColliderBuilding::PerTile, CharacterShape::Capsule),
-        RunConfig::rapier(ColliderBuilding::Merged, CharacterShape::Cuboid),
+        platbench::sweep::kind::run_default(),
+        platbench::rapier::kind::run(ColliderBuilding::PerTile, CharacterShape::Capsule),
+        platbench::rapier::kind::run(ColliderBuilding::Merged, CharacterShape::Cuboid),
     ]
 }
 
@@ -117,7 +117,7 @@ proptest! {
             }
             let b = evaluate(&level, &spec, &run).unwrap();
             prop_assert!(a.trace.rows == b.trace.rows, "{}: two runs differ", run.label);
-            if run.backend.name() == "sweep" {
+            if run.backend.backend() == "sweep" {
                 let get = |m: &str| a.metrics.iter().find(|r| r.metric == m).unwrap().value;
                 // The sweep's guarantees: no overlap with a solid beyond its epsilon, no tunneling.
                 prop_assert!(get("max_penetration") <= SweepConfig::default().epsilon as f64,
@@ -142,7 +142,7 @@ proptest! {
             prop_assert!(a.trace.rows.iter().all(|r| r.x.is_finite() && r.y.is_finite()));
             let b = evaluate(&level, &spec, &run).unwrap();
             prop_assert!(a.trace.rows == b.trace.rows);
-            if run.backend.name() == "sweep" {
+            if run.backend.backend() == "sweep" {
                 let t = a.metrics.iter().find(|r| r.metric == "tunneled").unwrap().value;
                 prop_assert_eq!(t, 0.0);
             }

@@ -22,7 +22,7 @@ fn all_rapier() -> Vec<ShapeRuns> {
     let mut out = Vec::new();
     for shape in CharacterShape::ALL {
         for building in BUILDINGS {
-            let evals = evaluate_all(&levels, &RunConfig::rapier(building, shape));
+            let evals = evaluate_all(&levels, &platbench::rapier::kind::run(building, shape));
             out.push((shape, building, evals));
         }
     }
@@ -35,7 +35,7 @@ fn every_scenario_has_the_same_metrics_on_every_configuration() {
     let mut sets = Vec::new();
     // The sweep's integer mode runs only the levels it models: tests/integer.rs covers it.
     let full = RunConfig::builtin_set().into_iter().filter(|r| {
-        !matches!(&r.backend, platbench::scenario::BackendConfig::Sweep(c)
+        !matches!(r.backend.as_any().downcast_ref::<platbench::sweep::SweepConfig>(), Some(c)
             if c.positions != platbench::sweep::Positions::Float)
     });
     for run in full {
@@ -174,13 +174,13 @@ fn rounded_shapes_sink_deep_into_a_2000_tile_box() {
     ] {
         let evals = evaluate_all(
             std::slice::from_ref(&flat),
-            &RunConfig::rapier(ColliderBuilding::Merged, shape),
+            &platbench::rapier::kind::run(ColliderBuilding::Merged, shape),
         );
         let pen = rows(&evals, "max_penetration")[0].value;
         assert!(pen > 0.1, "{}: max_penetration {pen}", shape.label());
         let per_tile = evaluate_all(
             std::slice::from_ref(&flat),
-            &RunConfig::rapier(ColliderBuilding::PerTile, shape),
+            &platbench::rapier::kind::run(ColliderBuilding::PerTile, shape),
         );
         assert_eq!(
             rows(&per_tile, "max_penetration")[0].value,
@@ -198,7 +198,7 @@ fn flat_ground_progress_and_stuck_frames_per_shape() {
         for building in BUILDINGS {
             let evals = evaluate_all(
                 std::slice::from_ref(&flat),
-                &RunConfig::rapier(building, shape),
+                &platbench::rapier::kind::run(building, shape),
             );
             let tag = format!("{building:?} {}", shape.label());
             for name in ["walk_right_10s", "walk_left_10s"] {
@@ -224,7 +224,7 @@ fn flat_ground_progress_and_stuck_frames_per_shape() {
     // (measured 0.93). Left inside the offset band it creeps out by the normal nudge only
     // (1e-4 per step) and catches on seams meanwhile: measured 0.72.
     let flush = |lift_spawn: bool| {
-        let run = RunConfig::rapier_with(RapierConfig {
+        let run = platbench::rapier::kind::run_with(RapierConfig {
             shape: CharacterShape::Cuboid,
             lift_spawn,
             ..Default::default()
@@ -256,7 +256,7 @@ fn a_merged_box_stops_a_cuboid_where_a_capsule_walks() {
     let long = level("long_floor");
     let cuboid = evaluate_all(
         std::slice::from_ref(&long),
-        &RunConfig::rapier(ColliderBuilding::Merged, CharacterShape::Cuboid),
+        &platbench::rapier::kind::run(ColliderBuilding::Merged, CharacterShape::Cuboid),
     );
     let stuck_runs = rows(&cuboid, "progress_ratio")
         .iter()
@@ -266,7 +266,7 @@ fn a_merged_box_stops_a_cuboid_where_a_capsule_walks() {
     assert!(stuck_runs >= 4, "{stuck_runs} of 5 cuboid walks stuck");
     let capsule = evaluate_all(
         std::slice::from_ref(&long),
-        &RunConfig::rapier(ColliderBuilding::Merged, CharacterShape::Capsule),
+        &platbench::rapier::kind::run(ColliderBuilding::Merged, CharacterShape::Capsule),
     );
     for r in some_rows(&capsule, "progress_ratio") {
         assert!(r.value >= 0.85, "capsule {}: {}", r.scenario, r.value);

@@ -15,7 +15,8 @@ use platbench::rapier::{
     CharacterShape, ColliderBuilding, GroundedMove, Length, PlatformCarry, PlatformOrder,
     RapierBackend, RapierConfig,
 };
-use platbench::scenario::{BackendConfig, RunConfig};
+use platbench::scenario::RunConfig;
+use platbench::sweep::SweepConfig;
 use rapier2d::prelude::ColliderBuilder;
 
 /// Largest distance the character moves over the last second of a trace, in tiles.
@@ -63,7 +64,7 @@ fn every_configuration_comes_to_rest_on_the_45_degree_ramp() {
     assert_eq!(slope.scenarios.len(), 5);
     let configs: Vec<RunConfig> = RunConfig::builtin_set()
         .into_iter()
-        .filter(|r| !matches!(&r.backend, BackendConfig::Sweep(c) if c.positions != platbench::sweep::Positions::Float))
+        .filter(|r| !matches!(r.backend.as_any().downcast_ref::<SweepConfig>(), Some(c) if c.positions != platbench::sweep::Positions::Float))
         .collect();
     assert!(configs.len() >= 10, "{} configurations", configs.len());
     for run in &configs {
@@ -82,7 +83,7 @@ fn every_configuration_comes_to_rest_on_the_45_degree_ramp() {
             // rising to the right, whose rounded corner's contact normals on the polyline
             // scatter past the slide limit even with its 0.01 rad margin on a few steps
             // (about 0.005 tiles each; 0.012 tiles in the second). Held to 0.02.
-            let round_merged = matches!(&run.backend, BackendConfig::Rapier(c)
+            let round_merged = matches!(run.backend.as_any().downcast_ref::<RapierConfig>(), Some(c)
                 if c.colliders == ColliderBuilding::Merged && c.shape == CharacterShape::ROUND_CUBOID);
             let bound = if round_merged && name.ends_with("walk_right_stop_going_up") {
                 0.02
@@ -100,7 +101,7 @@ fn every_configuration_comes_to_rest_on_the_45_degree_ramp() {
             stop_speed: 0.0,
             ..Default::default()
         },
-        ..RunConfig::rapier(ColliderBuilding::PerTile, CharacterShape::Capsule)
+        ..platbench::rapier::kind::run(ColliderBuilding::PerTile, CharacterShape::Capsule)
     };
     let worst = evaluate_all(std::slice::from_ref(&slope), &creeping)
         .iter()
@@ -146,7 +147,7 @@ fn a_flush_spawn_starts_at_the_offset_above_the_ground() {
 #[test]
 fn the_grounded_move_decides_whether_a_box_sticks_and_whether_a_platform_carries() {
     let run = |grounded_move: GroundedMove, shape: CharacterShape, building: ColliderBuilding| {
-        RunConfig::rapier_with(RapierConfig {
+        platbench::rapier::kind::run_with(RapierConfig {
             colliders: building,
             shape,
             grounded_move,
@@ -210,7 +211,7 @@ fn platforms_moved_before_the_characters_trade_a_walking_rider_s_drift_for_a_fal
         let measure = |order: PlatformOrder| {
             evaluate_all(
                 &platforms,
-                &RunConfig::rapier_with(RapierConfig {
+                &platbench::rapier::kind::run_with(RapierConfig {
                     shape,
                     platform_order: order,
                     ..Default::default()
@@ -288,7 +289,7 @@ fn every_builtin_level_runs_on_the_remedy_configurations() {
     let remedies: Vec<RunConfig> = RunConfig::builtin_set()
         .into_iter()
         .filter(|r| {
-            matches!(&r.backend, BackendConfig::Rapier(c) if c.grounded_move == GroundedMove::NoneExceptOnPlatforms)
+            matches!(r.backend.as_any().downcast_ref::<RapierConfig>(), Some(c) if c.grounded_move == GroundedMove::NoneExceptOnPlatforms)
         })
         .collect();
     assert_eq!(remedies.len(), CharacterShape::ALL.len());
@@ -309,7 +310,7 @@ fn the_remedy_has_a_price_where_rapier_calls_a_wall_corner_ground() {
     let worst_gap = |grounded_move: GroundedMove| {
         let evals = evaluate_all(
             &thin,
-            &RunConfig::rapier_with(RapierConfig {
+            &platbench::rapier::kind::run_with(RapierConfig {
                 shape: CharacterShape::Capsule,
                 grounded_move,
                 ..Default::default()
@@ -328,7 +329,7 @@ fn the_remedy_has_a_price_where_rapier_calls_a_wall_corner_ground() {
     // 0.91; fed gravity, 0). And the ball at the top of the ladder: reported grounded on the
     // shaft's corners, it stops in the shaft and never reaches the floor (ladder_result 0).
     let remedy = |shape: CharacterShape| {
-        RunConfig::rapier_with(RapierConfig {
+        platbench::rapier::kind::run_with(RapierConfig {
             shape,
             grounded_move: GroundedMove::NoneExceptOnPlatforms,
             ..Default::default()
@@ -341,7 +342,7 @@ fn the_remedy_has_a_price_where_rapier_calls_a_wall_corner_ground() {
         assert!(pen > 0.5, "{}: {pen}", shape.label());
         let fed = evaluate_all(
             &platforms,
-            &RunConfig::rapier(ColliderBuilding::PerTile, shape),
+            &platbench::rapier::kind::run(ColliderBuilding::PerTile, shape),
         );
         assert_eq!(
             value(&fed, "crushed_against_a_wall", "max_penetration"),
@@ -353,7 +354,7 @@ fn the_remedy_has_a_price_where_rapier_calls_a_wall_corner_ground() {
     assert_eq!(value(&ball, "climb_down", "ladder_result"), 0.0);
     let fed = evaluate_all(
         &ladders,
-        &RunConfig::rapier(ColliderBuilding::PerTile, CharacterShape::Ball),
+        &platbench::rapier::kind::run(ColliderBuilding::PerTile, CharacterShape::Ball),
     );
     assert_eq!(value(&fed, "climb_down", "ladder_result"), 1.0);
 }
@@ -368,7 +369,7 @@ fn adding_the_platform_displacement_to_the_controller_s_carry_over_carries() {
     let drift = |platform_carry: PlatformCarry| {
         let evals = evaluate_all(
             &platforms,
-            &RunConfig::rapier_with(RapierConfig {
+            &platbench::rapier::kind::run_with(RapierConfig {
                 platform_carry,
                 ..Default::default()
             }),
@@ -389,7 +390,7 @@ fn rounded_shapes_report_ground_on_the_corners_of_a_per_tile_wall() {
     // one box gives no corner, and the cuboid, flat against it, none either.
     let thin = [level("thin_wall")];
     let false_grounded = |building: ColliderBuilding, shape: CharacterShape| -> f64 {
-        let evals = evaluate_all(&thin, &RunConfig::rapier(building, shape));
+        let evals = evaluate_all(&thin, &platbench::rapier::kind::run(building, shape));
         rows(&evals, "false_grounded").iter().map(|r| r.value).sum()
     };
     for shape in [

@@ -5,7 +5,6 @@ mod common;
 use common::{builtin_levels, evaluate_all};
 use platbench::metrics::registry::METRICS;
 use platbench::report::summary_table;
-use platbench::scenario::RunConfig;
 
 fn readme() -> String {
     std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
@@ -31,7 +30,10 @@ fn integer_positions_are_compared_over_52_of_64_scenarios() {
     let total: usize = levels.iter().map(|l| l.scenarios.len()).sum();
     assert_eq!(total, 64);
     let mut rows = Vec::new();
-    for run in [RunConfig::sweep_default(), RunConfig::sweep_integer(32)] {
+    for run in [
+        platbench::sweep::kind::run_default(),
+        platbench::sweep::kind::run_integer(32),
+    ] {
         for l in &levels {
             for s in &l.scenarios {
                 match platbench::metrics::evaluate(l, s, &run) {
@@ -49,7 +51,7 @@ fn integer_positions_are_compared_over_52_of_64_scenarios() {
     );
     assert!(!summary.contains("sweep (over"), "{summary}");
     // The same count the shared helper sees.
-    let evals = evaluate_all(&levels, &RunConfig::sweep_default());
+    let evals = evaluate_all(&levels, &platbench::sweep::kind::run_default());
     assert_eq!(evals.len(), 64);
 }
 

@@ -11,7 +11,6 @@ use platbench::backend::{Backend, CharacterSpec};
 use platbench::level::Tile;
 use platbench::motion::{Input, MotionParams};
 use platbench::rapier::{CharacterShape, ColliderBuilding};
-use platbench::scenario::RunConfig;
 use platbench::sweep::{SweepBackend, SweepConfig};
 
 const WALKABLE: [&str; 4] = ["slope_22_5", "slope_26_6", "slope_45", "seed_tile"];
@@ -19,7 +18,7 @@ const WALKABLE: [&str; 4] = ["slope_22_5", "slope_26_6", "slope_45", "seed_tile"
 #[test]
 fn sweep_walks_every_walkable_slope_without_leaving_it() {
     for name in WALKABLE {
-        let evals = evaluate_all(&[level(name)], &RunConfig::sweep_default());
+        let evals = evaluate_all(&[level(name)], &platbench::sweep::kind::run_default());
         let airborne = rows(&evals, "slope_airborne_frames");
         assert!(!airborne.is_empty(), "{name}: slope walks measured");
         for r in airborne {
@@ -59,7 +58,7 @@ fn sweep_walks_every_walkable_slope_without_leaving_it() {
     // On straight ramps the sweep keeps its horizontal run speed (the seed's optional slope
     // acceleration is not applied): ratio 1 within the speed-up at the foot and crest (1%).
     for name in ["slope_22_5", "slope_26_6", "slope_45"] {
-        let evals = evaluate_all(&[level(name)], &RunConfig::sweep_default());
+        let evals = evaluate_all(&[level(name)], &platbench::sweep::kind::run_default());
         for r in some_rows(&evals, "slope_speed_ratio") {
             assert!(
                 (r.value - 1.0).abs() <= 0.01,
@@ -74,7 +73,10 @@ fn sweep_walks_every_walkable_slope_without_leaving_it() {
 #[test]
 fn the_seed_height_array_tile_is_followed_within_a_sixteenth() {
     let seed = level("seed_tile");
-    let evals = evaluate_all(std::slice::from_ref(&seed), &RunConfig::sweep_default());
+    let evals = evaluate_all(
+        std::slice::from_ref(&seed),
+        &platbench::sweep::kind::run_default(),
+    );
     let (_, down) = evals
         .iter()
         .find(|(n, _)| n.ends_with("walk_down"))
@@ -105,10 +107,10 @@ fn the_seed_height_array_tile_is_followed_within_a_sixteenth() {
 #[test]
 fn a_slope_over_the_climb_limit_blocks_both_backends() {
     let steep = level("slope_63_4");
-    let mut runs = vec![RunConfig::sweep_default()];
+    let mut runs = vec![platbench::sweep::kind::run_default()];
     for shape in CharacterShape::ALL {
         for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
-            runs.push(RunConfig::rapier(building, shape));
+            runs.push(platbench::rapier::kind::run(building, shape));
         }
     }
     for run in &runs {
@@ -121,7 +123,10 @@ fn a_slope_over_the_climb_limit_blocks_both_backends() {
         assert_eq!(r.value, 1.0, "{}: steep_blocked", run.label);
     }
     // The same ramp rising to the left: the sweep blocks it too.
-    let evals = evaluate_all(std::slice::from_ref(&steep), &RunConfig::sweep_default());
+    let evals = evaluate_all(
+        std::slice::from_ref(&steep),
+        &platbench::sweep::kind::run_default(),
+    );
     let left = rows(&evals, "steep_blocked")
         .into_iter()
         .find(|r| r.scenario == "walk_into_steep_leftward")
@@ -144,7 +149,7 @@ fn rapier_climbs_a_steep_slope_rising_to_the_left_on_every_collider_building() {
         for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
             let evals = evaluate_all(
                 std::slice::from_ref(&steep),
-                &RunConfig::rapier(building, shape),
+                &platbench::rapier::kind::run(building, shape),
             );
             let r = rows(&evals, "steep_blocked")
                 .into_iter()
@@ -165,7 +170,7 @@ fn rapier_walks_the_per_tile_22_5_degree_hill() {
     for shape in CharacterShape::ALL {
         let evals = evaluate_all(
             std::slice::from_ref(&hill),
-            &RunConfig::rapier(ColliderBuilding::PerTile, shape),
+            &platbench::rapier::kind::run(ColliderBuilding::PerTile, shape),
         );
         let speeds: Vec<f64> = rows(&evals, "slope_speed_ratio")
             .iter()
@@ -184,7 +189,7 @@ fn rapier_follows_walkable_slopes_at_its_offset() {
         for shape in CharacterShape::ALL {
             let evals = evaluate_all(
                 &[level(name)],
-                &RunConfig::rapier(ColliderBuilding::Merged, shape),
+                &platbench::rapier::kind::run(ColliderBuilding::Merged, shape),
             );
             for r in some_rows(&evals, "slope_airborne_frames") {
                 // Measured 0 on merged ramps: snap-to-ground keeps Rapier on the slope.

@@ -1,11 +1,10 @@
 //! The sweep's stability envelope, pinned at its edges (`platbench stress`): a change that
 //! shrinks it fails here.
 
-use platbench::scenario::RunConfig;
 use platbench::stress::{stress_matrix, StressRow};
 
 fn sweep_rows() -> Vec<StressRow> {
-    stress_matrix(&[RunConfig::sweep_default()], |_| {}).unwrap()
+    stress_matrix(&[platbench::sweep::kind::run_default()], |_| {}).unwrap()
 }
 
 /// Whether every invariant (but those in `except`) held at `dim = v`.
@@ -75,7 +74,7 @@ fn the_sweep_carries_its_riders_at_the_base_case_far_inside_the_allowance() {
 
 #[test]
 fn the_integer_mode_keeps_every_invariant_it_models_up_to_1e7_tiles() {
-    let rows = stress_matrix(&[RunConfig::sweep_integer(32)], |_| {}).unwrap();
+    let rows = stress_matrix(&[platbench::sweep::kind::run_integer(32)], |_| {}).unwrap();
     // Issue 12: offsets up to 1e7 tiles (3.2e8 subpixels: an i64 holds 2.9e17 tiles at 32 per
     // tile; the bound is the broadphase's f32 tile boxes, exact to 2^24 = 1.7e7 tiles), where
     // the float mode breaks (the test above). Every dimension at its extremes too. No carry rows:

@@ -10,7 +10,7 @@ use platbench::sweep::SweepConfig;
 
 #[test]
 fn landing_rest_and_stability_bounds_hold_on_every_scenario() {
-    let evals = evaluate_all(&builtin_levels(), &RunConfig::sweep_default());
+    let evals = evaluate_all(&builtin_levels(), &platbench::sweep::kind::run_default());
     let eps = SweepConfig::default().epsilon as f64;
 
     let gaps = rows(&evals, "rest_gap");
@@ -98,7 +98,10 @@ fn landing_rest_and_stability_bounds_hold_on_every_scenario() {
 
 #[test]
 fn walking_ten_seconds_over_seams_loses_nothing() {
-    let evals = evaluate_all(&[level("flat_seams")], &RunConfig::sweep_default());
+    let evals = evaluate_all(
+        &[level("flat_seams")],
+        &platbench::sweep::kind::run_default(),
+    );
     for name in ["walk_right_10s", "walk_left_10s"] {
         let r = rows(&evals, "progress_ratio")
             .into_iter()
@@ -115,7 +118,10 @@ fn walking_ten_seconds_over_seams_loses_nothing() {
 
 #[test]
 fn fast_movers_stop_flush_at_the_thin_wall_and_floor() {
-    let evals = evaluate_all(&[level("thin_wall")], &RunConfig::sweep_default());
+    let evals = evaluate_all(
+        &[level("thin_wall")],
+        &platbench::sweep::kind::run_default(),
+    );
     let eps = SweepConfig::default().epsilon;
     let find = |n: &str| &evals.iter().find(|(k, _)| k.ends_with(n)).unwrap().1;
     // The wall is column 20 (x in [20, 21]); the character is 0.8 wide, so its feet x must stay
@@ -134,13 +140,16 @@ fn fast_movers_stop_flush_at_the_thin_wall_and_floor() {
 #[test]
 fn exact_discrete_jump_reaches_the_requested_height_and_continuous_undershoots() {
     let jumps = level("jumps");
-    let exact = evaluate_all(std::slice::from_ref(&jumps), &RunConfig::sweep_default());
+    let exact = evaluate_all(
+        std::slice::from_ref(&jumps),
+        &platbench::sweep::kind::run_default(),
+    );
     let continuous_run = RunConfig {
         params: MotionParams {
             jump_mode: JumpMode::Continuous,
             ..Default::default()
         },
-        ..RunConfig::sweep_default()
+        ..platbench::sweep::kind::run_default()
     };
     let continuous = evaluate_all(std::slice::from_ref(&jumps), &continuous_run);
     let ex = rows(&exact, "apex_error");
@@ -184,8 +193,8 @@ fn exact_discrete_jump_reaches_the_requested_height_and_continuous_undershoots()
 #[test]
 fn two_runs_give_bit_identical_traces() {
     let levels = builtin_levels();
-    let a = evaluate_all(&levels, &RunConfig::sweep_default());
-    let b = evaluate_all(&levels, &RunConfig::sweep_default());
+    let a = evaluate_all(&levels, &platbench::sweep::kind::run_default());
+    let b = evaluate_all(&levels, &platbench::sweep::kind::run_default());
     for ((name, x), (_, y)) in a.iter().zip(&b) {
         let (mut cx, mut cy) = (Vec::new(), Vec::new());
         x.trace.write_csv(&mut cx).unwrap();

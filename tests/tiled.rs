@@ -559,10 +559,10 @@ fn the_showcase_runs_on_every_configuration_of_both_backends() {
     use platbench::scenario::RunConfig;
     let (level, _) = load_tiled_map(&shipped("showcase.tmx")).unwrap();
     let configs = RunConfig::builtin_set();
-    assert!(configs.iter().any(|c| c.backend.name() == "sweep"));
-    assert!(configs.iter().any(|c| c.backend.name() == "rapier"));
+    assert!(configs.iter().any(|c| c.backend.backend() == "sweep"));
+    assert!(configs.iter().any(|c| c.backend.backend() == "rapier"));
     for run in &configs {
-        let who = format!("{}/{}", run.backend.name(), run.label);
+        let who = format!("{}/{}", run.backend.backend(), run.label);
         for spec in &level.scenarios {
             let e = match evaluate(&level, spec, run) {
                 // The sweep's integer mode refuses the showcase's ramp and platform by name
@@ -594,7 +594,9 @@ fn the_showcase_runs_on_every_configuration_of_both_backends() {
                     spec.name
                 );
             }
-            if run.backend.name() != "sweep" || run.label != RunConfig::sweep_default().label {
+            if run.backend.backend() != "sweep"
+                || run.label != platbench::sweep::kind::run_default().label
+            {
                 continue;
             }
             let last = rows.last().unwrap();

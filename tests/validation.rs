@@ -6,7 +6,7 @@ use platbench::backend::{Backend, BackendError, CharacterSpec};
 use platbench::level::{parse_level, Level, Tile};
 use platbench::motion::MotionParams;
 use platbench::rapier::{RapierBackend, RapierConfig};
-use platbench::scenario::{run_scenario, RunConfig};
+use platbench::scenario::run_scenario;
 use platbench::sweep::{SweepBackend, SweepConfig};
 
 fn floor() -> Level {
@@ -120,12 +120,12 @@ fn characters_and_time_steps_are_checked() {
     let mut spec = level.scenarios[0].clone();
     spec.dt = 0.0;
     named(
-        run_scenario(&level, &spec, &RunConfig::sweep_default()).unwrap_err(),
+        run_scenario(&level, &spec, &platbench::sweep::kind::run_default()).unwrap_err(),
         "dt",
     );
     spec.dt = f32::NAN;
     named(
-        run_scenario(&level, &spec, &RunConfig::sweep_default()).unwrap_err(),
+        run_scenario(&level, &spec, &platbench::sweep::kind::run_default()).unwrap_err(),
         "dt",
     );
 }

@@ -168,7 +168,7 @@ pub fn timing_row(
     MetricRow {
         level: level.name.clone(),
         scenario: spec.name.clone(),
-        backend: run.backend.name().to_string(),
+        backend: run.backend.backend().to_string(),
         config: run.label.clone(),
         metric: "ns_per_character_step",
         value: ns,

@@ -14,6 +14,7 @@
 //! runs: the level has only static colliders.
 
 pub mod colliders;
+pub mod kind;
 pub mod platforms;
 
 use std::rc::Rc;

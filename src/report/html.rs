@@ -10,7 +10,7 @@ use glam::Vec2;
 use svg::node::element::{Circle, Group, Polygon, Polyline, Rectangle, Title};
 use svg::Document;
 
-use super::{format_setting, format_value, notes, worst_matrix};
+use super::{format_setting, format_value, worst_matrix};
 use crate::level::{Level, ScenarioSpec, Tile};
 use crate::metrics::ground::Ground;
 use crate::metrics::{registry, Behaviour, MetricRow};
@@ -19,17 +19,12 @@ use crate::stress::{envelope, Envelope, StressRow};
 use crate::trace::Trace;
 use crate::tradeoff::{chart_svg, TradeoffRow};
 
-/// The configurations drawn in the scenario pictures, with their colours: the sweep and Rapier's
-/// two most telling shapes on both collider buildings.
-pub const DRAWN: &[(&str, &str, &str)] = &[
-    ("sweep", "default", "#1565c0"),
-    ("rapier", "per-tile capsule", "#2e7d32"),
-    ("rapier", "merged capsule", "#9e9d24"),
-    ("rapier", "per-tile cuboid", "#c62828"),
-    ("rapier", "merged cuboid", "#ef6c00"),
-];
+/// A configuration drawn in the scenario pictures: `(backend, config label, CSS colour)`, as
+/// [`crate::registry::Registry::drawn`] lists them.
+pub type Drawn = (&'static str, &'static str, &'static str);
 
-/// One scenario and its traces (any configurations; those in [`DRAWN`] are drawn).
+/// One scenario and its traces (any configurations; those the registry lists in
+/// [`crate::registry::Registry::drawn`] are drawn).
 pub struct ScenarioTraces<'a> {
     /// The level.
     pub level: &'a Level,
@@ -53,10 +48,10 @@ fn escape(s: &str) -> String {
 /// The level around the scenario with each drawn configuration's path. Airborne frames are
 /// hollow dots; frames where the character's shape is inside the level's solid geometry (tiles
 /// or slopes, as `max_penetration` measures it, more than 1e-3 tiles) are red dots.
-pub fn scenario_svg(s: &ScenarioTraces) -> String {
+pub fn scenario_svg(s: &ScenarioTraces, drawn: &[Drawn]) -> String {
     let level = s.level;
     let size = s.spec.size;
-    let drawn: Vec<(&Trace, &str)> = DRAWN
+    let drawn: Vec<(&Trace, &str)> = drawn
         .iter()
         .filter_map(|(b, c, colour)| {
             s.traces
@@ -380,6 +375,7 @@ fn stability_section(rows: &[StressRow]) -> (String, String) {
 
 /// Renders the report: (HTML, Markdown).
 pub fn render_report(
+    registry: &crate::registry::Registry,
     rows: &[MetricRow],
     scenarios: &[ScenarioTraces],
     extras: &Extras,
@@ -398,7 +394,8 @@ pub fn render_report(
     }
     html.push_str("</ul><h2>By behaviour</h2>");
     md.push_str("\n## By behaviour\n");
-    let all_notes = notes(rows);
+    let all_notes = registry.notes(rows);
+    let drawn = registry.drawn();
     for b in Behaviour::ALL.into_iter().filter(|b| *b != Behaviour::Cost) {
         let title = b.title();
         let metrics: Vec<&str> = registry::of_behaviour(b).map(|d| d.name).collect();
@@ -426,7 +423,7 @@ pub fn render_report(
     }
     html.push_str("<h2>Scenarios</h2><p class=\"legend\">");
     md.push_str("\n## Scenarios\n\nPictures are in the HTML report. Paths:");
-    for (b, c, colour) in DRAWN {
+    for (b, c, colour) in &drawn {
         let _ = write!(
             html,
             "<span><i style=\"background:{colour}\"></i>{b} {c}</span>"
@@ -437,7 +434,7 @@ pub fn render_report(
     md.push('\n');
     for s in scenarios {
         let id = format!("{}.{}", s.level.name, s.spec.name);
-        let _ = write!(html, "<h3 id=\"{id}\">{id}</h3>{}", scenario_svg(s));
+        let _ = write!(html, "<h3 id=\"{id}\">{id}</h3>{}", scenario_svg(s, &drawn));
         let _ = writeln!(md, "- {id}");
     }
     html.push_str("\n</body></html>\n");

@@ -23,6 +23,7 @@
 pub mod broadphase;
 pub mod grid;
 mod integrate;
+pub mod kind;
 mod ladders;
 mod oneway;
 pub mod platforms;

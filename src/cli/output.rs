@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 
-use platbench::metrics::MetricRow;
-use platbench::trace::Trace;
+use crate::metrics::MetricRow;
+use crate::trace::Trace;
 
 /// The marker file in every directory platbench writes: one line, `platbench <kind>`.
 pub const MARKER: &str = ".platbench-output";

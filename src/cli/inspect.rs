@@ -1,0 +1,115 @@
+//! `platbench inspect MAP`: what a Tiled or LDtk map was read as.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::Args;
+
+use super::{has_ext, out, ImportArgs};
+
+#[derive(Args)]
+pub(crate) struct InspectArgs {
+    /// The map file (.tmx or .ldtk).
+    pub(crate) map: PathBuf,
+    #[command(flatten)]
+    pub(crate) import: ImportArgs,
+}
+
+/// `platbench inspect MAP`: what the import read, for a user to compare with their game.
+pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
+    use crate::level::import::ascii_map;
+    let opts = args.import.options()?;
+    let p = &args.map;
+    let r = if has_ext(p, "ldtk") {
+        crate::level::ldtk::import_ldtk_with(p, &opts).map_err(|f| {
+            for w in &f.warnings {
+                eprintln!("warning: {w}");
+            }
+            anyhow::Error::new(f.error)
+        })?
+    } else {
+        let t = crate::level::import_tiled_map_with(p, &opts).map_err(|f| {
+            for w in &f.warnings {
+                eprintln!("warning: {w}");
+            }
+            anyhow::Error::new(f.error)
+        })?;
+        crate::level::import::MapImport {
+            level: t.level,
+            spawns: t.spawns,
+            spawn_sources: t.spawn_sources,
+            layers: t.layers,
+            warnings: t.warnings,
+        }
+    };
+    let l = &r.level;
+    let mut text = format!(
+        "{}: level {:?}, {} x {} tiles{}\n",
+        p.display(),
+        l.name,
+        l.width,
+        l.height,
+        if l.features.names().is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", l.features.names().join(", "))
+        }
+    );
+    text.push_str("\nlayers:\n");
+    for layer in &r.layers {
+        text.push_str(&format!(
+            "  {:?} ({}): {} — {}\n",
+            layer.name,
+            layer.kind,
+            layer.role.name(),
+            layer.why
+        ));
+    }
+    text.push_str("\nspawns (feet, tiles, y up):\n");
+    if r.spawns.is_empty() {
+        text.push_str("  none\n");
+    }
+    for (s, why) in r.spawns.iter().zip(&r.spawn_sources) {
+        text.push_str(&format!(
+            "  {} at ({}, {}) — {why}\n",
+            s.name, s.position.x, s.position.y
+        ));
+    }
+    text.push_str("\nplatforms:\n");
+    if l.platforms.is_empty() {
+        text.push_str("  none\n");
+    }
+    for (k, pl) in l.platforms.iter().enumerate() {
+        let path = match &pl.motion {
+            crate::level::PlatformMotion::Waypoints { points, speed } => format!(
+                "path {} at {speed} tiles/s",
+                points
+                    .iter()
+                    .map(|q| format!("({}, {})", q.x, q.y))
+                    .collect::<Vec<_>>()
+                    .join(" -> ")
+            ),
+            other => format!("{other:?}"),
+        };
+        text.push_str(&format!(
+            "  {k}: {} x {} at ({}, {}){}, {path}\n",
+            pl.size.x,
+            pl.size.y,
+            pl.start.x,
+            pl.start.y,
+            if pl.one_way { ", one-way" } else { "" }
+        ));
+    }
+    text.push_str(&format!("\nwarnings: {}\n", r.warnings.len()));
+    for w in &r.warnings {
+        text.push_str(&format!("  {}: {}\n", w.subject, w.message));
+    }
+    let (map, legend) = ascii_map(l);
+    text.push_str("\ngrid (top row first; # solid, = one-way, H ladder, / \\ slopes, . empty):\n");
+    text.push_str(&map);
+    for (c, s) in legend {
+        text.push_str(&format!("  {c} = {s:?}\n"));
+    }
+    out(text.trim_end());
+    Ok(())
+}

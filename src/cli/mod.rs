@@ -1,0 +1,390 @@
+//! The `platbench` command-line harness, as a library: [`main_with`] gives a crate the whole
+//! CLI (`run`, `diff`, `report`, `stress`, `sweep`, `levels`, `inspect`) over the backend kinds
+//! of a [`Registry`], so a user's controller runs beside ours from one call in their `main`:
+//!
+//! ```no_run
+//! use platbench::registry::Registry;
+//!
+//! fn main() -> std::process::ExitCode {
+//!     // Registry::builtin().with(MyKind) adds a controller of your own.
+//!     platbench::cli::main_with(Registry::builtin())
+//! }
+//! ```
+//!
+//! It only wires the library together: parse levels, run every scenario on every configuration,
+//! write CSV files, print tables. One file per subcommand.
+
+mod diff;
+mod inspect;
+mod levels;
+mod output;
+mod report;
+mod run;
+mod stress;
+mod sweep;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{bail, Context as _, Result};
+use clap::builder::PossibleValuesParser;
+use clap::{Args, CommandFactory as _, FromArgMatches as _, Parser, Subcommand};
+
+use crate::level::{parse_level, Level};
+use crate::registry::Registry;
+
+pub use output::MARKER;
+
+/// What a CLI built by [`main_with_harness`] runs on: the backend kinds, and where its committed
+/// baseline lives.
+#[derive(Clone, Debug)]
+pub struct Harness {
+    /// The backend kinds every command runs, in order.
+    pub registry: Registry,
+    /// The baseline directory: the only directory `run --bless` writes, and one every other
+    /// command refuses to replace.
+    pub baseline: PathBuf,
+}
+
+impl Harness {
+    /// A harness over `registry` whose baseline is `PLATBENCH_BASELINE` if set, else
+    /// `platbench-baseline` in the current directory.
+    pub fn new(registry: Registry) -> Self {
+        Harness {
+            registry,
+            baseline: std::env::var_os("PLATBENCH_BASELINE")
+                .map_or_else(|| PathBuf::from("platbench-baseline"), PathBuf::from),
+        }
+    }
+}
+
+/// Runs the `platbench` command line (from the process's arguments) over `registry`'s backend
+/// kinds, and returns the exit status: 0 on success, 1 when `diff` finds a regression, 2 on an
+/// error. The baseline is as [`Harness::new`] says.
+pub fn main_with(registry: Registry) -> ExitCode {
+    main_with_harness(Harness::new(registry))
+}
+
+/// [`main_with`] with the baseline directory of `harness`.
+pub fn main_with_harness(harness: Harness) -> ExitCode {
+    run_cli(&harness, std::env::args_os())
+}
+
+/// Runs the command line `args` (the program name first) on `harness`; what [`main_with`] does
+/// with the process's arguments.
+pub fn run_cli<I, T>(harness: &Harness, args: I) -> ExitCode
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let names = harness.registry.names();
+    let backends = |a: clap::Arg| a.value_parser(PossibleValuesParser::new(names.clone()));
+    let command = Cli::command()
+        .mut_subcommand("run", |c| c.mut_arg("backends", backends))
+        .mut_subcommand("report", |c| c.mut_arg("backends", backends));
+    let cli = match command
+        .try_get_matches_from(args)
+        .and_then(|m| Cli::from_arg_matches(&m))
+    {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    let h = harness;
+    let result = match cli.command {
+        None => {
+            let write = cli.out.is_some();
+            run::run(
+                h,
+                &run::RunArgs {
+                    out: cli.out.unwrap_or_else(|| PathBuf::from("platbench-out")),
+                    force: cli.force,
+                    ..run::RunArgs::default()
+                },
+                write,
+            )
+        }
+        Some(Command::Run(args)) => run::run(h, &args, true),
+        Some(Command::Levels) => levels::list_levels(),
+        Some(Command::Stress { out, force }) => stress::stress(h, &out, force),
+        Some(Command::Sweep {
+            out,
+            force,
+            levels,
+            score,
+        }) => sweep::sweep_settings(h, &out, force, &levels, score.as_deref()),
+        Some(Command::Report(args)) => report::report(h, &args),
+        Some(Command::Diff(args)) => return diff::diff(&args),
+        Some(Command::Inspect(args)) => inspect::inspect(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Compare 2D platformer character controllers on the same levels, side by side.
+///
+/// With no subcommand, runs every built-in scenario on every configuration and prints a
+/// summary table (the worst case of each metric per configuration); with --out, writes the
+/// traces and metrics too, as `run --out` does.
+#[derive(Parser)]
+#[command(
+    name = "platbench",
+    version,
+    about,
+    long_about,
+    args_conflicts_with_subcommands = true
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    /// Also write the run's traces and metrics to DIR (as `run --out DIR`).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// With --out: replace DIR even when it is not an earlier run's output (see `run --force`).
+    #[arg(long, requires = "out")]
+    force: bool,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run level files (the built-in set when none is given) and write traces and metrics.
+    ///
+    /// Writes DIR/traces/<level>.<scenario>.<backend>[.<config>].csv (one row per frame)
+    /// and DIR/metrics.csv (one row per metric), replacing DIR as a whole once the run is
+    /// complete.
+    Run(run::RunArgs),
+    /// List the built-in levels and their scenarios.
+    Levels,
+    /// Speed versus accuracy: run the scenario set over a grid of settings (dt, substeps, the
+    /// sweep's epsilon and jump mode, Rapier's offset, snap distance, grounded feed, collider
+    /// building and shape) and write each setting's cost and error score to DIR/tradeoff.csv, with the
+    /// Pareto front marked, and the chart DIR/tradeoff.svg.
+    Sweep {
+        /// Output directory for tradeoff.csv and tradeoff.svg (replaced as a whole; see
+        /// --force).
+        #[arg(long, default_value = "platbench-sweep")]
+        out: PathBuf,
+        /// Replace --out even when it holds something other than an earlier `platbench sweep`
+        /// output (a directory of your own files, another command's output). Without it such a
+        /// directory is refused. A baseline is never replaced but by `run --bless`.
+        #[arg(long)]
+        force: bool,
+        /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
+        levels: Vec<PathBuf>,
+        /// The error score: METRIC[=WEIGHT],... (weight 1 if omitted; unlisted metrics weigh
+        /// 0). Default: the registry's weights, which charge no controller for its declared
+        /// design (Rapier's offset, the sweep's box overhanging a slope).
+        #[arg(long)]
+        score: Option<String>,
+    },
+    /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
+    /// tunneling, stable rest, no grounded flicker, carry without drift) at the extremes, one
+    /// dimension at a time: offsets 0 to 1e7 tiles, dt 1e-4 to 0.2 s, speeds to 1000 tiles/s,
+    /// widths 0.01 to 10 tiles, and the sweep's epsilon 1e-1 to 1e-9. Writes DIR/stability.csv
+    /// and prints each configuration's envelope, naming each invariant that broke and where.
+    Stress {
+        /// Output directory for stability.csv (replaced as a whole; see --force).
+        #[arg(long, default_value = "platbench-stress")]
+        out: PathBuf,
+        /// Replace --out even when it holds something other than an earlier `platbench stress`
+        /// output (a directory of your own files, another command's output). Without it such a
+        /// directory is refused. A baseline is never replaced but by `run --bless`.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Run level files (the built-in set when none is given) and write the "pick a backend"
+    /// report: DIR/report.html (self-contained: inline pictures, no scripts, no network) and its
+    /// Markdown twin DIR/report.md.
+    Report(report::ReportArgs),
+    /// Compare a run directory against a baseline: metrics beyond tolerance, first divergent
+    /// trace frames.
+    ///
+    /// Exit status: 0 when nothing fails; 1 when a metric got worse beyond its tolerance, a
+    /// metric or trace of the baseline is missing from the new run (unless --allow-missing),
+    /// or a trace diverges beyond --position-tolerance or ends early (unless
+    /// --allow-divergence); 2 on an error (a bad option, an unreadable or malformed file).
+    /// A NaN where the other run has a number is a difference.
+    Diff(diff::DiffArgs),
+    /// Show what a Tiled (.tmx) or LDtk (.ldtk) map was read as: each layer with the role it
+    /// was given and why, the spawns, the moving platforms with their paths, the warnings, and
+    /// the collision grid in the level format's characters (`#` solid, `=` one-way, `H`
+    /// ladder, `/` `\` slopes, `.` empty).
+    Inspect(inspect::InspectArgs),
+}
+
+/// Overrides of the map importers' defaults (README, "Tiled maps" and "LDtk maps").
+#[derive(Args, Default, Clone)]
+#[command(allow_negative_numbers = true)]
+pub(crate) struct ImportArgs {
+    /// Read a map layer as ROLE: collision, solid, one_way, ladder, objects or decoration
+    /// (NAME in any case; repeatable). Overrides the layer's name and properties.
+    #[arg(long = "layer", value_name = "NAME=ROLE")]
+    pub(crate) layers: Vec<String>,
+    /// Read the tile layers no name or property marks as ROLE (collision or decoration).
+    #[arg(long, value_name = "ROLE")]
+    pub(crate) tile_layers: Option<String>,
+    /// Start the probes here instead of the map's spawns: feet position in tiles, y up
+    /// (repeatable).
+    #[arg(long = "spawn", value_name = "X,Y")]
+    pub(crate) spawns: Vec<String>,
+    /// LDtk: make an IntGrid value (its number or name) solid, one_way, ladder or empty
+    /// (repeatable).
+    #[arg(long = "intgrid", value_name = "VALUE=KIND")]
+    pub(crate) intgrid: Vec<String>,
+    /// LDtk: import this one level of the world (its identifier) instead of the whole world.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) level: Option<String>,
+}
+
+impl ImportArgs {
+    pub(crate) fn options(&self) -> Result<crate::level::ImportOptions> {
+        use crate::level::import::parse_tile_kind;
+        use crate::level::{ImportOptions, LayerRole};
+        let mut o = ImportOptions::default();
+        for l in &self.layers {
+            let Some((name, role)) = l.rsplit_once('=') else {
+                bail!("--layer {l}: expected NAME=ROLE");
+            };
+            let Some(r) = LayerRole::parse(role) else {
+                bail!("--layer {l}: {role:?} is no role; expected collision, solid, one_way, ladder, objects or decoration");
+            };
+            o.layer_roles.push((name.to_string(), r));
+        }
+        if let Some(t) = &self.tile_layers {
+            o.tile_layers = Some(LayerRole::parse(t).with_context(|| {
+                format!(
+                    "--tile-layers {t}: expected collision, solid, one_way, ladder or decoration"
+                )
+            })?);
+        }
+        for sp in &self.spawns {
+            let v: Vec<f32> = sp
+                .split(',')
+                .map(|x| x.trim().parse::<f32>())
+                .collect::<Result<_, _>>()
+                .map_err(|_| anyhow::anyhow!("--spawn {sp}: expected X,Y in tiles"))?;
+            match v[..] {
+                [x, y] if x.is_finite() && y.is_finite() => o.spawns.push(glam::Vec2::new(x, y)),
+                _ => bail!("--spawn {sp}: expected X,Y, two finite numbers of tiles"),
+            }
+        }
+        for g in &self.intgrid {
+            let Some((v, kind)) = g.rsplit_once('=') else {
+                bail!("--intgrid {g}: expected VALUE=KIND");
+            };
+            let Some(t) = parse_tile_kind(kind) else {
+                bail!(
+                    "--intgrid {g}: {kind:?} is no kind; expected solid, one_way, ladder or empty"
+                );
+            };
+            o.intgrid.push((v.to_string(), t));
+        }
+        o.level = self.level.clone();
+        Ok(o)
+    }
+}
+
+pub(crate) use crate::suite::builtin_levels;
+
+/// Whether `p` names a map file of `ext` (any case).
+pub(crate) fn has_ext(p: &std::path::Path, ext: &str) -> bool {
+    p.extension().is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
+/// Loads a Tiled or LDtk map with the import overrides, printing its warnings — those gathered
+/// before a failure too.
+pub(crate) fn load_map(p: &std::path::Path, opts: &crate::level::ImportOptions) -> Result<Level> {
+    let result = if has_ext(p, "ldtk") {
+        crate::level::ldtk::load_ldtk_with(p, opts)
+            .map_err(|f| (anyhow::Error::new(f.error), f.warnings))
+    } else {
+        crate::level::load_tiled_map_with(p, opts)
+            .map_err(|f| (anyhow::Error::new(f.error), f.warnings))
+    };
+    match result {
+        Ok((level, warnings)) => {
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+            Ok(level)
+        }
+        Err((e, warnings)) => {
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+            Err(e)
+        }
+    }
+}
+
+pub(crate) fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
+    load_levels_with(paths, &ImportArgs::default())
+}
+
+pub(crate) fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result<Vec<Level>> {
+    if paths.is_empty() {
+        return builtin_levels().context("a built-in level is invalid");
+    }
+    let opts = import.options()?;
+    let mut levels: Vec<Level> = Vec::new();
+    for p in paths {
+        let level = if has_ext(p, "tmx") || has_ext(p, "ldtk") {
+            load_map(p, &opts)?
+        } else {
+            let text = crate::limits::read_text_capped(p)
+                .with_context(|| format!("cannot read level file {}", p.display()))?;
+            parse_level(&text, &p.display().to_string())?
+        };
+        if level.scenarios.is_empty() {
+            // Nothing would run: a level without scenarios would put a run of zero cost and
+            // zero error into every table and onto the trade-off's front.
+            eprintln!(
+                "warning: {}: the level has no [[scenario]] entries, so nothing runs on it; skipped (add a [[scenario]] with a name, spawn and duration)",
+                level.source
+            );
+            continue;
+        }
+        if let Some(other) = levels.iter().find(|l| l.name == level.name) {
+            bail!(
+                "{} and {} both name their level {:?}; level names must be unique in a run (they name the trace files)",
+                other.source,
+                level.source,
+                level.name
+            );
+        }
+        levels.push(level);
+    }
+    if levels.is_empty() {
+        bail!("none of the level files has a scenario to run");
+    }
+    Ok(levels)
+}
+
+/// Prints a block of text and a newline; a closed pipe (`platbench | head`) ends the output
+/// quietly instead of panicking.
+pub(crate) fn out(text: &str) {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    let _ = writeln!(stdout, "{text}");
+}
+
+/// Reads every row of a CSV file written by `platbench sweep` or `platbench stress`.
+pub(crate) fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) -> Result<Vec<T>> {
+    let mut r =
+        csv::Reader::from_path(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let rows = r
+        .deserialize()
+        .collect::<Result<Vec<T>, _>>()
+        .with_context(|| format!("{}: not the CSV this option expects", path.display()))?;
+    if rows.is_empty() {
+        anyhow::bail!("{}: no rows", path.display());
+    }
+    Ok(rows)
+}

@@ -1,0 +1,86 @@
+//! `platbench sweep`: cost against error over each backend's grid of settings.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Result;
+
+use super::{load_levels, out, output, Harness};
+
+pub(crate) fn sweep_settings(
+    h: &Harness,
+    out_dir: &std::path::Path,
+    force: bool,
+    level_files: &[PathBuf],
+    score: Option<&str>,
+) -> Result<()> {
+    use crate::metrics::score::Score;
+    use crate::tradeoff::{chart_svg_scope, run_tradeoff, scored_behaviours, ALL};
+    output::check_target(out_dir, output::Kind::Sweep, force)?;
+    let score = match score {
+        Some(s) => Score::parse(s)?,
+        None => Score::default(),
+    };
+    eprintln!("error score: {}", score.describe());
+    let levels = load_levels(level_files)?;
+    let settings = h.registry.tradeoff_settings();
+    let started = Instant::now();
+    let rows = run_tradeoff(&levels, &settings, &score, |done, total, label| {
+        let width = 30;
+        let filled = done * width / total.max(1);
+        eprintln!(
+            "  [{}{}] {done}/{total} {label} ({:.0} s)",
+            "#".repeat(filled),
+            ".".repeat(width - filled),
+            started.elapsed().as_secs_f64()
+        );
+    })?;
+    let mut t = comfy_table::Table::new();
+    t.load_style(comfy_table::presets::ASCII_MARKDOWN);
+    t.set_header(vec![
+        "backend",
+        "setting",
+        "us per character per game second",
+        "error score",
+        "scenarios",
+        "Pareto",
+    ]);
+    // A setting that ran fewer scenarios is measured over another set: said, and never on the
+    // front.
+    let most = rows.iter().map(|r| r.scenarios).max().unwrap_or(0);
+    for r in rows.iter().filter(|r| r.scope == ALL) {
+        t.add_row(vec![
+            r.backend.clone(),
+            r.setting.clone(),
+            format!("{:.1}", r.cost_us),
+            format!("{:.4}", r.error),
+            if r.scenarios < most {
+                format!("over {} of {most}", r.scenarios)
+            } else {
+                r.scenarios.to_string()
+            },
+            if r.pareto { "*".into() } else { String::new() },
+        ]);
+    }
+    out(&t.to_string());
+    output::write_output(out_dir, output::Kind::Sweep, force, |dir| {
+        output::write_csv(&dir.join("tradeoff.csv"), &rows)?;
+        output::write_file(
+            &dir.join("tradeoff.svg"),
+            chart_svg_scope(&rows, ALL).as_bytes(),
+        )?;
+        // The front per behaviour: tradeoff.<behaviour>.svg.
+        for b in scored_behaviours() {
+            output::write_file(
+                &dir.join(format!("tradeoff.{}.svg", b.key())),
+                chart_svg_scope(&rows, b.key()).as_bytes(),
+            )?;
+        }
+        Ok(())
+    })?;
+    eprintln!(
+        "wrote tradeoff.csv, tradeoff.svg and tradeoff.<behaviour>.svg to {}",
+        out_dir.display()
+    );
+    Ok(())
+}
