@@ -1,17 +1,18 @@
 //! How a step's cost scales (criterion): with the number of characters on one level (1 to
 //! 10,000), and with the level's size (1e3 to 1e6 tiles) for a fixed 10 characters. Reported per
-//! character-step (criterion's throughput in elements). Benches measure; no test asserts a time.
+//! character-step (criterion's throughput in elements), for every registered backend's stress
+//! configurations. Benches measure; no test asserts a time.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec2;
-use platbench::backend::{Backend, CharacterSpec};
+use platbench::backend::{Backend, CharacterSpec, SharedGeometry};
 use platbench::level::{Level, Tile};
-use platbench::motion::{Input, MotionParams};
-use platbench::rapier::{CharacterShape, ColliderBuilding, RapierBackend, RapierConfig};
-use platbench::sweep::{SweepBackend, SweepConfig};
+use platbench::motion::Input;
+use platbench::registry::Registry;
+use platbench::scenario::RunConfig;
 
 /// A level of about `tiles` tiles, four times wider than high: a floor and solid blocks at 10%
 /// density above it (a fixed pseudo-random pattern, so every run builds the same level).
@@ -32,45 +33,39 @@ fn level(tiles: usize) -> Level {
     Level::from_tiles("scaling", w, h, t)
 }
 
-fn backend(name: &str, level: &Level) -> Box<dyn Backend> {
-    let p = MotionParams::default();
-    match name {
-        "sweep" => Box::new(SweepBackend::new(level, p, SweepConfig::default()).unwrap()),
-        "rapier-per-tile-capsule" => Box::new(
-            RapierBackend::new(
-                level,
-                p,
-                RapierConfig {
-                    colliders: ColliderBuilding::PerTile,
-                    shape: CharacterShape::Capsule,
-                    ..Default::default()
-                },
-            )
-            .unwrap(),
-        ),
-        _ => Box::new(
-            RapierBackend::new(
-                level,
-                p,
-                RapierConfig {
-                    colliders: ColliderBuilding::Merged,
-                    shape: CharacterShape::Capsule,
-                    ..Default::default()
-                },
-            )
-            .unwrap(),
-        ),
-    }
+/// The backend of `run` over `level`, built afresh.
+fn backend(run: &RunConfig, level: &Level) -> Box<dyn Backend> {
+    run.backend
+        .build(level, &run.params, &mut SharedGeometry::default())
+        .expect("every registered backend models a level of solid tiles")
+}
+
+/// The configurations to scale: every registered backend's stress configurations (the sweep,
+/// integer positions, Rapier per tile and merged), named `backend label`.
+fn configs() -> Vec<(String, RunConfig)> {
+    let configs = Registry::builtin().stress_configs();
+    assert!(!configs.is_empty());
+    configs
+        .into_iter()
+        .map(|r| (format!("{} {}", r.backend.backend(), r.label), r))
+        .collect()
 }
 
 /// Times steps of `n` characters walking right on the floor of `level`.
-fn bench_steps(c: &mut Criterion, group: &str, name: &str, id: usize, level: &Level, n: usize) {
+fn bench_steps(
+    c: &mut Criterion,
+    group: &str,
+    (name, run): &(String, RunConfig),
+    id: usize,
+    level: &Level,
+    n: usize,
+) {
     let mut g = c.benchmark_group(group);
     g.throughput(Throughput::Elements(n as u64));
     g.sample_size(10);
     g.warm_up_time(Duration::from_millis(500));
     g.measurement_time(Duration::from_secs(2));
-    g.bench_with_input(BenchmarkId::new(name, id), &n, |b, &n| {
+    g.bench_with_input(BenchmarkId::new(name.as_str(), id), &n, |b, &n| {
         let inputs = vec![
             Input {
                 right: true,
@@ -82,7 +77,7 @@ fn bench_steps(c: &mut Criterion, group: &str, name: &str, id: usize, level: &Le
             let mut total = Duration::ZERO;
             let mut left = iters;
             while left > 0 {
-                let mut be = backend(name, level);
+                let mut be = backend(run, level);
                 for k in 0..n {
                     let x = 1.5 + (k as f32 * 0.37) % (level.width as f32 - 60.0);
                     be.add_character(CharacterSpec {
@@ -109,9 +104,9 @@ fn bench_steps(c: &mut Criterion, group: &str, name: &str, id: usize, level: &Le
 
 fn characters(c: &mut Criterion) {
     let l = level(20_000);
-    for name in ["sweep", "rapier-merged-capsule"] {
+    for config in &configs() {
         for n in [1usize, 10, 100, 1000, 10_000] {
-            bench_steps(c, "scaling/characters", name, n, &l, n);
+            bench_steps(c, "scaling/characters", config, n, &l, n);
         }
     }
 }
@@ -119,8 +114,8 @@ fn characters(c: &mut Criterion) {
 fn level_size(c: &mut Criterion) {
     for tiles in [1_000usize, 10_000, 100_000, 1_000_000] {
         let l = level(tiles);
-        for name in ["sweep", "rapier-per-tile-capsule", "rapier-merged-capsule"] {
-            bench_steps(c, "scaling/level", name, tiles, &l, 10);
+        for config in &configs() {
+            bench_steps(c, "scaling/level", config, tiles, &l, 10);
         }
     }
 }
