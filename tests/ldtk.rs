@@ -161,3 +161,32 @@ fn inspect_prints_layers_spawns_and_the_grid() {
         .join("o/traces/world.PlayerSpawn-drop.sweep.csv")
         .exists());
 }
+
+#[test]
+fn a_side_file_without_scenarios_is_refused_as_for_a_tiled_map() {
+    // A copy of world.ldtk (and its external level) beside a side file with no [[scenario]]:
+    // refused, naming the side file, instead of a level with nothing to run.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(shipped("world.ldtk"), dir.path().join("world.ldtk")).unwrap();
+    std::fs::create_dir(dir.path().join("world")).unwrap();
+    std::fs::copy(
+        shipped("world/Level_1.ldtkl"),
+        dir.path().join("world/Level_1.ldtkl"),
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("world.toml"), "# no scenarios\n").unwrap();
+    let path = dir.path().join("world.ldtk");
+    let err = match load_ldtk_with(&path, &ImportOptions::default()) {
+        Ok(_) => panic!("a side file without scenarios was accepted"),
+        Err(e) => e.error.to_string(),
+    };
+    assert!(
+        err.contains("world.toml") && err.contains("no [[scenario]]"),
+        "{err}"
+    );
+    // Without the side file the same project runs the standard probes.
+    std::fs::remove_file(dir.path().join("world.toml")).unwrap();
+    let (level, _) =
+        load_ldtk_with(&path, &ImportOptions::default()).unwrap_or_else(|e| panic!("{}", e.error));
+    assert!(!level.scenarios.is_empty());
+}
