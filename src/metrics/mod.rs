@@ -158,6 +158,12 @@ fn pos(r: &TraceRow) -> Vec2 {
     Vec2::new(r.x, r.y)
 }
 
+/// Whether the row stands on ground: grounded and not in the ladder state (a climber passing
+/// through a ladder top is inside it by right, whatever its grounded flag says).
+fn standing(r: &TraceRow) -> bool {
+    r.is_grounded() && r.ladder == 0
+}
+
 /// The `ns_per_character_step` row of a timed scenario (see [`crate::scenario::time_scenario`]).
 pub fn timing_row(
     level: &Level,

@@ -202,7 +202,7 @@ pub const METRICS: &[MetricDef] = &[
         "max_penetration",
         "tiles",
         Landing,
-        "deepest overlap of the character's shape with the level's solid tiles and slopes over the run",
+        "deepest overlap of the character's shape with the level's solid tiles and slopes, or depth below a one-way top it stands on, over the run",
         "every scenario",
         "no overlap",
         0.0,
