@@ -146,8 +146,8 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
         ride.as_ref()
             .map(|r| platforms::carry_airborne_frames(&rows, r)),
     );
-    push(platforms::push_penetration(ctx, &rows));
-    push(platforms::crush_count(ctx, &rows));
+    push(platforms::push_penetration(ctx, &ground, &rows));
+    push(platforms::crush_count(ctx, &ground, &rows));
     push(Some(walls::tunneled(ctx, &rows)));
     push(idle::idle_drift(ctx, &rows));
     out

@@ -1,7 +1,7 @@
 //! Moving platforms: carrying a rider, and pushing (or crushing) a character.
 
+use super::ground::Ground;
 use super::{pos, Context, Measure};
-use crate::level::character_box;
 use crate::scenario::input_script;
 use crate::trace::TraceRow;
 
@@ -72,8 +72,9 @@ pub fn carry_airborne_frames(rows: &[TraceRow], ride: &std::ops::Range<usize>) -
 }
 
 /// `push_penetration`: on a level with moving platforms, the deepest overlap of the character's
-/// box with a platform that is not one-way, over the run, in tiles.
-pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+/// shape with a platform that is not one-way, over the run, in tiles (parry's penetration depth,
+/// [`Ground::platform_penetration`]).
+pub fn push_penetration(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
@@ -81,18 +82,7 @@ pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     let deepest = rows
         .iter()
         .enumerate()
-        .flat_map(|(k, r)| {
-            let b = character_box(pos(r), ctx.spec.size);
-            ctx.level
-                .platforms
-                .iter()
-                .filter(|p| !p.one_way)
-                .map(move |p| {
-                    let pb = p.aabb(k as f64 * dt);
-                    let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
-                    o.x.min(o.y).max(0.0)
-                })
-        })
+        .map(|(k, r)| g.platform_penetration(pos(r), k as f64 * dt))
         .fold(0.0f32, f32::max);
     Some(Measure {
         metric: "push_penetration",
@@ -105,23 +95,16 @@ pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
 /// through), in tiles: far beyond any contact tolerance.
 pub const CRUSH_DEPTH: f32 = 0.25;
 
-/// `crush_count`: on a level with moving platforms, how many times the character ended up inside
-/// a (not one-way) platform by more than [`CRUSH_DEPTH`]: crushed against the level, or run
-/// through by a platform that did not push it. Read from the geometry, so a backend without a
+/// `crush_count`: on a level with moving platforms, how many times the character's shape ended
+/// up inside a (not one-way) platform by more than [`CRUSH_DEPTH`]: crushed against the level, or
+/// run through by a platform that did not push it. Read from the geometry, so a backend without a
 /// crush event (Rapier) is counted the same way as the sweep, whose trace also flags the crush.
-pub fn crush_count(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn crush_count(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
     let dt = ctx.spec.dt as f64;
-    let inside = |k: usize| {
-        let b = character_box(pos(&rows[k]), ctx.spec.size);
-        ctx.level.platforms.iter().filter(|p| !p.one_way).any(|p| {
-            let pb = p.aabb(k as f64 * dt);
-            let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
-            o.x.min(o.y) > CRUSH_DEPTH
-        })
-    };
+    let inside = |k: usize| g.platform_penetration(pos(&rows[k]), k as f64 * dt) > CRUSH_DEPTH;
     let count = (1..rows.len())
         .filter(|&k| inside(k) && !inside(k - 1))
         .count();

@@ -382,7 +382,7 @@ pub const METRICS: &[MetricDef] = &[
         "push_penetration",
         "tiles",
         Platforms,
-        "deepest overlap of the character's box with a (not one-way) moving platform",
+        "deepest overlap of the character's shape with a (not one-way) moving platform",
         "levels with moving platforms",
         "no overlap",
         1.0,
