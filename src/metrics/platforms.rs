@@ -5,6 +5,14 @@ use crate::level::character_box;
 use crate::scenario::input_script;
 use crate::trace::TraceRow;
 
+/// Platform `p`'s box at frame `k`, where the configuration places it: on its exact path, or
+/// rounded to the subpixel grid a configuration on integer positions moves it on
+/// ([`crate::level::Platform::placed_aabb`]), so the carry and push are measured against the
+/// platform the controller really moves, as the character's box is the one it moves.
+fn placed(ctx: &Context, p: &crate::level::Platform, k: usize) -> parry2d::bounding_volume::Aabb {
+    p.placed_aabb(k as f64 * ctx.spec.dt as f64, ctx.declared.surface_grid)
+}
+
 /// How close above a platform's top the feet count as on it, for the carry metrics, in tiles:
 /// above Rapier's offset.
 pub const ON_PLATFORM: f32 = 0.05;
@@ -16,11 +24,10 @@ pub const ON_PLATFORM: f32 = 0.05;
 pub(super) fn ride_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::Range<usize>> {
     let p = ctx.level.platforms.get(ctx.spec.ride? as usize)?;
     let script = input_script(ctx.spec);
-    let dt = ctx.spec.dt as f64;
     let half = ctx.spec.size.x * 0.5;
     let on = |k: usize| {
         let r = &rows[k];
-        let b = p.aabb(k as f64 * dt);
+        let b = placed(ctx, p, k);
         r.is_grounded()
             && (r.y - b.maxs.y).abs() <= ON_PLATFORM
             && r.x + half > b.mins.x
@@ -48,8 +55,7 @@ pub(super) fn ride_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::
 /// relative to its platform, in tiles.
 pub fn carry_drift(ctx: &Context, rows: &[TraceRow], ride: &std::ops::Range<usize>) -> Measure {
     let p = &ctx.level.platforms[ctx.spec.ride.unwrap_or(0) as usize];
-    let dt = ctx.spec.dt as f64;
-    let rel = |k: usize| pos(&rows[k]) - p.position(k as f64 * dt);
+    let rel = |k: usize| pos(&rows[k]) - placed(ctx, p, k).mins;
     let first = rel(ride.start);
     let drift = ride
         .clone()
@@ -77,7 +83,6 @@ pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
-    let dt = ctx.spec.dt as f64;
     let deepest = rows
         .iter()
         .enumerate()
@@ -88,7 +93,7 @@ pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
                 .iter()
                 .filter(|p| !p.one_way)
                 .map(move |p| {
-                    let pb = p.aabb(k as f64 * dt);
+                    let pb = placed(ctx, p, k);
                     let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
                     o.x.min(o.y).max(0.0)
                 })
@@ -113,11 +118,10 @@ pub fn crush_count(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
-    let dt = ctx.spec.dt as f64;
     let inside = |k: usize| {
         let b = character_box(pos(&rows[k]), ctx.spec.size);
         ctx.level.platforms.iter().filter(|p| !p.one_way).any(|p| {
-            let pb = p.aabb(k as f64 * dt);
+            let pb = placed(ctx, p, k);
             let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
             o.x.min(o.y) > CRUSH_DEPTH
         })
