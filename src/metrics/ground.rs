@@ -249,26 +249,22 @@ impl<'a> Ground<'a> {
         best
     }
 
-    /// Deepest overlap of the shape with a moving platform that is not one-way at time `t`, in
-    /// tiles (0 if none): parry's penetration depth against the platform's box, so a capsule or a
-    /// ball is measured by its own outline, not by its bounding box.
-    pub fn platform_penetration(&self, feet: Vec2, t: f64) -> f32 {
+    /// Overlap of the shape with a box `b` (a moving platform where it is placed), in tiles (0 if
+    /// none): parry's penetration depth, so a capsule or a ball is measured by its own outline,
+    /// not by its bounding box.
+    pub fn box_penetration(&self, feet: Vec2, b: &parry2d::bounding_volume::Aabb) -> f32 {
         let pose = CharacterShape::pose(feet, self.size);
-        let mut worst = 0.0f32;
-        for p in self.level.platforms.iter().filter(|p| !p.one_way) {
-            let b = p.aabb(t);
-            let platform = Pose::from_translation(b.center());
-            if let Ok(Some(c)) = contact(
-                &pose,
-                &*self.shape,
-                &platform,
-                &Cuboid::new(b.half_extents()),
-                0.0,
-            ) {
-                worst = worst.max(-c.dist);
-            }
+        let platform = Pose::from_translation(b.center());
+        match contact(
+            &pose,
+            &*self.shape,
+            &platform,
+            &Cuboid::new(b.half_extents()),
+            0.0,
+        ) {
+            Ok(Some(c)) => (-c.dist).max(0.0),
+            _ => 0.0,
         }
-        worst
     }
 
     /// Signed gap from the shape down to the level's static ground (see [`Ground::gap_at`]).
@@ -399,7 +395,7 @@ mod tests {
     }
 
     #[test]
-    fn platform_penetration_is_the_shapes_own() {
+    fn box_penetration_is_the_shapes_own() {
         // A still 2 x 1 platform at x 2..4, y 2..3 (sine of amplitude 0 keeps it put).
         let level = parse_level(
             "map = \"\"\"\n......\n......\n......\n......\n######\n\"\"\"\n\
@@ -410,17 +406,18 @@ mod tests {
         let size = Vec2::new(0.8, 0.9);
         let boxy = Ground::new(&level, CharacterShape::Cuboid, size);
         let ball = Ground::new(&level, CharacterShape::Ball, size);
+        let b = level.platforms[0].aabb(0.0);
         // Feet 0.1 into its top, centred over it: 0.1 deep for both (1e-4: f32).
         let on = Vec2::new(3.0, 2.9);
-        assert!((boxy.platform_penetration(on, 0.0) - 0.1).abs() < 1e-4);
-        assert!((ball.platform_penetration(on, 0.0) - 0.1).abs() < 1e-4);
+        assert!((boxy.box_penetration(on, &b) - 0.1).abs() < 1e-4);
+        assert!((ball.box_penetration(on, &b) - 0.1).abs() < 1e-4);
         // Feet 0.35 left of the platform's top-left corner and 0.1 below its top: the box
         // (x 1.25..2.05) overlaps the corner by 0.05 across and 0.1 down, 0.05 deep; the ball's
         // round outline (radius 0.45, centre 0.35 left of the corner and 0.35 above it, 0.495
         // away) is clear of it. A box-for-every-shape measure would charge the ball 0.05.
         let corner = Vec2::new(2.0 - 0.35, 3.0 - 0.1);
-        assert!((boxy.platform_penetration(corner, 0.0) - 0.05).abs() < 1e-4);
-        assert_eq!(ball.platform_penetration(corner, 0.0), 0.0);
+        assert!((boxy.box_penetration(corner, &b) - 0.05).abs() < 1e-4);
+        assert_eq!(ball.box_penetration(corner, &b), 0.0);
     }
 
     #[test]
