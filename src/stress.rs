@@ -1,17 +1,22 @@
 //! Stability at the extremes: the invariants every controller should keep (nothing non-finite,
-//! no penetration beyond its tolerance, no tunneling, a stable rest, no grounded flicker), checked
 //! no penetration beyond its tolerance, no tunneling, a stable rest, no grounded flicker, carry
-//! without drift), checked one dimension at a time away from a base case: far from the origin,
-//! tiny and huge time steps, fast movers, tiny and huge characters, and (for the sweep) its epsilon
-//! down to where it breaks (the seed: "try 0.001, and lower until unstable").
+//! without drift, progress on flat seamed ground with no stuck step, a jump to its height),
+//! checked one dimension at a time away from a base case (far from the origin, tiny and huge
+//! time steps, fast movers, tiny and huge characters, and the sweep's epsilon down to where it
+//! breaks: the seed's "try 0.001, and lower until unstable"), then on small grids of the pairs
+//! of dimensions whose failures interact ([`pairs`]).
+//!
+//! The matrix is a list of independent [`Point`]s ([`points`]), each run alone ([`run_point`])
+//! and collected in order, so that running them on several threads changes no row.
 
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
 use crate::backend::BackendError;
 use crate::level::{InputEvent, Level, Platform, PlatformMotion, ScenarioSpec, Tile};
-use crate::metrics::{evaluate, MetricRow};
-use crate::scenario::RunConfig;
+use crate::metrics::seams::STUCK_FRACTION;
+use crate::metrics::{commanded_steps, evaluate_with, MetricRow};
+use crate::scenario::{effective_params, input_script, RunConfig, Runner};
 
 /// One dimension of the stress matrix and the values it takes (the base case is the default
 /// everywhere else).
@@ -19,34 +24,127 @@ use crate::scenario::RunConfig;
 pub struct Dimension {
     /// Name, as in `stability.csv`.
     pub name: &'static str,
-    /// Values, in the dimension's unit.
+    /// Values, in the dimension's unit, in increasing order.
     pub values: Vec<f64>,
+    /// The base case's value (one of `values`): where every other dimension stays while this
+    /// one is varied.
+    pub base: f64,
+}
+
+/// The base case: origin at 0, dt 1/60 s, fast mover at 100 tiles/s, a 0.8-tile-wide
+/// character, the seed's epsilon 1e-3.
+pub const BASE: Case = Case {
+    offset: 0.0,
+    dt: 1.0 / 60.0,
+    speed: 100.0,
+    width: 0.8,
+    epsilon: 1e-3,
+};
+
+/// The base case's value of dimension `name` exactly as the dimensions list it (the f64 of
+/// [`BASE`]'s f32 would not compare equal to `1.0 / 60.0`).
+fn base_value(name: &str) -> f64 {
+    match name {
+        "dt" => 1.0 / 60.0,
+        "speed" => 100.0,
+        "width" => 0.8,
+        "epsilon" => 1e-3,
+        _ => 0.0,
+    }
 }
 
 /// The dimensions of DESIGN.md's stress matrix.
 pub fn dimensions() -> Vec<Dimension> {
+    let dim = |name, values: Vec<f64>| Dimension {
+        name,
+        base: base_value(name),
+        values,
+    };
     vec![
-        Dimension {
-            name: "offset",
-            values: vec![0.0, 1e3, 1e4, 1e5, 1e6, 1e7],
-        },
-        Dimension {
-            name: "dt",
-            values: vec![1e-4, 1.0 / 240.0, 1.0 / 60.0, 0.05, 0.2],
-        },
-        Dimension {
-            name: "speed",
-            values: vec![10.0, 100.0, 1000.0],
-        },
-        Dimension {
-            name: "width",
-            values: vec![0.01, 0.1, 0.8, 3.0, 10.0],
-        },
-        Dimension {
-            name: "epsilon",
-            values: vec![1e-1, 1e-3, 1e-5, 1e-7, 1e-9],
-        },
+        dim("offset", vec![0.0, 1e3, 1e4, 1e5, 1e6, 1e7]),
+        dim("dt", vec![1e-4, 1.0 / 240.0, 1.0 / 60.0, 0.05, 0.2]),
+        dim("speed", vec![10.0, 100.0, 1000.0]),
+        dim("width", vec![0.01, 0.1, 0.8, 3.0, 10.0]),
+        dim("epsilon", vec![1e-9, 1e-7, 1e-5, 1e-3, 1e-1]),
     ]
+}
+
+/// The pairs of dimensions whose failures interact, each on a small grid (the base case
+/// elsewhere): an epsilon below the f32 spacing far out, a step too small to move a position
+/// far out, a time step too coarse for a fast mover, a tiny character at speed, and a fast mover
+/// far out. The grids straddle the one-dimension edges measured alone.
+pub fn pairs() -> Vec<(Dimension, Dimension)> {
+    let dim = |name, values: Vec<f64>| Dimension {
+        name,
+        base: base_value(name),
+        values,
+    };
+    vec![
+        (
+            dim("offset", vec![1e4, 1e5, 1e6]),
+            dim("epsilon", vec![1e-7, 1e-5, 1e-3]),
+        ),
+        (
+            dim("offset", vec![1e4, 1e5, 1e6]),
+            // 1e-3 s rather than the one-dimension 1e-4: its walking step (6e-3 tiles) is
+            // already under the f32 spacing at 1e5 tiles (1/128), at a tenth of the cost.
+            dim("dt", vec![1e-3, 1.0 / 240.0, 0.05]),
+        ),
+        (
+            dim("speed", vec![100.0, 1000.0]),
+            dim("dt", vec![1.0 / 240.0, 0.05, 0.2]),
+        ),
+        (
+            dim("width", vec![0.01, 0.1, 10.0]),
+            dim("speed", vec![100.0, 1000.0]),
+        ),
+        (
+            dim("offset", vec![1e4, 1e5, 1e6]),
+            dim("speed", vec![10.0, 1000.0]),
+        ),
+    ]
+}
+
+/// One point of the matrix: the value of every dimension.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Case {
+    /// Offset of the probe level's origin from the world origin, in tiles (both axes).
+    pub offset: f32,
+    /// Time step, in seconds.
+    pub dt: f32,
+    /// The fast mover's speed towards the wall, in tiles/s.
+    pub speed: f32,
+    /// The character's width, in tiles (its height is 1.125 times that).
+    pub width: f32,
+    /// The overlap tolerance, in tiles, for a configuration that has one (others ignore it).
+    pub epsilon: f32,
+}
+
+impl Case {
+    /// The value of dimension `name` (0 for an unknown name).
+    pub fn get(&self, name: &str) -> f64 {
+        match name {
+            "offset" => self.offset as f64,
+            "dt" => self.dt as f64,
+            "speed" => self.speed as f64,
+            "width" => self.width as f64,
+            "epsilon" => self.epsilon as f64,
+            _ => 0.0,
+        }
+    }
+
+    /// This case with dimension `name` set to `v` (an unknown name changes nothing).
+    pub fn with(mut self, name: &str, v: f64) -> Self {
+        match name {
+            "offset" => self.offset = v as f32,
+            "dt" => self.dt = v as f32,
+            "speed" => self.speed = v as f32,
+            "width" => self.width = v as f32,
+            "epsilon" => self.epsilon = v as f32,
+            _ => {}
+        }
+        self
+    }
 }
 
 /// One checked invariant.
@@ -60,15 +158,49 @@ pub struct StressRow {
     pub dimension: String,
     /// Its value.
     pub value: f64,
+    /// The second dimension of a combination cell (empty on a one-dimension row).
+    #[serde(default)]
+    pub dimension2: String,
+    /// Its value (empty on a one-dimension row).
+    #[serde(default)]
+    pub value2: Option<f64>,
     /// The invariant.
     pub invariant: String,
     /// Whether it held on every probe.
     pub holds: bool,
     /// The worst measured value over the probes (for `finite`, 0 or 1).
     pub measured: f64,
-    /// The tolerance it was held to.
+    /// The tolerance it was held to: an upper bound on `measured`, except for `progress`,
+    /// where it is the least fraction of the commanded distance to cover.
     pub tolerance: f64,
 }
+
+/// The invariants, in the order they are checked and named (the first that breaks colours a
+/// combination cell).
+pub const INVARIANTS: [&str; 9] = [
+    "finite",
+    "penetration",
+    "no_tunneling",
+    "stable_rest",
+    "no_flicker",
+    "carry_no_drift",
+    "progress",
+    "no_stuck",
+    "jump_height",
+];
+
+/// The least fraction of the commanded distance a walk over flat seamed ground must cover.
+/// The commanded distance already includes the acceleration ramp, so an exact controller
+/// covers 1.0 up to rounding; 1% is what rounding a walking step (0.1 tiles at 1/60 s) onto
+/// the f32 grid can cost where the spacing is a few thousandths of a tile, and the loss the
+/// report already calls progress lost (`progress_ratio < 0.99`). The issue's Rapier walks at
+/// 1e5 tiles (91% to 96% per tile) are broken by it.
+pub const PROGRESS_MIN: f64 = 0.99;
+
+/// How far a jump's apex may miss the requested height, in tiles: one pixel of a 16-pixel tile
+/// (the seed's slope tiles are drawn in 16ths), below which a player sees no difference and the
+/// seed's "jump exactly 3 tiles" still holds.
+pub const JUMP_TOLERANCE: f64 = 1.0 / 16.0;
 
 /// Period of the probe level's moving platforms, in seconds.
 const RIDE_PERIOD: f32 = 4.0;
@@ -111,8 +243,14 @@ fn probe_level(offset: f32, with_platforms: bool) -> Level {
     l
 }
 
-/// The probes: a drop onto the floor then rest, a walk along the floor, a fast mover aimed at the
-/// wall, and a rider standing on each moving platform for two of its periods and a half.
+/// How long the walk probe holds "right", in seconds: 60 tiles at the run speed of 6 tiles/s,
+/// the walk in which the issue found Rapier stuck at 1e5 tiles (per tile its floor has a seam
+/// every tile, 60 of them).
+const WALK_TIME: f32 = 10.0;
+
+/// The probes: a drop onto the floor then rest, a walk along the floor, a standing jump, a fast
+/// mover aimed at the wall, and a rider standing on each moving platform for two of its periods
+/// and a half.
 fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
     let spec = |name: &str, spawn: Vec2, duration: f32, inputs: Vec<InputEvent>| ScenarioSpec {
         size,
@@ -129,13 +267,29 @@ fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
         ..Default::default()
     };
     let stop = InputEvent {
-        t: 1.0,
+        t: WALK_TIME,
         right: Some(false),
+        ..Default::default()
+    };
+    let jump = |t: f32, on: bool| InputEvent {
+        t,
+        jump: Some(on),
         ..Default::default()
     };
     vec![
         spec("drop", Vec2::new(50.5, 3.0), 2.0, vec![]),
-        spec("walk", Vec2::new(100.5, 1.0), 2.0, vec![right, stop]),
+        spec(
+            "walk",
+            Vec2::new(100.5, 1.0),
+            WALK_TIME + 0.5,
+            vec![right, stop],
+        ),
+        spec(
+            "jump",
+            Vec2::new(200.5, 1.0),
+            1.5,
+            vec![jump(0.25, true), jump(0.5, false)],
+        ),
         ScenarioSpec {
             velocity: Vec2::new(speed, 0.0),
             ..spec("fast", Vec2::new(150.5 - size.x, 1.5), 2.0, vec![])
@@ -203,132 +357,309 @@ fn penetration_tolerance(run: &RunConfig, size: Vec2) -> f64 {
     run.backend.contact_tolerance(size)
 }
 
-/// Runs the matrix for `runs` (the epsilon dimension only on sweep configurations).
+/// One independent run of the matrix: a configuration at one case, labelled by the dimension
+/// (or pair of dimensions) varied.
+#[derive(Clone, Debug)]
+pub struct Point {
+    /// The configuration, its epsilon set to the case's where it has one.
+    pub run: RunConfig,
+    /// The case.
+    pub case: Case,
+    /// The dimension varied and its value.
+    pub dimension: (&'static str, f64),
+    /// The second dimension of a combination cell and its value.
+    pub dimension2: Option<(&'static str, f64)>,
+}
+
+/// The configuration at `case`: with the case's epsilon if it has an overlap tolerance and
+/// `epsilon_varied`; `None` when the epsilon is varied on a configuration without one.
+fn configured(run: &RunConfig, case: &Case, epsilon_varied: bool) -> Option<RunConfig> {
+    if !epsilon_varied {
+        return Some(run.clone());
+    }
+    let b = run
+        .backend
+        .epsilon()
+        .and(run.backend.with_epsilon(case.epsilon))?;
+    Some(RunConfig {
+        backend: b,
+        ..run.clone()
+    })
+}
+
+/// Every point of the matrix for `runs`, in the order their rows are written: each dimension
+/// alone, value by value, then each pair of [`pairs`] cell by cell; within a value or cell,
+/// `runs` in order. The epsilon is varied only on configurations that have one.
+pub fn points(runs: &[RunConfig]) -> Vec<Point> {
+    let mut out = Vec::new();
+    for d in dimensions() {
+        for &v in &d.values {
+            let case = BASE.with(d.name, v);
+            for base in runs {
+                if let Some(run) = configured(base, &case, d.name == "epsilon") {
+                    out.push(Point {
+                        run,
+                        case,
+                        dimension: (d.name, v),
+                        dimension2: None,
+                    });
+                }
+            }
+        }
+    }
+    for (a, b) in pairs() {
+        for &va in &a.values {
+            for &vb in &b.values {
+                let case = BASE.with(a.name, va).with(b.name, vb);
+                let eps = a.name == "epsilon" || b.name == "epsilon";
+                for base in runs {
+                    if let Some(run) = configured(base, &case, eps) {
+                        out.push(Point {
+                            run,
+                            case,
+                            dimension: (a.name, va),
+                            dimension2: Some((b.name, vb)),
+                        });
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Runs the matrix for `runs`: builds [`points`], runs each with [`run_point`] and collects
+/// their rows in order. `progress` hears each new dimension value or combination cell.
 pub fn stress_matrix(
     runs: &[RunConfig],
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<StressRow>, BackendError> {
     let mut out = Vec::new();
-    for d in dimensions() {
-        for &v in &d.values {
-            progress(&format!("{} = {v}", d.name));
-            for base in runs {
-                let mut run = base.clone();
-                let (mut offset, mut dt, mut speed, mut width) =
-                    (0.0f32, 1.0 / 60.0, 100.0f32, 0.8f32);
-                match d.name {
-                    "offset" => offset = v as f32,
-                    "dt" => dt = v as f32,
-                    "speed" => speed = v as f32,
-                    "width" => width = v as f32,
-                    // The epsilon exists only in the sweep's float mode.
-                    _ => match run
-                        .backend
-                        .epsilon()
-                        .and(run.backend.with_epsilon(v as f32))
-                    {
-                        Some(b) => run.backend = b,
-                        None => continue,
-                    },
-                }
-                let size = Vec2::new(width, width * 1.125);
-                let level = probe_level(offset, false);
-                let ride_level = probe_level(offset, true);
-                let tol_pen = penetration_tolerance(&run, size);
-                let tol_rest = 1e-3 * size.y as f64;
-                let grid = run
-                    .backend
-                    .declared_contact(size, run.params.max_climb_angle)
-                    .surface_grid;
-                let (mut finite, mut pen, mut tunnel, mut jitter, mut flicker) =
-                    (true, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
-                // The carry's worst excess over its allowance, and that ride's figures.
-                let (mut drift, mut drift_tol) = (0.0f64, 0.0f64);
-                let mut carry_modelled = true;
-                for spec in probes(size, dt, speed) {
-                    let on = if spec.ride.is_some() {
-                        &ride_level
-                    } else {
-                        &level
-                    };
-                    let e = match evaluate(on, &spec, &run) {
-                        Err(BackendError::Unsupported { .. }) if spec.ride.is_some() => {
-                            // No moving platforms in this configuration: no carry row.
-                            carry_modelled = false;
-                            continue;
-                        }
-                        e => e?,
-                    };
-                    let get = |m: &str| -> Option<f64> {
-                        e.metrics
-                            .iter()
-                            .find(|r: &&MetricRow| r.metric == m)
-                            .map(|r| r.value)
-                    };
-                    finite &= e
-                        .trace
-                        .rows
-                        .iter()
-                        .all(|r| [r.x, r.y, r.vx, r.vy].iter().all(|v| v.is_finite()));
-                    if let Some(p) = spec.ride.and_then(|i| ride_level.platforms.get(i as usize)) {
-                        // A ride feeds only its own invariant (and `finite`): the others keep
-                        // the meaning they have on the static floor.
-                        let (d, lag) = carry_drift(p, ride_level.origin, grid, &e.trace, dt);
-                        let tol = lag + tol_rest;
-                        if drift_tol == 0.0 || d - tol > drift - drift_tol {
-                            (drift, drift_tol) = (d, tol);
-                        }
-                        continue;
-                    }
-                    pen = pen.max(get("max_penetration").unwrap_or(0.0));
-                    tunnel = tunnel.max(get("tunneled").unwrap_or(0.0));
-                    if spec.name == "drop" {
-                        // At rest: the height range over the last half second (the landing and
-                        // its settling are land_frame_error's business).
-                        let last = (0.5 / dt).ceil() as usize;
-                        let tail = &e.trace.rows[e.trace.rows.len().saturating_sub(last)..];
-                        let (lo, hi) = tail.iter().fold((f32::MAX, f32::MIN), |(lo, hi), r| {
-                            (lo.min(r.y), hi.max(r.y))
-                        });
-                        jitter = jitter.max((hi - lo) as f64);
-                    }
-                    flicker = flicker.max(get("grounded_flicker").unwrap_or(0.0));
-                }
-                let pen = if pen.is_nan() { f64::INFINITY } else { pen };
-                let row = |invariant: &str, holds, measured, tolerance| StressRow {
-                    backend: run.backend.backend().to_string(),
-                    config: run.label.clone(),
-                    dimension: d.name.to_string(),
-                    value: v,
-                    invariant: invariant.to_string(),
-                    holds,
-                    measured,
-                    tolerance,
-                };
-                out.push(row("finite", finite, (!finite) as u8 as f64, 0.0));
-                out.push(row("penetration", finite && pen <= tol_pen, pen, tol_pen));
-                out.push(row("no_tunneling", finite && tunnel == 0.0, tunnel, 0.0));
-                out.push(row(
-                    "stable_rest",
-                    finite && jitter <= tol_rest,
-                    jitter,
-                    tol_rest,
-                ));
-                out.push(row("no_flicker", finite && flicker == 0.0, flicker, 0.0));
-                // A rider is at rest on its platform: held to the stable rest's bound plus the lag
-                // a carry may show (see `carry_drift`).
-                if carry_modelled {
-                    out.push(row(
-                        "carry_no_drift",
-                        finite && drift <= drift_tol,
-                        drift,
-                        drift_tol,
-                    ));
-                }
-            }
+    let mut last = String::new();
+    for p in points(runs) {
+        let what = p.label();
+        if what != last {
+            progress(&what);
+            last = what;
         }
+        out.extend(run_point(&p)?);
     }
     Ok(out)
+}
+
+impl Point {
+    /// `offset = 1e5`, or `offset = 1e5, dt = 0.0001` for a combination cell.
+    pub fn label(&self) -> String {
+        let (d, v) = self.dimension;
+        match self.dimension2 {
+            None => format!("{d} = {v}"),
+            Some((d2, v2)) => format!("{d} = {v}, {d2} = {v2}"),
+        }
+    }
+}
+
+/// The outcomes of one point's probes, before they become rows.
+#[derive(Default)]
+struct Outcome {
+    finite: bool,
+    pen: f64,
+    tunnel: f64,
+    jitter: f64,
+    flicker: f64,
+    /// The carry's worst drift and its allowance (`None`: no moving platforms modelled).
+    carry: Option<(f64, f64)>,
+    progress: f64,
+    stuck: f64,
+    jump: f64,
+}
+
+/// Runs one point's probes and returns its rows, one per invariant (no `carry_no_drift` row
+/// for a configuration that does not model moving platforms).
+pub fn run_point(point: &Point) -> Result<Vec<StressRow>, BackendError> {
+    let run = &point.run;
+    let case = point.case;
+    let size = Vec2::new(case.width, case.width * 1.125);
+    let level = probe_level(case.offset, false);
+    let ride_level = probe_level(case.offset, true);
+    let mut runner = Runner::new(&level);
+    let mut ride_runner = Runner::new(&ride_level);
+    let tol_pen = penetration_tolerance(run, size);
+    let tol_rest = 1e-3 * size.y as f64;
+    let grid = run
+        .backend
+        .declared_contact(size, run.params.max_climb_angle)
+        .surface_grid;
+    let mut o = Outcome {
+        finite: true,
+        progress: f64::NAN,
+        jump: f64::NAN,
+        ..Default::default()
+    };
+    let mut carry_modelled = true;
+    let (mut drift, mut drift_tol) = (0.0f64, 0.0f64);
+    for spec in probes(size, case.dt, case.speed) {
+        let e = if spec.ride.is_some() {
+            match evaluate_with(&mut ride_runner, &spec, run) {
+                Err(BackendError::Unsupported { .. }) => {
+                    // No moving platforms in this configuration: no carry row.
+                    carry_modelled = false;
+                    continue;
+                }
+                e => e?,
+            }
+        } else {
+            evaluate_with(&mut runner, &spec, run)?
+        };
+        let get = |m: &str| -> Option<f64> {
+            e.metrics
+                .iter()
+                .find(|r: &&MetricRow| r.metric == m)
+                .map(|r| r.value)
+        };
+        o.finite &= e
+            .trace
+            .rows
+            .iter()
+            .all(|r| [r.x, r.y, r.vx, r.vy].iter().all(|v| v.is_finite()));
+        if let Some(p) = spec.ride.and_then(|i| ride_level.platforms.get(i as usize)) {
+            // A ride feeds only its own invariant (and `finite`): the others keep the meaning
+            // they have on the static floor.
+            let (d, lag) = carry_drift(p, ride_level.origin, grid, &e.trace, case.dt);
+            let tol = lag + tol_rest;
+            if drift_tol == 0.0 || d - tol > drift - drift_tol {
+                (drift, drift_tol) = (d, tol);
+            }
+            continue;
+        }
+        if spec.name == "jump" {
+            // The jump feeds only its height: its landing is the drop's business. A jump the
+            // metric cannot measure (no take-off found) counts as missed.
+            o.jump = get("apex_error").map_or(f64::INFINITY, f64::abs);
+            continue;
+        }
+        o.pen = o.pen.max(get("max_penetration").unwrap_or(0.0));
+        o.tunnel = o.tunnel.max(get("tunneled").unwrap_or(0.0));
+        if spec.name == "drop" {
+            // At rest: the height range over the last half second (the landing and its
+            // settling are land_frame_error's business).
+            let last = (0.5 / case.dt).ceil() as usize;
+            let tail = &e.trace.rows[e.trace.rows.len().saturating_sub(last)..];
+            let (lo, hi) = tail.iter().fold((f32::MAX, f32::MIN), |(lo, hi), r| {
+                (lo.min(r.y), hi.max(r.y))
+            });
+            o.jitter = o.jitter.max((hi - lo) as f64);
+        }
+        if spec.name == "walk" {
+            // The walk's floor is flat and open, so progress_ratio applies; a walk it does not
+            // measure counts as no progress.
+            o.progress = get("progress_ratio").unwrap_or(0.0);
+            o.stuck = stuck_steps(run, &spec, &e.trace, case.offset);
+        }
+        o.flicker = o.flicker.max(get("grounded_flicker").unwrap_or(0.0));
+    }
+    if carry_modelled {
+        o.carry = Some((drift, drift_tol));
+    }
+    Ok(rows_of(point, &o, tol_pen, tol_rest))
+}
+
+/// The smallest move a stored position can make at world coordinate `x` (tiles): the f32
+/// spacing there, or one subpixel where the configuration keeps positions on a grid.
+fn storage_unit(x: f32, per_tile: u32) -> f64 {
+    let x = x.abs();
+    let spacing = (f32::from_bits(x.to_bits() + 1) - x) as f64;
+    match per_tile {
+        0 => spacing,
+        n => spacing.max(1.0 / n as f64),
+    }
+}
+
+/// Stuck steps of the walk over its flat, open floor: grounded steps commanded to move at least
+/// one storage unit ([`storage_unit`] at the character's world position) that moved less than
+/// [`crate::metrics::seams::STUCK_FRACTION`] of the commanded step. A commanded step under one
+/// unit cannot move a stored position by itself (an integer mode carries the fraction to the
+/// next step; a float loses it): that is quantization, and what it costs shows in `progress`.
+fn stuck_steps(
+    run: &RunConfig,
+    spec: &ScenarioSpec,
+    trace: &crate::trace::Trace,
+    offset: f32,
+) -> f64 {
+    let script = input_script(spec);
+    let params = effective_params(&run.params, spec);
+    let commanded = commanded_steps(&params, &script, spec.velocity.x, spec.dt);
+    let per_tile = run
+        .backend
+        .declared_contact(spec.size, params.max_climb_angle)
+        .surface_grid;
+    let mut count = 0u32;
+    for (k, step) in commanded.iter().enumerate() {
+        let (Some(before), Some(after)) = (trace.rows.get(k), trace.rows.get(k + 1)) else {
+            break;
+        };
+        if script[k].horizontal() == 0.0 || !after.is_grounded() {
+            continue;
+        }
+        if step.abs() < storage_unit(offset + before.x, per_tile) {
+            continue;
+        }
+        if (((after.x - before.x) as f64).abs()) < STUCK_FRACTION * step.abs() {
+            count += 1;
+        }
+    }
+    count as f64
+}
+
+/// The rows of one point from its probes' outcomes, in [`INVARIANTS`] order.
+fn rows_of(point: &Point, o: &Outcome, tol_pen: f64, tol_rest: f64) -> Vec<StressRow> {
+    let finite = o.finite;
+    let nan_inf = |v: f64| if v.is_nan() { f64::INFINITY } else { v };
+    let row = |invariant: &str, holds: bool, measured: f64, tolerance: f64| StressRow {
+        backend: point.run.backend.backend().to_string(),
+        config: point.run.label.clone(),
+        dimension: point.dimension.0.to_string(),
+        value: point.dimension.1,
+        dimension2: point.dimension2.map_or(String::new(), |d| d.0.to_string()),
+        value2: point.dimension2.map(|d| d.1),
+        invariant: invariant.to_string(),
+        holds,
+        measured,
+        tolerance,
+    };
+    let pen = nan_inf(o.pen);
+    let mut out = vec![
+        row("finite", finite, (!finite) as u8 as f64, 0.0),
+        row("penetration", finite && pen <= tol_pen, pen, tol_pen),
+        row("no_tunneling", finite && o.tunnel == 0.0, o.tunnel, 0.0),
+        row(
+            "stable_rest",
+            finite && o.jitter <= tol_rest,
+            o.jitter,
+            tol_rest,
+        ),
+        row("no_flicker", finite && o.flicker == 0.0, o.flicker, 0.0),
+    ];
+    // A rider is at rest on its platform: held to the stable rest's bound plus the lag a carry
+    // may show (see `carry_drift`).
+    if let Some((drift, tol)) = o.carry {
+        out.push(row("carry_no_drift", finite && drift <= tol, drift, tol));
+    }
+    let progress = if o.progress.is_nan() { 0.0 } else { o.progress };
+    out.push(row(
+        "progress",
+        finite && progress >= PROGRESS_MIN,
+        progress,
+        PROGRESS_MIN,
+    ));
+    out.push(row("no_stuck", finite && o.stuck == 0.0, o.stuck, 0.0));
+    let jump = nan_inf(o.jump);
+    out.push(row(
+        "jump_height",
+        finite && jump <= JUMP_TOLERANCE,
+        jump,
+        JUMP_TOLERANCE,
+    ));
+    out
 }
 
 /// One configuration's results along one dimension of the matrix.
@@ -365,7 +696,7 @@ impl Envelope {
 /// controller that cannot carry a rider at the base case, does not hide where the others hold).
 pub fn envelope(rows: &[StressRow]) -> Vec<Envelope> {
     let mut out: Vec<Envelope> = Vec::new();
-    for r in rows {
+    for r in rows.iter().filter(|r| r.dimension2.is_empty()) {
         let config = format!("{} {}", r.backend, r.config);
         let i = match out
             .iter()
@@ -401,6 +732,291 @@ pub fn envelope(rows: &[StressRow]) -> Vec<Envelope> {
     out
 }
 
+/// Where a configuration stops holding, on one side of a dimension's base value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Edge {
+    /// The farthest value from the base, on this side, up to which every invariant held at
+    /// every value (`None` when one broke at the base).
+    pub last_holding: Option<f64>,
+    /// The first value past it where an invariant broke, with those that broke there, in
+    /// [`INVARIANTS`] order (`None`: every value on this side held).
+    pub first_break: Option<(f64, Vec<String>)>,
+}
+
+/// One configuration's verdict along one dimension: from the base value down and up, the last
+/// value where every invariant holds and the first where one breaks, and which.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict {
+    /// Backend and configuration label.
+    pub config: String,
+    /// Dimension name.
+    pub dimension: String,
+    /// The base value.
+    pub base: f64,
+    /// Going from the base to smaller values.
+    pub down: Edge,
+    /// Going from the base to larger values.
+    pub up: Edge,
+}
+
+/// The invariants that broke among `rows` (one value's rows of one configuration), in
+/// [`INVARIANTS`] order.
+fn broken<'a>(rows: impl Iterator<Item = &'a StressRow> + Clone) -> Vec<String> {
+    let mut out: Vec<String> = INVARIANTS
+        .iter()
+        .filter(|i| rows.clone().any(|r| !r.holds && r.invariant == **i))
+        .map(|i| i.to_string())
+        .collect();
+    // An invariant another backend's rows name (none yet) after the known ones.
+    for r in rows.filter(|r| !r.holds) {
+        if !out.contains(&r.invariant) {
+            out.push(r.invariant.clone());
+        }
+    }
+    out
+}
+
+/// Walks `values` (ordered away from the base, the base first) and finds the edge.
+fn edge(values: &[f64], broken_at: impl Fn(f64) -> Vec<String>) -> Edge {
+    let mut last = None;
+    for &v in values {
+        let b = broken_at(v);
+        if !b.is_empty() {
+            return Edge {
+                last_holding: last,
+                first_break: Some((v, b)),
+            };
+        }
+        last = Some(v);
+    }
+    Edge {
+        last_holding: last,
+        first_break: None,
+    }
+}
+
+/// Each configuration's verdict along each dimension of [`dimensions`], from the one-dimension
+/// rows of `rows` (in the order the configurations and dimensions first appear).
+pub fn verdicts(rows: &[StressRow]) -> Vec<Verdict> {
+    let dims = dimensions();
+    let mut out = Vec::new();
+    for e in envelope(rows) {
+        let Some(d) = dims.iter().find(|d| d.name == e.dimension) else {
+            continue;
+        };
+        let mine = |r: &&StressRow| {
+            r.dimension2.is_empty()
+                && r.dimension == e.dimension
+                && format!("{} {}", r.backend, r.config) == e.config
+        };
+        let mut values: Vec<f64> = rows.iter().filter(mine).map(|r| r.value).collect();
+        values.sort_by(f64::total_cmp);
+        values.dedup();
+        let broken_at = |v: f64| broken(rows.iter().filter(mine).filter(move |r| r.value == v));
+        let base = if values.contains(&d.base) {
+            d.base
+        } else {
+            values.first().copied().unwrap_or(d.base)
+        };
+        let mut down: Vec<f64> = values.iter().copied().filter(|&v| v <= base).collect();
+        down.reverse();
+        let up: Vec<f64> = values.iter().copied().filter(|&v| v >= base).collect();
+        out.push(Verdict {
+            config: e.config.clone(),
+            dimension: e.dimension.clone(),
+            base,
+            down: edge(&down, broken_at),
+            up: edge(&up, broken_at),
+        });
+    }
+    out
+}
+
+impl Verdict {
+    /// The verdict in words: `holds to 1e6; breaks at 1e7 (stable_rest, progress)`, `holds
+    /// from 1e-4 to 0.05; breaks at 0.2 (penetration)`, or `breaks at the base case 0.0167
+    /// (carry_no_drift)`.
+    pub fn text(&self) -> String {
+        let f = crate::report::format_setting;
+        let names = |b: &[String]| b.join(", ");
+        match (self.down.last_holding, self.up.last_holding) {
+            (None, _) | (_, None) => {
+                let b = self
+                    .up
+                    .first_break
+                    .as_ref()
+                    .or(self.down.first_break.as_ref())
+                    .map_or(String::new(), |(_, b)| names(b));
+                format!("breaks at the base case {} ({b})", f(self.base))
+            }
+            (Some(lo), Some(hi)) => {
+                let mut t = if lo == hi {
+                    format!("holds at {}", f(lo))
+                } else if lo == self.base {
+                    format!("holds to {}", f(hi))
+                } else {
+                    format!("holds from {} to {}", f(lo), f(hi))
+                };
+                for (v, b) in [&self.down.first_break, &self.up.first_break]
+                    .into_iter()
+                    .flatten()
+                {
+                    t.push_str(&format!("; breaks at {} ({})", f(*v), names(b)));
+                }
+                t
+            }
+        }
+    }
+}
+
+/// Whether a configuration holds in a world `size` tiles across (positions up to `size` tiles
+/// from the origin), read from its `offset` rows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WorldVerdict {
+    /// Backend and configuration label.
+    pub config: String,
+    /// `Some(true)`: every invariant held at every measured offset up to the first one at or
+    /// past `size`; `Some(false)`: one broke at a measured offset within `size`; `None`: held
+    /// at every measured offset within `size`, broke at the next one past it, so the offsets
+    /// between were not measured.
+    pub holds: Option<bool>,
+    /// The verdict in words, naming the offsets and invariants.
+    pub text: String,
+    /// The combination cells with an offset within `size` where an invariant broke, as
+    /// `offset x dt at (1e5, 1e-4): progress`.
+    pub combinations: Vec<String>,
+}
+
+/// Which configurations hold in a world `size` tiles across: each configuration's `offset` rows
+/// (the base case elsewhere), and the combination cells within that offset that broke.
+pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
+    let f = crate::report::format_setting;
+    let mut out = Vec::new();
+    for v in verdicts(rows)
+        .into_iter()
+        .filter(|v| v.dimension == "offset")
+    {
+        let ofs = |r: &&StressRow| format!("{} {}", r.backend, r.config) == v.config;
+        let mut values: Vec<f64> = rows
+            .iter()
+            .filter(ofs)
+            .filter(|r| r.dimension2.is_empty() && r.dimension == "offset")
+            .map(|r| r.value)
+            .collect();
+        values.sort_by(f64::total_cmp);
+        values.dedup();
+        let cover = values.iter().copied().find(|&x| x >= size);
+        let first_break = v.up.first_break.clone();
+        let (holds, text) = match (&first_break, cover) {
+            (Some((b, inv)), _) if *b <= size => (
+                Some(false),
+                format!("breaks at offset {} ({})", f(*b), inv.join(", ")),
+            ),
+            (Some((b, inv)), Some(c)) if *b == c => (
+                None,
+                format!(
+                    "holds to offset {}, breaks at {} ({}); {} itself not measured",
+                    v.up.last_holding.map_or("-".into(), f),
+                    f(*b),
+                    inv.join(", "),
+                    f(size)
+                ),
+            ),
+            (_, Some(c)) => (
+                Some(true),
+                format!("holds at every offset measured up to {}", f(c)),
+            ),
+            (_, None) => (
+                None,
+                format!(
+                    "holds to offset {}, the largest measured; {} not measured",
+                    v.up.last_holding.map_or("-".into(), f),
+                    f(size)
+                ),
+            ),
+        };
+        let mut combinations = Vec::new();
+        for r in rows.iter().filter(ofs).filter(|r| {
+            !r.holds && !r.dimension2.is_empty() && r.dimension == "offset" && r.value <= size
+        }) {
+            let cell = format!(
+                "{} x {} at ({}, {})",
+                r.dimension,
+                r.dimension2,
+                f(r.value),
+                r.value2.map_or("-".into(), f)
+            );
+            match combinations
+                .iter_mut()
+                .find(|(c, _): &&mut (String, Vec<String>)| *c == cell)
+            {
+                Some((_, inv)) => inv.push(r.invariant.clone()),
+                None => combinations.push((cell, vec![r.invariant.clone()])),
+            }
+        }
+        out.push(WorldVerdict {
+            config: v.config.clone(),
+            holds,
+            text,
+            combinations: combinations
+                .into_iter()
+                .map(|(c, inv)| format!("{c}: {}", inv.join(", ")))
+                .collect(),
+        });
+    }
+    out
+}
+
+/// One combination cell of one configuration: the first invariant (in [`INVARIANTS`] order)
+/// that broke there, or `None` where every invariant held.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cell {
+    /// Backend and configuration label.
+    pub config: String,
+    /// The pair, as `offset x epsilon`.
+    pub pair: String,
+    /// The first dimension's value.
+    pub a: f64,
+    /// The second dimension's value.
+    pub b: f64,
+    /// The invariants that broke, in [`INVARIANTS`] order (empty: every one held).
+    pub broken: Vec<String>,
+}
+
+/// The combination cells of `rows`, in the order they first appear.
+pub fn cells(rows: &[StressRow]) -> Vec<Cell> {
+    let mut out: Vec<Cell> = Vec::new();
+    for r in rows.iter().filter(|r| !r.dimension2.is_empty()) {
+        let config = format!("{} {}", r.backend, r.config);
+        let pair = format!("{} x {}", r.dimension, r.dimension2);
+        let b = r.value2.unwrap_or(f64::NAN);
+        let i = match out
+            .iter()
+            .position(|c| c.config == config && c.pair == pair && c.a == r.value && c.b == b)
+        {
+            Some(i) => i,
+            None => {
+                out.push(Cell {
+                    config,
+                    pair,
+                    a: r.value,
+                    b,
+                    broken: Vec::new(),
+                });
+                out.len() - 1
+            }
+        };
+        if !r.holds {
+            out[i].broken.push(r.invariant.clone());
+        }
+    }
+    for c in &mut out {
+        let order = |i: &String| INVARIANTS.iter().position(|k| k == i).unwrap_or(usize::MAX);
+        c.broken.sort_by_key(order);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -411,6 +1027,8 @@ mod tests {
             config: "c".into(),
             dimension: "offset".into(),
             value,
+            dimension2: String::new(),
+            value2: None,
             invariant: invariant.into(),
             holds,
             measured: 0.0,
@@ -439,5 +1057,75 @@ mod tests {
             ]
         );
         assert_eq!(e[0].broken_values(), vec![0.0, 2.0]);
+    }
+
+    fn at(dimension: &str, value: f64, invariant: &str, holds: bool) -> StressRow {
+        StressRow {
+            dimension: dimension.into(),
+            ..row(value, invariant, holds)
+        }
+    }
+
+    #[test]
+    fn verdict_walks_out_from_the_base_value_on_each_side() {
+        // dt: base 1/60; 1e-4 breaks progress, 0.2 breaks penetration; 1/240 and 0.05 hold.
+        let mut rows = Vec::new();
+        for v in [1e-4, 1.0 / 240.0, 1.0 / 60.0, 0.05, 0.2] {
+            rows.push(at("dt", v, "penetration", v != 0.2));
+            rows.push(at("dt", v, "progress", v != 1e-4));
+        }
+        let v = &verdicts(&rows)[0];
+        assert_eq!(v.base, 1.0 / 60.0);
+        assert_eq!(v.down.last_holding, Some(1.0 / 240.0));
+        assert_eq!(
+            v.down.first_break,
+            Some((1e-4, vec!["progress".to_string()]))
+        );
+        assert_eq!(v.up.last_holding, Some(0.05));
+        assert_eq!(
+            v.text(),
+            "holds from 0.0042 to 0.05; breaks at 1e-4 (progress); breaks at 0.2 (penetration)"
+        );
+        // Broken at the base: named as such, whatever holds farther out.
+        let rows = [
+            at("offset", 0.0, "carry_no_drift", false),
+            at("offset", 1e3, "carry_no_drift", true),
+        ];
+        assert_eq!(
+            verdicts(&rows)[0].text(),
+            "breaks at the base case 0 (carry_no_drift)"
+        );
+    }
+
+    #[test]
+    fn world_verdict_needs_the_first_offset_past_the_world_to_hold() {
+        let rows: Vec<StressRow> = [0.0, 1e5, 1e6, 1e7]
+            .iter()
+            .map(|&v| at("offset", v, "progress", v < 1e7))
+            .chain([StressRow {
+                dimension2: "dt".into(),
+                value2: Some(1e-3),
+                ..at("offset", 1e5, "jump_height", false)
+            }])
+            .collect();
+        let w = |size| world_verdicts(&rows, size).remove(0);
+        assert_eq!(w(1e6).holds, Some(true));
+        assert_eq!(w(5e5).holds, Some(true));
+        // 5e6: 1e6 held, 1e7 broke; between them nothing was measured.
+        assert_eq!(w(5e6).holds, None);
+        assert_eq!(w(1e7).holds, Some(false));
+        assert_eq!(
+            w(1e6).combinations,
+            vec!["offset x dt at (1e5, 0.001): jump_height"]
+        );
+        assert!(w(1e4).combinations.is_empty());
+    }
+
+    #[test]
+    fn storage_unit_is_the_f32_spacing_or_a_subpixel() {
+        // 2^17 = 131072 > 1e5 >= 2^16: spacing 2^(16-23) = 1/128.
+        assert_eq!(storage_unit(1e5, 0), 1.0 / 128.0);
+        assert_eq!(storage_unit(1e5, 32), 1.0 / 32.0);
+        assert_eq!(storage_unit(1e7, 32), 1.0);
     }
 }

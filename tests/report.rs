@@ -95,14 +95,29 @@ fn report_includes_the_tradeoff_chart_and_the_stability_table_when_given() {
         config: "default".into(),
         dimension: "offset".into(),
         value,
+        dimension2: String::new(),
+        value2: None,
         invariant: "penetration".into(),
         holds,
         measured: 0.0,
         tolerance: 0.0,
     };
+    let pair = |value: f64, value2: f64, invariant: &str, holds: bool| StressRow {
+        dimension2: "dt".into(),
+        value2: Some(value2),
+        invariant: invariant.into(),
+        ..stress(value, holds)
+    };
     write_csv(
         &dir.path().join("stability.csv"),
-        &[stress(0.0, true), stress(1e6, true), stress(1e7, false)],
+        &[
+            stress(0.0, true),
+            stress(1e6, true),
+            stress(1e7, false),
+            pair(1e5, 1e-4, "progress", false),
+            pair(1e5, 1e-4, "jump_height", false),
+            pair(1e5, 0.05, "progress", true),
+        ],
     );
     let out = report_on_flat_seams(
         dir.path(),
@@ -124,11 +139,24 @@ fn report_includes_the_tradeoff_chart_and_the_stability_table_when_given() {
     );
     assert!(a < b);
     assert!(!md.contains("| rapier | per-tile |"));
-    // The stability table gives the envelope: where every invariant held, and which one broke
-    // where.
+    // The stability table gives the verdict (the last value where every invariant held, the
+    // first where one broke and which) and each invariant that broke where; the combination
+    // cells are a grid, the broken one naming its invariants first broken first (in the HTML
+    // coloured by the first: progress's colour, not the green of a cell that held).
     assert!(
-        md.contains("| sweep default | offset | 0, 1e6 | penetration at 1e7 |"),
+        md.contains(
+            "| sweep default | offset | holds to 1e6; breaks at 1e7 (penetration) | penetration at 1e7 |"
+        ),
         "{md}"
+    );
+    assert!(md.contains("#### offset x dt"), "{md}");
+    assert!(
+        md.contains("| sweep default | 1e5 | progress, jump_height | ok |"),
+        "{md}"
+    );
+    assert!(
+        html.contains("background:#d81b60\" title=\"progress, jump_height\""),
+        "{html}"
     );
     assert!(html.contains("Stability at the extremes"));
 }

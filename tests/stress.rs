@@ -12,7 +12,12 @@ fn holds(rows: &[StressRow], dim: &str, v: f64, except: &[&str]) -> bool {
     let mut seen = false;
     let all = rows
         .iter()
-        .filter(|r| r.dimension == dim && r.value == v && !except.contains(&r.invariant.as_str()))
+        .filter(|r| {
+            r.dimension2.is_empty()
+                && r.dimension == dim
+                && r.value == v
+                && !except.contains(&r.invariant.as_str())
+        })
         .inspect(|_| seen = true)
         .all(|r| r.holds);
     assert!(seen, "no rows for {dim} = {v}");
@@ -31,20 +36,22 @@ fn invariant_holds(rows: &[StressRow], dim: &str, v: f64, invariant: &str) -> bo
 fn sweep_envelope_holds_to_1e6_tiles_and_across_every_other_extreme() {
     let rows = sweep_rows();
     // Offsets: every invariant holds up to 1e6 tiles from the origin (f32 spacing 1/16 tile
-    // there): the sweep snaps onto exact tile faces, and the rider follows every move of the
-    // elevator (Celeste's rule, the default since issue 23), so the elevator's drops in 0 or
-    // 1/16-tile steps carry it exactly. Under the gravity rule (issue 5's) those steps left it
-    // in the air at 1e6. At 1e7 (spacing 1 tile) it sinks 0.4 into the floor and cannot rest.
+    // there): the sweep snaps onto exact tile faces, the rider follows every move of the
+    // elevator (Celeste's rule, the default since issue 23), and the walk's 0.1-tile steps
+    // round to 2/16 (progress over 1). At 1e7 (spacing 1 tile) it sinks 0.4 into the floor
+    // and cannot rest, and a 0.1-tile step rounds to nothing: the walk does not move.
     for v in [0.0, 1e3, 1e4, 1e5, 1e6] {
         assert!(holds(&rows, "offset", v, &[]), "offset {v}");
     }
-    assert!(
-        !invariant_holds(&rows, "offset", 1e7, "stable_rest"),
-        "offset 1e7 was expected to break the rest"
-    );
+    for inv in ["stable_rest", "progress"] {
+        assert!(
+            !invariant_holds(&rows, "offset", 1e7, inv),
+            "offset 1e7 was expected to break {inv}"
+        );
+    }
     // Every other dimension of the matrix, at its extremes: dt 1e-4 to 0.2 s, speeds up to 1000
     // tiles/s, widths 0.01 to 10 tiles, epsilon 1e-1 down to 1e-9; every invariant, the carry on
-    // both moving platforms included.
+    // both moving platforms, the walk's progress and the jump's height included.
     for (dim, vs) in [
         ("dt", vec![1e-4, 0.2]),
         ("speed", vec![10.0, 1000.0]),
@@ -55,6 +62,37 @@ fn sweep_envelope_holds_to_1e6_tiles_and_across_every_other_extreme() {
             assert!(holds(&rows, dim, v, &[]), "{dim} {v}");
         }
     }
+}
+
+/// The row of `invariant` in the combination cell `(dim, v) x (dim2, v2)`.
+fn cell<'a>(
+    rows: &'a [StressRow],
+    (dim, v): (&str, f64),
+    (dim2, v2): (&str, f64),
+    invariant: &str,
+) -> &'a StressRow {
+    rows.iter()
+        .find(|r| {
+            r.dimension == dim
+                && r.value == v
+                && r.dimension2 == dim2
+                && r.value2 == Some(v2)
+                && r.invariant == invariant
+        })
+        .unwrap_or_else(|| panic!("no {invariant} row for {dim} = {v}, {dim2} = {v2}"))
+}
+
+#[test]
+fn the_sweep_breaks_progress_where_a_fine_step_meets_a_far_offset() {
+    let rows = sweep_rows();
+    // Alone, 1e5 tiles and dt = 1/240 s each hold (the test above). Together the walking step
+    // (6/240 = 0.025 tiles) is 3.2 times the f32 spacing at 1e5 (1/128) and rounds to 3 of
+    // them: the walk covers 3/3.2 = 94% of its distance, under PROGRESS_MIN (0.99).
+    let r = cell(&rows, ("offset", 1e5), ("dt", 1.0 / 240.0), "progress");
+    assert!(!r.holds);
+    assert!((r.measured - 0.9375).abs() < 0.005, "{}", r.measured);
+    // The same step at 1e4 tiles (spacing 1/1024) rounds to within 2% and holds.
+    assert!(cell(&rows, ("offset", 1e4), ("dt", 1.0 / 240.0), "progress").holds);
 }
 
 #[test]
@@ -99,7 +137,11 @@ fn the_integer_mode_keeps_every_invariant_up_to_1e7_tiles_and_carries_with_no_dr
         .iter()
         .filter(|r| r.invariant == "carry_no_drift")
         .collect();
-    assert_eq!(carry.len(), 6 + 5 + 3 + 5, "carry rows");
+    // One carry row per value of each single dimension (19), and one per combination cell
+    // (issue 22) on top: every one exactly 0.
+    let single = carry.iter().filter(|r| r.dimension2.is_empty()).count();
+    assert_eq!(single, 6 + 5 + 3 + 5, "single-dimension carry rows");
+    assert!(carry.len() > single, "combination cells carry rows");
     for r in carry {
         assert_eq!(
             r.measured, 0.0,
@@ -108,4 +150,81 @@ fn the_integer_mode_keeps_every_invariant_up_to_1e7_tiles_and_carries_with_no_dr
         );
     }
     assert!(rows.iter().all(|r| r.dimension != "epsilon"));
+}
+
+/// The issue's walk: 60 tiles commanded over a seamed floor 1e5 tiles from the origin, on every
+/// Rapier shape and collider building; the progress row of each.
+fn rapier_progress_at(offset: f64) -> Vec<(String, f64, f64)> {
+    use platbench::rapier::{kind::run, CharacterShape, ColliderBuilding};
+    use platbench::stress::{run_point, Point, BASE};
+    let mut out = Vec::new();
+    for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
+        for shape in CharacterShape::ALL {
+            let point = Point {
+                run: run(building, shape),
+                case: BASE.with("offset", offset),
+                dimension: ("offset", offset),
+                dimension2: None,
+            };
+            let rows = run_point(&point).unwrap();
+            let get = |i: &str| rows.iter().find(|r| r.invariant == i).unwrap().measured;
+            out.push((point.run.label.clone(), get("progress"), get("no_stuck")));
+        }
+    }
+    out
+}
+
+#[test]
+fn rapier_merged_rounded_walkers_stall_1e5_tiles_out() {
+    // The issue's finding on the probe's walk (60 tiles commanded, src/stress.rs): far from the
+    // origin Rapier's merged capsule and ball stall, where at the origin they cover most of it.
+    // Measured: merged capsule 85% at 0, 4.8% at 1e5 (551 stuck steps); merged ball 95% at 0,
+    // 0.7% at 1e5 (594). The bounds (over 80% at 0, under 10% and over 100 stuck steps at 1e5)
+    // sit far from both, so only the stall itself can flip them.
+    let at0 = rapier_progress_at(0.0);
+    let at1e5 = rapier_progress_at(1e5);
+    for label in ["merged capsule", "merged ball"] {
+        let get = |v: &[(String, f64, f64)]| v.iter().find(|r| r.0 == label).unwrap().clone();
+        let (a, b) = (get(&at0), get(&at1e5));
+        assert!(a.1 > 0.8, "{label} at 0: {a:?}");
+        assert!(b.1 < 0.1 && b.2 > 100.0, "{label} at 1e5: {b:?}");
+    }
+    // Fed gravity on every grounded step, every shape per tile loses more than 1% at the origin
+    // already (85% to 90% measured: the seams) and at 1e5 (83% to 91%): progress breaks at
+    // both, which the stress table shows as a break at the base case.
+    for (label, p, _) in at0.iter().chain(&at1e5) {
+        if label.starts_with("per-tile") {
+            assert!(*p < platbench::stress::PROGRESS_MIN, "{label}: {p}");
+        }
+    }
+}
+
+#[test]
+fn rapier_fed_as_advised_walks_alone_and_breaks_progress_at_1e5_with_dt_1_240() {
+    use platbench::rapier::kind::run_with;
+    use platbench::rapier::{GroundedMove, RapierConfig};
+    use platbench::stress::{run_point, Point, BASE};
+    let run = run_with(RapierConfig {
+        grounded_move: GroundedMove::NoneExceptOnPlatforms,
+        ..Default::default()
+    });
+    let progress = |case: platbench::stress::Case| {
+        let point = Point {
+            run: run.clone(),
+            case,
+            dimension: ("offset", case.offset as f64),
+            dimension2: Some(("dt", case.dt as f64)),
+        };
+        let rows = run_point(&point).unwrap();
+        rows.into_iter()
+            .find(|r| r.invariant == "progress")
+            .unwrap()
+    };
+    // Alone, 1e5 tiles hold (0.1-tile steps round up to 13/128) and so does dt = 1/240 at the
+    // origin; together the 0.025-tile step is 3.2 spacings of 1/128 and rounds to 3, as the
+    // sweep's does (a cell of the combination table that breaks for Rapier too).
+    assert!(progress(BASE.with("offset", 1e5)).holds);
+    assert!(progress(BASE.with("dt", 1.0 / 240.0)).holds);
+    let both = progress(BASE.with("offset", 1e5).with("dt", 1.0 / 240.0));
+    assert!(!both.holds, "{both:?}");
 }

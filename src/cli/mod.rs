@@ -108,7 +108,11 @@ where
         }
         Some(Command::Run(args)) => run::run(h, &args, true),
         Some(Command::Levels) => levels::list_levels(),
-        Some(Command::Stress { out, force }) => stress::stress(h, &out, force),
+        Some(Command::Stress {
+            out,
+            force,
+            world_size,
+        }) => stress::stress(h, &out, force, world_size),
         Some(Command::Sweep {
             out,
             force,
@@ -185,10 +189,13 @@ enum Command {
         score: Option<String>,
     },
     /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
-    /// tunneling, stable rest, no grounded flicker, carry without drift) at the extremes, one
-    /// dimension at a time: offsets 0 to 1e7 tiles, dt 1e-4 to 0.2 s, speeds to 1000 tiles/s,
-    /// widths 0.01 to 10 tiles, and the sweep's epsilon 1e-1 to 1e-9. Writes DIR/stability.csv
-    /// and prints each configuration's envelope, naming each invariant that broke and where.
+    /// tunneling, stable rest, no grounded flicker, carry without drift, progress over seamed
+    /// ground with no stuck step, a jump to its height) at the extremes, one dimension at a
+    /// time (offsets 0 to 1e7 tiles, dt 1e-4 to 0.2 s, speeds to 1000 tiles/s, widths 0.01 to
+    /// 10 tiles, the sweep's epsilon 1e-1 to 1e-9), then on small grids of pairs (offset x
+    /// epsilon, offset x dt, speed x dt, width x speed, offset x speed). Writes
+    /// DIR/stability.csv and prints each configuration's verdict per dimension and each pair's
+    /// cells.
     Stress {
         /// Output directory for stability.csv (replaced as a whole; see --force).
         #[arg(long, default_value = "platbench-stress")]
@@ -198,6 +205,11 @@ enum Command {
         /// directory is refused. A baseline is never replaced but by `run --bless`.
         #[arg(long)]
         force: bool,
+        /// Also say which configurations hold in a world this many tiles across (positions up
+        /// to this far from the origin), from the offsets measured and the combination cells
+        /// within it.
+        #[arg(long, value_name = "TILES", value_parser = parse_world_size)]
+        world_size: Option<f64>,
     },
     /// Run level files (the built-in set when none is given) and write the "pick a backend"
     /// report: DIR/report.html (self-contained: inline pictures, no scripts, no network) and its
@@ -387,4 +399,15 @@ pub(crate) fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) 
         anyhow::bail!("{}: no rows", path.display());
     }
     Ok(rows)
+}
+
+/// A world size for `stress --world-size`: a finite number of tiles, 0 or more.
+fn parse_world_size(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        Ok(v) => Err(format!(
+            "{v} is not a world size: give a finite number of tiles, 0 or more"
+        )),
+        Err(e) => Err(format!("{s:?} is not a number of tiles: {e}")),
+    }
 }

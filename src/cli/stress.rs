@@ -6,31 +6,82 @@ use anyhow::Result;
 
 use super::{out, output, Harness};
 
-pub(crate) fn stress(h: &Harness, out_dir: &std::path::Path, force: bool) -> Result<()> {
-    use crate::report::html::{breaks_list, value_list};
-    use crate::stress::{envelope, stress_matrix};
+pub(crate) fn stress(
+    h: &Harness,
+    out_dir: &std::path::Path,
+    force: bool,
+    world_size: Option<f64>,
+) -> Result<()> {
+    use crate::report::html::breaks_list;
+    use crate::stress::{stress_matrix, verdicts, world_verdicts};
     let runs = h.registry.stress_configs();
     output::check_target(out_dir, output::Kind::Stress, force)?;
     let started = Instant::now();
     let rows = stress_matrix(&runs, |what| eprintln!("  {what}"))?;
     eprintln!("ran in {:.1} s", started.elapsed().as_secs_f64());
-    let mut t = comfy_table::Table::new();
-    t.load_style(comfy_table::presets::ASCII_MARKDOWN);
-    t.set_header(vec![
-        "configuration",
-        "dimension",
-        "every invariant holds at",
-        "breaks at",
-    ]);
-    for e in envelope(&rows) {
+    let table = |header: Vec<String>| {
+        let mut t = comfy_table::Table::new();
+        t.load_style(comfy_table::presets::ASCII_MARKDOWN);
+        t.set_header(header);
+        t
+    };
+    let mut t = table(
+        [
+            "configuration",
+            "dimension",
+            "verdict",
+            "each invariant that broke, where",
+        ]
+        .map(String::from)
+        .to_vec(),
+    );
+    let envelopes = crate::stress::envelope(&rows);
+    for v in verdicts(&rows) {
+        let breaks = envelopes
+            .iter()
+            .find(|e| e.config == v.config && e.dimension == v.dimension)
+            .map_or("-".into(), breaks_list);
         t.add_row(vec![
-            e.config.clone(),
-            e.dimension.clone(),
-            value_list(&e.holds),
-            breaks_list(&e),
+            v.config.clone(),
+            v.dimension.clone(),
+            v.text(),
+            breaks,
         ]);
     }
     out(&t.to_string());
+    for t in crate::report::html::pair_tables(&rows) {
+        out("");
+        out(&t);
+    }
+    if let Some(size) = world_size {
+        out("");
+        let mut t = table(
+            [
+                format!(
+                    "in a world of {} tiles",
+                    crate::report::format_setting(size)
+                ),
+                "holds".into(),
+                "verdict".into(),
+                "combination cells within it that break".into(),
+            ]
+            .to_vec(),
+        );
+        for w in world_verdicts(&rows, size) {
+            let holds = match w.holds {
+                Some(true) => "yes",
+                Some(false) => "no",
+                None => "not measured",
+            };
+            let combos = if w.combinations.is_empty() {
+                "-".to_string()
+            } else {
+                w.combinations.join("; ")
+            };
+            t.add_row(vec![w.config, holds.into(), w.text, combos]);
+        }
+        out(&t.to_string());
+    }
     output::write_output(out_dir, output::Kind::Stress, force, |dir| {
         output::write_csv(&dir.join("stability.csv"), &rows)
     })?;

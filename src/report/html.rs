@@ -357,23 +357,166 @@ pub fn breaks_list(e: &Envelope) -> String {
         .join("; ")
 }
 
-/// The stability section: per configuration and dimension, the values at which every invariant
-/// held and, per invariant, those at which it broke.
+/// The colour of a combination cell whose first broken invariant is `first` (green where every
+/// invariant held).
+fn invariant_colour(first: Option<&str>) -> &'static str {
+    const COLOURS: [&str; 9] = [
+        "#b71c1c", "#e65100", "#6a1b9a", "#f9a825", "#00838f", "#1565c0", "#d81b60", "#795548",
+        "#546e7a",
+    ];
+    match first {
+        None => "#a5d6a7",
+        Some(i) => crate::stress::INVARIANTS
+            .iter()
+            .position(|k| *k == i)
+            .map_or("#212121", |k| COLOURS[k]),
+    }
+}
+
+/// Each pair of dimensions' combination cells as a grid: per pair, a row per configuration and
+/// first value, a column per second value, each cell `ok` or the invariants that broke there
+/// (first broken first). Each grid is `(pair, header, rows)`.
+pub fn pair_grids(rows: &[StressRow]) -> Vec<(String, Vec<String>, Vec<Vec<String>>)> {
+    let cells = crate::stress::cells(rows);
+    let mut out: Vec<(String, Vec<String>, Vec<Vec<String>>)> = Vec::new();
+    let mut pairs: Vec<&str> = Vec::new();
+    for c in &cells {
+        if !pairs.contains(&c.pair.as_str()) {
+            pairs.push(&c.pair);
+        }
+    }
+    for pair in pairs {
+        let of_pair: Vec<&crate::stress::Cell> = cells.iter().filter(|c| c.pair == pair).collect();
+        let mut bs: Vec<f64> = of_pair.iter().map(|c| c.b).collect();
+        bs.sort_by(f64::total_cmp);
+        bs.dedup();
+        let (da, db) = pair.split_once(" x ").unwrap_or((pair, ""));
+        let mut header = vec!["configuration".to_string(), format!("{da} \\ {db}")];
+        header.extend(bs.iter().map(|&b| format_setting(b)));
+        let mut keys: Vec<(&str, f64)> = Vec::new();
+        for c in &of_pair {
+            if !keys.contains(&(c.config.as_str(), c.a)) {
+                keys.push((&c.config, c.a));
+            }
+        }
+        let mut grid = Vec::new();
+        for (config, a) in keys {
+            let mut row = vec![config.to_string(), format_setting(a)];
+            for &b in &bs {
+                let cell = of_pair
+                    .iter()
+                    .find(|c| c.config == config && c.a == a && c.b == b);
+                row.push(match cell {
+                    None => "-".into(),
+                    Some(c) if c.broken.is_empty() => "ok".into(),
+                    Some(c) => c.broken.join(", "),
+                });
+            }
+            grid.push(row);
+        }
+        out.push((pair.to_string(), header, grid));
+    }
+    out
+}
+
+/// [`pair_grids`] as plain-text tables, for `platbench stress`.
+pub fn pair_tables(rows: &[StressRow]) -> Vec<String> {
+    pair_grids(rows)
+        .into_iter()
+        .map(|(_, header, grid)| {
+            let mut t = comfy_table::Table::new();
+            t.load_style(comfy_table::presets::ASCII_MARKDOWN);
+            t.set_header(header);
+            for r in grid {
+                t.add_row(r);
+            }
+            t.to_string()
+        })
+        .collect()
+}
+
+/// The stability section: per configuration and dimension, the verdict (the last value where
+/// every invariant held and the first where one broke, each side of the base case) and every
+/// invariant that broke and where; then each pair's combination cells as a heat map coloured
+/// by the first invariant that broke.
 fn stability_section(rows: &[StressRow]) -> (String, String) {
-    let mut html = String::from("<h2 id=\"stability\">Stability at the extremes</h2><p>From <code>platbench stress</code>: each dimension is pushed away from the base case alone; a value holds when every invariant (finite, penetration, no tunneling, stable rest, no flicker, carry without drift) held there, and the last column names each invariant that broke and where.</p><table><thead><tr><th>configuration</th><th>dimension</th><th>every invariant holds at</th><th>breaks at</th></tr></thead><tbody>");
-    let mut md = String::from("\n## Stability at the extremes\n\n| configuration | dimension | every invariant holds at | breaks at |\n|---|---|---|---|\n");
-    for e in envelope(rows) {
-        let (config, dim) = (&e.config, &e.dimension);
-        let (ok, bad) = (value_list(&e.holds), breaks_list(&e));
+    let mut html = String::from("<h2 id=\"stability\">Stability at the extremes</h2><p>From <code>platbench stress</code>: each dimension is pushed away from the base case alone; the verdict gives, each side of the base value, the last value where every invariant (finite, penetration, no tunneling, stable rest, no flicker, carry without drift, progress, no stuck step, jump height) held and the first where one broke, naming it; the last column names each invariant that broke and where.</p><table><thead><tr><th>configuration</th><th>dimension</th><th>verdict</th><th>each invariant that broke, where</th></tr></thead><tbody>");
+    let mut md = String::from("\n## Stability at the extremes\n\n| configuration | dimension | verdict | each invariant that broke, where |\n|---|---|---|---|\n");
+    let envelopes = envelope(rows);
+    for v in crate::stress::verdicts(rows) {
+        let (config, dim) = (&v.config, &v.dimension);
+        let ok = v.text();
+        let bad = envelopes
+            .iter()
+            .find(|e| e.config == v.config && e.dimension == v.dimension)
+            .map_or("-".into(), breaks_list);
         let _ = write!(
             html,
-            "<tr><td>{}</td><td>{}</td><td>{ok}</td><td>{bad}</td></tr>",
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             escape(config),
-            escape(dim)
+            escape(dim),
+            escape(&ok),
+            escape(&bad)
         );
         let _ = writeln!(md, "| {config} | {dim} | {ok} | {bad} |");
     }
     html.push_str("</tbody></table>");
+    let grids = pair_grids(rows);
+    if !grids.is_empty() {
+        html.push_str("<h3>Combinations</h3><p>Pairs of dimensions whose failures interact, each on a small grid (the base case elsewhere). One cell per pair of values, coloured by the first invariant that broke there (green: every invariant held):</p><p class=\"legend\">");
+        md.push_str("\n### Combinations\n\nPairs of dimensions whose failures interact, each on a small grid (the base case elsewhere); each cell names the invariants that broke there, first broken first (the HTML report colours it by the first):\n");
+        for (i, c) in std::iter::once(None)
+            .chain(crate::stress::INVARIANTS.iter().map(|i| Some(*i)))
+            .map(|i| (i, invariant_colour(i)))
+        {
+            let _ = write!(
+                html,
+                "<span><i style=\"background:{c};height:1em\"></i>{}</span>",
+                i.unwrap_or("every invariant holds")
+            );
+        }
+        html.push_str("</p>");
+        for (pair, header, grid) in grids {
+            let _ = write!(html, "<h4>{}</h4><table><thead><tr>", escape(&pair));
+            for h in &header {
+                let _ = write!(html, "<th>{}</th>", escape(h));
+            }
+            html.push_str("</tr></thead><tbody>");
+            let _ = write!(
+                md,
+                "\n#### {pair}\n\n| {} |\n|{}\n",
+                header.join(" | "),
+                "---|".repeat(header.len())
+            );
+            for row in grid {
+                html.push_str("<tr>");
+                for (k, cell) in row.iter().enumerate() {
+                    if k < 2 {
+                        let _ = write!(html, "<td>{}</td>", escape(cell));
+                        continue;
+                    }
+                    let first = match cell.as_str() {
+                        "ok" | "-" => None,
+                        c => c.split(", ").next(),
+                    };
+                    let colour = if cell == "-" {
+                        "#eeeeee"
+                    } else {
+                        invariant_colour(first)
+                    };
+                    let _ = write!(
+                        html,
+                        "<td style=\"background:{colour}\" title=\"{}\">{}</td>",
+                        escape(cell),
+                        escape(first.unwrap_or(cell))
+                    );
+                }
+                html.push_str("</tr>");
+                let _ = writeln!(md, "| {} |", row.join(" | "));
+            }
+            html.push_str("</tbody></table>");
+        }
+    }
     (html, md)
 }
 
