@@ -155,3 +155,49 @@ impl Registry {
         out
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(backend: &str, config: &str, stuck: f64) -> MetricRow {
+        MetricRow {
+            level: "l".into(),
+            scenario: "s".into(),
+            backend: backend.into(),
+            config: config.into(),
+            metric: "stuck_frames",
+            value: stuck,
+            unit: "frames",
+            reference: 0.0,
+            error: stuck,
+        }
+    }
+
+    #[test]
+    fn replays_show_the_listed_reference_and_each_other_kinds_best_and_worst() {
+        // stuck_frames weighs 1 in the default score, min(1, |error| / 1 frame): below one frame
+        // (fractions, for the test), more is worse; at one and above every value scores 1.
+        let rows = [
+            row("sweep", "jump=continuous", 0.0),
+            row("sweep", "default", 9.0),
+            row("rapier", "a", 0.25),
+            row("rapier", "b", 0.0),
+            row("rapier", "c", 0.75),
+            row("rapier", "d", 0.5),
+        ];
+        let shown = Registry::builtin().shown_by_default(&rows);
+        let pair = |b: &str, c: &str| (b.to_string(), c.to_string());
+        assert_eq!(
+            shown,
+            [
+                pair("sweep", "default"),
+                pair("rapier", "b"),
+                pair("rapier", "c")
+            ]
+        );
+        // One configuration is both its kind's best and worst: shown once.
+        let one = Registry::builtin().shown_by_default(&rows[2..3]);
+        assert_eq!(one, [pair("rapier", "a")]);
+    }
+}
