@@ -5,12 +5,14 @@
 
 use super::ground::Ground;
 use super::landing::{beyond_declared, supported};
+use super::platforms::{platform_overlap, CRUSH_DEPTH};
 use super::seams::stuck_steps;
 use super::Context;
 use crate::trace::TraceRow;
 
 /// Inside the level's solid geometry deeper than the configuration declares
-/// (`penetration_beyond_declared` at this frame above [`INSIDE_TOLERANCE`]).
+/// (`penetration_beyond_declared` at this frame above [`INSIDE_TOLERANCE`]), or its box inside
+/// a moving platform that is not one-way by more than that (`push_penetration` at this frame).
 pub const INSIDE: u8 = 1;
 /// The step into this frame was stuck on open ground (as `stuck_frames` counts it).
 pub const STUCK: u8 = 2;
@@ -21,7 +23,9 @@ pub const STUCK: u8 = 2;
 pub const AIRBORNE_NEAR_GROUND: u8 = 4;
 /// Reported grounded with no ground within the flicker tolerance (as `false_grounded` counts).
 pub const FALSE_GROUNDED: u8 = 8;
-/// A moving platform crushed it against the level this frame (the trace's `crushed` column).
+/// A moving platform crushed it against the level this frame (the trace's `crushed` column), or
+/// its box is inside one by more than [`super::platforms::CRUSH_DEPTH`] (as `crush_count` reads
+/// it from the geometry, for a backend without a crush event).
 pub const CRUSHED: u8 = 16;
 
 /// Every fault bit with the words the report shows for it.
@@ -46,7 +50,8 @@ pub fn frame_faults(ctx: &Context) -> Vec<u8> {
     let mut out: Vec<u8> = Vec::with_capacity(rows.len());
     for (k, r) in rows.iter().enumerate() {
         let mut f = 0;
-        if beyond_declared(ctx, &g, r) > INSIDE_TOLERANCE {
+        let in_platform = platform_overlap(ctx, k, r);
+        if beyond_declared(ctx, &g, r) > INSIDE_TOLERANCE || in_platform > INSIDE_TOLERANCE {
             f |= INSIDE;
         }
         // Step k - 1 produced row k.
@@ -64,7 +69,7 @@ pub fn frame_faults(ctx: &Context) -> Vec<u8> {
         if r.is_grounded() && !near {
             f |= FALSE_GROUNDED;
         }
-        if r.crushed != 0 {
+        if r.crushed != 0 || in_platform > CRUSH_DEPTH {
             f |= CRUSHED;
         }
         out.push(f);
@@ -176,5 +181,61 @@ mod tests {
             ]
         );
         assert_eq!(describe(INSIDE | CRUSHED), "inside a solid, crushed");
+    }
+
+    /// A box inside a platform rising at 1 tile/s: inside beyond 1e-3 tiles, crushed beyond
+    /// CRUSH_DEPTH (0.25), whatever the trace's crush column says.
+    #[test]
+    fn a_box_inside_a_platform_is_inside_then_crushed() {
+        let level = parse_level(
+            "name = \"m\"\nmap = \"\"\"\n..........\n..........\n##########\n\"\"\"\n[[platform]]\nrect = [4.0, 1.0, 2.0, 0.5]\npath = [[4.0, 1.0], [4.0, 3.0]]\nspeed = 1.0\n",
+            "m.toml",
+        )
+        .unwrap();
+        let spec = ScenarioSpec {
+            name: "s".into(),
+            spawn: Vec2::new(2.5, 1.0),
+            size: Vec2::new(0.8, 0.9),
+            velocity: Vec2::ZERO,
+            duration: 0.2,
+            dt: 0.1,
+            inputs: vec![],
+            motion: Default::default(),
+            expect_y: None,
+            ride: None,
+        };
+        // Feet at x 2.5 (clear), 3.7 (box edge 4.1: 0.1 into the platform), 4.5 (0.5 into it).
+        let row = |k: u32, x: f32| TraceRow {
+            frame: k,
+            t: k as f32 * 0.1,
+            character: 0,
+            x,
+            y: 1.0,
+            vx: 0.0,
+            vy: 0.0,
+            grounded: 1,
+            ground_nx: 0.0,
+            ground_ny: 1.0,
+            platform: None,
+            ladder: 0,
+            crushed: 0,
+        };
+        let trace = Trace {
+            level: "m".into(),
+            scenario: "s".into(),
+            backend: "fake".into(),
+            config: "default".into(),
+            rows: vec![row(0, 2.5), row(1, 3.7), row(2, 4.5)],
+        };
+        let params = MotionParams::default();
+        let f = frame_faults(&Context {
+            shape: CharacterShape::Cuboid,
+            level: &level,
+            spec: &spec,
+            params: &params,
+            trace: &trace,
+            declared: Default::default(),
+        });
+        assert_eq!(f, [0, INSIDE, INSIDE | CRUSHED]);
     }
 }

@@ -77,28 +77,33 @@ pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
-    let dt = ctx.spec.dt as f64;
     let deepest = rows
         .iter()
         .enumerate()
-        .flat_map(|(k, r)| {
-            let b = character_box(pos(r), ctx.spec.size);
-            ctx.level
-                .platforms
-                .iter()
-                .filter(|p| !p.one_way)
-                .map(move |p| {
-                    let pb = p.aabb(k as f64 * dt);
-                    let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
-                    o.x.min(o.y).max(0.0)
-                })
-        })
+        .map(|(k, r)| platform_overlap(ctx, k, r))
         .fold(0.0f32, f32::max);
     Some(Measure {
         metric: "push_penetration",
         value: deepest as f64,
         reference: 0.0,
     })
+}
+
+/// The deepest overlap of the character's box at row `r` (frame `k`) with a platform that is not
+/// one-way, in tiles (the smaller of the overlap's width and height; 0 if none).
+pub fn platform_overlap(ctx: &Context, k: usize, r: &TraceRow) -> f32 {
+    let b = character_box(pos(r), ctx.spec.size);
+    let t = k as f64 * ctx.spec.dt as f64;
+    ctx.level
+        .platforms
+        .iter()
+        .filter(|p| !p.one_way)
+        .map(|p| {
+            let pb = p.aabb(t);
+            let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
+            o.x.min(o.y).max(0.0)
+        })
+        .fold(0.0f32, f32::max)
 }
 
 /// Overlap with a moving platform beyond which the character counts as crushed (or run
@@ -113,15 +118,7 @@ pub fn crush_count(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
-    let dt = ctx.spec.dt as f64;
-    let inside = |k: usize| {
-        let b = character_box(pos(&rows[k]), ctx.spec.size);
-        ctx.level.platforms.iter().filter(|p| !p.one_way).any(|p| {
-            let pb = p.aabb(k as f64 * dt);
-            let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
-            o.x.min(o.y) > CRUSH_DEPTH
-        })
-    };
+    let inside = |k: usize| platform_overlap(ctx, k, &rows[k]) > CRUSH_DEPTH;
     let count = (1..rows.len())
         .filter(|&k| inside(k) && !inside(k - 1))
         .count();

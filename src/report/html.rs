@@ -252,7 +252,7 @@ pub fn render_report(
         }
     }
     let styles = styles(registry, &configs);
-    html.push_str("<h2>Scenarios</h2><p>Each scenario replays every configuration's run: <b>play</b> it in real time or slowed down, pause, or drag the scrubber; tick the configurations to show (by default the reference kind's listed configuration and the best and worst configuration of each other kind on that scenario, by the error score of its metrics). Each character is drawn with its real shape; moving platforms move. A character turns red, and its name in the list says why, on a faulty frame: inside a solid deeper than its configuration declares, stuck on open ground, airborne with the ground near after leaving it, grounded over air, or crushed. On the paths, red dots mark faulty frames and hollow dots airborne ones.</p>");
+    html.push_str("<h2>Scenarios</h2><p>Each scenario replays every configuration's run: <b>play</b> it in real time or slowed down, pause, or drag the scrubber; tick the configurations to show (by default the reference kind's listed configuration and the best and worst configuration of each other kind on that scenario, by the error score of its metrics). Each character is drawn with its real shape; moving platforms move. A character turns red, and its name in the list says why, on a faulty frame: inside a solid deeper than its configuration declares or inside a moving platform, stuck on open ground, airborne with the ground near after leaving it, grounded over air, or crushed. On the paths, red dots mark faulty frames and hollow dots airborne ones.</p>");
     md.push_str("\n## Scenarios\n\nReplays are in the HTML report. Shown by default:\n");
     for s in scenarios {
         let id = format!("{}.{}", s.level.name, s.spec.name);

@@ -39,13 +39,14 @@
         plats[j].setAttribute("y", p.y[k]);
       });
     }
-    function tick(now) {
+    // Timers, not animation frames: they also run under a headless browser's virtual time.
+    function tick() {
       if (!playing) return;
-      var t = t0 + (now - start) / 1000 * parseFloat(speed.value);
+      var t = t0 + (performance.now() - start) / 1000 * parseFloat(speed.value);
       var i = Math.floor(t / (d.dt * d.stride) + 1e-9);
       if (i >= n - 1) { show(n - 1); pause(); return; }
       if (i !== k) show(i);
-      requestAnimationFrame(tick);
+      setTimeout(tick, 1000 / 60);
     }
     function play() {
       if (k >= n - 1) show(0);
@@ -53,7 +54,7 @@
       button.textContent = "pause";
       t0 = k * d.stride * d.dt;
       start = performance.now();
-      requestAnimationFrame(tick);
+      setTimeout(tick, 1000 / 60);
     }
     function pause() { playing = false; button.textContent = "play"; }
     button.addEventListener("click", function () { if (playing) pause(); else play(); });
