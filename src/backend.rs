@@ -269,6 +269,18 @@ pub fn same_settings<T: PartialEq + 'static>(this: &T, other: &dyn BackendSettin
     other.as_any().downcast_ref::<T>() == Some(this)
 }
 
+/// Which of a kind's configurations the report's replay of a scenario shows by default (the
+/// reader can pick any other).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ShownByDefault {
+    /// These configuration labels, whatever they measure: the reference every other kind is
+    /// watched against.
+    Listed(Vec<&'static str>),
+    /// The kind's best and worst configuration on the scenario by the error score of its metrics
+    /// ([`crate::tradeoff::error_score`]): the range a user of that kind can expect.
+    BestAndWorst,
+}
+
 /// A kind of backend: a controller the harness knows. One [`crate::registry::Registry`] lists
 /// the kinds; the CLI and every command iterate it and never name a backend.
 pub trait BackendKind: Send + Sync {
@@ -301,10 +313,16 @@ pub trait BackendKind: Send + Sync {
             })
             .collect()
     }
-    /// The configurations drawn in the report's scenario pictures: `(config label, CSS
-    /// colour)` (default: none).
+    /// Configurations with a colour of their own in the report's scenario replays: `(config
+    /// label, CSS colour)` (default: none; the others get palette colours). Which are shown
+    /// before the reader picks is [`BackendKind::shown_by_default`].
     fn drawn(&self) -> Vec<(&'static str, &'static str)> {
         Vec::new()
+    }
+    /// Which of its configurations a scenario's replay in the report shows before the reader
+    /// picks others (default: the best and the worst of them on that scenario).
+    fn shown_by_default(&self) -> ShownByDefault {
+        ShownByDefault::BestAndWorst
     }
     /// Its colour in charts (a CSS colour).
     fn colour(&self) -> &'static str {

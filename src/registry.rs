@@ -7,7 +7,7 @@
 
 use std::sync::Arc;
 
-use crate::backend::BackendKind;
+use crate::backend::{BackendKind, ShownByDefault};
 use crate::metrics::MetricRow;
 use crate::scenario::RunConfig;
 use crate::tradeoff::Setting;
@@ -87,12 +87,59 @@ impl Registry {
             .collect()
     }
 
-    /// The configurations drawn in the report's pictures: `(backend, config, colour)`.
+    /// The configurations with a colour of their own in the report's replays: `(backend,
+    /// config, colour)`.
     pub fn drawn(&self) -> Vec<(&'static str, &'static str, &'static str)> {
         self.kinds
             .iter()
             .flat_map(|k| k.drawn().into_iter().map(|(c, col)| (k.name(), c, col)))
             .collect()
+    }
+
+    /// The configurations a scenario's replay in the report shows before the reader picks,
+    /// from `rows`, that scenario's metric rows: per kind in order, what its
+    /// [`BackendKind::shown_by_default`] asks for among the configurations that ran it. Each
+    /// entry is `(backend, config label)`.
+    pub fn shown_by_default(&self, rows: &[MetricRow]) -> Vec<(String, String)> {
+        let mut out = Vec::new();
+        for k in &self.kinds {
+            let mut configs: Vec<&str> = Vec::new();
+            for r in rows.iter().filter(|r| r.backend == k.name()) {
+                if !configs.contains(&r.config.as_str()) {
+                    configs.push(&r.config);
+                }
+            }
+            let picked: Vec<&str> = match k.shown_by_default() {
+                ShownByDefault::Listed(labels) => {
+                    labels.into_iter().filter(|l| configs.contains(l)).collect()
+                }
+                ShownByDefault::BestAndWorst => {
+                    let scored: Vec<(&str, f64)> = configs
+                        .iter()
+                        .map(|c| {
+                            let own: Vec<MetricRow> = rows
+                                .iter()
+                                .filter(|r| r.backend == k.name() && r.config == *c)
+                                .cloned()
+                                .collect();
+                            (*c, crate::tradeoff::error_score(&own))
+                        })
+                        .collect();
+                    // The first of equals is the best; the last of equals the worst.
+                    let best = scored.iter().reduce(|a, b| if b.1 < a.1 { b } else { a });
+                    let worst = scored.iter().reduce(|a, b| if b.1 >= a.1 { b } else { a });
+                    let mut p: Vec<&str> = best.into_iter().chain(worst).map(|x| x.0).collect();
+                    p.dedup();
+                    p
+                }
+            };
+            out.extend(
+                picked
+                    .into_iter()
+                    .map(|c| (k.name().to_string(), c.to_string())),
+            );
+        }
+        out
     }
 
     /// The chart colour of backend `name` (grey for a name no kind has).
@@ -106,5 +153,51 @@ impl Registry {
         let mut out: Vec<String> = self.kinds.iter().flat_map(|k| k.notes(rows)).collect();
         out.extend(crate::report::notes(rows));
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(backend: &str, config: &str, stuck: f64) -> MetricRow {
+        MetricRow {
+            level: "l".into(),
+            scenario: "s".into(),
+            backend: backend.into(),
+            config: config.into(),
+            metric: "stuck_frames",
+            value: stuck,
+            unit: "frames",
+            reference: 0.0,
+            error: stuck,
+        }
+    }
+
+    #[test]
+    fn replays_show_the_listed_reference_and_each_other_kinds_best_and_worst() {
+        // stuck_frames weighs 1 in the default score, min(1, |error| / 1 frame): below one frame
+        // (fractions, for the test), more is worse; at one and above every value scores 1.
+        let rows = [
+            row("sweep", "jump=continuous", 0.0),
+            row("sweep", "default", 9.0),
+            row("rapier", "a", 0.25),
+            row("rapier", "b", 0.0),
+            row("rapier", "c", 0.75),
+            row("rapier", "d", 0.5),
+        ];
+        let shown = Registry::builtin().shown_by_default(&rows);
+        let pair = |b: &str, c: &str| (b.to_string(), c.to_string());
+        assert_eq!(
+            shown,
+            [
+                pair("sweep", "default"),
+                pair("rapier", "b"),
+                pair("rapier", "c")
+            ]
+        );
+        // One configuration is both its kind's best and worst: shown once.
+        let one = Registry::builtin().shown_by_default(&rows[2..3]);
+        assert_eq!(one, [pair("rapier", "a")]);
     }
 }

@@ -1,4 +1,4 @@
-//! The HTML report as a reader gets it: self-contained, one picture per scenario, every drawn
+//! The HTML report as a reader gets it: self-contained, one replay per scenario, every
 //! backend's path in each.
 
 mod common;
@@ -16,12 +16,13 @@ fn report_is_self_contained_with_one_picture_per_scenario() {
     assert_success(&out);
     let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
     let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
-    // The Markdown twin lists each scenario as "- level.scenario".
+    // The Markdown twin lists each scenario as "- level.scenario: configurations shown".
     let scenarios = md
         .lines()
         .filter(|l| {
             l.strip_prefix("- ")
-                .is_some_and(|id| id.contains('.') && !id.contains(' '))
+                .and_then(|l| l.split_once(": "))
+                .is_some_and(|(id, _)| id.contains('.') && !id.contains(' '))
         })
         .count();
     let pictures = html.matches("<svg").count();
@@ -33,9 +34,18 @@ fn report_is_self_contained_with_one_picture_per_scenario() {
         assert!(svg.contains("class=\"path backend-sweep\""));
         assert!(svg.contains("class=\"path backend-rapier\""));
     }
-    // No scripts and nothing fetched from the network (the SVG namespace is only a name).
-    assert!(!html.contains("<script"));
+    // One inline script (the replay's, plus each replay's inline data) and nothing fetched
+    // from the network (the SVG namespace is only a name).
+    assert_eq!(html.matches("<script>").count(), 1);
+    assert_eq!(
+        html.matches("<script type=\"application/json\" class=\"replay-data\">")
+            .count(),
+        pictures
+    );
+    assert!(!html.contains("<script src"));
     assert!(!html.contains("src=\"http") && !html.contains("href=\"http"));
+    // Small enough to open at once: under 10 MB with every configuration's replay in it.
+    assert!(html.len() < 10_000_000, "{} bytes", html.len());
     assert!(html.contains("Which backend for which game"));
     for section in [
         "Landing and resting",

@@ -62,7 +62,7 @@ fn read_tradeoff(path: &std::path::Path) -> Result<Vec<crate::tradeoff::Tradeoff
 }
 
 pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
-    use crate::report::html::{render_report, Extras, ScenarioTraces};
+    use crate::report::html::{render_report, Extras, ReplayRun, ScenarioTraces};
     // The extra files first: a bad one fails before the long run.
     output::check_target(&args.out, output::Kind::Report, args.force)?;
     let extras = Extras {
@@ -79,29 +79,51 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
         },
     )?;
     let mut metrics: Vec<MetricRow> = Vec::new();
-    let mut per_scenario: Vec<(usize, usize, Vec<Trace>)> = Vec::new();
+    // Per scenario: each run's trace, shape, moved size and per-frame faults.
+    type Run = (Trace, crate::shape::CharacterShape, glam::Vec2, Vec<u8>);
+    let mut per_scenario: Vec<(usize, usize, Vec<Run>)> = Vec::new();
     let mut skipped: Vec<String> = Vec::new();
     for (li, level) in levels.iter().enumerate() {
         let mut runner = Runner::new(level);
         for (si, spec) in level.scenarios.iter().enumerate() {
-            let mut traces = Vec::new();
+            let mut runs = Vec::new();
             for run in &configs {
                 let Some(e) = evaluate_or_skip(&mut runner, spec, run, &mut skipped)? else {
                     continue;
                 };
                 metrics.extend(e.metrics);
-                traces.push(e.trace);
+                let faults = crate::metrics::with_context(
+                    level,
+                    spec,
+                    run,
+                    &e.trace,
+                    crate::metrics::faults::frame_faults,
+                );
+                runs.push((
+                    e.trace,
+                    run.shape(),
+                    run.backend.moved_size(spec.size),
+                    faults,
+                ));
             }
-            per_scenario.push((li, si, traces));
+            per_scenario.push((li, si, runs));
         }
         eprintln!("  {}", level.name);
     }
     let scenarios: Vec<ScenarioTraces> = per_scenario
         .iter()
-        .map(|(li, si, traces)| ScenarioTraces {
+        .map(|(li, si, runs)| ScenarioTraces {
             level: &levels[*li],
             spec: &levels[*li].scenarios[*si],
-            traces: traces.iter().collect(),
+            runs: runs
+                .iter()
+                .map(|(trace, shape, size, faults)| ReplayRun {
+                    trace,
+                    shape: *shape,
+                    size: *size,
+                    faults: faults.clone(),
+                })
+                .collect(),
         })
         .collect();
     let (html, md) = render_report(&h.registry, &metrics, &scenarios, &extras);

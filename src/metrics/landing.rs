@@ -162,38 +162,42 @@ pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) ->
 /// place, measured the same way as the overlap itself. Sunk below that stance, the difference
 /// counts. A controller keeping its promise scores 0.
 pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
-    let d = ctx.declared;
     let worst = rows
         .iter()
-        .map(|r| {
-            let p = pos(r);
-            let actual = g
-                .square_penetration(p)
-                .max(g.slope_penetration(p))
-                .max(g.penetration(p, r.t as f64, standing(r)));
-            let designed = if d.slope_overhang > 0.0 {
-                match ctx
-                    .level
-                    .surface_at(p.x, p.y + d.slope_overhang, 2.0 * d.slope_overhang)
-                {
-                    Some((h, _)) => {
-                        let stance = glam::Vec2::new(p.x, d.stance_height(h));
-                        g.square_penetration(stance)
-                            .max(g.slope_penetration(stance))
-                    }
-                    None => 0.0,
-                }
-            } else {
-                0.0
-            };
-            (actual - d.overlap_tolerance - designed).max(0.0)
-        })
+        .map(|r| beyond_declared(ctx, g, r))
         .fold(0.0f32, f32::max);
     Measure {
         metric: "penetration_beyond_declared",
         value: worst as f64,
         reference: 0.0,
     }
+}
+
+/// How much deeper than it declares the character of row `r` is inside the level's solid
+/// geometry, in tiles (see [`penetration_beyond_declared`]; 0 when it keeps its promise).
+pub fn beyond_declared(ctx: &Context, g: &Ground, r: &TraceRow) -> f32 {
+    let d = ctx.declared;
+    let p = pos(r);
+    let actual = g
+        .square_penetration(p)
+        .max(g.slope_penetration(p))
+        .max(g.penetration(p, r.t as f64, standing(r)));
+    let designed = if d.slope_overhang > 0.0 {
+        match ctx
+            .level
+            .surface_at(p.x, p.y + d.slope_overhang, 2.0 * d.slope_overhang)
+        {
+            Some((h, _)) => {
+                let stance = glam::Vec2::new(p.x, d.stance_height(h));
+                g.square_penetration(stance)
+                    .max(g.slope_penetration(stance))
+            }
+            None => 0.0,
+        }
+    } else {
+        0.0
+    };
+    (actual - d.overlap_tolerance - designed).max(0.0)
 }
 
 /// `bounce_frames`: in the final idle span (no input, as [`rest_frames`] finds it), the frames
@@ -246,7 +250,7 @@ pub(super) fn rest_jitter(rows: &[TraceRow]) -> Measure {
 
 /// Whether the character's shape is within [`FLICKER_SUPPORT_TOLERANCE`] of the ground (or in
 /// it).
-pub(super) fn supported(g: &Ground, r: &TraceRow) -> bool {
+pub fn supported(g: &Ground, r: &TraceRow) -> bool {
     g.gap_at(pos(r), r.t as f64, standing(r)) <= FLICKER_SUPPORT_TOLERANCE
 }
 

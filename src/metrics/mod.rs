@@ -11,6 +11,7 @@
 //! `max_penetration`, `grounded_flicker`, `stuck_frames` and `tunneled` apply to every scenario.
 //! Only character 0 is measured.
 
+pub mod faults;
 pub mod ground;
 pub mod idle;
 pub mod jumping;
@@ -208,24 +209,34 @@ pub fn evaluate_with(
     spec: &ScenarioSpec,
     run: &crate::scenario::RunConfig,
 ) -> Result<Evaluation, crate::backend::BackendError> {
-    let level = runner.level();
     let trace = runner.run(spec, run)?;
+    let metrics = with_context(runner.level(), spec, run, &trace, compute);
+    Ok(Evaluation { trace, metrics })
+}
+
+/// Calls `f` with the context the metrics read for `trace`, a run of `spec` on `run`: the
+/// scenario's effective parameters, and the box the configuration really moves (integer
+/// positions round it up to whole subpixels) with the contact it declares for it.
+pub fn with_context<R>(
+    level: &Level,
+    spec: &ScenarioSpec,
+    run: &crate::scenario::RunConfig,
+    trace: &Trace,
+    f: impl FnOnce(&Context) -> R,
+) -> R {
     let params = crate::scenario::effective_params(&run.params, spec);
-    // Measured on the box the configuration really moves (integer positions round it up to
-    // whole subpixels).
     let mut moved = spec.clone();
     moved.size = run.backend.moved_size(spec.size);
-    let metrics = compute(&Context {
+    f(&Context {
         shape: run.shape(),
         level,
         spec: &moved,
         params: &params,
-        trace: &trace,
+        trace,
         declared: run
             .backend
             .declared_contact(moved.size, params.max_climb_angle),
-    });
-    Ok(Evaluation { trace, metrics })
+    })
 }
 
 #[cfg(test)]

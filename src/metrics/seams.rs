@@ -69,33 +69,39 @@ pub const STUCK_FLOOR_BAND: f32 = 0.05;
 /// grounded, and moved less than [`STUCK_FRACTION`] of the commanded step, while nothing in the
 /// level blocked that step (a wall being pushed against is not "stuck").
 pub fn stuck_frames(ctx: &Context, rows: &[TraceRow]) -> Measure {
-    let script = input_script(ctx.spec);
-    let commanded = commanded_steps(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt);
-    let size = ctx.spec.size;
-    let mut count = 0u32;
-    for (k, step) in commanded.iter().enumerate() {
-        let (Some(before), Some(after)) = (rows.get(k), rows.get(k + 1)) else {
-            break;
-        };
-        if script[k].horizontal() == 0.0 || !after.is_grounded() || step.abs() < 1e-9 {
-            continue;
-        }
-        if ((after.x - before.x) as f64).abs() >= STUCK_FRACTION * step.abs() {
-            continue;
-        }
-        // The box moved by the commanded step, lifted out of the floor band.
-        let mut ahead = character_box(pos(before) + Vec2::new(*step as f32, 0.0), size);
-        ahead.mins.y += STUCK_FLOOR_BAND;
-        let dir = step.signum() as f32;
-        let steep_ahead = steep_columns(ctx, dir)
-            .any(|i| (i as f32) < ahead.maxs.x && (i as f32 + 1.0) > ahead.mins.x);
-        if ctx.level.solids_overlapping(&ahead).next().is_none() && !steep_ahead {
-            count += 1;
-        }
-    }
+    let count = stuck_steps(ctx, rows).iter().filter(|s| **s).count();
     Measure {
         metric: "stuck_frames",
         value: count as f64,
         reference: 0.0,
     }
+}
+
+/// Per step `k` (from row `k` to row `k + 1`), whether it was stuck as [`stuck_frames`] counts
+/// it; one entry per step the script and the rows both cover.
+pub fn stuck_steps(ctx: &Context, rows: &[TraceRow]) -> Vec<bool> {
+    let script = input_script(ctx.spec);
+    let commanded = commanded_steps(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt);
+    let size = ctx.spec.size;
+    let mut out = Vec::with_capacity(commanded.len());
+    for (k, step) in commanded.iter().enumerate() {
+        let (Some(before), Some(after)) = (rows.get(k), rows.get(k + 1)) else {
+            break;
+        };
+        let stuck = script[k].horizontal() != 0.0
+            && after.is_grounded()
+            && step.abs() >= 1e-9
+            && ((after.x - before.x) as f64).abs() < STUCK_FRACTION * step.abs()
+            && {
+                // The box moved by the commanded step, lifted out of the floor band.
+                let mut ahead = character_box(pos(before) + Vec2::new(*step as f32, 0.0), size);
+                ahead.mins.y += STUCK_FLOOR_BAND;
+                let dir = step.signum() as f32;
+                let steep_ahead = steep_columns(ctx, dir)
+                    .any(|i| (i as f32) < ahead.maxs.x && (i as f32 + 1.0) > ahead.mins.x);
+                ctx.level.solids_overlapping(&ahead).next().is_none() && !steep_ahead
+            };
+        out.push(stuck);
+    }
+    out
 }

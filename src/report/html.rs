@@ -1,202 +1,17 @@
-//! The "pick a backend" report: one self-contained HTML file (inline SVG and CSS, no script, no
-//! network) and a Markdown twin. Per behaviour, a table of every configuration's worst value
-//! with the best marked and the measured reasons; per scenario, a drawing of the level with each
-//! drawn configuration's trajectory; and a closing "which backend for which game" derived from
-//! the numbers.
+//! The "pick a backend" report: one self-contained HTML file (inline SVG, CSS and one small
+//! script, nothing fetched) and a Markdown twin. Per behaviour, a table of every configuration's
+//! worst value with the best marked and the measured reasons; per scenario, a replay of every
+//! configuration's run over the level ([`super::replay`]); and a closing "which backend for which
+//! game" derived from the numbers.
 
 use std::fmt::Write as _;
 
-use glam::Vec2;
-use svg::node::element::{Circle, Group, Polygon, Polyline, Rectangle, Title};
-use svg::Document;
-
+use super::replay::{escape, scenario_replay, styles};
+pub use super::replay::{ReplayRun, ScenarioTraces};
 use super::{format_setting, format_value, worst_matrix};
-use crate::level::{Level, ScenarioSpec, Tile};
-use crate::metrics::ground::Ground;
 use crate::metrics::{registry, Behaviour, MetricRow};
-use crate::shape::CharacterShape;
 use crate::stress::{envelope, Envelope, StressRow};
-use crate::trace::Trace;
 use crate::tradeoff::{chart_svg, TradeoffRow};
-
-/// A configuration drawn in the scenario pictures: `(backend, config label, CSS colour)`, as
-/// [`crate::registry::Registry::drawn`] lists them.
-pub type Drawn = (&'static str, &'static str, &'static str);
-
-/// One scenario and its traces (any configurations; those the registry lists in
-/// [`crate::registry::Registry::drawn`] are drawn).
-pub struct ScenarioTraces<'a> {
-    /// The level.
-    pub level: &'a Level,
-    /// The scenario.
-    pub spec: &'a ScenarioSpec,
-    /// Its traces.
-    pub traces: Vec<&'a Trace>,
-}
-
-/// Pixels per tile in the pictures.
-const SCALE: f32 = 22.0;
-/// Largest picture width, in tiles: long levels are cropped around the trajectories.
-const MAX_TILES: f32 = 60.0;
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-}
-
-/// The level around the scenario with each drawn configuration's path. Airborne frames are
-/// hollow dots; frames where the character's shape is inside the level's solid geometry (tiles
-/// or slopes, as `max_penetration` measures it, more than 1e-3 tiles) are red dots.
-pub fn scenario_svg(s: &ScenarioTraces, drawn: &[Drawn]) -> String {
-    let level = s.level;
-    let size = s.spec.size;
-    let drawn: Vec<(&Trace, &str)> = drawn
-        .iter()
-        .filter_map(|(b, c, colour)| {
-            s.traces
-                .iter()
-                .find(|t| t.backend == *b && t.config == *c)
-                .map(|t| (*t, *colour))
-        })
-        .collect();
-    // The area to draw: the paths and the spawn, padded, within the level.
-    let (mut lo, mut hi) = (s.spec.spawn, s.spec.spawn + size);
-    for (t, _) in &drawn {
-        for r in &t.rows {
-            if r.x.is_finite() && r.y.is_finite() {
-                lo = lo.min(Vec2::new(r.x - size.x, r.y));
-                hi = hi.max(Vec2::new(r.x + size.x, r.y + size.y));
-            }
-        }
-    }
-    let lo = (lo - Vec2::splat(3.0)).max(Vec2::ZERO).floor();
-    let mut hi = (hi + Vec2::splat(3.0))
-        .min(Vec2::new(level.width as f32, level.height as f32))
-        .ceil();
-    hi.x = hi.x.min(lo.x + MAX_TILES);
-    let (w, h) = (hi.x - lo.x, hi.y - lo.y);
-    let to_px = |p: Vec2| ((p.x - lo.x) * SCALE, (hi.y - p.y) * SCALE);
-    let mut doc = Document::new()
-        .set("width", w * SCALE)
-        .set("height", h * SCALE)
-        .set("viewBox", (0, 0, w * SCALE, h * SCALE))
-        .set("class", "scenario");
-    let mut tiles = Group::new().set("class", "tiles");
-    for r in level.merged_solid_rects() {
-        if r.maxs.x <= lo.x || r.mins.x >= hi.x || r.maxs.y <= lo.y || r.mins.y >= hi.y {
-            continue;
-        }
-        let (x, y) = to_px(Vec2::new(r.mins.x, r.maxs.y));
-        tiles = tiles.add(
-            Rectangle::new()
-                .set("x", x)
-                .set("y", y)
-                .set("width", (r.maxs.x - r.mins.x) * SCALE)
-                .set("height", (r.maxs.y - r.mins.y) * SCALE)
-                .set("fill", "#8d8d8d"),
-        );
-    }
-    for j in lo.y as i64..hi.y as i64 {
-        for i in lo.x as i64..hi.x as i64 {
-            let o = Vec2::new(i as f32, j as f32);
-            match level.tile(i, j) {
-                Tile::Slope(slope) => {
-                    let pts: Vec<(f32, f32)> =
-                        slope.outline().iter().map(|p| to_px(*p + o)).collect();
-                    tiles = tiles.add(Polygon::new().set("points", pts).set("fill", "#a1887f"));
-                }
-                Tile::OneWay => {
-                    let (x, y) = to_px(o + Vec2::Y);
-                    tiles = tiles.add(
-                        Rectangle::new()
-                            .set("x", x)
-                            .set("y", y)
-                            .set("width", SCALE)
-                            .set("height", SCALE * 0.2)
-                            .set("fill", "#6d4c41"),
-                    );
-                }
-                Tile::Ladder => {
-                    let (x, y) = to_px(o + Vec2::new(0.25, 1.0));
-                    tiles = tiles.add(
-                        Rectangle::new()
-                            .set("x", x)
-                            .set("y", y)
-                            .set("width", SCALE * 0.5)
-                            .set("height", SCALE)
-                            .set("fill", "none")
-                            .set("stroke", "#795548"),
-                    );
-                }
-                _ => {}
-            }
-        }
-    }
-    for p in &level.platforms {
-        let b = p.aabb(0.0);
-        let (x, y) = to_px(Vec2::new(b.mins.x, b.maxs.y));
-        tiles = tiles.add(
-            Rectangle::new()
-                .set("x", x)
-                .set("y", y)
-                .set("width", p.size.x * SCALE)
-                .set("height", p.size.y * SCALE)
-                .set("fill", "#cfd8dc")
-                .set("stroke", "#455a64")
-                .set("stroke-dasharray", "3,2"),
-        );
-    }
-    doc = doc.add(tiles);
-    for (t, colour) in &drawn {
-        // The configuration's shape: the sweep's box, or the shape its Rapier label names.
-        let shape = t
-            .config
-            .rsplit(' ')
-            .next()
-            .and_then(CharacterShape::from_label)
-            .unwrap_or(CharacterShape::Cuboid);
-        let ground = Ground::new(level, shape, size);
-        let pts: Vec<(f32, f32)> = t
-            .rows
-            .iter()
-            .map(|r| to_px(Vec2::new(r.x, r.y + size.y * 0.5)))
-            .collect();
-        let mut g = Group::new()
-            .set("class", format!("path backend-{}", t.backend))
-            .set("data-config", t.config.clone())
-            .add(Title::new(format!("{} {}", t.backend, t.config)))
-            .add(
-                Polyline::new()
-                    .set("points", pts)
-                    .set("fill", "none")
-                    .set("stroke", *colour)
-                    .set("stroke-opacity", 0.75)
-                    .set("stroke-width", 2),
-            );
-        for (k, r) in t.rows.iter().enumerate() {
-            let centre = Vec2::new(r.x, r.y + size.y * 0.5);
-            let inside = ground.penetration(
-                Vec2::new(r.x, r.y),
-                r.t as f64,
-                r.is_grounded() && r.ladder == 0,
-            ) > 1e-3;
-            if inside || (!r.is_grounded() && k % 4 == 0) {
-                let (x, y) = to_px(centre);
-                g = g.add(
-                    Circle::new()
-                        .set("cx", x)
-                        .set("cy", y)
-                        .set("r", 1.8)
-                        .set("fill", if inside { "#d50000" } else { "none" })
-                        .set("stroke", if inside { "#d50000" } else { *colour }),
-                );
-            }
-        }
-        doc = doc.add(g);
-    }
-    doc.to_string()
-}
 
 /// The metric table of one behaviour, as HTML rows and as Markdown.
 fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, String)> {
@@ -529,7 +344,9 @@ pub fn render_report(
 ) -> (String, String) {
     let mut html = String::new();
     let mut md = String::new();
-    html.push_str("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>platbench report</title><style>\nbody{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\ntable{border-collapse:collapse;margin:0.5em 0 1em;font-size:13px}\nth,td{border:1px solid #ccc;padding:3px 6px;text-align:right}\nth:first-child,td:first-child{text-align:left}\ntd.best{background:#c8e6c9;font-weight:bold}\ntr.ideal td{color:#777;font-style:italic}\nsvg.scenario{background:#fafafa;border:1px solid #ddd;max-width:100%;height:auto}\n.legend span{display:inline-block;margin-right:1em}\n.legend i{display:inline-block;width:1.5em;height:3px;vertical-align:middle;margin-right:0.3em}\n</style></head><body>\n");
+    html.push_str("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>platbench report</title><style>\nbody{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\ntable{border-collapse:collapse;margin:0.5em 0 1em;font-size:13px}\nth,td{border:1px solid #ccc;padding:3px 6px;text-align:right}\nth:first-child,td:first-child{text-align:left}\ntd.best{background:#c8e6c9;font-weight:bold}\ntr.ideal td{color:#777;font-style:italic}\nsvg.scenario{background:#fafafa;border:1px solid #ddd;max-width:100%;height:auto}\n.legend span{display:inline-block;margin-right:1em}\n.legend i{display:inline-block;width:1.5em;height:3px;vertical-align:middle;margin-right:0.3em}\n");
+    html.push_str(super::replay::STYLE);
+    html.push_str("</style></head><body>\n");
     let configs = worst_matrix(rows, |_| false).configs.len();
     let _ = write!(html, "<h1>platbench report</h1><p>{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; the best is highlighted.</p>", scenarios.len());
     let _ = write!(md, "# platbench report\n\n{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; **best** marks the best.\n", scenarios.len());
@@ -542,7 +359,6 @@ pub fn render_report(
     html.push_str("</ul><h2>By behaviour</h2>");
     md.push_str("\n## By behaviour\n");
     let all_notes = registry.notes(rows);
-    let drawn = registry.drawn();
     for b in Behaviour::ALL.into_iter().filter(|b| *b != Behaviour::Cost) {
         let title = b.title();
         let metrics: Vec<&str> = registry::of_behaviour(b).map(|d| d.name).collect();
@@ -568,22 +384,40 @@ pub fn render_report(
         html.push_str(&h);
         md.push_str(&m);
     }
-    html.push_str("<h2>Scenarios</h2><p class=\"legend\">");
-    md.push_str("\n## Scenarios\n\nPictures are in the HTML report. Paths:");
-    for (b, c, colour) in &drawn {
-        let _ = write!(
-            html,
-            "<span><i style=\"background:{colour}\"></i>{b} {c}</span>"
-        );
-        let _ = write!(md, " {b} {c} ({colour});");
+    // Every configuration that ran, in run order, each with one colour in every picture.
+    let mut configs: Vec<(String, String)> = Vec::new();
+    for s in scenarios {
+        for r in &s.runs {
+            let key = (r.trace.backend.clone(), r.trace.config.clone());
+            if !configs.contains(&key) {
+                configs.push(key);
+            }
+        }
     }
-    html.push_str("<span>hollow dots: airborne; red dots: inside a solid tile or slope</span></p>");
-    md.push('\n');
+    let styles = styles(registry, &configs);
+    html.push_str("<h2>Scenarios</h2><p>Each scenario replays every configuration's run: <b>play</b> it in real time or slowed down, pause, or drag the scrubber; tick the configurations to show (by default the reference kind's listed configuration and the best and worst configuration of each other kind on that scenario, by the error score of its metrics). Each character is drawn with its real shape; moving platforms move. A character turns red, and its name in the list says why, on a faulty frame: inside a solid deeper than its configuration declares or inside a moving platform, stuck on open ground, airborne with the ground near after leaving it, grounded over air, or crushed. On the paths, red dots mark faulty frames and hollow dots airborne ones.</p>");
+    md.push_str("\n## Scenarios\n\nReplays are in the HTML report. Shown by default:\n");
     for s in scenarios {
         let id = format!("{}.{}", s.level.name, s.spec.name);
-        let _ = write!(html, "<h3 id=\"{id}\">{id}</h3>{}", scenario_svg(s, &drawn));
-        let _ = writeln!(md, "- {id}");
+        let scenario_rows: Vec<MetricRow> = rows
+            .iter()
+            .filter(|r| r.level == s.level.name && r.scenario == s.spec.name)
+            .cloned()
+            .collect();
+        let shown = registry.shown_by_default(&scenario_rows);
+        let _ = write!(
+            html,
+            "<h3 id=\"{id}\">{id}</h3>{}",
+            scenario_replay(&id, s, &styles, &shown)
+        );
+        let list = shown
+            .iter()
+            .map(|(b, c)| format!("{b} {c}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let _ = writeln!(md, "- {id}: {list}");
     }
+    let _ = write!(html, "<script>{}</script>", super::replay::SCRIPT);
     html.push_str("\n</body></html>\n");
     (html, md)
 }

@@ -4,6 +4,7 @@
 
 pub mod diff;
 pub mod html;
+pub mod replay;
 pub mod rules;
 
 use comfy_table::{presets, CellAlignment, Table};

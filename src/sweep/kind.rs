@@ -10,7 +10,7 @@ use glam::Vec2;
 use super::{Positions, SweepBackend, SweepConfig, INTEGER_SUPPORTED};
 use crate::backend::{
     require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
-    DeclaredContact, SharedGeometry,
+    DeclaredContact, SharedGeometry, ShownByDefault,
 };
 use crate::level::{Features, Level};
 use crate::metrics::MetricRow;
@@ -249,6 +249,11 @@ impl BackendKind for SweepKind {
 
     fn drawn(&self) -> Vec<(&'static str, &'static str)> {
         vec![("default", "#1565c0")]
+    }
+
+    fn shown_by_default(&self) -> ShownByDefault {
+        // The reference the report's replays watch every other controller against.
+        ShownByDefault::Listed(vec!["default"])
     }
 
     fn colour(&self) -> &'static str {

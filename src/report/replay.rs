@@ -1,0 +1,481 @@
+//! The report's scenario pictures and their replay: the level with each configuration's path,
+//! and its character (its real shape) moving along the trace with the moving platforms, played
+//! by a small inline script (real time or slowed, pause, a scrubber, a picker of the shown
+//! configurations, faulty frames marked). Everything is inline: the page fetches nothing.
+
+use std::fmt::Write as _;
+
+use glam::Vec2;
+use svg::node::element::{Circle, Group, Polygon, Polyline, Rectangle, Title};
+use svg::Document;
+
+use crate::level::{Level, ScenarioSpec, Tile};
+use crate::metrics::faults;
+use crate::shape::CharacterShape;
+use crate::trace::{Trace, TraceRow};
+
+/// One configuration's run of a scenario, as the replay draws it.
+pub struct ReplayRun<'a> {
+    /// The trace (character 0 is drawn).
+    pub trace: &'a Trace,
+    /// The character's collision shape in this configuration.
+    pub shape: CharacterShape,
+    /// The outer size of the box the configuration really moves, in tiles.
+    pub size: Vec2,
+    /// Fault bits of each of character 0's rows ([`crate::metrics::faults`]), in frame order.
+    pub faults: Vec<u8>,
+}
+
+/// One scenario and its runs (any configurations; the picker offers them all).
+pub struct ScenarioTraces<'a> {
+    /// The level.
+    pub level: &'a Level,
+    /// The scenario.
+    pub spec: &'a ScenarioSpec,
+    /// Its runs, in the order of the configurations.
+    pub runs: Vec<ReplayRun<'a>>,
+}
+
+/// How a configuration appears in every picture: its key `(backend, config label)` and colour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Style {
+    /// Backend name.
+    pub backend: String,
+    /// Configuration label.
+    pub config: String,
+    /// CSS colour.
+    pub colour: String,
+}
+
+/// Pixels per tile in the pictures.
+const SCALE: f32 = 22.0;
+/// Largest picture width, in tiles: long levels are cropped around the trajectories.
+const MAX_TILES: f32 = 60.0;
+/// Most frames drawn per scenario: longer runs are drawn every `k`-th frame (the metrics and
+/// the fault marks still read every frame: a drawn frame carries the faults of the frames it
+/// stands for). 400 frames keep the built-in report under 10 MB with every configuration in it
+/// (`platbench report` prints the size) and play at 30 or more drawn frames per second of a
+/// scenario up to 13 s long.
+pub const MAX_DRAWN_FRAMES: usize = 400;
+
+/// Colours for the configurations a kind gives none ([`crate::backend::BackendKind::drawn`]),
+/// handed out in order.
+const PALETTE: [&str; 16] = [
+    "#6a1b9a", "#00838f", "#ad1457", "#4e342e", "#283593", "#558b2f", "#ff8f00", "#37474f",
+    "#d81b60", "#00695c", "#8d6e63", "#7b1fa2", "#0277bd", "#827717", "#bf360c", "#1b5e20",
+];
+
+/// The style of every configuration in `configs` (`(backend, config label)`, in run order): the
+/// colour its kind draws it in, else the next palette colour no kind uses.
+pub fn styles(registry: &crate::registry::Registry, configs: &[(String, String)]) -> Vec<Style> {
+    let fixed = registry.drawn();
+    let mut free = PALETTE
+        .iter()
+        .filter(|c| !fixed.iter().any(|(_, _, f)| f == *c))
+        .cycle();
+    configs
+        .iter()
+        .map(|(b, c)| {
+            let colour = fixed
+                .iter()
+                .find(|(fb, fc, _)| fb == b && fc == c)
+                .map(|(_, _, col)| col.to_string())
+                .or_else(|| free.next().map(|c| c.to_string()))
+                .unwrap_or_else(|| registry.colour(b).to_string());
+            Style {
+                backend: b.clone(),
+                config: c.clone(),
+                colour,
+            }
+        })
+        .collect()
+}
+
+/// Text escaped for HTML content and attribute values.
+pub(crate) fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// The drawing stride of a run of `frames` frames: every frame up to [`MAX_DRAWN_FRAMES`].
+pub fn stride(frames: usize) -> usize {
+    frames.div_ceil(MAX_DRAWN_FRAMES).max(1)
+}
+
+/// The frames drawn for a run of `frames` frames with `stride`: every `stride`-th, and the last.
+fn drawn_frames(frames: usize, stride: usize) -> impl Iterator<Item = usize> {
+    let n = if frames == 0 {
+        0
+    } else {
+        (frames - 1).div_ceil(stride) + 1
+    };
+    (0..n).map(move |k| (k * stride).min(frames.saturating_sub(1)))
+}
+
+/// The picture of one scenario with its replay: the level, each configuration's path (faulty
+/// frames as red dots, airborne ones hollow), each character's shape and the platforms at frame
+/// 0, the controls, the picker, and the drawn frames as inline JSON for the script. `shown`
+/// lists the configurations visible before the reader picks.
+pub fn scenario_replay(
+    id: &str,
+    s: &ScenarioTraces,
+    styles: &[Style],
+    shown: &[(String, String)],
+) -> String {
+    let level = s.level;
+    let rows: Vec<(Vec<&TraceRow>, &ReplayRun, &Style)> = s
+        .runs
+        .iter()
+        .filter_map(|r| {
+            let style = styles
+                .iter()
+                .find(|st| st.backend == r.trace.backend && st.config == r.trace.config)?;
+            Some((r.trace.character(0).collect(), r, style))
+        })
+        .collect();
+    let frames = rows.iter().map(|(r, _, _)| r.len()).max().unwrap_or(0);
+    let stride = stride(frames);
+    let picked: Vec<usize> = drawn_frames(frames, stride).collect();
+    // The area to draw: the paths and the spawn, padded, within the level.
+    let size = s.spec.size;
+    let (mut lo, mut hi) = (s.spec.spawn, s.spec.spawn + size);
+    for (rs, run, _) in &rows {
+        for r in rs {
+            if r.x.is_finite() && r.y.is_finite() {
+                lo = lo.min(Vec2::new(r.x - run.size.x, r.y));
+                hi = hi.max(Vec2::new(r.x + run.size.x, r.y + run.size.y));
+            }
+        }
+    }
+    let lo = (lo - Vec2::splat(3.0)).max(Vec2::ZERO).floor();
+    let mut hi = (hi + Vec2::splat(3.0))
+        .min(Vec2::new(level.width as f32, level.height as f32))
+        .ceil();
+    hi.x = hi.x.min(lo.x + MAX_TILES);
+    let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+    let to_px = |p: Vec2| ((p.x - lo.x) * SCALE, (hi.y - p.y) * SCALE);
+    let mut doc = Document::new()
+        .set("width", w * SCALE)
+        .set("height", h * SCALE)
+        .set("viewBox", (0, 0, w * SCALE, h * SCALE))
+        .set("class", "scenario");
+    doc = doc.add(level_group(level, lo, hi, &to_px));
+    // Platforms at frame 0 (the script moves them).
+    let mut plats = Group::new().set("class", "platforms");
+    for p in &level.platforms {
+        let b = p.aabb(0.0);
+        let (x, y) = to_px(Vec2::new(b.mins.x, b.maxs.y));
+        plats = plats.add(
+            Rectangle::new()
+                .set("class", "platform")
+                .set("x", x)
+                .set("y", y)
+                .set("width", p.size.x * SCALE)
+                .set("height", p.size.y * SCALE)
+                .set("fill", "#cfd8dc")
+                .set("stroke", "#455a64")
+                .set("stroke-dasharray", "3,2"),
+        );
+    }
+    doc = doc.add(plats);
+    let is_shown = |t: &Trace| shown.iter().any(|(b, c)| *b == t.backend && *c == t.config);
+    for (k, (rs, run, style)) in rows.iter().enumerate() {
+        let t = run.trace;
+        let colour = style.colour.as_str();
+        let pts: Vec<(f32, f32)> = picked
+            .iter()
+            .filter_map(|&f| rs.get(f))
+            .map(|r| to_px(Vec2::new(r.x, r.y + run.size.y * 0.5)))
+            .collect();
+        let mut g = Group::new()
+            .set("class", format!("path backend-{}", t.backend))
+            .set("data-k", k)
+            .set("data-config", t.config.clone())
+            .add(Title::new(format!("{} {}", t.backend, t.config)))
+            .add(
+                Polyline::new()
+                    .set("points", pts)
+                    .set("fill", "none")
+                    .set("stroke", colour)
+                    .set("stroke-opacity", 0.6)
+                    .set("stroke-width", 1.5),
+            );
+        if !is_shown(t) {
+            g = g.set("display", "none");
+        }
+        for (i, &f) in picked.iter().enumerate() {
+            let Some(r) = rs.get(f) else { break };
+            let bad = frame_faults(&run.faults, &picked, i) != 0;
+            if bad || (!r.is_grounded() && i % 4 == 0) {
+                let (x, y) = to_px(Vec2::new(r.x, r.y + run.size.y * 0.5));
+                g = g.add(
+                    Circle::new()
+                        .set("cx", x)
+                        .set("cy", y)
+                        .set("r", 1.8)
+                        .set("fill", if bad { "#d50000" } else { "none" })
+                        .set("stroke", if bad { "#d50000" } else { colour }),
+                );
+            }
+        }
+        doc = doc.add(g);
+    }
+    // The characters at frame 0, on top of every path.
+    for (k, (rs, run, style)) in rows.iter().enumerate() {
+        let (x, y) = rs.first().map_or((0.0, 0.0), |r| {
+            to_px(Vec2::new(r.x, r.y + run.size.y * 0.5))
+        });
+        let mut g = Group::new()
+            .set("class", "body")
+            .set("data-k", k)
+            .set("transform", format!("translate({x:.1},{y:.1})"))
+            .set("fill", style.colour.as_str())
+            .set("fill-opacity", 0.45)
+            .set("stroke", style.colour.as_str())
+            .set("stroke-width", 1.5)
+            .add(shape_element(run.shape, run.size));
+        if !is_shown(run.trace) {
+            g = g.set("display", "none");
+        }
+        doc = doc.add(g);
+    }
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        "<div class=\"replay\" id=\"replay-{id}\"><div class=\"controls\"><button type=\"button\" class=\"play\">play</button> <select class=\"speed\" title=\"speed\"><option value=\"1\">real time</option><option value=\"0.5\">1/2 speed</option><option value=\"0.25\">1/4 speed</option><option value=\"0.1\">1/10 speed</option></select> <input type=\"range\" class=\"scrub\" min=\"0\" max=\"{}\" value=\"0\" step=\"1\"> <span class=\"clock\"></span></div>",
+        picked.len().saturating_sub(1)
+    );
+    out.push_str(&doc.to_string());
+    out.push_str("<div class=\"picker\">");
+    for (k, (_, run, style)) in rows.iter().enumerate() {
+        let t = run.trace;
+        let _ = write!(
+            out,
+            "<label><input type=\"checkbox\" data-k=\"{k}\"{}><i style=\"background:{}\"></i>{} {} <span class=\"fault\"></span></label>",
+            if is_shown(t) { " checked" } else { "" },
+            escape(&style.colour),
+            escape(&t.backend),
+            escape(&t.config)
+        );
+    }
+    out.push_str("</div><script type=\"application/json\" class=\"replay-data\">");
+    out.push_str(&replay_json(s, &rows, &picked, stride, &to_px));
+    out.push_str("</script></div>");
+    out
+}
+
+/// The fault bits of drawn frame `i`: those of every frame it stands for (since the drawn frame
+/// before it), so subsampling the drawing never hides a fault.
+fn frame_faults(faults: &[u8], picked: &[usize], i: usize) -> u8 {
+    let from = if i == 0 { 0 } else { picked[i - 1] + 1 };
+    let to = picked[i];
+    faults
+        .get(from..=to.min(faults.len().saturating_sub(1)))
+        .unwrap_or(&[])
+        .iter()
+        .fold(0, |a, b| a | b)
+}
+
+/// The solid tiles, slopes, one-way platforms and ladders between `lo` and `hi`.
+fn level_group(level: &Level, lo: Vec2, hi: Vec2, to_px: &impl Fn(Vec2) -> (f32, f32)) -> Group {
+    let mut tiles = Group::new().set("class", "tiles");
+    for r in level.merged_solid_rects() {
+        if r.maxs.x <= lo.x || r.mins.x >= hi.x || r.maxs.y <= lo.y || r.mins.y >= hi.y {
+            continue;
+        }
+        let (x, y) = to_px(Vec2::new(r.mins.x, r.maxs.y));
+        tiles = tiles.add(
+            Rectangle::new()
+                .set("x", x)
+                .set("y", y)
+                .set("width", (r.maxs.x - r.mins.x) * SCALE)
+                .set("height", (r.maxs.y - r.mins.y) * SCALE)
+                .set("fill", "#8d8d8d"),
+        );
+    }
+    for j in lo.y as i64..hi.y as i64 {
+        for i in lo.x as i64..hi.x as i64 {
+            let o = Vec2::new(i as f32, j as f32);
+            match level.tile(i, j) {
+                Tile::Slope(slope) => {
+                    let pts: Vec<(f32, f32)> =
+                        slope.outline().iter().map(|p| to_px(*p + o)).collect();
+                    tiles = tiles.add(Polygon::new().set("points", pts).set("fill", "#a1887f"));
+                }
+                Tile::OneWay => {
+                    let (x, y) = to_px(o + Vec2::Y);
+                    tiles = tiles.add(
+                        Rectangle::new()
+                            .set("x", x)
+                            .set("y", y)
+                            .set("width", SCALE)
+                            .set("height", SCALE * 0.2)
+                            .set("fill", "#6d4c41"),
+                    );
+                }
+                Tile::Ladder => {
+                    let (x, y) = to_px(o + Vec2::new(0.25, 1.0));
+                    tiles = tiles.add(
+                        Rectangle::new()
+                            .set("x", x)
+                            .set("y", y)
+                            .set("width", SCALE * 0.5)
+                            .set("height", SCALE)
+                            .set("fill", "none")
+                            .set("stroke", "#795548"),
+                    );
+                }
+                _ => {}
+            }
+        }
+    }
+    tiles
+}
+
+/// The character's shape around its centre, in pixels, as [`CharacterShape::build`] makes it for
+/// outer `size`: a box, a capsule (a box with fully rounded ends), a ball, a rounded box.
+fn shape_element(shape: CharacterShape, size: Vec2) -> Box<dyn svg::Node> {
+    let half = size * 0.5 * SCALE;
+    let rect = |rx: f32| {
+        Box::new(
+            Rectangle::new()
+                .set("x", -half.x)
+                .set("y", -half.y)
+                .set("width", 2.0 * half.x)
+                .set("height", 2.0 * half.y)
+                .set("rx", rx)
+                .set("ry", rx),
+        ) as Box<dyn svg::Node>
+    };
+    match shape {
+        CharacterShape::Cuboid => rect(0.0),
+        CharacterShape::Capsule => rect(half.x.min(half.y)),
+        CharacterShape::Ball => Box::new(Circle::new().set("cx", 0).set("cy", 0).set("r", half.y)),
+        CharacterShape::RoundCuboid { border_fraction } => {
+            rect((border_fraction * size.x * SCALE).clamp(0.0, half.x.min(half.y)))
+        }
+    }
+}
+
+/// A number for the JSON: one decimal of a pixel (0.005 tiles), 0 for a non-finite one.
+fn px(v: f32) -> String {
+    if v.is_finite() {
+        let s = format!("{v:.1}");
+        s.strip_suffix(".0").unwrap_or(&s).to_string()
+    } else {
+        "0".into()
+    }
+}
+
+/// The drawn frames as JSON: time step, stride, frame count, each platform's corner and each
+/// run's centre per drawn frame (pixels), and each run's faults per drawn frame as one character
+/// each (`'0'` plus the fault bits), with the fault names.
+fn replay_json(
+    s: &ScenarioTraces,
+    rows: &[(Vec<&TraceRow>, &ReplayRun, &Style)],
+    picked: &[usize],
+    stride: usize,
+    to_px: &impl Fn(Vec2) -> (f32, f32),
+) -> String {
+    let frames = picked.last().map_or(0, |l| l + 1);
+    let mut j = format!(
+        "{{\"dt\":{},\"stride\":{stride},\"frames\":{frames},\"names\":[",
+        s.spec.dt
+    );
+    for (i, (bit, name)) in faults::NAMES.iter().enumerate() {
+        let _ = write!(j, "{}[{bit},\"{name}\"]", if i > 0 { "," } else { "" });
+    }
+    j.push_str("],\"platforms\":[");
+    let times: Vec<f64> = picked
+        .iter()
+        .map(|&f| {
+            rows.iter()
+                .find_map(|(rs, _, _)| rs.get(f).map(|r| r.t as f64))
+                .unwrap_or(f as f64 * s.spec.dt as f64)
+        })
+        .collect();
+    for (pi, p) in s.level.platforms.iter().enumerate() {
+        let (mut xs, mut ys) = (Vec::new(), Vec::new());
+        for &t in &times {
+            let b = p.aabb(t);
+            let (x, y) = to_px(Vec2::new(b.mins.x, b.maxs.y));
+            xs.push(px(x));
+            ys.push(px(y));
+        }
+        let _ = write!(
+            j,
+            "{}{{\"x\":[{}],\"y\":[{}]}}",
+            if pi > 0 { "," } else { "" },
+            xs.join(","),
+            ys.join(",")
+        );
+    }
+    j.push_str("],\"runs\":[");
+    for (k, (rs, run, _)) in rows.iter().enumerate() {
+        let (mut xs, mut ys, mut fs) = (Vec::new(), Vec::new(), String::new());
+        for (i, &f) in picked.iter().enumerate() {
+            let Some(r) = rs.get(f) else { break };
+            let (x, y) = to_px(Vec2::new(r.x, r.y + run.size.y * 0.5));
+            xs.push(px(x));
+            ys.push(px(y));
+            fs.push(char::from(b'0' + frame_faults(&run.faults, picked, i)));
+        }
+        let _ = write!(
+            j,
+            "{}{{\"x\":[{}],\"y\":[{}],\"f\":\"{fs}\"}}",
+            if k > 0 { "," } else { "" },
+            xs.join(","),
+            ys.join(",")
+        );
+    }
+    j.push_str("]}");
+    // Inside <script>, "</" would end the element: JSON allows "<" escaped.
+    j.replace('<', "\\u003c")
+}
+
+/// The replay script, inline once per report: plays, pauses, scrubs and picks. With `#selftest`
+/// in the address it checks every replay (the scrubber moves the characters and platforms,
+/// playing advances the frame, the picker hides a character) and writes the result into
+/// `<pre id="selftest">`; with `#view=REPLAY_ID&frame=N` it shows only that replay at drawn frame
+/// N (for a screenshot).
+pub const SCRIPT: &str = include_str!("replay.js");
+
+/// The replay's style sheet.
+pub const STYLE: &str = ".replay .controls{margin:0.3em 0;font-size:13px}\n.replay .scrub{width:40%;vertical-align:middle}\n.replay .clock{font-family:monospace}\n.replay .picker{font-size:12px;margin:0.3em 0 1em}\n.replay .picker label{display:inline-block;margin-right:1em}\n.replay .picker i{display:inline-block;width:1.2em;height:0.8em;margin:0 0.3em}\n.replay .fault{color:#d50000;font-weight:bold}\n.replay g.body.bad{stroke:#d50000;stroke-width:3;fill:#d50000}\n";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subsampling_keeps_the_last_frame_and_every_fault() {
+        assert_eq!(stride(400), 1);
+        assert_eq!(stride(401), 2);
+        let picked: Vec<usize> = drawn_frames(6, 2).collect();
+        assert_eq!(picked, [0, 2, 4, 5]);
+        // A fault at frame 3, which is not drawn, shows at drawn frame 4.
+        let faults = [0, 0, 0, faults::STUCK, 0, 0];
+        let shown: Vec<u8> = (0..picked.len())
+            .map(|i| frame_faults(&faults, &picked, i))
+            .collect();
+        assert_eq!(shown, [0, 0, faults::STUCK, 0]);
+    }
+
+    #[test]
+    fn configurations_without_a_colour_get_distinct_ones() {
+        let reg = crate::registry::Registry::builtin();
+        let configs: Vec<(String, String)> = reg
+            .builtin_configs()
+            .iter()
+            .map(|r| (r.backend.backend().to_string(), r.label.clone()))
+            .collect();
+        let s = styles(&reg, &configs);
+        for (i, a) in s.iter().enumerate() {
+            for b in &s[i + 1..] {
+                assert_ne!(a.colour, b.colour, "{a:?} {b:?}");
+            }
+        }
+    }
+}
