@@ -30,11 +30,12 @@ impl Registry {
         Self::default()
     }
 
-    /// The controllers this crate ships: the sweep, then Rapier.
+    /// The controllers this crate ships: the sweep, then Rapier, then Box2D's mover.
     pub fn builtin() -> Self {
         Registry::new()
             .with(crate::sweep::kind::SweepKind)
             .with(crate::rapier::kind::RapierKind)
+            .with(crate::box2d::kind::Box2dKind)
     }
 
     /// This registry with `kind` added after the others.
