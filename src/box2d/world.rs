@@ -83,10 +83,11 @@ fn counter_clockwise(mut points: Vec<Vec2>) -> Vec<Vec2> {
     if area < 0.0 {
         points.reverse();
     }
-    // A chain drops no duplicate points itself; consecutive equal points make a zero-length
-    // segment.
-    points.dedup_by(|a, b| (*a - *b).length() < 1e-6);
-    if points.len() > 1 && (points[0] - points[points.len() - 1]).length() < 1e-6 {
+    // A chain refuses points closer than Box2D's linear slop (0.005): they would make a
+    // degenerate segment.
+    let slop = super::LINEAR_SLOP;
+    points.dedup_by(|a, b| (*a - *b).length() <= slop);
+    if points.len() > 1 && (points[0] - points[points.len() - 1]).length() <= slop {
         points.pop();
     }
     points
@@ -166,8 +167,19 @@ impl LevelWorld {
                 continue;
             }
             match building {
-                // A line slope's tile: its convex polygon, as Rapier's backend builds it.
+                // A line slope's tile: its convex polygon, as Rapier's backend builds it; and any
+                // outline of three points (a chain loop needs four).
                 ColliderBuilding::PerTile if pts.len() <= 5 => {
+                    let poly = b2(
+                        "box2d slope polygon",
+                        Polygon::from_points(pts.iter().map(|p| [p.x, p.y]), 0.0),
+                    )?;
+                    b2(
+                        "box2d polygon",
+                        b2("box2d body", world.body(ground))?.create_polygon(&solid, &poly),
+                    )?;
+                }
+                _ if pts.len() < 4 => {
                     let poly = b2(
                         "box2d slope polygon",
                         Polygon::from_points(pts.iter().map(|p| [p.x, p.y]), 0.0),
