@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 
 pub mod backend;
+pub mod box2d;
 #[path = "../compare/builtin.rs"]
 pub mod builtin;
 pub mod cli;

@@ -1,0 +1,228 @@
+//! Box2D's mover as a kind of backend: what the harness needs to know of it (its name, shape,
+//! declared contact, features, built-in configurations and its `platbench sweep` grid), on the
+//! public API of [`Box2dBackend`] and [`Box2dConfig`] only.
+
+use glam::Vec2;
+
+use super::{Box2dBackend, Box2dConfig, CharacterShape, ColliderBuilding, LINEAR_SLOP};
+use crate::backend::{
+    require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
+    DeclaredContact, SharedGeometry,
+};
+use crate::level::{Features, Level};
+use crate::metrics::MetricRow;
+use crate::motion::MotionParams;
+use crate::scenario::RunConfig;
+use crate::tradeoff::Setting;
+
+/// The backend's name, as in CSV files.
+pub const NAME: &str = "box2d";
+
+impl BackendSettings for Box2dConfig {
+    fn backend(&self) -> &'static str {
+        NAME
+    }
+
+    fn shape(&self) -> CharacterShape {
+        self.shape
+    }
+
+    fn supports(&self, level: &Level) -> bool {
+        self.shape == CharacterShape::Capsule
+            && require_supported(NAME, "", level.features, Box2dBackend::SUPPORTED).is_ok()
+    }
+
+    /// `b2SolvePlanes` keeps the capsule one linear slop off every plane it solves ("add slop
+    /// to prevent jitter"); the ground is held by the pogo spring, which promises no gap.
+    fn declared_contact(&self, _size: Vec2, _max_climb_angle: f32) -> DeclaredContact {
+        DeclaredContact {
+            gap: LINEAR_SLOP,
+            gap_tolerance: LINEAR_SLOP,
+            ..DeclaredContact::default()
+        }
+    }
+
+    /// Box2D's linear slop: its collision tolerance.
+    fn contact_tolerance(&self, _size: Vec2) -> f64 {
+        LINEAR_SLOP as f64
+    }
+
+    /// The capsule is as wide as the box where the height above the pogo leg allows, else
+    /// narrower (a circle); the leg makes up the rest of the height.
+    fn moved_size(&self, size: Vec2) -> Vec2 {
+        let (r, _, _) = self.capsule(size);
+        Vec2::new(2.0 * r, size.y)
+    }
+
+    /// Builds the backend's own world (moving platforms mutate it, so it is not shared).
+    fn build(
+        &self,
+        level: &Level,
+        params: &MotionParams,
+        _shared: &mut SharedGeometry,
+    ) -> Result<Box<dyn Backend>, BackendError> {
+        Ok(Box::new(Box2dBackend::new(
+            level,
+            params.clone(),
+            self.clone(),
+        )?))
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn same_as(&self, other: &dyn BackendSettings) -> bool {
+        same_settings(self, other)
+    }
+}
+
+/// Box2D with `config`, labelled by [`Box2dConfig::label`].
+pub fn run_with(config: Box2dConfig) -> RunConfig {
+    RunConfig::new(config.label(), config)
+}
+
+fn setting(label: &str, config: Box2dConfig, substeps: u32, dt: Option<f32>) -> Setting {
+    Setting {
+        label: label.into(),
+        run: RunConfig {
+            substeps,
+            ..RunConfig::new(label, config)
+        },
+        dt,
+    }
+}
+
+/// Box2D v3's character mover as a kind of backend.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Box2dKind;
+
+impl BackendKind for Box2dKind {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn description(&self) -> &'static str {
+        "Box2D v3's character mover (cast, collide, solve planes, clip velocity, pogo), driven as Box2D's Mover sample drives it"
+    }
+
+    fn shapes(&self) -> Vec<CharacterShape> {
+        vec![CharacterShape::Capsule]
+    }
+
+    fn features(&self) -> Features {
+        Box2dBackend::SUPPORTED
+    }
+
+    /// The sample's capsule on one box per tile and on merged chain loops.
+    fn builtin_configs(&self) -> Vec<RunConfig> {
+        [ColliderBuilding::PerTile, ColliderBuilding::Merged]
+            .into_iter()
+            .map(|colliders| {
+                run_with(Box2dConfig {
+                    colliders,
+                    ..Default::default()
+                })
+            })
+            .collect()
+    }
+
+    fn stress_configs(&self) -> Vec<RunConfig> {
+        self.builtin_configs()
+    }
+
+    /// dt, substeps, the loop's iterations and tolerance, the pogo spring, collider building.
+    fn tradeoff_settings(&self) -> Vec<Setting> {
+        let d = Box2dConfig::default;
+        let mut g = Vec::new();
+        for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
+            g.push(setting(
+                &format!("per-tile capsule dt=1/{hz}"),
+                d(),
+                1,
+                Some(1.0 / hz),
+            ));
+        }
+        for k in [2, 4] {
+            g.push(setting(
+                &format!("per-tile capsule substeps={k}"),
+                d(),
+                k,
+                Some(1.0 / 60.0),
+            ));
+        }
+        for n in [1u32, 10] {
+            let c = Box2dConfig {
+                max_iterations: n,
+                ..d()
+            };
+            g.push(setting(
+                &format!("per-tile capsule iterations={n}"),
+                c,
+                1,
+                Some(1.0 / 60.0),
+            ));
+        }
+        for tol in [0.001f32, 0.05] {
+            let c = Box2dConfig {
+                tolerance: tol,
+                ..d()
+            };
+            g.push(setting(
+                &format!("per-tile capsule tolerance={tol}"),
+                c,
+                1,
+                Some(1.0 / 60.0),
+            ));
+        }
+        for hz in [10.0f32, 20.0] {
+            let c = Box2dConfig {
+                pogo_hertz: hz,
+                ..d()
+            };
+            g.push(setting(
+                &format!("per-tile capsule pogo={hz}Hz"),
+                c,
+                1,
+                Some(1.0 / 60.0),
+            ));
+        }
+        let c = Box2dConfig {
+            colliders: ColliderBuilding::Merged,
+            ..d()
+        };
+        g.push(setting("merged capsule", c, 1, Some(1.0 / 60.0)));
+        g
+    }
+
+    fn drawn(&self) -> Vec<(&'static str, &'static str)> {
+        vec![
+            ("per-tile capsule", "#00838f"),
+            ("merged capsule", "#4dd0e1"),
+        ]
+    }
+
+    fn colour(&self) -> &'static str {
+        "#00838f"
+    }
+
+    fn notes(&self, rows: &[MetricRow]) -> Vec<String> {
+        let b = |m: &'static str| {
+            rows.iter()
+                .filter(move |r| r.backend == NAME && r.metric == m)
+        };
+        let mut out = Vec::new();
+        if b("rest_gap").any(|r| r.value.abs() > 1e-3) {
+            out.push("box2d rest_gap: the sample's mover stands on a pogo spring (5 Hz, damping 0.8), not on a contact: fed gravity each step, the spring settles the feet where its push balances gravity, off the ground's top by the sag.".into());
+        }
+        if b("carry_airborne_frames").any(|r| r.value > 0.0)
+            || b("carry_drift").any(|r| r.value > 1e-3)
+        {
+            out.push("box2d riders: the sample carries no rider; a platform moves the mover only through its collision planes (push limited to 0.1 tiles, the sample's elevator) and the pogo, so a horizontal platform slides out from under it.".into());
+        }
+        if b("steep_blocked").any(|r| r.value == 0.0) {
+            out.push("box2d climbs slopes steeper than the limit: the sample's pogo stands on any surface it touches (it has no slope limit).".into());
+        }
+        out
+    }
+}
