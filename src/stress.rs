@@ -187,126 +187,162 @@ fn penetration_tolerance(run: &RunConfig, size: Vec2) -> f64 {
     run.backend.contact_tolerance(size)
 }
 
-/// Runs the matrix for `runs` (the epsilon dimension only on sweep configurations).
+/// Runs the matrix for `runs` (the epsilon dimension only on sweep configurations), on every
+/// core ([`stress_matrix_on`]).
 pub fn stress_matrix(
     runs: &[RunConfig],
+    progress: impl FnMut(&str),
+) -> Result<Vec<StressRow>, BackendError> {
+    stress_matrix_on(runs, crate::parallel::default_jobs(), progress)
+}
+
+/// [`stress_matrix`] on `jobs` threads: each (dimension, value, configuration) cell is
+/// independent and they fan out; the rows come back in matrix order whatever the threads.
+pub fn stress_matrix_on(
+    runs: &[RunConfig],
+    jobs: usize,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<StressRow>, BackendError> {
-    let mut out = Vec::new();
-    for d in dimensions() {
-        for &v in &d.values {
-            progress(&format!("{} = {v}", d.name));
+    let dims = dimensions();
+    let mut cells = Vec::new();
+    for (di, d) in dims.iter().enumerate() {
+        for (vi, &v) in d.values.iter().enumerate() {
             for base in runs {
-                let mut run = base.clone();
-                let (mut offset, mut dt, mut speed, mut width) =
-                    (0.0f32, 1.0 / 60.0, 100.0f32, 0.8f32);
-                match d.name {
-                    "offset" => offset = v as f32,
-                    "dt" => dt = v as f32,
-                    "speed" => speed = v as f32,
-                    "width" => width = v as f32,
-                    // The epsilon exists only in the sweep's float mode.
-                    _ => match run
-                        .backend
-                        .epsilon()
-                        .and(run.backend.with_epsilon(v as f32))
-                    {
-                        Some(b) => run.backend = b,
-                        None => continue,
-                    },
-                }
-                let size = Vec2::new(width, width * 1.125);
-                let level = probe_level(offset, false);
-                let ride_level = probe_level(offset, true);
-                let tol_pen = penetration_tolerance(&run, size);
-                let tol_rest = 1e-3 * size.y as f64;
-                let (mut finite, mut pen, mut tunnel, mut jitter, mut flicker) =
-                    (true, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
-                // The carry's worst excess over its allowance, and that ride's figures.
-                let (mut drift, mut drift_tol) = (0.0f64, 0.0f64);
-                let mut carry_modelled = true;
-                for spec in probes(size, dt, speed) {
-                    let on = if spec.ride.is_some() {
-                        &ride_level
-                    } else {
-                        &level
-                    };
-                    let e = match evaluate(on, &spec, &run) {
-                        Err(BackendError::Unsupported { .. }) if spec.ride.is_some() => {
-                            // No moving platforms in this configuration: no carry row.
-                            carry_modelled = false;
-                            continue;
-                        }
-                        e => e?,
-                    };
-                    let get = |m: &str| -> Option<f64> {
-                        e.metrics
-                            .iter()
-                            .find(|r: &&MetricRow| r.metric == m)
-                            .map(|r| r.value)
-                    };
-                    finite &= e
-                        .trace
-                        .rows
-                        .iter()
-                        .all(|r| [r.x, r.y, r.vx, r.vy].iter().all(|v| v.is_finite()));
-                    if let Some(p) = spec.ride.and_then(|i| ride_level.platforms.get(i as usize)) {
-                        // A ride feeds only its own invariant (and `finite`): the others keep
-                        // the meaning they have on the static floor.
-                        let (d, lag) = carry_drift(p, ride_level.origin, &e.trace, dt);
-                        let tol = lag + tol_rest;
-                        if drift_tol == 0.0 || d - tol > drift - drift_tol {
-                            (drift, drift_tol) = (d, tol);
-                        }
-                        continue;
-                    }
-                    pen = pen.max(get("max_penetration").unwrap_or(0.0));
-                    tunnel = tunnel.max(get("tunneled").unwrap_or(0.0));
-                    if spec.name == "drop" {
-                        // At rest: the height range over the last half second (the landing and
-                        // its settling are land_frame_error's business).
-                        let last = (0.5 / dt).ceil() as usize;
-                        let tail = &e.trace.rows[e.trace.rows.len().saturating_sub(last)..];
-                        let (lo, hi) = tail.iter().fold((f32::MAX, f32::MIN), |(lo, hi), r| {
-                            (lo.min(r.y), hi.max(r.y))
-                        });
-                        jitter = jitter.max((hi - lo) as f64);
-                    }
-                    flicker = flicker.max(get("grounded_flicker").unwrap_or(0.0));
-                }
-                let pen = if pen.is_nan() { f64::INFINITY } else { pen };
-                let row = |invariant: &str, holds, measured, tolerance| StressRow {
-                    backend: run.backend.backend().to_string(),
-                    config: run.label.clone(),
-                    dimension: d.name.to_string(),
-                    value: v,
-                    invariant: invariant.to_string(),
-                    holds,
-                    measured,
-                    tolerance,
-                };
-                out.push(row("finite", finite, (!finite) as u8 as f64, 0.0));
-                out.push(row("penetration", finite && pen <= tol_pen, pen, tol_pen));
-                out.push(row("no_tunneling", finite && tunnel == 0.0, tunnel, 0.0));
-                out.push(row(
-                    "stable_rest",
-                    finite && jitter <= tol_rest,
-                    jitter,
-                    tol_rest,
-                ));
-                out.push(row("no_flicker", finite && flicker == 0.0, flicker, 0.0));
-                // A rider is at rest on its platform: held to the stable rest's bound plus the lag
-                // a carry may show (see `carry_drift`).
-                if carry_modelled {
-                    out.push(row(
-                        "carry_no_drift",
-                        finite && drift <= drift_tol,
-                        drift,
-                        drift_tol,
-                    ));
-                }
+                cells.push((di, vi, v, base));
             }
         }
+    }
+    let mut out = Vec::new();
+    crate::parallel::for_each_ordered(
+        jobs,
+        cells.len(),
+        || (),
+        |_, i| {
+            let (di, _, v, base) = cells[i];
+            stress_cell(dims[di].name, v, base)
+        },
+        |i, rows| {
+            let (di, vi, v, _) = cells[i];
+            if i == 0 || cells[i - 1].0 != di || cells[i - 1].1 != vi {
+                progress(&format!("{} = {v}", dims[di].name));
+            }
+            out.extend(rows?);
+            Ok(())
+        },
+    )?;
+    Ok(out)
+}
+
+/// The rows of one cell of the matrix: configuration `base` with `dimension` at `v` (none for
+/// the epsilon of a configuration without one).
+fn stress_cell(dimension: &str, v: f64, base: &RunConfig) -> Result<Vec<StressRow>, BackendError> {
+    let mut out = Vec::new();
+    let mut run = base.clone();
+    let (mut offset, mut dt, mut speed, mut width) = (0.0f32, 1.0 / 60.0, 100.0f32, 0.8f32);
+    match dimension {
+        "offset" => offset = v as f32,
+        "dt" => dt = v as f32,
+        "speed" => speed = v as f32,
+        "width" => width = v as f32,
+        // The epsilon exists only in the sweep's float mode.
+        _ => match run
+            .backend
+            .epsilon()
+            .and(run.backend.with_epsilon(v as f32))
+        {
+            Some(b) => run.backend = b,
+            None => return Ok(Vec::new()),
+        },
+    }
+    let size = Vec2::new(width, width * 1.125);
+    let level = probe_level(offset, false);
+    let ride_level = probe_level(offset, true);
+    let tol_pen = penetration_tolerance(&run, size);
+    let tol_rest = 1e-3 * size.y as f64;
+    let (mut finite, mut pen, mut tunnel, mut jitter, mut flicker) =
+        (true, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    // The carry's worst excess over its allowance, and that ride's figures.
+    let (mut drift, mut drift_tol) = (0.0f64, 0.0f64);
+    let mut carry_modelled = true;
+    for spec in probes(size, dt, speed) {
+        let on = if spec.ride.is_some() {
+            &ride_level
+        } else {
+            &level
+        };
+        let e = match evaluate(on, &spec, &run) {
+            Err(BackendError::Unsupported { .. }) if spec.ride.is_some() => {
+                // No moving platforms in this configuration: no carry row.
+                carry_modelled = false;
+                continue;
+            }
+            e => e?,
+        };
+        let get = |m: &str| -> Option<f64> {
+            e.metrics
+                .iter()
+                .find(|r: &&MetricRow| r.metric == m)
+                .map(|r| r.value)
+        };
+        finite &= e
+            .trace
+            .rows
+            .iter()
+            .all(|r| [r.x, r.y, r.vx, r.vy].iter().all(|v| v.is_finite()));
+        if let Some(p) = spec.ride.and_then(|i| ride_level.platforms.get(i as usize)) {
+            // A ride feeds only its own invariant (and `finite`): the others keep
+            // the meaning they have on the static floor.
+            let (d, lag) = carry_drift(p, ride_level.origin, &e.trace, dt);
+            let tol = lag + tol_rest;
+            if drift_tol == 0.0 || d - tol > drift - drift_tol {
+                (drift, drift_tol) = (d, tol);
+            }
+            continue;
+        }
+        pen = pen.max(get("max_penetration").unwrap_or(0.0));
+        tunnel = tunnel.max(get("tunneled").unwrap_or(0.0));
+        if spec.name == "drop" {
+            // At rest: the height range over the last half second (the landing and
+            // its settling are land_frame_error's business).
+            let last = (0.5 / dt).ceil() as usize;
+            let tail = &e.trace.rows[e.trace.rows.len().saturating_sub(last)..];
+            let (lo, hi) = tail.iter().fold((f32::MAX, f32::MIN), |(lo, hi), r| {
+                (lo.min(r.y), hi.max(r.y))
+            });
+            jitter = jitter.max((hi - lo) as f64);
+        }
+        flicker = flicker.max(get("grounded_flicker").unwrap_or(0.0));
+    }
+    let pen = if pen.is_nan() { f64::INFINITY } else { pen };
+    let row = |invariant: &str, holds, measured, tolerance| StressRow {
+        backend: run.backend.backend().to_string(),
+        config: run.label.clone(),
+        dimension: dimension.to_string(),
+        value: v,
+        invariant: invariant.to_string(),
+        holds,
+        measured,
+        tolerance,
+    };
+    out.push(row("finite", finite, (!finite) as u8 as f64, 0.0));
+    out.push(row("penetration", finite && pen <= tol_pen, pen, tol_pen));
+    out.push(row("no_tunneling", finite && tunnel == 0.0, tunnel, 0.0));
+    out.push(row(
+        "stable_rest",
+        finite && jitter <= tol_rest,
+        jitter,
+        tol_rest,
+    ));
+    out.push(row("no_flicker", finite && flicker == 0.0, flicker, 0.0));
+    // A rider is at rest on its platform: held to the stable rest's bound plus the lag
+    // a carry may show (see `carry_drift`).
+    if carry_modelled {
+        out.push(row(
+            "carry_no_drift",
+            finite && drift <= drift_tol,
+            drift,
+            drift_tol,
+        ));
     }
     Ok(out)
 }

@@ -6,13 +6,18 @@ use anyhow::Result;
 
 use super::{out, output, Harness};
 
-pub(crate) fn stress(h: &Harness, out_dir: &std::path::Path, force: bool) -> Result<()> {
+pub(crate) fn stress(
+    h: &Harness,
+    out_dir: &std::path::Path,
+    force: bool,
+    jobs: usize,
+) -> Result<()> {
     use crate::report::html::{breaks_list, value_list};
-    use crate::stress::{envelope, stress_matrix};
+    use crate::stress::{envelope, stress_matrix_on};
     let runs = h.registry.stress_configs();
     output::check_target(out_dir, output::Kind::Stress, force)?;
     let started = Instant::now();
-    let rows = stress_matrix(&runs, |what| eprintln!("  {what}"))?;
+    let rows = stress_matrix_on(&runs, jobs, |what| eprintln!("  {what}"))?;
     eprintln!("ran in {:.1} s", started.elapsed().as_secs_f64());
     let mut t = comfy_table::Table::new();
     t.load_style(comfy_table::presets::ASCII_MARKDOWN);

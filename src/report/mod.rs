@@ -5,6 +5,7 @@
 pub mod diff;
 pub mod html;
 pub mod rules;
+pub mod summary_rows;
 
 use comfy_table::{presets, CellAlignment, Table};
 
