@@ -13,7 +13,7 @@ use platbench::scenario::{effective_params, input_script, RunConfig};
 mod builtin;
 
 /// A backend for `spec` on `run`, or why it cannot be built (a level feature the
-/// configuration does not model: the integer positions refuse slopes and moving platforms).
+/// configuration does not model: none in the built-in set; a level of your own may have one).
 fn try_fresh(
     level: &Level,
     spec: &ScenarioSpec,

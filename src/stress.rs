@@ -154,11 +154,27 @@ fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
 /// one step, however long the ride: that is the allowance returned, computed from the platform's
 /// motion over the run (as the backends place it, so far from the origin a step is a multiple of
 /// the f32 spacing). More than the allowance (plus a rest's tolerance) is a rider that slips,
-/// bounces or falls off.
-fn carry_drift(p: &Platform, origin: Vec2, trace: &crate::trace::Trace, dt: f32) -> (f64, f64) {
+/// bounces or falls off. A configuration on a subpixel grid of `grid` subpixels per tile (0 for
+/// none) moves the platform along its path rounded to that grid, in level coordinates whatever
+/// the offset; the drift is measured against that platform, the one it moves.
+fn carry_drift(
+    p: &Platform,
+    origin: Vec2,
+    grid: u32,
+    trace: &crate::trace::Trace,
+    dt: f32,
+) -> (f64, f64) {
     // The platform where the backends put it: placed in the world in f32 (at 1e6 tiles from the
-    // origin, on a grid of 1/16 tile) and brought back to level coordinates, as the trace is.
-    let at = |k: usize| ((p.position(k as f64 * dt as f64) + origin) - origin).as_dvec2();
+    // origin, on a grid of 1/16 tile) and brought back to level coordinates, as the trace is;
+    // or on the subpixel grid.
+    let at = |k: usize| {
+        let t = k as f64 * dt as f64;
+        if grid > 0 {
+            p.placed_aabb(t, grid).mins.as_dvec2()
+        } else {
+            ((p.position(t) + origin) - origin).as_dvec2()
+        }
+    };
     let rel = |k: usize| {
         let r = &trace.rows[k];
         glam::DVec2::new(r.x as f64, r.y as f64) - at(k)
@@ -259,6 +275,10 @@ fn stress_cell(dimension: &str, v: f64, base: &RunConfig) -> Result<Vec<StressRo
     let ride_level = probe_level(offset, true);
     let tol_pen = penetration_tolerance(&run, size);
     let tol_rest = 1e-3 * size.y as f64;
+    let grid = run
+        .backend
+        .declared_contact(size, run.params.max_climb_angle)
+        .surface_grid;
     let (mut finite, mut pen, mut tunnel, mut jitter, mut flicker) =
         (true, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
     // The carry's worst excess over its allowance, and that ride's figures.
@@ -292,7 +312,7 @@ fn stress_cell(dimension: &str, v: f64, base: &RunConfig) -> Result<Vec<StressRo
         if let Some(p) = spec.ride.and_then(|i| ride_level.platforms.get(i as usize)) {
             // A ride feeds only its own invariant (and `finite`): the others keep
             // the meaning they have on the static floor.
-            let (d, lag) = carry_drift(p, ride_level.origin, &e.trace, dt);
+            let (d, lag) = carry_drift(p, ride_level.origin, grid, &e.trace, dt);
             let tol = lag + tol_rest;
             if drift_tol == 0.0 || d - tol > drift - drift_tol {
                 (drift, drift_tol) = (d, tol);

@@ -41,8 +41,19 @@ fn the_sweeps_box_overlaps_each_ramp_by_its_designed_overhang() {
     }
 }
 
-/// The metrics of `t` on `spec`, recomputed.
+/// The metrics of `t` on `spec`, recomputed for the sweep's box.
 fn metrics_of(name: &str, scenario: &str, t: &Trace, declared: DeclaredContact) -> Vec<MetricRow> {
+    metrics_with(name, scenario, t, declared, CharacterShape::Cuboid)
+}
+
+/// The metrics of `t` on `spec`, recomputed for a character of `shape`.
+fn metrics_with(
+    name: &str,
+    scenario: &str,
+    t: &Trace,
+    declared: DeclaredContact,
+    shape: CharacterShape,
+) -> Vec<MetricRow> {
     let level = level(name);
     let spec = level
         .scenarios
@@ -51,7 +62,7 @@ fn metrics_of(name: &str, scenario: &str, t: &Trace, declared: DeclaredContact) 
         .expect("scenario exists");
     let params = effective_params(&MotionParams::default(), spec);
     compute(&Context {
-        shape: CharacterShape::Cuboid,
+        shape,
         level: &level,
         spec,
         params: &params,
@@ -165,4 +176,90 @@ fn a_bounce_after_landing_is_charged() {
         value(&after, "land_frame_error"),
         value(&before, "land_frame_error")
     );
+}
+
+#[test]
+fn feet_moved_below_a_one_way_top_are_seen() {
+    // Issue 17, item 1, for one-way tops: take a controller's own trace landing on the one-way
+    // platform (top at y = 4) and move its feet 0.2 tiles down on every grounded frame there.
+    // A one-way top resists only downward motion, so the depth is vertical: max_penetration
+    // must reach 0.2 and rest_gap fall by 0.2 (1e-3: f32 positions), and the promise metric must
+    // see the sinking beyond the declared overlap tolerance. The same frames untouched read
+    // nothing: passing up through the platform (jump_through_from_below) is inside it by right.
+    let oneway = level("oneway");
+    let size = glam::Vec2::new(0.8, 0.9);
+    let sweep = platbench::sweep::kind::run_default();
+    let rapier = platbench::rapier::kind::run(
+        platbench::rapier::ColliderBuilding::PerTile,
+        CharacterShape::Capsule,
+    );
+    for (run, shape) in [
+        (&sweep, CharacterShape::Cuboid),
+        (&rapier, CharacterShape::Capsule),
+    ] {
+        let declared = run
+            .backend
+            .declared_contact(size, std::f32::consts::FRAC_PI_4);
+        let evals = evaluate_all(std::slice::from_ref(&oneway), run);
+        let trace = |s: &str| {
+            &evals
+                .iter()
+                .find(|(n, _)| n.ends_with(&format!(".{s}")))
+                .expect("scenario ran")
+                .1
+                .trace
+        };
+        let through = metrics_with(
+            "oneway",
+            "jump_through_from_below",
+            trace("jump_through_from_below"),
+            declared,
+            shape,
+        );
+        assert!(
+            value(&through, "max_penetration") < 1e-3,
+            "{}: jumping up through the platform is no penetration",
+            run.label
+        );
+        let before = metrics_with(
+            "oneway",
+            "land_on_top",
+            trace("land_on_top"),
+            declared,
+            shape,
+        );
+        let mut sunk = trace("land_on_top").clone();
+        let mut moved = 0;
+        for r in &mut sunk.rows {
+            if r.grounded != 0 && r.y > 3.5 {
+                r.y -= 0.2;
+                moved += 1;
+            }
+        }
+        assert!(moved > 10, "{}: {moved} frames on the platform", run.label);
+        let after = metrics_with("oneway", "land_on_top", &sunk, declared, shape);
+        let (b, a) = (value(&before, "rest_gap"), value(&after, "rest_gap"));
+        assert!(
+            (a - (b - 0.2)).abs() < 1e-3,
+            "{}: rest_gap {b} -> {a}",
+            run.label
+        );
+        // A controller that kept a gap above the top (Rapier's offset) sinks 0.2 minus it.
+        let kept = b.max(0.0);
+        let (b, a) = (
+            value(&before, "max_penetration"),
+            value(&after, "max_penetration"),
+        );
+        assert!(
+            a >= 0.2 - kept - 1e-3 && b < 1e-2,
+            "{}: {b} -> {a}",
+            run.label
+        );
+        let a = value(&after, "penetration_beyond_declared");
+        assert!(
+            a >= 0.2 - kept - declared.overlap_tolerance as f64 - 1e-3,
+            "{}: penetration_beyond_declared {a}",
+            run.label
+        );
+    }
 }

@@ -4,19 +4,18 @@
 
 mod common;
 
-use common::{builtin_levels, evaluate_all, level, rows};
-use platbench::backend::BackendError;
+use common::{builtin_levels, evaluate_all, level, rows, value};
 use platbench::metrics::evaluate;
 use platbench::scenario::RunConfig;
-use platbench::sweep::INTEGER_SUPPORTED;
+use platbench::sweep::{RiderFollow, SweepConfig, INTEGER_SUPPORTED};
 
 const PER_TILE: u32 = 32;
 
-/// The built-in levels the integer mode models (it refuses moving platforms).
+/// The built-in levels without moving platforms (the platform tests below take the others).
 fn integer_levels() -> Vec<platbench::level::Level> {
     builtin_levels()
         .into_iter()
-        .filter(|l| INTEGER_SUPPORTED.moving_platforms || !l.features.moving_platforms)
+        .filter(|l| !l.features.moving_platforms)
         .collect()
 }
 
@@ -162,22 +161,147 @@ fn the_exact_discrete_jump_reaches_its_height_to_the_subpixel() {
 }
 
 #[test]
-fn a_level_with_moving_platforms_is_refused_naming_the_feature() {
-    let l = level("platforms");
-    let Err(err) = evaluate(
-        &l,
-        &l.scenarios[0],
-        &platbench::sweep::kind::run_integer(PER_TILE),
-    ) else {
-        panic!("platforms was expected to be refused");
-    };
-    assert!(
-        matches!(&err, BackendError::Unsupported { feature: f, .. } if f.contains("moving platforms")),
-        "{err}"
+fn every_built_in_scenario_runs_none_skipped() {
+    // Issue 23: the integer mode models every feature the level format has, so it runs the whole
+    // built-in set (64 scenarios), moving platforms included.
+    assert_eq!(INTEGER_SUPPORTED, platbench::level::Features::ALL);
+    let levels = builtin_levels();
+    let scenarios: usize = levels.iter().map(|l| l.scenarios.len()).sum();
+    let evals = evaluate_all(&levels, &platbench::sweep::kind::run_integer(PER_TILE));
+    assert_eq!(evals.len(), scenarios);
+    assert_eq!(scenarios, 64, "the built-in set");
+}
+
+/// The rides of the built-in set (every scenario that names a platform to ride, on the three
+/// platform levels) on integer positions, with rider-follow rule `rule`.
+fn rides(rule: RiderFollow) -> Vec<(String, platbench::metrics::Evaluation)> {
+    let run = RunConfig::new(
+        "integer",
+        SweepConfig {
+            positions: platbench::sweep::Positions::Integer { per_tile: PER_TILE },
+            rider_follow: rule,
+            ..SweepConfig::default()
+        },
     );
-    assert!(err.to_string().contains("integer positions"), "{err}");
-    // The float mode runs the same level.
-    assert!(evaluate(&l, &l.scenarios[0], &platbench::sweep::kind::run_default()).is_ok());
+    evaluate_all(&[level("platforms"), level("elevator")], &run)
+}
+
+#[test]
+fn riders_are_carried_in_whole_subpixels_with_no_drift_at_all() {
+    let evals = rides(RiderFollow::Solid);
+    let drift = rows(&evals, "carry_drift");
+    // platforms: 8 scenarios name a platform to ride; elevator: 1.
+    assert_eq!(drift.len(), 9, "rides measured");
+    for r in drift {
+        // Issue 23: exactly 0, no tolerance. The platform moves by the difference of two
+        // positions rounded to the grid and the rider by the same whole subpixels, so its place
+        // on the platform (measured against the rounded platform the mode moves) never changes;
+        // one lost subpixel would read 1/32 tile. The fast drop (20 tiles/s from rest) and the
+        // turning elevator included: Celeste's rule moves the rider with every move.
+        assert_eq!(r.value, 0.0, "{}: carry_drift {}", r.scenario, r.value);
+    }
+    for r in rows(&evals, "carry_airborne_frames") {
+        assert_eq!(r.value, 0.0, "{}: airborne while riding", r.scenario);
+    }
+    // Jumping off and back on: it rides platform 0 again at the end, after frames off it.
+    let back = &evals
+        .iter()
+        .find(|(n, _)| n.ends_with("jump_off_and_back_on"))
+        .expect("scenario")
+        .1;
+    assert_eq!(back.trace.rows.last().expect("rows").platform, Some(0));
+    assert!(back
+        .trace
+        .rows
+        .iter()
+        .any(|r| r.platform.is_none() && r.frame > 0));
+}
+
+#[test]
+fn a_ten_second_ride_keeps_the_rider_exactly_in_place() {
+    // Issue 23's figure: 10 s of riding the turning elevator (3 tiles/s up, turning to 3 down at
+    // the top and back at the bottom, 4 turns) and the platforms level's sine elevator and
+    // horizontal shuttle.
+    let run = platbench::sweep::kind::run_integer(PER_TILE);
+    for (lvl, name) in [
+        ("elevator", "ride_turning_elevator"),
+        ("platforms", "elevator"),
+        ("platforms", "ride_horizontal"),
+    ] {
+        let l = level(lvl);
+        let mut spec = l
+            .scenarios
+            .iter()
+            .find(|s| s.name == name)
+            .expect("scenario")
+            .clone();
+        spec.duration = 10.0;
+        let e = evaluate(&l, &spec, &run).expect("runs");
+        let get = |m: &str| e.metrics.iter().find(|r| r.metric == m).map(|r| r.value);
+        // 601 rows: 10 s at 60 Hz and the spawn.
+        assert_eq!(e.trace.rows.len(), 601, "{name}");
+        assert_eq!(get("carry_drift"), Some(0.0), "{name}");
+        assert_eq!(get("carry_airborne_frames"), Some(0.0), "{name}");
+    }
+}
+
+#[test]
+fn platforms_push_in_whole_subpixels_and_crush_against_the_level() {
+    let evals = evaluate_all(
+        &[level("platforms"), level("moving_wall")],
+        &platbench::sweep::kind::run_integer(PER_TILE),
+    );
+    let find = |name: &str| {
+        &evals
+            .iter()
+            .find(|(n, _)| n.ends_with(name))
+            .unwrap_or_else(|| panic!("{name}"))
+            .1
+    };
+    // Pushed along the floor by a block sliding at 2 tiles/s: it moves with the block (the
+    // block travels 7 tiles; the character starts 1.1 tiles ahead of it), and never overlaps it:
+    // the push snaps it flush in integers, so push_penetration is exactly 0, no epsilon.
+    let pushed = find("pushed_across_the_floor");
+    let (first, last) = (
+        pushed.trace.rows[0].x,
+        pushed.trace.rows.last().expect("rows").x,
+    );
+    assert!(last - first > 2.0, "pushed {} tiles", last - first);
+    assert_eq!(
+        value(&evals, "pushed_across_the_floor", "push_penetration"),
+        0.0
+    );
+    assert_eq!(value(&evals, "pushed_across_the_floor", "crush_count"), 0.0);
+    // Crushed against the wall: flagged in the trace, counted once, and never left inside the
+    // static level (max_penetration exactly 0: it stays flush against the wall, overlapping
+    // the platform).
+    let crushed = find("crushed_against_a_wall");
+    assert!(crushed.trace.rows.iter().any(|r| r.crushed == 1));
+    assert_eq!(value(&evals, "crushed_against_a_wall", "crush_count"), 1.0);
+    assert_eq!(
+        value(&evals, "crushed_against_a_wall", "max_penetration"),
+        0.0
+    );
+    // A wall sliding up and down flush beside a standing character neither carries nor pushes
+    // it: zero overlap is not a contact on the grid.
+    let wall = find("wall_passes_flush_beside");
+    let ys: Vec<f32> = wall.trace.rows.iter().map(|r| r.y).collect();
+    assert!(ys[1..].iter().all(|&y| y == 1.0), "lifted by the wall");
+    assert!(wall
+        .trace
+        .rows
+        .iter()
+        .all(|r| r.crushed == 0 && r.platform.is_none()));
+}
+
+#[test]
+fn the_gravity_rule_leaves_the_rider_of_a_fast_drop_behind_on_the_grid_too() {
+    // The rider-follow setting holds in both modes: under today's rule the 20 tiles/s drop from
+    // rest leaves its rider in the air (it can fall only g dt^2 + its last speed's step), where
+    // Celeste's rule (the test above) keeps it on with no drift.
+    let evals = rides(RiderFollow::Gravity);
+    assert!(value(&evals, "fast_descent", "carry_airborne_frames") > 0.0);
+    assert_eq!(value(&evals, "fast_descent", "crush_count"), 0.0);
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! Moving platforms: a box and a motion that is a function of time only, so every backend sees
 //! the same platform at the same frame.
 
-use glam::{DVec2, Vec2};
+use glam::{DVec2, I64Vec2, Vec2};
 
 /// How a platform moves. Positions are of the platform's lower-left corner, in tiles.
 #[derive(Clone, Debug, PartialEq)]
@@ -90,6 +90,36 @@ impl Platform {
         let p = self.position(t);
         parry2d::bounding_volume::Aabb::new(p, p + self.size)
     }
+
+    /// Its box at time `t` on a grid of `per_tile` subpixels per tile, in level subpixels
+    /// (min, max): the lower-left corner is [`Platform::position`] rounded to the nearest
+    /// subpixel and the size rounded to whole subpixels (at least one). The motion stays a
+    /// function of time: a step's move is the difference of two rounded positions, so the
+    /// rounding never accumulates (Celeste's solids move a whole pixel at a time, their
+    /// remainder carried).
+    pub fn grid_box(&self, t: f64, per_tile: i64) -> (I64Vec2, I64Vec2) {
+        let n = per_tile as f64;
+        let min = (self.position(t).as_dvec2() * n).round().as_i64vec2();
+        let size = (self.size.as_dvec2() * n)
+            .round()
+            .as_i64vec2()
+            .max(I64Vec2::ONE);
+        (min, min + size)
+    }
+
+    /// Its box at time `t` as a controller places it: on a grid of `per_tile` subpixels per
+    /// tile ([`Platform::grid_box`], in tiles), or on its exact path when `per_tile` is 0.
+    pub fn placed_aabb(&self, t: f64, per_tile: u32) -> parry2d::bounding_volume::Aabb {
+        if per_tile == 0 {
+            return self.aabb(t);
+        }
+        let n = per_tile as f64;
+        let (min, max) = self.grid_box(t, per_tile as i64);
+        parry2d::bounding_volume::Aabb::new(
+            (min.as_dvec2() / n).as_vec2(),
+            (max.as_dvec2() / n).as_vec2(),
+        )
+    }
 }
 
 #[cfg(test)]
@@ -112,6 +142,31 @@ mod tests {
         assert_eq!(p.position(3.0), Vec2::new(8.0, 4.0));
         assert_eq!(p.position(4.5), Vec2::new(5.0, 4.0));
         assert_eq!(p.position(6.0), Vec2::new(2.0, 4.0));
+    }
+
+    #[test]
+    fn on_a_grid_the_box_is_the_rounded_path_and_its_moves_never_accumulate_error() {
+        let p = Platform {
+            start: Vec2::new(2.0, 4.0),
+            size: Vec2::new(3.0, 0.5),
+            motion: PlatformMotion::Sine {
+                amplitude: Vec2::new(0.0, 2.0),
+                period: 4.0,
+            },
+            one_way: false,
+        };
+        let dt = 1.0 / 60.0;
+        for k in [0u32, 1, 7, 59, 600] {
+            let t = k as f64 * dt;
+            let (min, max) = p.grid_box(t, 32);
+            // Within half a subpixel of the path at every time, however many steps before.
+            let exact = p.position(t).as_dvec2() * 32.0;
+            assert!((min.as_dvec2() - exact).abs().max_element() <= 0.5, "t {t}");
+            assert_eq!(max - min, I64Vec2::new(96, 16));
+            assert_eq!(p.placed_aabb(t, 32).mins, (min.as_dvec2() / 32.0).as_vec2());
+        }
+        // No grid: the exact path.
+        assert_eq!(p.placed_aabb(0.3, 0), p.aabb(0.3));
     }
 
     #[test]

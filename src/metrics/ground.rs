@@ -1,7 +1,8 @@
 //! Where the ground is under a character, for every shape, and how deep the shape is inside the
 //! level: the same geometry for every backend. Solid tiles are squares, slope tiles their true
 //! solid part (the convex polygon under a line, the seed's 16 columns of a height array), and
-//! one-way platforms and ladder tops are ground for a shape above them. Nothing is left out:
+//! one-way platforms and ladder tops are ground for a shape above them, and for a shape that
+//! stands on one sunk below its top ([`Ground::one_way_sink`]). Nothing is left out:
 //! the sweep's box, which the seed's centre-column rule stands on a slope by its centre so that
 //! it overhangs the ramp by up to half its width times the gradient, reads as inside the ramp
 //! by that much (negative gap, positive penetration), as any other shape inside it would; the
@@ -15,6 +16,7 @@ use parry2d::math::Pose;
 use parry2d::query::{cast_shapes, contact, ShapeCastOptions};
 use parry2d::shape::{Cuboid, SharedShape};
 
+use super::landing::FLICKER_SUPPORT_TOLERANCE;
 use crate::level::{Level, Slope, Tile};
 use crate::shape::CharacterShape;
 
@@ -125,11 +127,96 @@ impl<'a> Ground<'a> {
         worst
     }
 
+    /// How far the shape stands sunk below the top of a one-way tile (a one-way platform or a
+    /// ladder top) that it is over, in tiles, measured vertically (a one-way top resists only
+    /// downward motion): the drop from half its height above `feet` to its first touch of the
+    /// tile, subtracted from that half height; 0 if no one-way top lies between its feet and half
+    /// its height above them. A shape passing up or down through a one-way tile is inside it by
+    /// right (as is a climber passing through a ladder top), so this counts only where the
+    /// character stands on it: frames reported grounded, not on a ladder, with no other support
+    /// ([`Ground::penetration`]).
+    pub fn one_way_sink(&self, feet: Vec2) -> f32 {
+        // Half the height: deeper than that, the tile is beside the body (as for platforms in
+        // [`Ground::support_gap`]), not under the feet.
+        let band = self.size.y * 0.5;
+        let pose = CharacterShape::pose(feet, self.size);
+        let half = self.shape.compute_aabb(&pose).half_extents().x;
+        let i0 = (feet.x - half + 1e-4).floor() as i64;
+        let i1 = (feet.x + half - 1e-4).floor() as i64;
+        // Tops j + 1 in (feet.y, feet.y + band].
+        let j0 = feet.y.floor() as i64;
+        let j1 = (feet.y + band).floor() as i64 - 1;
+        let above = CharacterShape::pose(feet + Vec2::Y * band, self.size);
+        let mut worst = 0.0f32;
+        for i in i0..=i1 {
+            for j in j0..=j1 {
+                if !self.level.is_one_way(i, j) || (j + 1) as f32 <= feet.y {
+                    continue;
+                }
+                let tile = Pose::from_translation(Vec2::new(i as f32, j as f32) + Vec2::splat(0.5));
+                let options = ShapeCastOptions::with_max_time_of_impact(band);
+                if let Ok(Some(hit)) = cast_shapes(
+                    &above,
+                    Vec2::NEG_Y,
+                    &*self.shape,
+                    &tile,
+                    Vec2::ZERO,
+                    &self.tile,
+                    options,
+                ) {
+                    worst = worst.max(band - hit.time_of_impact);
+                }
+            }
+        }
+        worst
+    }
+
+    /// The depth of the shape inside the level on a frame at time `t`, in tiles: its overlap
+    /// with the solid geometry ([`Ground::solid_penetration`]), and, on a frame where it is
+    /// `standing` (reported grounded, not in the ladder state) with no other ground within
+    /// [`FLICKER_SUPPORT_TOLERANCE`] below it, how far it is sunk below the one-way top it stands
+    /// on ([`Ground::one_way_sink`]).
+    pub fn penetration(&self, feet: Vec2, t: f64, standing: bool) -> f32 {
+        let solid = self.solid_penetration(feet);
+        solid.max(self.sunk_on_one_way(feet, t, standing))
+    }
+
+    /// [`Ground::one_way_sink`] where the character stands on the one-way top: a `standing` frame
+    /// with no other ground (tiles, slopes, one-way tops below the feet, moving platforms) within
+    /// [`FLICKER_SUPPORT_TOLERANCE`]; 0 elsewhere.
+    fn sunk_on_one_way(&self, feet: Vec2, t: f64, standing: bool) -> f32 {
+        if !standing {
+            return 0.0;
+        }
+        let sink = self.one_way_sink(feet);
+        if sink > 0.0 && self.support_gap(feet, t) > FLICKER_SUPPORT_TOLERANCE {
+            sink
+        } else {
+            0.0
+        }
+    }
+
     /// Signed gap from the shape down to the ground at time `t` (moving platforms included), in
     /// tiles: the distance it can drop before touching (0 when touching), or minus the depth it
-    /// is inside the level's solid geometry (tiles and slopes alike). Infinite if no ground is within
-    /// [`GROUND_SEARCH`].
-    pub fn gap_at(&self, feet: Vec2, t: f64) -> f32 {
+    /// is inside the level (tiles and slopes alike, and on a `standing` frame the one-way top it
+    /// stands on, see [`Ground::penetration`]). Infinite if no ground is within [`GROUND_SEARCH`].
+    pub fn gap_at(&self, feet: Vec2, t: f64, standing: bool) -> f32 {
+        let gap = self.support_gap(feet, t);
+        let sink = if gap > FLICKER_SUPPORT_TOLERANCE {
+            self.sunk_on_one_way(feet, t, standing)
+        } else {
+            0.0
+        };
+        if sink > 0.0 {
+            -sink
+        } else {
+            gap
+        }
+    }
+
+    /// Signed gap from the shape down to what can hold it at time `t`: the static ground
+    /// ([`Ground::gap`]) and moving platforms under it.
+    fn support_gap(&self, feet: Vec2, t: f64) -> f32 {
         let mut best = self.gap(feet);
         if best <= 0.0 {
             return best;
@@ -160,6 +247,24 @@ impl<'a> Ground<'a> {
             }
         }
         best
+    }
+
+    /// Overlap of the shape with a box `b` (a moving platform where it is placed), in tiles (0 if
+    /// none): parry's penetration depth, so a capsule or a ball is measured by its own outline,
+    /// not by its bounding box.
+    pub fn box_penetration(&self, feet: Vec2, b: &parry2d::bounding_volume::Aabb) -> f32 {
+        let pose = CharacterShape::pose(feet, self.size);
+        let platform = Pose::from_translation(b.center());
+        match contact(
+            &pose,
+            &*self.shape,
+            &platform,
+            &Cuboid::new(b.half_extents()),
+            0.0,
+        ) {
+            Ok(Some(c)) => (-c.dist).max(0.0),
+            _ => 0.0,
+        }
     }
 
     /// Signed gap from the shape down to the level's static ground (see [`Ground::gap_at`]).
@@ -252,6 +357,67 @@ mod tests {
         assert!(inside(Vec2::new(0.05, 0.02)));
         assert!(!inside(Vec2::new(0.5, 0.01)));
         assert!(!inside(Vec2::new(0.9, 0.001)));
+    }
+
+    #[test]
+    fn standing_sunk_below_a_one_way_top_is_seen_and_passing_through_is_not() {
+        // A one-way platform (row 2, top at y = 3) over a floor (top at y = 1).
+        let level = parse_level(
+            "map = \"\"\"\n.....\n.===.\n.....\n#####\n\"\"\"\n",
+            "o.toml",
+        )
+        .unwrap();
+        let size = Vec2::new(0.8, 0.9);
+        for shape in [
+            CharacterShape::Cuboid,
+            CharacterShape::Capsule,
+            CharacterShape::Ball,
+        ] {
+            let g = Ground::new(&level, shape, size);
+            // Standing on the top: nothing.
+            assert_eq!(g.penetration(Vec2::new(2.5, 3.0), 0.0, true), 0.0);
+            assert!(g.gap_at(Vec2::new(2.5, 3.0), 0.0, true).abs() < 1e-4);
+            // Sunk 0.2 below it while grounded: 0.2 deep, gap -0.2 (1e-4: f32 casts).
+            let sunk = Vec2::new(2.5, 2.8);
+            assert!(
+                (g.penetration(sunk, 0.0, true) - 0.2).abs() < 1e-4,
+                "{shape:?}"
+            );
+            assert!((g.gap_at(sunk, 0.0, true) + 0.2).abs() < 1e-4, "{shape:?}");
+            // The same place airborne (jumping up through it): inside it by right.
+            assert_eq!(g.penetration(sunk, 0.0, false), 0.0);
+            assert!(g.gap_at(sunk, 0.0, false) > 1.0);
+            // Grounded on the floor with the platform above the head: the floor holds it.
+            assert_eq!(g.penetration(Vec2::new(2.5, 1.0), 0.0, true), 0.0);
+            // Beside the platform (left of x = 1 by the half-width): not over it.
+            assert_eq!(g.one_way_sink(Vec2::new(0.55, 2.8)), 0.0);
+        }
+    }
+
+    #[test]
+    fn box_penetration_is_the_shapes_own() {
+        // A still 2 x 1 platform at x 2..4, y 2..3 (sine of amplitude 0 keeps it put).
+        let level = parse_level(
+            "map = \"\"\"\n......\n......\n......\n......\n######\n\"\"\"\n\
+             [[platform]]\nrect = [2.0, 2.0, 2.0, 1.0]\nsine = { amplitude = [0.0, 0.0], period = 1.0 }\n",
+            "p.toml",
+        )
+        .unwrap();
+        let size = Vec2::new(0.8, 0.9);
+        let boxy = Ground::new(&level, CharacterShape::Cuboid, size);
+        let ball = Ground::new(&level, CharacterShape::Ball, size);
+        let b = level.platforms[0].aabb(0.0);
+        // Feet 0.1 into its top, centred over it: 0.1 deep for both (1e-4: f32).
+        let on = Vec2::new(3.0, 2.9);
+        assert!((boxy.box_penetration(on, &b) - 0.1).abs() < 1e-4);
+        assert!((ball.box_penetration(on, &b) - 0.1).abs() < 1e-4);
+        // Feet 0.35 left of the platform's top-left corner and 0.1 below its top: the box
+        // (x 1.25..2.05) overlaps the corner by 0.05 across and 0.1 down, 0.05 deep; the ball's
+        // round outline (radius 0.45, centre 0.35 left of the corner and 0.35 above it, 0.495
+        // away) is clear of it. A box-for-every-shape measure would charge the ball 0.05.
+        let corner = Vec2::new(2.0 - 0.35, 3.0 - 0.1);
+        assert!((boxy.box_penetration(corner, &b) - 0.05).abs() < 1e-4);
+        assert_eq!(ball.box_penetration(corner, &b), 0.0);
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! whether its grounded flag tells the truth.
 
 use super::ground::Ground;
-use super::{pos, predicted_landing_frame, Context, Measure};
+use super::{pos, predicted_landing_frame, standing, Context, Measure};
 use crate::scenario::input_script;
 use crate::trace::TraceRow;
 
@@ -15,11 +15,12 @@ pub const FLICKER_SUPPORT_TOLERANCE: f32 = 0.1;
 
 /// `max_penetration`: deepest overlap of the character's shape with the level's solid geometry
 /// (solid tiles' squares and slope tiles' true solid parts, nothing left out) over the whole run,
-/// in tiles, from parry's contact query (not from a backend's contacts).
+/// in tiles, from parry's contact query (not from a backend's contacts); on grounded frames
+/// standing on a one-way top (platform or ladder top), how far it is sunk below that top.
 pub fn max_penetration(g: &Ground, rows: &[TraceRow]) -> Measure {
     let worst = rows
         .iter()
-        .map(|r| g.solid_penetration(pos(r)))
+        .map(|r| g.penetration(pos(r), r.t as f64, standing(r)))
         .fold(0.0f32, f32::max);
     Measure {
         metric: "max_penetration",
@@ -116,7 +117,9 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
     let last = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
     Measure {
         metric: "rest_gap",
-        value: g.gap_at(last, rows.last().map_or(0.0, |r| r.t as f64)) as f64,
+        value: rows.last().map_or(g.gap_at(last, 0.0, false), |r| {
+            g.gap_at(last, r.t as f64, standing(r))
+        }) as f64,
         reference: 0.0,
     }
 }
@@ -164,7 +167,10 @@ pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: &[Tra
         .iter()
         .map(|r| {
             let p = pos(r);
-            let actual = g.square_penetration(p).max(g.slope_penetration(p));
+            let actual = g
+                .square_penetration(p)
+                .max(g.slope_penetration(p))
+                .max(g.penetration(p, r.t as f64, standing(r)));
             let designed = if d.slope_overhang > 0.0 {
                 match ctx
                     .level
@@ -241,7 +247,7 @@ pub(super) fn rest_jitter(rows: &[TraceRow]) -> Measure {
 /// Whether the character's shape is within [`FLICKER_SUPPORT_TOLERANCE`] of the ground (or in
 /// it).
 pub(super) fn supported(g: &Ground, r: &TraceRow) -> bool {
-    g.gap_at(pos(r), r.t as f64) <= FLICKER_SUPPORT_TOLERANCE
+    g.gap_at(pos(r), r.t as f64, standing(r)) <= FLICKER_SUPPORT_TOLERANCE
 }
 
 /// `false_grounded`: frames reported grounded with the ground farther than

@@ -152,8 +152,8 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
         ride.as_ref()
             .map(|r| platforms::carry_airborne_frames(&rows, r)),
     );
-    push(platforms::push_penetration(ctx, &rows));
-    push(platforms::crush_count(ctx, &rows));
+    push(platforms::push_penetration(ctx, &ground, &rows));
+    push(platforms::crush_count(ctx, &ground, &rows));
     push(Some(walls::tunneled(ctx, &rows)));
     push(idle::idle_drift(ctx, &rows));
     out
@@ -162,6 +162,12 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
 /// A trace row's feet.
 fn pos(r: &TraceRow) -> Vec2 {
     Vec2::new(r.x, r.y)
+}
+
+/// Whether the row stands on ground: grounded and not in the ladder state (a climber passing
+/// through a ladder top is inside it by right, whatever its grounded flag says).
+fn standing(r: &TraceRow) -> bool {
+    r.is_grounded() && r.ladder == 0
 }
 
 /// The `ns_per_character_step` row of a timed scenario (see [`crate::scenario::time_scenario`]).

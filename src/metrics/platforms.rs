@@ -1,9 +1,28 @@
 //! Moving platforms: carrying a rider, and pushing (or crushing) a character.
 
+use super::ground::Ground;
 use super::{pos, Context, Measure};
-use crate::level::character_box;
 use crate::scenario::input_script;
 use crate::trace::TraceRow;
+
+/// Platform `p`'s box at frame `k`, where the configuration places it: on its exact path, or
+/// rounded to the subpixel grid a configuration on integer positions moves it on
+/// ([`crate::level::Platform::placed_aabb`]), so the carry and push are measured against the
+/// platform the controller really moves, as the character's box is the one it moves.
+fn placed(ctx: &Context, p: &crate::level::Platform, k: usize) -> parry2d::bounding_volume::Aabb {
+    p.placed_aabb(k as f64 * ctx.spec.dt as f64, ctx.declared.surface_grid)
+}
+
+/// Deepest overlap of row `r`'s shape (frame `k`) with a platform that is not one-way, where
+/// the configuration places it ([`placed`]), in tiles.
+fn platform_depth(ctx: &Context, g: &Ground, r: &TraceRow, k: usize) -> f32 {
+    ctx.level
+        .platforms
+        .iter()
+        .filter(|p| !p.one_way)
+        .map(|p| g.box_penetration(pos(r), &placed(ctx, p, k)))
+        .fold(0.0f32, f32::max)
+}
 
 /// How close above a platform's top the feet count as on it, for the carry metrics, in tiles:
 /// above Rapier's offset.
@@ -16,11 +35,10 @@ pub const ON_PLATFORM: f32 = 0.05;
 pub(super) fn ride_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::Range<usize>> {
     let p = ctx.level.platforms.get(ctx.spec.ride? as usize)?;
     let script = input_script(ctx.spec);
-    let dt = ctx.spec.dt as f64;
     let half = ctx.spec.size.x * 0.5;
     let on = |k: usize| {
         let r = &rows[k];
-        let b = p.aabb(k as f64 * dt);
+        let b = placed(ctx, p, k);
         r.is_grounded()
             && (r.y - b.maxs.y).abs() <= ON_PLATFORM
             && r.x + half > b.mins.x
@@ -48,8 +66,7 @@ pub(super) fn ride_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::
 /// relative to its platform, in tiles.
 pub fn carry_drift(ctx: &Context, rows: &[TraceRow], ride: &std::ops::Range<usize>) -> Measure {
     let p = &ctx.level.platforms[ctx.spec.ride.unwrap_or(0) as usize];
-    let dt = ctx.spec.dt as f64;
-    let rel = |k: usize| pos(&rows[k]) - p.position(k as f64 * dt);
+    let rel = |k: usize| pos(&rows[k]) - placed(ctx, p, k).mins;
     let first = rel(ride.start);
     let drift = ride
         .clone()
@@ -72,27 +89,16 @@ pub fn carry_airborne_frames(rows: &[TraceRow], ride: &std::ops::Range<usize>) -
 }
 
 /// `push_penetration`: on a level with moving platforms, the deepest overlap of the character's
-/// box with a platform that is not one-way, over the run, in tiles.
-pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+/// shape with a platform that is not one-way, over the run, in tiles (parry's penetration depth,
+/// [`Ground::box_penetration`], against the platform where the configuration places it).
+pub fn push_penetration(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
-    let dt = ctx.spec.dt as f64;
     let deepest = rows
         .iter()
         .enumerate()
-        .flat_map(|(k, r)| {
-            let b = character_box(pos(r), ctx.spec.size);
-            ctx.level
-                .platforms
-                .iter()
-                .filter(|p| !p.one_way)
-                .map(move |p| {
-                    let pb = p.aabb(k as f64 * dt);
-                    let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
-                    o.x.min(o.y).max(0.0)
-                })
-        })
+        .map(|(k, r)| platform_depth(ctx, g, r, k))
         .fold(0.0f32, f32::max);
     Some(Measure {
         metric: "push_penetration",
@@ -105,23 +111,15 @@ pub fn push_penetration(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
 /// through), in tiles: far beyond any contact tolerance.
 pub const CRUSH_DEPTH: f32 = 0.25;
 
-/// `crush_count`: on a level with moving platforms, how many times the character ended up inside
-/// a (not one-way) platform by more than [`CRUSH_DEPTH`]: crushed against the level, or run
-/// through by a platform that did not push it. Read from the geometry, so a backend without a
+/// `crush_count`: on a level with moving platforms, how many times the character's shape ended
+/// up inside a (not one-way) platform by more than [`CRUSH_DEPTH`]: crushed against the level, or
+/// run through by a platform that did not push it. Read from the geometry, so a backend without a
 /// crush event (Rapier) is counted the same way as the sweep, whose trace also flags the crush.
-pub fn crush_count(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn crush_count(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
-    let dt = ctx.spec.dt as f64;
-    let inside = |k: usize| {
-        let b = character_box(pos(&rows[k]), ctx.spec.size);
-        ctx.level.platforms.iter().filter(|p| !p.one_way).any(|p| {
-            let pb = p.aabb(k as f64 * dt);
-            let o = b.maxs.min(pb.maxs) - b.mins.max(pb.mins);
-            o.x.min(o.y) > CRUSH_DEPTH
-        })
-    };
+    let inside = |k: usize| platform_depth(ctx, g, &rows[k], k) > CRUSH_DEPTH;
     let count = (1..rows.len())
         .filter(|&k| inside(k) && !inside(k - 1))
         .count();

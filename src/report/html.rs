@@ -176,7 +176,11 @@ pub fn scenario_svg(s: &ScenarioTraces, drawn: &[Drawn]) -> String {
             );
         for (k, r) in t.rows.iter().enumerate() {
             let centre = Vec2::new(r.x, r.y + size.y * 0.5);
-            let inside = ground.solid_penetration(Vec2::new(r.x, r.y)) > 1e-3;
+            let inside = ground.penetration(
+                Vec2::new(r.x, r.y),
+                r.t as f64,
+                r.is_grounded() && r.ladder == 0,
+            ) > 1e-3;
             if inside || (!r.is_grounded() && k % 4 == 0) {
                 let (x, y) = to_px(centre);
                 g = g.add(

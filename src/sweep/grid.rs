@@ -163,9 +163,10 @@ impl GridPos {
     }
 }
 
-/// Moves `p` by `n` subpixels along `axis`, stopping flush at the closest static box ahead (the
+/// Moves `p` by `n` subpixels along `axis`, stopping flush at the closest box ahead among the
+/// static tiles and the `extra` boxes (moving platforms where they are now, on the grid): the
 /// seed's sweep, in integers: a box is beside the mover when the two overlap across the move
-/// by at least one subpixel, and ahead when its face lies within the move). With `commit` false
+/// by at least one subpixel, and ahead when its face lies within the move. With `commit` false
 /// nothing moves and only a box whose face touches the mover's leading side counts: a probe
 /// for a contact in the direction of `n`. Returns the kind of the box that stopped the move.
 #[allow(clippy::too_many_arguments)]
@@ -177,6 +178,7 @@ pub fn move_axis_grid(
     axis: Axis,
     n: i64,
     commit: bool,
+    extra: &[(GridBox, BoxKind)],
     skip: impl Fn(&GridBox, BoxKind) -> bool,
 ) -> Option<BoxKind> {
     if n == 0 {
@@ -193,8 +195,16 @@ pub fn move_axis_grid(
     }
     let area = grid.query_area(&swept);
     let mut closest: Option<(i64, BoxKind)> = None;
-    for (t, kind) in near.query(tiles, &area) {
-        let t = grid.from_aabb(t);
+    let statics = near
+        .query(tiles, &area)
+        .map(|(t, kind)| (grid.from_aabb(t), kind));
+    let moving = extra.iter().copied().filter(|(t, _)| {
+        t.min.x <= swept.max.x
+            && t.max.x >= swept.min.x
+            && t.min.y <= swept.max.y
+            && t.max.y >= swept.min.y
+    });
+    for (t, kind) in statics.chain(moving) {
         if skip(&t, kind) || b.max[o].min(t.max[o]) - b.min[o].max(t.min[o]) <= 0 {
             continue;
         }
@@ -288,6 +298,7 @@ mod tests {
                 Axis::Y,
                 n,
                 true,
+                &[],
                 |_, _| false,
             );
             assert_eq!(hit, Some(BoxKind::Solid), "origin {origin}");
@@ -301,24 +312,48 @@ mod tests {
         let mut p = at(&g, Vec2::new(2.5, 1.0));
         let mut near = NearCache::default();
         let n = p.whole_move(&g, Axis::X, 1000.0);
-        let hit = move_axis_grid(&tiles, &mut near, &g, &mut p, Axis::X, n, true, |_, _| {
-            false
-        });
+        let hit = move_axis_grid(
+            &tiles,
+            &mut near,
+            &g,
+            &mut p,
+            Axis::X,
+            n,
+            true,
+            &[],
+            |_, _| false,
+        );
         assert!(hit.is_some());
         // Flush: the box's right side is on the wall's face, x = 10 tiles.
         assert_eq!(p.b.max.x - g.origin.x, 160);
         let before = p;
-        let probe = move_axis_grid(&tiles, &mut near, &g, &mut p, Axis::X, 1, false, |_, _| {
-            false
-        });
+        let probe = move_axis_grid(
+            &tiles,
+            &mut near,
+            &g,
+            &mut p,
+            Axis::X,
+            1,
+            false,
+            &[],
+            |_, _| false,
+        );
         assert!(probe.is_some());
         assert_eq!(p, before);
         // One subpixel away from the wall, the probe finds nothing.
         p.b.min.x -= 1;
         p.b.max.x -= 1;
-        let probe = move_axis_grid(&tiles, &mut near, &g, &mut p, Axis::X, 1, false, |_, _| {
-            false
-        });
+        let probe = move_axis_grid(
+            &tiles,
+            &mut near,
+            &g,
+            &mut p,
+            Axis::X,
+            1,
+            false,
+            &[],
+            |_, _| false,
+        );
         assert!(probe.is_none());
     }
 

@@ -41,7 +41,7 @@ use crate::backend::{
 use crate::level::{Features, Level};
 use crate::motion::{Input, MotionParams, MotionState};
 use broadphase::{BoxKind, NearCache, StaticTiles};
-use grid::{Grid, GridPos};
+use grid::{Grid, GridBox, GridPos};
 use space::{FloatSpace, GridSpace, Space};
 
 /// How the sweep stores positions.
@@ -52,8 +52,8 @@ pub enum Positions {
     /// Whole subpixels (`per_tile` per tile) with the fractions carried between steps, snapping
     /// flush in exact integer arithmetic ([`grid`]). Slopes use the float mode's centre-column
     /// rules with every surface height rounded up to a whole subpixel
-    /// ([`crate::level::round_height_up`]). Levels with moving platforms are refused in this
-    /// mode for now.
+    /// ([`crate::level::round_height_up`]); moving platforms move in whole subpixels along
+    /// their path rounded to the grid, and carry, push and crush in integers ([`platforms`]).
     Integer {
         /// Subpixels per tile (16 and 32 are what pixel-art platformers use).
         per_tile: u32,
@@ -65,7 +65,7 @@ pub const INTEGER_SUPPORTED: Features = Features {
     slopes: true,
     one_way: true,
     ladders: true,
-    moving_platforms: false,
+    moving_platforms: true,
 };
 
 /// Settings of the sweep controller.
@@ -152,8 +152,7 @@ pub struct SweepStats {
 pub struct SweepBackend {
     tiles: StaticTiles,
     /// Moving platforms and their boxes at the current frame (empty on levels without them).
-    platforms: Vec<platforms::PlatformState>,
-    platform_boxes: Vec<(Aabb, BoxKind)>,
+    platforms: platforms::Platforms,
     /// Steps taken, for the platforms' time.
     frame: u64,
     /// `tan(max_climb_angle)`: the steepest walkable rise per unit of horizontal move.
@@ -208,23 +207,12 @@ impl SweepBackend {
         }
         Ok(SweepBackend {
             tiles: StaticTiles::new(level),
-            platforms: level
-                .platforms
-                .iter()
-                .map(|p| platforms::PlatformState::new(p, level.origin))
-                .collect(),
-            platform_boxes: level
-                .platforms
-                .iter()
-                .enumerate()
-                .map(|(i, p)| {
-                    let kind = BoxKind::Platform {
-                        index: i as u32,
-                        one_way: p.one_way,
-                    };
-                    (p.aabb(0.0).translated(level.origin), kind)
-                })
-                .collect(),
+            platforms: platforms::Platforms::new(
+                level,
+                grid.as_ref(),
+                config.rider_follow,
+                params.gravity,
+            ),
             frame: 0,
             climb_gradient: params.max_climb_angle.tan(),
             level: level.geometry(),
@@ -247,8 +235,10 @@ impl SweepBackend {
 /// the motion and the settings the stages use.
 struct World<'a> {
     tiles: &'a StaticTiles,
-    /// Moving platforms' boxes at the current frame.
+    /// Moving platforms' boxes at the current frame (float mode).
     platform_boxes: &'a [(Aabb, BoxKind)],
+    /// Moving platforms' boxes at the current frame on the subpixel grid (integer mode).
+    platform_grid: &'a [(GridBox, BoxKind)],
     level: &'a Level,
     params: &'a MotionParams,
     /// `tan(max_climb_angle)`.
@@ -299,7 +289,8 @@ impl Backend for SweepBackend {
     fn step(&mut self, inputs: &[Input], dt: f32) {
         let w = World {
             tiles: &self.tiles,
-            platform_boxes: &self.platform_boxes,
+            platform_boxes: &self.platforms.boxes,
+            platform_grid: &self.platforms.grid_boxes,
             level: &self.level,
             params: &self.params,
             climb_gradient: self.climb_gradient,
@@ -317,8 +308,23 @@ impl Backend for SweepBackend {
             }
         }
         // The seed's order: platforms move after every character has moved.
-        if !self.platforms.is_empty() {
-            self.move_platforms(dt);
+        if !self.platforms.states.is_empty() {
+            self.stats.platform_moves += self.platforms.states.len() as u64;
+            let t1 = (self.frame + 1) as f64 * dt as f64;
+            let (tiles, characters) = (&self.tiles, &mut self.characters);
+            match self.grid {
+                Some(grid) => {
+                    let s = GridSpace { grid };
+                    self.platforms.step(&s, tiles, characters, t1, dt)
+                }
+                None => {
+                    let s = FloatSpace {
+                        eps: self.config.epsilon,
+                        origin: self.origin,
+                    };
+                    self.platforms.step(&s, tiles, characters, t1, dt)
+                }
+            }
         }
         self.frame += 1;
     }

@@ -17,20 +17,65 @@
 //! rules) are done in the space's [`Space::Coord`] (f32 world tiles, or world subpixels), so the
 //! grid compares integers exactly.
 
-use std::ops::{Add, Sub};
+use std::ops::{Add, Neg, Sub};
 
-use glam::Vec2;
+use glam::{I64Vec2, Vec2};
+use parry2d::bounding_volume::Aabb;
 
-use super::broadphase::BoxKind;
-use super::grid::{move_axis_grid, Grid, GridPos};
+use super::broadphase::{BoxKind, StaticTiles};
+use super::grid::{move_axis_grid, Grid, GridBox, GridPos};
+use super::platforms::{PlatformState, Platforms};
 use super::resolve::{move_axis, Axis};
 use super::{Character, World};
+use crate::level::character_box;
 use crate::motion::MotionState;
+
+/// A box in a space's [`Space::Coord`]: its lower-left and upper-right corners, `[x, y]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect<C> {
+    /// Lower-left corner.
+    pub min: [C; 2],
+    /// Upper-right corner.
+    pub max: [C; 2],
+}
+
+impl From<Aabb> for Rect<f32> {
+    fn from(b: Aabb) -> Self {
+        Rect {
+            min: [b.mins.x, b.mins.y],
+            max: [b.maxs.x, b.maxs.y],
+        }
+    }
+}
+
+impl From<GridBox> for Rect<i64> {
+    fn from(b: GridBox) -> Self {
+        Rect {
+            min: [b.min.x, b.min.y],
+            max: [b.max.x, b.max.y],
+        }
+    }
+}
+
+impl From<Rect<i64>> for GridBox {
+    fn from(r: Rect<i64>) -> Self {
+        GridBox {
+            min: I64Vec2::from_array(r.min),
+            max: I64Vec2::from_array(r.max),
+        }
+    }
+}
 
 /// A storage of positions the step is generic over (float with epsilon, or integer subpixels).
 pub trait Space {
     /// A coordinate in which box faces compare: world tiles (f32) or world subpixels (i64).
-    type Coord: Copy + PartialOrd + Add<Output = Self::Coord> + Sub<Output = Self::Coord>;
+    /// Its `Default` is zero.
+    type Coord: Copy
+        + Default
+        + PartialOrd
+        + Add<Output = Self::Coord>
+        + Sub<Output = Self::Coord>
+        + Neg<Output = Self::Coord>;
     /// A character's position saved before a move, to undo it.
     type Saved: Copy;
 
@@ -78,6 +123,24 @@ pub trait Space {
         min_fall: bool,
         skip: impl Fn(Self::Coord, BoxKind) -> bool,
     ) -> Option<BoxKind>;
+
+    /// `c`'s box, as [`Self::Coord`]s.
+    fn rect(&self, c: &Character) -> Rect<Self::Coord>;
+    /// Moving platform `p`'s box at time `t` (seconds) as the space places it: its exact path
+    /// in float, its path rounded to the nearest subpixel on the grid
+    /// ([`crate::level::Platform::grid_box`]).
+    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<Self::Coord>;
+    /// Where platform `i` is now (the box the characters just moved against).
+    fn platform_now(&self, ps: &Platforms, i: usize) -> Rect<Self::Coord>;
+    /// Puts platform `i` at `r`.
+    fn set_platform(&self, ps: &mut Platforms, i: usize, r: Rect<Self::Coord>);
+    /// A length in [`Self::Coord`] as tiles.
+    fn to_tiles(&self, v: Self::Coord) -> f32;
+    /// A length in tiles as a [`Self::Coord`] (on the grid: rounded up to whole subpixels).
+    fn length_up(&self, tiles: f32) -> Self::Coord;
+    /// Moves `c` by `delta` (x, then y) against the static level only, as a moving platform
+    /// carries or pushes it; returns whether the level stopped any part of the move.
+    fn shove(&self, tiles: &StaticTiles, c: &mut Character, delta: [Self::Coord; 2]) -> bool;
 }
 
 /// f32 world positions with the seed's epsilon fudge.
@@ -152,6 +215,43 @@ impl Space for FloatSpace {
             self.eps,
             |t, k| skip(t.maxs.y, k),
         )
+    }
+    fn rect(&self, c: &Character) -> Rect<f32> {
+        character_box(c.pos, c.size).into()
+    }
+    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<f32> {
+        p.aabb(t).into()
+    }
+    fn platform_now(&self, ps: &Platforms, i: usize) -> Rect<f32> {
+        ps.boxes[i].0.into()
+    }
+    fn set_platform(&self, ps: &mut Platforms, i: usize, r: Rect<f32>) {
+        ps.boxes[i].0 = Aabb::new(Vec2::from_array(r.min), Vec2::from_array(r.max));
+    }
+    fn to_tiles(&self, v: f32) -> f32 {
+        v
+    }
+    fn length_up(&self, tiles: f32) -> f32 {
+        tiles
+    }
+    fn shove(&self, tiles: &StaticTiles, c: &mut Character, delta: [f32; 2]) -> bool {
+        let skip = |_: &Aabb, k: BoxKind| matches!(k, BoxKind::OneWay | BoxKind::Platform { .. });
+        let delta = Vec2::from_array(delta);
+        let start = c.pos;
+        for (axis, d) in [(Axis::X, delta.x), (Axis::Y, delta.y)] {
+            move_axis(
+                tiles,
+                &mut c.near,
+                &[],
+                &mut c.pos,
+                c.size,
+                axis,
+                d,
+                self.eps,
+                skip,
+            );
+        }
+        (c.pos - start - delta).length() > self.eps
     }
 }
 
@@ -237,17 +337,46 @@ impl Space for GridSpace {
             n = -1;
             p.remainder[axis.index()] = 0.0;
         }
-        let skip = |t: &super::grid::GridBox, k: BoxKind| skip(t.max.y, k);
-        let mut hit = move_axis_grid(w.tiles, &mut c.near, g, p, axis, n, true, skip);
+        let skip = |t: &GridBox, k: BoxKind| skip(t.max.y, k);
+        let extra = w.platform_grid;
+        let mut hit = move_axis_grid(w.tiles, &mut c.near, g, p, axis, n, true, extra, skip);
         if axis == Axis::Y && n == 0 && delta < 0.0 {
             // A fall of less than a subpixel this step moves nothing: the ground is there if
             // the box rests on it (Celeste's "collide check one pixel down"). A move of a
             // subpixel or more that ends on a face has already reported it.
-            hit = move_axis_grid(w.tiles, &mut c.near, g, p, axis, -1, false, skip);
+            hit = move_axis_grid(w.tiles, &mut c.near, g, p, axis, -1, false, extra, skip);
         }
         if hit.is_some() {
             p.remainder[axis.index()] = 0.0;
         }
         hit
+    }
+    fn rect(&self, c: &Character) -> Rect<i64> {
+        c.on_grid.b.into()
+    }
+    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<i64> {
+        p.grid_box(&self.grid, t).into()
+    }
+    fn platform_now(&self, ps: &Platforms, i: usize) -> Rect<i64> {
+        ps.grid_boxes[i].0.into()
+    }
+    fn set_platform(&self, ps: &mut Platforms, i: usize, r: Rect<i64>) {
+        ps.grid_boxes[i].0 = r.into();
+    }
+    fn to_tiles(&self, v: i64) -> f32 {
+        (v as f64 / self.grid.per_tile as f64) as f32
+    }
+    fn length_up(&self, tiles: f32) -> i64 {
+        (tiles as f64 * self.grid.per_tile as f64).ceil() as i64
+    }
+    fn shove(&self, tiles: &StaticTiles, c: &mut Character, delta: [i64; 2]) -> bool {
+        let skip =
+            |_: &GridBox, k: BoxKind| matches!(k, BoxKind::OneWay | BoxKind::Platform { .. });
+        let start = c.on_grid.b.min;
+        for (axis, n) in [(Axis::X, delta[0]), (Axis::Y, delta[1])] {
+            let p = &mut c.on_grid;
+            move_axis_grid(tiles, &mut c.near, &self.grid, p, axis, n, true, &[], skip);
+        }
+        c.on_grid.b.min - start != I64Vec2::from_array(delta)
     }
 }
