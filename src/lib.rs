@@ -5,8 +5,9 @@
 //! [`backend::Backend`], [`backend::BackendSettings`] and [`backend::BackendKind`] traits) ← the
 //! controllers ([`sweep`], [`rapier`]), listed in one [`registry::Registry`] ← [`scenario`] (the
 //! runner) and [`trace`] ← [`metrics`] ← [`report`], [`stress`], [`tradeoff`]. [`suite`] runs the
-//! comparison from code; [`cli`] is the `platbench` command line, which a user's crate gets with
-//! its own controller beside ours from [`cli::main_with`] (see `examples/move_and_slide.rs`).
+//! comparison from code; [`parallel`] fans independent runs out over threads; [`cli`] is the
+//! `platbench` command line, which a user's crate gets with its own controller beside ours from
+//! [`cli::main_with`] (see `examples/move_and_slide.rs`).
 
 #![warn(missing_docs)]
 
@@ -20,6 +21,7 @@ pub mod level;
 pub mod limits;
 pub mod metrics;
 pub mod motion;
+pub mod parallel;
 pub mod rapier;
 pub mod registry;
 pub mod report;

@@ -428,22 +428,40 @@ pub fn points(runs: &[RunConfig]) -> Vec<Point> {
     out
 }
 
-/// Runs the matrix for `runs`: builds [`points`], runs each with [`run_point`] and collects
-/// their rows in order. `progress` hears each new dimension value or combination cell.
+/// Runs the matrix for `runs` on every core ([`stress_matrix_on`]).
 pub fn stress_matrix(
     runs: &[RunConfig],
+    progress: impl FnMut(&str),
+) -> Result<Vec<StressRow>, BackendError> {
+    stress_matrix_on(runs, crate::parallel::default_jobs(), progress)
+}
+
+/// Runs the matrix for `runs` on `jobs` threads: builds [`points`], runs each with
+/// [`run_point`] (the points are independent and fan out) and collects their rows in matrix
+/// order whatever the threads. `progress` hears each new dimension value or combination cell.
+pub fn stress_matrix_on(
+    runs: &[RunConfig],
+    jobs: usize,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<StressRow>, BackendError> {
+    let points = points(runs);
     let mut out = Vec::new();
     let mut last = String::new();
-    for p in points(runs) {
-        let what = p.label();
-        if what != last {
-            progress(&what);
-            last = what;
-        }
-        out.extend(run_point(&p)?);
-    }
+    crate::parallel::for_each_ordered(
+        jobs,
+        points.len(),
+        || (),
+        |_, i| run_point(&points[i]),
+        |i, rows| {
+            let what = points[i].label();
+            if what != last {
+                progress(&what);
+                last = what;
+            }
+            out.extend(rows?);
+            Ok(())
+        },
+    )?;
     Ok(out)
 }
 

@@ -108,30 +108,89 @@ pub struct TradeoffRow {
 }
 
 /// Runs every setting over the levels' scenarios and scores it with `score`, whole and per
-/// behaviour; `progress` gets `(done, total, label)`.
+/// behaviour; `progress` gets `(done, total, label)`. Runs on every core
+/// ([`run_tradeoff_on`]).
 pub fn run_tradeoff(
     levels: &[Level],
     settings: &[Setting],
     score: &Score,
+    progress: impl FnMut(usize, usize, &str),
+) -> Result<Vec<TradeoffRow>, BackendError> {
+    run_tradeoff_on(
+        levels,
+        settings,
+        score,
+        crate::parallel::default_jobs(),
+        progress,
+    )
+}
+
+/// [`run_tradeoff`] on `jobs` threads: the runs that give the metrics fan out over them (the
+/// rows are the same whatever the number); the timing then runs on one thread, nothing beside
+/// it.
+pub fn run_tradeoff_on(
+    levels: &[Level],
+    settings: &[Setting],
+    score: &Score,
+    jobs: usize,
     mut progress: impl FnMut(usize, usize, &str),
 ) -> Result<Vec<TradeoffRow>, BackendError> {
+    // Each setting's scenarios, with the setting's time step: (setting, level, scenario).
+    let spec_of = |s: &Setting, level: &Level, si: usize| {
+        let mut spec = level.scenarios[si].clone();
+        if let Some(dt) = s.dt {
+            spec.dt = dt;
+        }
+        spec
+    };
+    let mut items: Vec<(usize, usize, usize)> = Vec::new();
+    for k in 0..settings.len() {
+        for (li, level) in levels.iter().enumerate() {
+            for si in 0..level.scenarios.len() {
+                items.push((k, li, si));
+            }
+        }
+    }
+    // The metrics, fanned out: None for a level the setting does not model (left out of its
+    // row).
+    let mut measured: Vec<Option<Vec<MetricRow>>> = Vec::with_capacity(items.len());
+    crate::parallel::for_each_ordered(
+        jobs,
+        items.len(),
+        || None::<(usize, Runner)>,
+        |cache, i| {
+            let (k, li, si) = items[i];
+            if cache.as_ref().is_none_or(|(l, _)| *l != li) {
+                *cache = Some((li, Runner::new(&levels[li])));
+            }
+            let Some((_, runner)) = cache.as_mut() else {
+                unreachable!("set just above")
+            };
+            let spec = spec_of(&settings[k], &levels[li], si);
+            match evaluate_with(runner, &spec, &settings[k].run) {
+                Err(BackendError::Unsupported { .. }) => Ok(None),
+                e => e.map(|e| Some(e.metrics)),
+            }
+        },
+        |_, r| {
+            measured.push(r?);
+            Ok::<(), BackendError>(())
+        },
+    )?;
     let mut out = Vec::new();
+    let mut measured = measured.into_iter();
     for (k, s) in settings.iter().enumerate() {
         progress(k, settings.len(), &s.label);
         let mut rows = Vec::new();
         let (mut cost, mut n) = (0.0, 0usize);
         for level in levels {
             let mut runner = Runner::new(level);
-            for spec in &level.scenarios {
-                let mut spec = spec.clone();
-                if let Some(dt) = s.dt {
-                    spec.dt = dt;
-                }
-                match evaluate_with(&mut runner, &spec, &s.run) {
-                    // A level the setting does not model is left out of its row.
-                    Err(BackendError::Unsupported { .. }) => continue,
-                    e => rows.extend(e?.metrics),
-                }
+            for si in 0..level.scenarios.len() {
+                let Some(metrics) = measured.next().flatten() else {
+                    continue;
+                };
+                rows.extend(metrics);
+                let spec = spec_of(s, level, si);
                 // ns per frame (its substeps included) over seconds per frame, in microseconds.
                 cost += time_scenario(&mut runner, &spec, &s.run, 3)? / spec.dt as f64 / 1000.0;
                 n += 1;

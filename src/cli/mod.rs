@@ -94,31 +94,36 @@ where
     };
     let h = harness;
     let result = match cli.command {
-        None => {
-            let write = cli.out.is_some();
-            run::run(
-                h,
-                &run::RunArgs {
-                    out: cli.out.unwrap_or_else(|| PathBuf::from("platbench-out")),
-                    force: cli.force,
-                    ..run::RunArgs::default()
-                },
-                write,
-            )
-        }
-        Some(Command::Run(args)) => run::run(h, &args, true),
+        None => run::run(
+            h,
+            &run::RunArgs {
+                out: cli.out,
+                force: cli.force,
+                ..run::RunArgs::default()
+            },
+        ),
+        Some(Command::Run(args)) => run::run(h, &args),
         Some(Command::Levels) => levels::list_levels(),
         Some(Command::Stress {
             out,
             force,
             world_size,
-        }) => stress::stress(h, &out, force, world_size),
+            jobs,
+        }) => stress::stress(h, &out, force, world_size, jobs_or_cores(jobs)),
         Some(Command::Sweep {
             out,
             force,
             levels,
             score,
-        }) => sweep::sweep_settings(h, &out, force, &levels, score.as_deref()),
+            jobs,
+        }) => sweep::sweep_settings(
+            h,
+            &out,
+            force,
+            &levels,
+            score.as_deref(),
+            jobs_or_cores(jobs),
+        ),
         Some(Command::Report(args)) => report::report(h, &args),
         Some(Command::Diff(args)) => return diff::diff(&args),
         Some(Command::Inspect(args)) => inspect::inspect(&args),
@@ -130,6 +135,11 @@ where
             ExitCode::from(2)
         }
     }
+}
+
+/// The threads `--jobs` asks for, or the cores available.
+pub(crate) fn jobs_or_cores(jobs: Option<u32>) -> usize {
+    jobs.map_or_else(crate::parallel::default_jobs, |j| j as usize)
 }
 
 /// Compare 2D platformer character controllers on the same levels, side by side.
@@ -158,11 +168,12 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run level files (the built-in set when none is given) and write traces and metrics.
+    /// Run level files (the built-in set when none is given), print the summary, and with --out
+    /// write traces and metrics.
     ///
-    /// Writes DIR/traces/<level>.<scenario>.<backend>[.<config>].csv (one row per frame)
-    /// and DIR/metrics.csv (one row per metric), replacing DIR as a whole once the run is
-    /// complete.
+    /// With --out DIR, writes DIR/traces/<level>.<scenario>.<backend>[.<config>].csv (one row
+    /// per frame; --traces chooses which) and DIR/metrics.csv (one row per metric), replacing
+    /// DIR as a whole once the run is complete. Without --out nothing is written.
     Run(run::RunArgs),
     /// List the built-in levels and their scenarios.
     Levels,
@@ -187,6 +198,11 @@ enum Command {
         /// design (Rapier's offset, the sweep's box overhanging a slope).
         #[arg(long)]
         score: Option<String>,
+        /// Threads the runs that give the metrics fan out over (the output is the same whatever
+        /// the number); default: the cores available. The timing always runs on one thread, with
+        /// nothing beside it.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        jobs: Option<u32>,
     },
     /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
     /// tunneling, stable rest, no grounded flicker, carry without drift, progress over seamed
@@ -210,6 +226,10 @@ enum Command {
         /// within it.
         #[arg(long, value_name = "TILES", value_parser = parse_world_size)]
         world_size: Option<f64>,
+        /// Threads the cells of the matrix fan out over (the output is the same whatever the
+        /// number); default: the cores available.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        jobs: Option<u32>,
     },
     /// Run level files (the built-in set when none is given) and write the "pick a backend"
     /// report: DIR/report.html (self-contained: inline pictures, no scripts, no network) and its

@@ -10,9 +10,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 
-use crate::metrics::MetricRow;
-use crate::trace::Trace;
-
 /// The marker file in every directory platbench writes: one line, `platbench <kind>`.
 pub const MARKER: &str = ".platbench-output";
 /// Prefix of a staging directory: `.platbench-staging-<pid>-<n>`.
@@ -304,36 +301,6 @@ pub fn write_output(
             .with_context(|| format!("cannot remove the previous output at {}", aside.display()))?;
     }
     Ok(())
-}
-
-/// Writes `DIR/traces/*.csv` and `DIR/metrics.csv` (and the marker), replacing `DIR` as a whole.
-pub fn write_run(
-    dir: &Path,
-    kind: Kind,
-    force: bool,
-    traces: &[Trace],
-    metrics: &[MetricRow],
-) -> Result<()> {
-    write_output(dir, kind, force, |staging| {
-        let traces_dir = staging.join("traces");
-        fs::create_dir(&traces_dir)
-            .with_context(|| format!("cannot create {}", traces_dir.display()))?;
-        for t in traces {
-            let path = traces_dir.join(t.file_name());
-            let file = fs::File::create(&path)
-                .with_context(|| format!("cannot create {}", path.display()))?;
-            t.write_csv(std::io::BufWriter::new(file))
-                .with_context(|| format!("cannot write {}", path.display()))?;
-        }
-        let mpath = staging.join("metrics.csv");
-        let mut w = csv::Writer::from_path(&mpath)
-            .with_context(|| format!("cannot create {}", mpath.display()))?;
-        for m in metrics {
-            w.serialize(m)?;
-        }
-        w.flush()?;
-        Ok(())
-    })
 }
 
 /// Serialises `rows` as CSV into `path`.

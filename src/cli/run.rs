@@ -10,9 +10,10 @@ use clap::Args;
 
 use super::{load_levels_with, out, output, Harness, ImportArgs};
 use crate::metrics::{evaluate_with, MetricRow};
+use crate::parallel;
+use crate::report::summary_rows::SummaryRows;
 use crate::report::{detail_table, summary_table};
 use crate::scenario::{RunConfig, Runner};
-use crate::trace::Trace;
 
 #[derive(Args, Default)]
 #[command(allow_negative_numbers = true)]
@@ -20,23 +21,36 @@ pub(crate) struct RunArgs {
     /// Level files: TOML, Tiled maps (.tmx) or LDtk projects (.ldtk); the built-in set when
     /// none is given.
     pub(crate) levels: Vec<PathBuf>,
-    /// Output directory, replaced as a whole once the run is complete. It must be missing,
-    /// empty, or an earlier `platbench run` output (it holds a .platbench-output marker file);
-    /// anything else is refused unless --force. A baseline (its marker says so) is refused
-    /// even with --force: only --bless replaces it.
-    #[arg(long, default_value = "platbench-out")]
-    pub(crate) out: PathBuf,
+    /// Output directory for metrics.csv and the traces; without it nothing is written. Replaced
+    /// as a whole once the run is complete. It must be missing, empty, or an earlier
+    /// `platbench run` output (it holds a .platbench-output marker file); anything else is
+    /// refused unless --force. A baseline (its marker says so) is refused even with --force:
+    /// only --bless replaces it.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
     /// Replace --out even when it is not an earlier run's output (a directory of your own
     /// files, another command's output): everything in it is deleted.
-    #[arg(long)]
+    #[arg(long, requires = "out")]
     pub(crate) force: bool,
-    /// Print every metric of every scenario, not only the per-metric summary.
+    /// Which traces --out gets: `all` (the default), `none` (metrics.csv only), or `failing`:
+    /// the runs of which a metric of the default error score (registry weight above 0) is off
+    /// its reference by more than the size that counts as clearly wrong (0.01 tiles, 0.01 for a
+    /// ratio or tiles/s, one frame, one count), or is NaN. A run that errors stops the run.
+    #[arg(long, value_enum, value_name = "WHICH", requires = "out")]
+    pub(crate) traces: Option<Traces>,
+    /// Threads to run on: independent (scenario, configuration) runs fan out over them, and
+    /// the output is bit-identical whatever the number. Default: the cores available. --timing
+    /// runs on one thread whatever this says, so that nothing runs beside a timed step.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub(crate) jobs: Option<u32>,
+    /// Print every metric of every scenario, not only the per-metric summary (this holds every
+    /// metric row in memory until the end; without it only the rows the summary needs are kept).
     #[arg(long)]
     pub(crate) detail: bool,
     /// Replace the committed baseline (compare/baseline for platbench itself; the harness's
     /// baseline directory for a crate calling platbench::cli) with this run: the only way it is
     /// written. Runs the built-in set with every configuration.
-    #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing"])]
+    #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing", "traces"])]
     pub(crate) bless: bool,
     /// Override every scenario's time step, in seconds.
     #[arg(long, value_name = "SECONDS")]
@@ -136,16 +150,17 @@ pub(crate) fn evaluate_or_skip(
     }
 }
 
-pub(crate) fn run(h: &Harness, args: &RunArgs, write: bool) -> Result<()> {
+pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
     // Where the run goes, checked before any work: a directory that is not this command's
-    // output (or a baseline, without --bless) is refused now, not after the run.
+    // output (or a baseline, without --bless) is refused now, not after the run. Without --out
+    // (or --bless) nothing is written.
     let (target, kind) = if args.bless {
-        (h.baseline.clone(), output::Kind::Baseline)
+        (Some(h.baseline.clone()), output::Kind::Baseline)
     } else {
         (args.out.clone(), output::Kind::Run)
     };
-    if write {
-        output::check_target(&target, kind, args.force)?;
+    if let Some(target) = &target {
+        output::check_target(target, kind, args.force)?;
     }
     if let Some(dt) = args.dt {
         let (lo, hi) = crate::limits::DT_RANGE;
@@ -183,63 +198,40 @@ pub(crate) fn run(h: &Harness, args: &RunArgs, write: bool) -> Result<()> {
         .map(|l| l.scenarios.len() * configs.iter().filter(|c| c.backend.supports(l)).count())
         .sum();
     let skipped_runs = scenarios * configs.len() - total;
+    // Timing measures one thread with nothing else running beside it.
+    let jobs = if args.timing {
+        1
+    } else {
+        args.jobs
+            .map_or_else(parallel::default_jobs, |j| j as usize)
+    };
     eprintln!(
-        "platbench: {scenarios} scenarios on {} configurations ({total} runs{})",
+        "platbench: {scenarios} scenarios on {} configurations ({total} runs{}) on {jobs} thread{}",
         configs.len(),
         if skipped_runs > 0 {
             format!(", {skipped_runs} skipped where a configuration does not model a level")
         } else {
             String::new()
-        }
+        },
+        if jobs == 1 { "" } else { "s" }
     );
-    // Progress within a level, only for a person watching: a terminal's stderr.
-    let live = std::io::stderr().is_terminal();
+    let traces = if args.bless {
+        Traces::All
+    } else {
+        args.traces.unwrap_or(Traces::All)
+    };
     let started = Instant::now();
-    let mut traces: Vec<Trace> = Vec::new();
-    let mut metrics: Vec<MetricRow> = Vec::new();
-    let mut done = 0;
-    let mut skipped: Vec<String> = Vec::new();
-    for level in &levels {
-        let level_start = Instant::now();
-        let mut runner = Runner::new(level);
-        for (si, spec) in level.scenarios.iter().enumerate() {
-            for run in &configs {
-                if live {
-                    eprint!(
-                        "\r\x1b[K  [{done}/{total}] {}: scenario {}/{} {} on {} {} ({} frames)",
-                        level.name,
-                        si + 1,
-                        level.scenarios.len(),
-                        spec.name,
-                        run.backend.backend(),
-                        run.label,
-                        crate::scenario::step_count(spec)
-                    );
-                }
-                let Some(e) = evaluate_or_skip(&mut runner, spec, run, &mut skipped)? else {
-                    continue;
-                };
-                if args.timing {
-                    let ns = crate::scenario::time_scenario(&mut runner, spec, run, 5)?;
-                    metrics.push(crate::metrics::timing_row(level, spec, run, ns));
-                }
-                metrics.extend(e.metrics);
-                if write {
-                    traces.push(e.trace);
-                }
-                done += 1;
-            }
+    let (metrics, rows, written) = match &target {
+        Some(target) => {
+            let mut result = None;
+            output::write_output(target, kind, args.force, |dir| {
+                result = Some(execute(&levels, &configs, args, jobs, Some((dir, traces)))?);
+                Ok(())
+            })?;
+            result.unwrap_or_default()
         }
-        if live {
-            eprint!("\r\x1b[K");
-        }
-        eprintln!(
-            "  [{done}/{total}] {} ({}) {:.2} s",
-            level.name,
-            level.source,
-            level_start.elapsed().as_secs_f64()
-        );
-    }
+        None => execute(&levels, &configs, args, jobs, None)?,
+    };
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
     let mut text = summary_table(&metrics);
     for n in h.registry.notes(&metrics) {
@@ -249,16 +241,229 @@ pub(crate) fn run(h: &Harness, args: &RunArgs, write: bool) -> Result<()> {
     if args.detail {
         out(&format!("\n{}", detail_table(&metrics)));
     }
-    if write {
-        output::write_run(&target, kind, args.force, &traces, &metrics)?;
-        eprintln!(
-            "wrote {} traces and {} metric rows to {}",
-            traces.len(),
-            metrics.len(),
+    match &target {
+        Some(target) => eprintln!(
+            "wrote {written} traces ({}) and {rows} metric rows to {}",
+            traces.describe(),
             target.display()
-        );
-    } else {
-        eprintln!("(worst case per metric over all scenarios; `platbench run --detail` lists every scenario, `--out DIR` writes the CSV files)");
+        ),
+        None => eprintln!("(worst case per metric over all scenarios; `platbench run --detail` lists every scenario, `--out DIR` writes the CSV files)"),
     }
     Ok(())
+}
+
+/// Which traces `run --out` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum Traces {
+    /// No trace: only metrics.csv.
+    None,
+    /// Only the traces of failing runs (see [`failing`]).
+    Failing,
+    /// Every run's trace.
+    All,
+}
+
+impl Traces {
+    fn describe(self) -> &'static str {
+        match self {
+            Traces::None => "--traces none",
+            Traces::Failing => "--traces failing: the failing runs'",
+            Traces::All => "every run's",
+        }
+    }
+}
+
+/// Whether a run fails: a metric of the default error score (a registry weight above 0) is off
+/// its reference by more than the size that counts as clearly wrong (0.01 tiles, 0.01 for a
+/// ratio or tiles/s, one frame, one count; [`crate::metrics::MetricDef::scale`]), or is not a
+/// number.
+pub(crate) fn failing(metrics: &[MetricRow]) -> bool {
+    metrics.iter().any(|m| {
+        crate::metrics::registry::get(m.metric)
+            .is_some_and(|d| d.weight > 0.0 && (m.error.is_nan() || m.error.abs() > d.scale()))
+    })
+}
+
+/// What one (scenario, configuration) run gave.
+enum Outcome {
+    /// The configuration does not model the level: the note to print once.
+    Skipped(String),
+    /// Its metric rows (the timing row first, with --timing), and whether its trace was written.
+    Ran(Vec<MetricRow>, bool),
+}
+
+/// Runs every scenario of `levels` on every configuration on `jobs` threads, writing each trace
+/// `dir` asks for as soon as its run ends and metrics.csv as the rows come, in run order (level,
+/// scenario, configuration) whatever the threads. Returns the metric rows the summary needs
+/// (every row with --detail; see [`SummaryRows`]), the number of rows, and the number of traces
+/// written.
+fn execute<'a>(
+    levels: &'a [crate::level::Level],
+    configs: &[RunConfig],
+    args: &RunArgs,
+    jobs: usize,
+    dir: Option<(&std::path::Path, Traces)>,
+) -> Result<(Vec<MetricRow>, usize, usize)> {
+    let mut items: Vec<(usize, usize, usize)> = Vec::new();
+    for (li, level) in levels.iter().enumerate() {
+        for si in 0..level.scenarios.len() {
+            for ci in 0..configs.len() {
+                items.push((li, si, ci));
+            }
+        }
+    }
+    let traces_dir = dir.map(|(d, _)| d.join("traces"));
+    if let Some(t) = &traces_dir {
+        std::fs::create_dir(t).with_context(|| format!("cannot create {}", t.display()))?;
+    }
+    let mut csv = match dir {
+        Some((d, _)) => {
+            let path = d.join("metrics.csv");
+            Some((
+                csv::Writer::from_path(&path)
+                    .with_context(|| format!("cannot create {}", path.display()))?,
+                path,
+            ))
+        }
+        None => None,
+    };
+    let mode = dir.map_or(Traces::None, |(_, m)| m);
+    // One runner per thread, kept while its jobs stay on one level (they come in level order).
+    let init = || None::<(usize, Runner<'a>)>;
+    let work = |cache: &mut Option<(usize, Runner<'a>)>, i: usize| -> Result<Outcome> {
+        let (li, si, ci) = items[i];
+        let (level, spec, run) = (&levels[li], &levels[li].scenarios[si], &configs[ci]);
+        if cache.as_ref().is_none_or(|(l, _)| *l != li) {
+            *cache = Some((li, Runner::new(level)));
+        }
+        let Some((_, runner)) = cache.as_mut() else {
+            unreachable!("set just above")
+        };
+        let e = match evaluate_with(runner, spec, run) {
+            Err(e @ crate::backend::BackendError::Unsupported { .. }) => {
+                return Ok(Outcome::Skipped(format!(
+                    "{} {}: {e}",
+                    run.backend.backend(),
+                    run.label
+                )))
+            }
+            e => e.with_context(|| {
+                format!(
+                    "running {}.{} on {}/{}",
+                    level.name,
+                    spec.name,
+                    run.backend.backend(),
+                    run.label
+                )
+            })?,
+        };
+        let mut metrics = Vec::with_capacity(e.metrics.len() + 1);
+        if args.timing {
+            let ns = crate::scenario::time_scenario(runner, spec, run, 5)?;
+            metrics.push(crate::metrics::timing_row(level, spec, run, ns));
+        }
+        metrics.extend(e.metrics);
+        let keep = match mode {
+            Traces::None => false,
+            Traces::Failing => failing(&metrics),
+            Traces::All => true,
+        };
+        if let (true, Some(t)) = (keep, &traces_dir) {
+            let path = t.join(e.trace.file_name());
+            let file = std::fs::File::create(&path)
+                .with_context(|| format!("cannot create {}", path.display()))?;
+            e.trace
+                .write_csv(std::io::BufWriter::new(file))
+                .with_context(|| format!("cannot write {}", path.display()))?;
+        }
+        Ok(Outcome::Ran(metrics, keep))
+    };
+    // Progress within a level, only for a person watching: a terminal's stderr.
+    let live = std::io::stderr().is_terminal();
+    let total = items
+        .iter()
+        .filter(|&&(li, _, ci)| configs[ci].backend.supports(&levels[li]))
+        .count();
+    // Every row for --detail; else only those the summary needs (see SummaryRows), grouped by
+    // the set of configurations that model the level.
+    let mut metrics: Vec<MetricRow> = Vec::new();
+    let mut kept = SummaryRows::default();
+    let mut groups: Vec<Vec<bool>> = Vec::new();
+    let group_of: Vec<usize> = levels
+        .iter()
+        .map(|l| {
+            let set: Vec<bool> = configs.iter().map(|c| c.backend.supports(l)).collect();
+            match groups.iter().position(|g| *g == set) {
+                Some(i) => i,
+                None => {
+                    groups.push(set);
+                    groups.len() - 1
+                }
+            }
+        })
+        .collect();
+    let mut rows_seen = 0usize;
+    let (mut done, mut written) = (0usize, 0usize);
+    let mut skipped: Vec<String> = Vec::new();
+    let mut level_start = Instant::now();
+    parallel::for_each_ordered(jobs, items.len(), init, work, |i, outcome| {
+        let (li, si, ci) = items[i];
+        let level = &levels[li];
+        if si == 0 && ci == 0 {
+            level_start = Instant::now();
+        }
+        match outcome? {
+            Outcome::Skipped(note) => {
+                if !skipped.contains(&note) {
+                    eprintln!("  skipped {note}");
+                    skipped.push(note);
+                }
+            }
+            Outcome::Ran(rows, wrote) => {
+                if let Some((w, path)) = &mut csv {
+                    for m in &rows {
+                        w.serialize(m)
+                            .with_context(|| format!("cannot write {}", path.display()))?;
+                    }
+                }
+                rows_seen += rows.len();
+                if args.detail {
+                    metrics.extend(rows);
+                } else {
+                    kept.push_run(group_of[li], rows);
+                }
+                written += wrote as usize;
+                done += 1;
+            }
+        }
+        if live {
+            eprint!(
+                "\r\x1b[K  [{done}/{total}] {}: scenario {}/{} {}",
+                level.name,
+                si + 1,
+                level.scenarios.len(),
+                level.scenarios[si].name,
+            );
+        }
+        if si + 1 == level.scenarios.len() && ci + 1 == configs.len() {
+            if live {
+                eprint!("\r\x1b[K");
+            }
+            eprintln!(
+                "  [{done}/{total}] {} ({}) {:.2} s",
+                level.name,
+                level.source,
+                level_start.elapsed().as_secs_f64()
+            );
+        }
+        Ok::<(), anyhow::Error>(())
+    })?;
+    if let Some((mut w, path)) = csv {
+        w.flush()
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    if !args.detail {
+        metrics = kept.into_rows();
+    }
+    Ok((metrics, rows_seen, written))
 }

@@ -11,13 +11,14 @@ pub(crate) fn stress(
     out_dir: &std::path::Path,
     force: bool,
     world_size: Option<f64>,
+    jobs: usize,
 ) -> Result<()> {
     use crate::report::html::breaks_list;
-    use crate::stress::{stress_matrix, verdicts, world_verdicts};
+    use crate::stress::{stress_matrix_on, verdicts, world_verdicts};
     let runs = h.registry.stress_configs();
     output::check_target(out_dir, output::Kind::Stress, force)?;
     let started = Instant::now();
-    let rows = stress_matrix(&runs, |what| eprintln!("  {what}"))?;
+    let rows = stress_matrix_on(&runs, jobs, |what| eprintln!("  {what}"))?;
     eprintln!("ran in {:.1} s", started.elapsed().as_secs_f64());
     let table = |header: Vec<String>| {
         let mut t = comfy_table::Table::new();

@@ -13,9 +13,10 @@ pub(crate) fn sweep_settings(
     force: bool,
     level_files: &[PathBuf],
     score: Option<&str>,
+    jobs: usize,
 ) -> Result<()> {
     use crate::metrics::score::Score;
-    use crate::tradeoff::{chart_svg_scope, run_tradeoff, scored_behaviours, ALL};
+    use crate::tradeoff::{chart_svg_scope, run_tradeoff_on, scored_behaviours, ALL};
     output::check_target(out_dir, output::Kind::Sweep, force)?;
     let score = match score {
         Some(s) => Score::parse(s)?,
@@ -25,7 +26,7 @@ pub(crate) fn sweep_settings(
     let levels = load_levels(level_files)?;
     let settings = h.registry.tradeoff_settings();
     let started = Instant::now();
-    let rows = run_tradeoff(&levels, &settings, &score, |done, total, label| {
+    let rows = run_tradeoff_on(&levels, &settings, &score, jobs, |done, total, label| {
         let width = 30;
         let filled = done * width / total.max(1);
         eprintln!(

@@ -6,6 +6,7 @@ pub mod diff;
 pub mod html;
 pub mod replay;
 pub mod rules;
+pub mod summary_rows;
 
 use comfy_table::{presets, CellAlignment, Table};
 
