@@ -263,3 +263,98 @@ fn feet_moved_below_a_one_way_top_are_seen() {
         );
     }
 }
+
+/// A still trace of `n` steps standing grounded at feet `(x, y)` (the spawn row too).
+fn still_trace(scenario: &str, x: f32, y: f32, n: u32) -> Trace {
+    Trace {
+        level: "l".into(),
+        scenario: scenario.into(),
+        backend: "x".into(),
+        config: "y".into(),
+        rows: (0..=n)
+            .map(|k| platbench::trace::TraceRow {
+                frame: k,
+                t: k as f32 / 60.0,
+                character: 0,
+                x,
+                y,
+                vx: 0.0,
+                vy: 0.0,
+                grounded: (k > 0) as u8,
+                ground_nx: 0.0,
+                ground_ny: 1.0,
+                platform: None,
+                ladder: 0,
+                crushed: 0,
+            })
+            .collect(),
+    }
+}
+
+fn sweep_declared() -> DeclaredContact {
+    platbench::sweep::kind::run_default()
+        .backend
+        .declared_contact(glam::Vec2::new(0.8, 0.9), std::f32::consts::FRAC_PI_4)
+}
+
+#[test]
+fn a_box_pushed_into_a_wall_breaks_every_promise() {
+    // Found by review: the allowance of the sweep's centre-column stance was taken at the
+    // feet's x, where a wall beside the box overlaps it as much as it does the box, so a box
+    // 0.2 inside a wall read 0 for the sweep and 0.2 for Rapier. Now a tile beside the body is
+    // never allowed: the box's side 0.2 into the wall (x = 6) is charged 0.2 less each
+    // controller's overlap tolerance, for both (1e-4: f32).
+    let wall =
+        "name = \"w\"\nmap = \"\"\"\n..........\n......#...\n......#...\n##########\n\"\"\"\n\
+                [[scenario]]\nname = \"stand\"\nspawn = [5.6, 1.0]\nduration = 1.0\n";
+    let level = platbench::level::parse_level(wall, "w.toml").unwrap();
+    let t = still_trace("stand", 5.8, 1.0, 60);
+    let rapier = platbench::rapier::kind::run(
+        platbench::rapier::ColliderBuilding::PerTile,
+        CharacterShape::Cuboid,
+    )
+    .backend
+    .declared_contact(glam::Vec2::new(0.8, 0.9), std::f32::consts::FRAC_PI_4);
+    for d in [sweep_declared(), rapier] {
+        let spec = &level.scenarios[0];
+        let params = effective_params(&MotionParams::default(), spec);
+        let m = compute(&Context {
+            shape: CharacterShape::Cuboid,
+            level: &level,
+            spec,
+            params: &params,
+            trace: &t,
+            declared: d,
+        });
+        let beyond = value(&m, "penetration_beyond_declared");
+        assert!(
+            (beyond - (0.2 - d.overlap_tolerance as f64)).abs() < 1e-4,
+            "{d:?}: {beyond}"
+        );
+    }
+}
+
+#[test]
+fn feet_sunk_deep_below_a_ramp_are_seen_at_every_depth() {
+    // Found by review: the stance was looked for within the overhang of the feet, so a box sunk
+    // deeper than that found the ramp's solid mass below and was allowed more overlap than it
+    // had (0 at sinks of 0.45, 0.5, 0.8). The surface is now found from mid-body down.
+    // Every sink from 0.2 tiles down is charged at least what the 0.2 sink is charged on the
+    // ramp (0.2 cos 45 less the 0.001 epsilon = 0.1404 along the normal, as in
+    // feet_moved_below_a_slope_are_seen; 1e-3 for f32): measured 0.140 to 0.499 at x = 7.5 and
+    // 7.9 and sinks 0.2 to 0.8. Standing on the surface is charged nothing.
+    let floor = 0.2 * std::f64::consts::FRAC_PI_4.cos() - 0.001 - 1e-3;
+    for x in [7.5f32, 7.9] {
+        for sink in [0.0f32, 0.2, 0.45, 0.5, 0.6, 0.8] {
+            // slope_45's ramp surface is y = x - 5 over x in [6, 10].
+            let t = still_trace("rest_on_slope", x, x - 5.0 - sink, 90);
+            let m = metrics_of("slope_45", "rest_on_slope", &t, sweep_declared());
+            let beyond = value(&m, "penetration_beyond_declared");
+            if sink == 0.0 {
+                assert_eq!(beyond, 0.0, "x {x}");
+            } else {
+                assert!(beyond >= floor, "x {x} sink {sink}: {beyond}");
+            }
+        }
+    }
+}

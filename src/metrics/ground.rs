@@ -97,34 +97,59 @@ impl<'a> Ground<'a> {
     /// Deepest overlap with solid tiles (`squares`) and slope tiles (`slopes`) under the
     /// shape's bounding box.
     fn deepest(&self, feet: Vec2, squares: bool, slopes: bool) -> f32 {
+        let mut worst = 0.0f32;
+        self.each_overlap(feet, squares, slopes, |_, depth| worst = worst.max(depth));
+        worst
+    }
+
+    /// Calls `f((i, j), depth)` for each solid tile (`squares`) and slope tile (`slopes`) the
+    /// shape at `feet` overlaps, with parry's penetration depth.
+    pub fn each_overlap(
+        &self,
+        feet: Vec2,
+        squares: bool,
+        slopes: bool,
+        mut f: impl FnMut((i64, i64), f32),
+    ) {
         let pose = CharacterShape::pose(feet, self.size);
         let bb = self.shape.compute_aabb(&pose);
         let (i0, i1) = (bb.mins.x.floor() as i64, bb.maxs.x.ceil() as i64);
         let (j0, j1) = (bb.mins.y.floor() as i64, bb.maxs.y.ceil() as i64);
-        let mut worst = 0.0f32;
         for j in j0..j1 {
             for i in i0..i1 {
-                let origin = Vec2::new(i as f32, j as f32);
-                let (tile_pose, tile_shape): (Pose, &dyn parry2d::shape::Shape) =
-                    match self.level.tile(i, j) {
-                        Tile::Solid if squares => (
-                            Pose::from_translation(origin + Vec2::splat(0.5)),
-                            &self.tile,
-                        ),
-                        Tile::Slope(_) if slopes => match self.slopes.get(&(i, j)) {
-                            Some(s) => (Pose::from_translation(origin), &**s),
-                            None => continue,
-                        },
-                        _ => continue,
-                    };
-                if let Ok(Some(c)) = contact(&pose, &*self.shape, &tile_pose, tile_shape, 0.0) {
-                    if c.dist < 0.0 {
-                        worst = worst.max(-c.dist);
-                    }
+                let is_square = matches!(self.level.tile(i, j), Tile::Solid);
+                if (is_square && !squares) || (!is_square && !slopes) {
+                    continue;
+                }
+                let depth = self.tile_overlap(feet, i, j);
+                if depth > 0.0 {
+                    f((i, j), depth);
                 }
             }
         }
-        worst
+    }
+
+    /// Overlap of the shape at `feet` with tile `(i, j)`'s solid part (a solid tile's square or
+    /// a slope's solid part), in tiles: parry's penetration depth, 0 if apart or the tile is empty.
+    pub fn tile_overlap(&self, feet: Vec2, i: i64, j: i64) -> f32 {
+        let pose = CharacterShape::pose(feet, self.size);
+        let origin = Vec2::new(i as f32, j as f32);
+        let (tile_pose, tile_shape): (Pose, &dyn parry2d::shape::Shape) =
+            match self.level.tile(i, j) {
+                Tile::Solid => (
+                    Pose::from_translation(origin + Vec2::splat(0.5)),
+                    &self.tile,
+                ),
+                Tile::Slope(_) => match self.slopes.get(&(i, j)) {
+                    Some(s) => (Pose::from_translation(origin), &**s),
+                    None => return 0.0,
+                },
+                _ => return 0.0,
+            };
+        match contact(&pose, &*self.shape, &tile_pose, tile_shape, 0.0) {
+            Ok(Some(c)) if c.dist < 0.0 => -c.dist,
+            _ => 0.0,
+        }
     }
 
     /// How far the shape stands sunk below the top of a one-way tile (a one-way platform or a
@@ -184,7 +209,7 @@ impl<'a> Ground<'a> {
     /// [`Ground::one_way_sink`] where the character stands on the one-way top: a `standing` frame
     /// with no other ground (tiles, slopes, one-way tops below the feet, moving platforms) within
     /// [`FLICKER_SUPPORT_TOLERANCE`]; 0 elsewhere.
-    fn sunk_on_one_way(&self, feet: Vec2, t: f64, standing: bool) -> f32 {
+    pub fn sunk_on_one_way(&self, feet: Vec2, t: f64, standing: bool) -> f32 {
         if !standing {
             return 0.0;
         }

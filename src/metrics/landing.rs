@@ -3,6 +3,7 @@
 
 use super::ground::Ground;
 use super::{pos, predicted_landing_frame, standing, Context, Measure};
+use crate::level::Tile;
 use crate::scenario::input_script;
 use crate::trace::TraceRow;
 
@@ -175,29 +176,73 @@ pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: &[Tra
 
 /// How much deeper than it declares the character of row `r` is inside the level's solid
 /// geometry, in tiles (see [`penetration_beyond_declared`]; 0 when it keeps its promise).
+///
+/// Tile by tile: each tile's overlap less what the declared stance allows with that very tile.
+/// A controller declaring the seed's centre-column stance (`slope_overhang > 0`) stands on the
+/// surface under its centre ([`stance_surface`]: a box sunk below it is measured against the
+/// true surface, however deep), and is allowed the overlap it has there with slope
+/// tiles and with the solid tiles that continue the ground (tops at most `slope_overhang` above
+/// the stance), never with a tile beside its body: a box pushed into a wall is charged, as
+/// any other controller's would be. A one-way top it stands sunk below is never allowed.
 pub fn beyond_declared(ctx: &Context, g: &Ground, r: &TraceRow) -> f32 {
     let d = ctx.declared;
     let p = pos(r);
-    let actual = g
-        .square_penetration(p)
-        .max(g.slope_penetration(p))
-        .max(g.penetration(p, r.t as f64, standing(r)));
-    let designed = if d.slope_overhang > 0.0 {
-        match ctx
-            .level
-            .surface_at(p.x, p.y + d.slope_overhang, 2.0 * d.slope_overhang)
-        {
-            Some((h, _)) => {
-                let stance = glam::Vec2::new(p.x, d.stance_height(h));
-                g.square_penetration(stance)
-                    .max(g.slope_penetration(stance))
+    let stance = (d.slope_overhang > 0.0)
+        .then(|| stance_surface(ctx, p, d.slope_overhang))
+        .flatten()
+        .map(|h| glam::Vec2::new(p.x, d.stance_height(h)));
+    let allowed = |(i, j): (i64, i64)| match stance {
+        Some(s) => {
+            let ground = match ctx.level.tile(i, j) {
+                Tile::Solid => (j + 1) as f32 <= s.y + d.slope_overhang + 1e-4,
+                _ => true,
+            };
+            if ground {
+                g.tile_overlap(s, i, j)
+            } else {
+                0.0
             }
-            None => 0.0,
         }
-    } else {
-        0.0
+        None => 0.0,
     };
-    (actual - d.overlap_tolerance - designed).max(0.0)
+    let mut worst = g.sunk_on_one_way(p, r.t as f64, standing(r));
+    g.each_overlap(p, true, true, |tile, depth| {
+        worst = worst.max(depth - allowed(tile));
+    });
+    (worst - d.overlap_tolerance).max(0.0)
+}
+
+/// The surface in the centre column that feet at `p` stand on or in, in tiles: where the feet
+/// are inside the ground (a solid tile, or a slope tile below its surface), the top of that
+/// ground, climbing the column at most the character's height; elsewhere the surface within
+/// `overhang` above or below the feet. `None` if there is none (or the feet are buried deeper
+/// than the character's height: then nothing is allowed).
+fn stance_surface(ctx: &Context, p: glam::Vec2, overhang: f32) -> Option<f32> {
+    let level = ctx.level;
+    let i = p.x.floor() as i64;
+    let first = p.y.floor() as i64;
+    let limit = (p.y + ctx.spec.size.y).floor() as i64;
+    let mut j = first;
+    while j <= limit {
+        match level.tile(i, j) {
+            Tile::Solid => j += 1,
+            Tile::Slope(s) => {
+                let h = j as f32 + s.height_at(p.x - i as f32);
+                if h >= p.y {
+                    return Some(h);
+                }
+                break;
+            }
+            _ if j > first => return Some(j as f32),
+            _ => break,
+        }
+    }
+    if j > limit {
+        return None;
+    }
+    level
+        .surface_at(p.x, p.y + overhang, 2.0 * overhang)
+        .map(|(h, _)| h)
 }
 
 /// `bounce_frames`: in the final idle span (no input, as [`rest_frames`] finds it), the frames
