@@ -358,3 +358,31 @@ fn feet_sunk_deep_below_a_ramp_are_seen_at_every_depth() {
         }
     }
 }
+
+#[test]
+fn a_sweep_hovering_over_a_ramp_while_it_walks_is_seen() {
+    // Found by review: lifting the sweep's feet 0.09 tiles on every grounded frame over the ramp
+    // of its own walk_right moved only slope_gap_max. slope_gap_declared measures the gap
+    // against the declared stance: the lift, less the landing frames it leaves out (1e-3: f32).
+    let hill = level("slope_45");
+    let evals = evaluate_all(
+        std::slice::from_ref(&hill),
+        &platbench::sweep::kind::run_default(),
+    );
+    let (_, e) = evals
+        .iter()
+        .find(|(n, _)| n.ends_with(".walk_right"))
+        .expect("walk_right ran");
+    let before = metrics_of("slope_45", "walk_right", &e.trace, sweep_declared());
+    assert_eq!(value(&before, "slope_gap_declared"), 0.0);
+    let mut lifted = e.trace.clone();
+    for r in &mut lifted.rows {
+        let over_ramp = matches!(hill.surface_at(r.x, r.y + 0.5, 1.5), Some((_, Some(_))));
+        if over_ramp && r.grounded != 0 {
+            r.y += 0.09;
+        }
+    }
+    let after = metrics_of("slope_45", "walk_right", &lifted, sweep_declared());
+    let hover = value(&after, "slope_gap_declared");
+    assert!(hover >= 0.09 - 1e-3, "{hover}");
+}

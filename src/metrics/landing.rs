@@ -134,6 +134,17 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
 pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let rest = rest_gap(ctx, g, rows);
     let feet = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
+    Measure {
+        metric: "rest_gap_declared",
+        value: gap_beyond_declared(ctx, g, feet, rest.value),
+        reference: 0.0,
+    }
+}
+
+/// A gap `gap` (tiles) measured with the feet at `feet`, less the gap of the stance the
+/// configuration declares there, beyond the declared tolerance (signed; 0: promise kept). See
+/// [`rest_gap_declared`].
+pub(super) fn gap_beyond_declared(ctx: &Context, g: &Ground, feet: glam::Vec2, gap: f64) -> f64 {
     let under = ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5);
     // A gap kept along the normal of the ground the shape rests on reads vertically as
     // gap / cos(angle) (the normal a straight drop meets; a wall's is clamped at 84 degrees).
@@ -146,13 +157,9 @@ pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) ->
         _ => vertical(ctx.declared.gap),
     };
     // Within the declared tolerance of the promise counts as keeping it; beyond, the excess.
-    let off = rest.value - reference;
+    let off = gap - reference;
     let tolerance = vertical(ctx.declared.gap_tolerance);
-    Measure {
-        metric: "rest_gap_declared",
-        value: off.signum() * (off.abs() - tolerance).max(0.0),
-        reference: 0.0,
-    }
+    off.signum() * (off.abs() - tolerance).max(0.0)
 }
 
 /// `penetration_beyond_declared`: over the run, the deepest overlap with the level beyond what

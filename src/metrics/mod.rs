@@ -139,6 +139,7 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     let on_slope = slopes::slope_frames(ctx, &rows);
     push(slopes::slope_airborne_frames(ctx, &rows, &on_slope));
     push(slopes::slope_gap_max(ctx, g, &rows, &on_slope));
+    push(slopes::slope_gap_declared(ctx, g, &rows, &on_slope));
     push(slopes::slope_overlap(ctx, g, &rows));
     let [horizontal, along] = slopes::slope_speed_ratios(ctx, &rows, &on_slope);
     push(horizontal);

@@ -98,6 +98,54 @@ pub fn slope_gap_max(ctx: &Context, g: &Ground, rows: &[TraceRow], on: &[bool]) 
     })
 }
 
+/// How long after the last airborne frame a landing's grounded frames are left out of
+/// `slope_gap_declared`, in seconds: three frames at 60 Hz, the snap a controller that lands
+/// within its ground prediction takes to close the gap.
+pub const LANDING_SETTLE: f32 = 0.05;
+
+/// `slope_gap_declared`: over the frames reported grounded over a walkable slope, the signed
+/// gap less the gap of the stance the configuration declares there (as `rest_gap_declared`
+/// judges a rest), the one farthest from the promise, in tiles: 0 where it stands as it
+/// declares, positive hovering above that, negative sunk below it; a landing's first frames
+/// ([`LANDING_SETTLE`]) are left out. `slope_gap_max` measures
+/// against touching; this is the promise, and it is scored (a controller hovering over a ramp
+/// while it walks would otherwise be seen only at rest).
+pub fn slope_gap_declared(
+    ctx: &Context,
+    g: &Ground,
+    rows: &[TraceRow],
+    on: &[bool],
+) -> Option<Measure> {
+    if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
+        return None;
+    }
+    // A landing's first grounded frames are land_frame_error's business (a controller that
+    // reports ground within its prediction band lands early, charged there once): the frames
+    // within LANDING_SETTLE of the last airborne frame are left out.
+    let settle = (LANDING_SETTLE / ctx.spec.dt).ceil() as usize;
+    let mut since_air = usize::MAX;
+    let mut worst = 0.0f64;
+    for (r, o) in rows.iter().zip(on) {
+        since_air = if r.is_grounded() {
+            since_air.saturating_add(1)
+        } else {
+            0
+        };
+        if !*o || !r.is_grounded() || since_air <= settle {
+            continue;
+        }
+        let b = super::landing::gap_beyond_declared(ctx, g, pos(r), g.gap(pos(r)) as f64);
+        if b.abs() > worst.abs() {
+            worst = b;
+        }
+    }
+    Some(Measure {
+        metric: "slope_gap_declared",
+        value: worst,
+        reference: 0.0,
+    })
+}
+
 /// `slope_overlap`: on a level with slopes, the deepest overlap of the character's shape with a
 /// slope tile's solid part over the run, in tiles (parry's penetration depth). The seed's
 /// centre-column rule stands the sweep's box on a slope by the surface under its centre, so its
