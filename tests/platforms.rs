@@ -183,3 +183,35 @@ fn rider_follow_both_ways_on_every_platform_scenario() {
         18.0
     );
 }
+
+#[test]
+fn a_rider_lifted_into_a_ceiling_is_crushed_on_the_move_that_squeezes_it() {
+    // Found by review: a rider carried up into a ceiling was flagged crushed one step after its
+    // box first overlapped the platform. A 4-tile lift rises at 2 tiles/s under a ceiling (row 8,
+    // bottom y = 8); its 0.8 x 0.9 rider stands on it. On the first row where the rider's feet are
+    // below the platform's top (by more than the epsilon, 1e-3 tiles), the trace must say crushed,
+    // in float and on the subpixel grid (where the platform is where that mode places it).
+    let text = "name = \"lift\"\nmap = \"\"\"\n............\n............\n############\n............\n\
+                ............\n............\n............\n............\n............\n............\n\
+                ############\n\"\"\"\n[[platform]]\nrect = [3.0, 2.0, 4.0, 0.5]\npath = [[3.0, 2.0], [3.0, 9.0]]\n\
+                speed = 2.0\n[[scenario]]\nname = \"squeeze\"\nspawn = [5.0, 2.5]\nduration = 4.0\n";
+    let lift = platbench::level::parse_level(text, "lift.toml").expect("level parses");
+    for (run, grid) in [
+        (platbench::sweep::kind::run_default(), 0),
+        (platbench::sweep::kind::run_integer(32), 32),
+    ] {
+        let e = platbench::metrics::evaluate(&lift, &lift.scenarios[0], &run).expect("runs");
+        let p = &lift.platforms[0];
+        let dt = lift.scenarios[0].dt as f64;
+        let first_inside = e
+            .trace
+            .rows
+            .iter()
+            .enumerate()
+            .skip(1)
+            .find(|(k, r)| r.y < p.placed_aabb(*k as f64 * dt, grid).maxs.y - 1e-3)
+            .map(|(_, r)| r)
+            .expect("the lift squeezes its rider into the ceiling");
+        assert_eq!(first_inside.crushed, 1, "{}: {first_inside:?}", run.label);
+    }
+}

@@ -32,7 +32,7 @@ pub(super) struct Fall<C> {
 }
 
 impl<C: Copy + PartialOrd + Sub<Output = C>> Fall<C> {
-    /// Step 4's one-way rule: whether the y move passes a one-way box whose top is `top`
+    /// Step 5's one-way rule: whether the y move passes a one-way box whose top is `top`
     /// (it blocks only a fall that started entirely above it).
     pub(super) fn passes(&self, top: C) -> bool {
         self.passes || self.from < top - self.eps

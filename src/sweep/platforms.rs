@@ -148,8 +148,16 @@ impl Platforms {
                     if left_behind {
                         carry[1] = -follow;
                     }
-                    s.shove(tiles, c, carry);
-                    if left_behind || overlap(&s.rect(c), &new)[0] <= zero {
+                    let blocked = s.shove(tiles, c, carry);
+                    let after = overlap(&s.rect(c), &new);
+                    if blocked && after[0] > eps && after[1] > eps {
+                        // Carried into the level (lifted into a ceiling, pressed into a wall):
+                        // squeezed between it and the platform, crushed on this very move.
+                        c.crushed = true;
+                        c.riding = None;
+                        continue;
+                    }
+                    if left_behind || after[0] <= zero {
                         // Left behind by a platform dropping away, or no longer over it.
                         c.riding = None;
                         c.motion.grounded = false;
