@@ -30,14 +30,12 @@ impl Registry {
         Self::default()
     }
 
-    /// The controllers this crate ships: the sweep, then Rapier. Box2D's mover
-    /// ([`crate::box2d::kind::Box2dKind`]) is not listed yet: adding it changes the built-in
-    /// comparison, so it goes in with the re-blessed baseline and README (issue 19, slice c);
-    /// until then a caller adds it with [`Registry::with`].
+    /// The controllers this crate ships: the sweep, then Rapier, then Box2D's mover.
     pub fn builtin() -> Self {
         Registry::new()
             .with(crate::sweep::kind::SweepKind)
             .with(crate::rapier::kind::RapierKind)
+            .with(crate::box2d::kind::Box2dKind)
     }
 
     /// This registry with `kind` added after the others.

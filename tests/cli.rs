@@ -221,14 +221,15 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
         .lines()
         .filter(|l| l.contains(",ns_per_character_step,"))
         .collect();
-    // One scenario on the 15 configurations of the built-in comparison: 3 sweep, 4 Rapier
-    // shapes on 2 collider buildings, and 4 Rapier remedy configurations.
+    // One scenario on the 17 configurations of the built-in comparison: 3 sweep, 4 Rapier
+    // shapes on 2 collider buildings, 4 Rapier remedy configurations, and Box2D's capsule on
+    // 2 collider buildings (`Box2dKind::builtin_configs`).
     assert_eq!(
         timing.len(),
         platbench::scenario::RunConfig::builtin_set().len(),
         "{metrics}"
     );
-    assert_eq!(timing.len(), 15);
+    assert_eq!(timing.len(), 17);
     for l in timing {
         let value: f64 = l.split(',').nth(5).unwrap().parse().unwrap();
         assert!(value.is_finite() && value > 0.0, "{l}");

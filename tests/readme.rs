@@ -73,7 +73,9 @@ fn the_readme_trade_figures_are_the_committed_sweep_run() {
     let text = readme().split_whitespace().collect::<Vec<_>>().join(" ");
     let all: Vec<_> = rows.iter().filter(|r| r.scope == ALL).collect();
     let of = |backend: &str| -> Vec<_> { all.iter().filter(|r| r.backend == backend).collect() };
-    for backend in ["sweep", "rapier"] {
+    // Every backend of the built-in registry has its cheapest, dearest and error range in the
+    // README's trade paragraph.
+    for backend in ["sweep", "rapier", "box2d"] {
         let rs = of(backend);
         assert!(!rs.is_empty(), "{backend}");
         let cheapest = rs

@@ -239,15 +239,20 @@ fn the_suite_runs_from_code_and_skips_what_a_backend_does_not_model() {
 #[test]
 fn the_builtin_registry_is_the_builtin_set() {
     let names = Registry::builtin().names();
-    assert_eq!(names, ["sweep", "rapier"]);
+    // `Registry::builtin`'s kinds, in its order.
+    assert_eq!(names, ["sweep", "rapier", "box2d"]);
     // The committed baseline's configurations, in its order.
     let labels: Vec<String> = RunConfig::builtin_set()
         .iter()
         .map(|c| format!("{} {}", c.backend.backend(), c.label))
         .collect();
-    assert_eq!(labels.len(), 15);
+    // 3 sweep, 12 Rapier (4 shapes on 2 buildings and 4 remedies), 2 Box2D (the capsule on
+    // per-tile and merged colliders): the 17 configurations of compare/baseline/metrics.csv.
+    assert_eq!(labels.len(), 17);
     assert_eq!(labels[0], "sweep default");
     assert_eq!(labels[3], "rapier per-tile capsule");
+    assert_eq!(labels[15], "box2d per-tile capsule");
+    assert_eq!(labels[16], "box2d merged capsule");
 }
 
 #[test]

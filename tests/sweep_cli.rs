@@ -87,9 +87,14 @@ fn every_setting_on_the_committed_front_is_a_sweep_setting() {
     );
     let all: Vec<&TradeoffRow> = rows.iter().filter(|r| r.scope == ALL).collect();
     assert_eq!(all.len(), grid().len(), "every setting of the grid");
-    let rapier: Vec<&&TradeoffRow> = all.iter().filter(|r| r.backend == "rapier").collect();
+    // The README says the same of every Box2D setting.
+    let rapier: Vec<&&TradeoffRow> = all
+        .iter()
+        .filter(|r| r.backend == "rapier" || r.backend == "box2d")
+        .collect();
     let sweep: Vec<&&TradeoffRow> = all.iter().filter(|r| r.backend == "sweep").collect();
     assert!(!rapier.is_empty() && !sweep.is_empty());
+    assert!(rapier.iter().any(|r| r.backend == "box2d"));
     for r in &rapier {
         assert!(
             sweep

@@ -42,9 +42,13 @@ fn tradeoff_measures_every_setting_and_marks_a_front() {
     assert_eq!(cheapest.pareto, !dominated);
     assert!(rows.iter().any(|r| r.pareto));
     let svg = chart_svg(&rows);
+    // The legend has one dot per backend of the grid (sweep, rapier, box2d).
+    let mut backends: Vec<&str> = rows.iter().map(|r| r.backend.as_str()).collect();
+    backends.dedup();
+    assert_eq!(backends.len(), 3);
     assert_eq!(
         svg.matches("<circle").count(),
-        rows.len() + 2,
-        "a dot per setting and 2 in the legend"
+        rows.len() + backends.len(),
+        "a dot per setting and one per backend in the legend"
     );
 }

@@ -180,6 +180,8 @@ struct Character {
     one_way_ground: Option<f32>,
     /// Top of the one-way platform being dropped through, until the character is below it.
     drop_top: Option<f32>,
+    /// Why Box2D could not move this character (see [`Box2dBackend::failure`]); it stops there.
+    failed: Option<String>,
 }
 
 /// What the pogo found.
@@ -245,7 +247,19 @@ impl Box2dBackend {
         params.validate()?;
         config.validate()?;
         Ok(Box2dBackend {
-            world: LevelWorld::new(level, config.colliders)?,
+            // Box2D refuses some valid levels' geometry: far from the origin, f32 boxes it
+            // checks come out degenerate (at 1e6 tiles, `platbench stress`). What it refuses,
+            // it cannot model: Unsupported, naming what Box2D said.
+            world: LevelWorld::new(level, config.colliders).map_err(|e| match e {
+                BackendError::InvalidParameter { name, value, .. } => BackendError::Unsupported {
+                    backend: kind::NAME,
+                    feature: format!(
+                        "this level's geometry, which Box2D refuses ({name}: {value})"
+                    ),
+                    level: level.name.clone(),
+                },
+                e => e,
+            })?,
             frame: 0,
             time: 0.0,
             ladders: level.features.ladders.then(|| level.geometry()),
@@ -292,7 +306,7 @@ impl Box2dBackend {
 
     /// The pogo: a cast down from the capsule's lower centre over the rest length plus a
     /// radius, through the query filter; the closest hit that counts.
-    fn pogo(&mut self, id: CharacterId, mask: u64) -> (f32, Option<PogoHit>) {
+    fn pogo(&mut self, id: CharacterId, mask: u64) -> boxdd::Result<(f32, Option<PogoHit>)> {
         let c = &self.characters[id];
         let r = c.radius;
         let rest = c.c1;
@@ -308,14 +322,14 @@ impl Box2dBackend {
         };
         let filter = QueryFilter::new().mask(mask);
         {
-            let query = q(self.world.world.query());
-            q(query.cast_shape_into(
+            let query = self.world.world.query()?;
+            query.cast_shape_into(
                 pos_b2(origin),
                 proxy,
                 to_b2(Vec2::new(0.0, -translation)),
                 filter,
                 &mut self.pogo_hits,
-            ));
+            )?;
         }
         let feet = c.pos.y;
         let (drop_top, ladder) = (c.drop_top, c.motion.on_ladder);
@@ -337,10 +351,11 @@ impl Box2dBackend {
         }
         // The pogo's length is the cast's, `ray` (a circle's cast is shorter by its radius and
         // its length is measured the sample's way, `fraction * ray`).
-        (ray, best)
+        Ok((ray, best))
     }
 
-    fn step_character(&mut self, id: CharacterId, input: &Input, dt: f32) {
+    /// One step of one character; an error is a Box2D query whose output boxdd refused.
+    fn step_character(&mut self, id: CharacterId, input: &Input, dt: f32) -> boxdd::Result<()> {
         let c = &mut self.characters[id];
         if let Some(level) = &self.ladders {
             crate::ladder::enter(level, self.origin, &mut c.motion, &mut c.pos, c.size, input);
@@ -362,7 +377,7 @@ impl Box2dBackend {
             self.characters[id].pogo_velocity = 0.0;
             (false, None)
         } else {
-            let (ray, hit) = self.pogo(id, mask);
+            let (ray, hit) = self.pogo(id, mask)?;
             let c = &mut self.characters[id];
             // The sample: "avoid snapping to ground if still going up".
             let on_ground = if was_grounded {
@@ -395,15 +410,15 @@ impl Box2dBackend {
         let mut pos = c.pos;
         for _ in 0..self.config.max_iterations {
             {
-                let query = q(self.world.world.query());
-                q(query.collide_mover_into(
+                let query = self.world.world.query()?;
+                query.collide_mover_into(
                     pos_b2(pos),
                     c1,
                     c2,
                     radius,
                     filter,
                     &mut self.mover_hits,
-                ));
+                )?;
             }
             self.planes.clear();
             for h in self.mover_hits.iter() {
@@ -426,22 +441,22 @@ impl Box2dBackend {
                     self.planes.push(p);
                 }
             }
-            let solved = q(solve_planes(to_b2(target - pos), &mut self.planes));
+            let solved = solve_planes(to_b2(target - pos), &mut self.planes)?;
             self.solver_iterations += solved.iteration_count() as u64;
             let t = solved.translation();
             let fraction = {
-                let query = q(self.world.world.query());
+                let query = self.world.world.query()?;
                 // One-way shapes are cast against only when moving down onto them: the cast
                 // reports no shape, so a rising character must not see them at all.
                 let cast_mask = if t.y > 0.0 { mask & !ONE_WAY } else { mask };
-                q(query.cast_mover(
+                query.cast_mover(
                     pos_b2(pos),
                     c1,
                     c2,
                     radius,
                     t,
                     QueryFilter::new().mask(cast_mask),
-                ))
+                )?
             };
             let delta = Vec2::new(t.x, t.y) * fraction;
             pos += delta;
@@ -449,10 +464,7 @@ impl Box2dBackend {
                 break;
             }
         }
-        let clipped = q(clip_vector(
-            to_b2(self.characters[id].motion.vel),
-            &self.planes,
-        ));
+        let clipped = clip_vector(to_b2(self.characters[id].motion.vel), &self.planes)?;
         let moved = pos - start;
         let mut contacts = Contacts::default();
         for p in &self.planes {
@@ -497,6 +509,16 @@ impl Box2dBackend {
             Some(h) if contacts.ground => h.normal,
             _ => Vec2::ZERO,
         };
+        Ok(())
+    }
+
+    /// Why Box2D could not move character `id`, if it could not: boxdd refused a query's
+    /// output. Far from the origin an f32 shape cast can end at a distance of exactly 0 and
+    /// report a hit with no normal, where Box2D itself asserts (`b2ShapeCast` in distance.c);
+    /// the character then stops and its state is non-finite, so that no metric reads a
+    /// position Box2D did not compute.
+    pub fn failure(&self, id: CharacterId) -> Option<&str> {
+        self.characters.get(id).and_then(|c| c.failed.as_deref())
     }
 }
 
@@ -510,11 +532,14 @@ impl Backend for Box2dBackend {
         let (radius, c1, c2) = self.config.capsule(spec.size);
         // Box2D asserts a mover radius above twice its linear slop.
         if radius <= 2.0 * LINEAR_SLOP {
-            return Err(invalid(
-                "size",
-                spec.size,
-                "a capsule radius (half the width, or half the height above the pogo leg) over 0.01 tiles, twice Box2D's linear slop",
-            ));
+            return Err(BackendError::Unsupported {
+                backend: kind::NAME,
+                feature: format!(
+                    "a character of size {} (Box2D's mover needs a capsule radius, half the width or half the height above the pogo leg, over 0.01 tiles, twice its linear slop)",
+                    spec.size
+                ),
+                level: String::new(),
+            });
         }
         self.characters.push(Character {
             pos: spec.spawn + self.origin,
@@ -528,6 +553,7 @@ impl Backend for Box2dBackend {
             riding: None,
             one_way_ground: None,
             drop_top: None,
+            failed: None,
         });
         Ok(self.characters.len() - 1)
     }
@@ -540,17 +566,27 @@ impl Backend for Box2dBackend {
         }
         self.time = t1;
         for id in 0..self.characters.len() {
+            if self.characters[id].failed.is_some() {
+                continue;
+            }
             let input = inputs.get(id).copied().unwrap_or_default();
-            self.step_character(id, &input, dt);
+            if let Err(e) = self.step_character(id, &input, dt) {
+                self.characters[id].failed = Some(e.to_string());
+            }
         }
         self.frame += 1;
     }
 
     fn state(&self, id: CharacterId) -> CharacterState {
         let c = &self.characters[id];
+        // A character Box2D could not move has no position to report.
+        let (pos, vel) = match c.failed {
+            Some(_) => (Vec2::NAN, Vec2::NAN),
+            None => (c.pos - self.origin, c.motion.vel),
+        };
         CharacterState {
-            pos: c.pos - self.origin,
-            vel: c.motion.vel,
+            pos,
+            vel,
             grounded: c.motion.grounded,
             ground_normal: c.ground_normal,
             platform: c.riding,

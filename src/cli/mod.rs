@@ -232,7 +232,7 @@ enum Command {
         jobs: Option<u32>,
     },
     /// Run level files (the built-in set when none is given) and write the "pick a backend"
-    /// report: DIR/report.html (self-contained: inline pictures, no scripts, no network) and its
+    /// report: DIR/report.html (self-contained: inline pictures and one inline script, nothing fetched) and its
     /// Markdown twin DIR/report.md.
     Report(report::ReportArgs),
     /// Compare a run directory against a baseline: metrics beyond tolerance, first divergent
