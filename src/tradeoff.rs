@@ -34,6 +34,26 @@ pub struct Setting {
     pub dt: Option<f32>,
 }
 
+impl Setting {
+    /// A setting labelled `label`: `settings` with `substeps` steps per frame and every scenario
+    /// at `dt` seconds (its own if `None`), the default motion parameters otherwise.
+    pub fn new(
+        label: &str,
+        settings: impl crate::backend::BackendSettings,
+        substeps: u32,
+        dt: Option<f32>,
+    ) -> Self {
+        Setting {
+            label: label.into(),
+            run: RunConfig {
+                substeps,
+                ..RunConfig::new(label, settings)
+            },
+            dt,
+        }
+    }
+}
+
 /// The grid of [`Registry::builtin`]: each setting varies one thing from the defaults (for the
 /// sweep: dt from 1/30 to 1/480 s, substeps, epsilon, jump mode, integer positions; for
 /// Rapier: dt, substeps, offset, snap distance, grounded feed, collider building and shape).

@@ -82,17 +82,6 @@ pub fn run_with(config: Box2dConfig) -> RunConfig {
     RunConfig::new(config.label(), config)
 }
 
-fn setting(label: &str, config: Box2dConfig, substeps: u32, dt: Option<f32>) -> Setting {
-    Setting {
-        label: label.into(),
-        run: RunConfig {
-            substeps,
-            ..RunConfig::new(label, config)
-        },
-        dt,
-    }
-}
-
 /// Box2D v3's character mover as a kind of backend.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Box2dKind;
@@ -136,7 +125,7 @@ impl BackendKind for Box2dKind {
         let d = Box2dConfig::default;
         let mut g = Vec::new();
         for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule dt=1/{hz}"),
                 d(),
                 1,
@@ -144,7 +133,7 @@ impl BackendKind for Box2dKind {
             ));
         }
         for k in [2, 4] {
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule substeps={k}"),
                 d(),
                 k,
@@ -156,7 +145,7 @@ impl BackendKind for Box2dKind {
                 max_iterations: n,
                 ..d()
             };
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule iterations={n}"),
                 c,
                 1,
@@ -168,7 +157,7 @@ impl BackendKind for Box2dKind {
                 tolerance: tol,
                 ..d()
             };
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule tolerance={tol}"),
                 c,
                 1,
@@ -180,7 +169,7 @@ impl BackendKind for Box2dKind {
                 pogo_hertz: hz,
                 ..d()
             };
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule pogo={hz}Hz"),
                 c,
                 1,
@@ -191,7 +180,7 @@ impl BackendKind for Box2dKind {
             colliders: ColliderBuilding::Merged,
             ..d()
         };
-        g.push(setting("merged capsule", c, 1, Some(1.0 / 60.0)));
+        g.push(Setting::new("merged capsule", c, 1, Some(1.0 / 60.0)));
         g
     }
 

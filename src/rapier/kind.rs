@@ -94,17 +94,6 @@ pub fn run_with(config: RapierConfig) -> RunConfig {
     RunConfig::new(config.label(), config)
 }
 
-fn setting(label: &str, config: RapierConfig, substeps: u32, dt: Option<f32>) -> Setting {
-    Setting {
-        label: label.into(),
-        run: RunConfig {
-            substeps,
-            ..RunConfig::new(label, config)
-        },
-        dt,
-    }
-}
-
 /// rapier2d's kinematic character controller as a kind of backend.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RapierKind;
@@ -171,7 +160,7 @@ impl BackendKind for RapierKind {
         let r = RapierConfig::default;
         let mut g = Vec::new();
         for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule dt=1/{hz}"),
                 r(),
                 1,
@@ -179,7 +168,7 @@ impl BackendKind for RapierKind {
             ));
         }
         for k in [2, 4] {
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule substeps={k}"),
                 r(),
                 k,
@@ -191,7 +180,7 @@ impl BackendKind for RapierKind {
                 offset: Length::Relative(off),
                 ..r()
             };
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule offset={off}h"),
                 c,
                 1,
@@ -203,7 +192,7 @@ impl BackendKind for RapierKind {
                 snap_to_ground: snap,
                 ..r()
             };
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule snap={name}"),
                 c,
                 1,
@@ -232,7 +221,7 @@ impl BackendKind for RapierKind {
                 shape,
                 ..r()
             };
-            g.push(setting(name, c, 1, Some(1.0 / 60.0)));
+            g.push(Setting::new(name, c, 1, Some(1.0 / 60.0)));
         }
         // How a grounded step is fed (`GroundedMove`): the bevy_rapier example's feed, the variant
         // that keeps the controller's platform carry, and Rapier's 2D testbed's constant push at
@@ -247,7 +236,7 @@ impl BackendKind for RapierKind {
                 grounded_move,
                 ..r()
             };
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule grounded={name}"),
                 c,
                 1,
@@ -259,7 +248,7 @@ impl BackendKind for RapierKind {
                 offset: Length::Absolute(offset),
                 ..r()
             };
-            g.push(setting(
+            g.push(Setting::new(
                 &format!("per-tile capsule offset={name}"),
                 c,
                 1,
