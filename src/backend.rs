@@ -163,7 +163,10 @@ pub struct DeclaredContact {
     pub gap_tolerance: f32,
     /// How far the character's shape may overhang into a slope, vertically: the seed's
     /// centre-column rule stands a box on the surface under its centre, so its corner may be
-    /// half its width times the climb gradient inside a walkable ramp.
+    /// half its width times the climb gradient inside a walkable ramp. The metrics allow no
+    /// more: into a ramp, at most this overhang's depth along the normal of a ramp at the climb
+    /// limit; into a flat top that continues the ground, this overhang (a box standing at the
+    /// foot of a too-steep slope is charged for the part of it deeper inside).
     pub slope_overhang: f32,
     /// Subpixels per tile to which the controller rounds the surface height under its centre
     /// (integer positions: up to the next subpixel, [`crate::level::round_height_up`]); 0 for a

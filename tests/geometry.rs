@@ -41,6 +41,35 @@ fn the_sweeps_box_overlaps_each_ramp_by_its_designed_overhang() {
     }
 }
 
+#[test]
+fn the_sweeps_box_at_the_foot_of_a_too_steep_slope_is_charged_beyond_its_design() {
+    // The centre-column climb limit stops the box with its centre at the foot of the 63.4-degree
+    // ramp and its leading half inside it: 0.4 sin(63.4) = 0.358 deep, deeper than the design
+    // allows on any walkable ramp (0.4 sin(45), the climb limit). The excess, less the epsilon
+    // (0.001 tiles, the sweep's default), is charged; the walkable ramps charge nothing.
+    let evals = evaluate_all(
+        &RAMPS.map(|(n, _)| level(n)),
+        &platbench::sweep::kind::run_default(),
+    );
+    let beyond = rows(&evals, "penetration_beyond_declared");
+    assert!(!beyond.is_empty());
+    // The allowance keeps 1e-4 tiles of slack for f32 noise on a ramp at the limit itself.
+    let excess = 0.4 * 2f64.atan().sin() - 0.4 * std::f64::consts::FRAC_PI_4.sin() - 0.001 - 1e-4;
+    for (scenario, e) in &evals {
+        let v = value(&e.metrics, "penetration_beyond_declared");
+        let expected = if scenario.starts_with("slope_63_4.walk_into_steep") {
+            excess
+        } else {
+            0.0
+        };
+        // 1e-5: f32 positions of a few tiles (measured within 1e-7).
+        assert!(
+            (v - expected).abs() < 1e-5,
+            "{scenario}: penetration_beyond_declared {v}, expected {expected}"
+        );
+    }
+}
+
 /// The metrics of `t` on `spec`, recomputed for the sweep's box.
 fn metrics_of(name: &str, scenario: &str, t: &Trace, declared: DeclaredContact) -> Vec<MetricRow> {
     metrics_with(name, scenario, t, declared, CharacterShape::Cuboid)
@@ -385,4 +414,47 @@ fn a_sweep_hovering_over_a_ramp_while_it_walks_is_seen() {
     let after = metrics_of("slope_45", "walk_right", &lifted, sweep_declared());
     let hover = value(&after, "slope_gap_declared");
     assert!(hover >= 0.09 - 1e-3, "{hover}");
+}
+
+#[test]
+fn a_hover_mended_within_three_frames_is_not_charged_but_one_that_lasts_is() {
+    // slope_gap_declared charges a departure from the declared stance that lasts LANDING_SETTLE
+    // (0.05 s, three frames at 60 Hz), as Rapier's snap mends a crest on the next step: lifting
+    // the sweep's feet 0.05 tiles on one or two consecutive grounded frames over the ramp is not
+    // charged, on three it is (the lift, 1e-3: f32).
+    let hill = level("slope_45");
+    let evals = evaluate_all(
+        std::slice::from_ref(&hill),
+        &platbench::sweep::kind::run_default(),
+    );
+    let (_, e) = evals
+        .iter()
+        .find(|(n, _)| n.ends_with(".walk_right"))
+        .expect("walk_right ran");
+    let over_ramp: Vec<usize> = e
+        .trace
+        .rows
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| {
+            r.grounded != 0 && matches!(hill.surface_at(r.x, r.y + 0.5, 1.5), Some((_, Some(_))))
+        })
+        .map(|(k, _)| k)
+        .collect();
+    // A frame in the middle of the climb with its two successors on the ramp too.
+    let k = over_ramp[over_ramp.len() / 2];
+    assert!(over_ramp.contains(&(k + 2)), "three ramp frames from {k}");
+    for (frames, charged) in [(1, false), (2, false), (3, true)] {
+        let mut lifted = e.trace.clone();
+        for r in &mut lifted.rows[k..k + frames] {
+            r.y += 0.05;
+        }
+        let m = metrics_of("slope_45", "walk_right", &lifted, sweep_declared());
+        let hover = value(&m, "slope_gap_declared");
+        if charged {
+            assert!(hover >= 0.05 - 1e-3, "{frames} frames: {hover}");
+        } else {
+            assert_eq!(hover, 0.0, "{frames} frames");
+        }
+    }
 }

@@ -198,17 +198,21 @@ pub fn beyond_declared(ctx: &Context, g: &Ground, r: &TraceRow) -> f32 {
         .then(|| stance_surface(ctx, p, d.slope_overhang))
         .flatten()
         .map(|h| glam::Vec2::new(p.x, d.stance_height(h)));
+    // The design allows at most what a walkable ramp gives (`DeclaredContact::slope_overhang`
+    // is half the width times the climb gradient, vertically): into a ramp, that overhang along
+    // a ramp at the climb limit's normal (the deepest a walkable ramp takes the box corner);
+    // into a flat top continuing the ground, the overhang itself. A box standing by its centre
+    // at the foot of a too-steep slope has its leading half deeper inside it than that, and the
+    // excess is charged (the seed: run into the higher side, "collide like solid box").
+    let ramp_cap = d.slope_overhang * ctx.params.max_climb_angle.cos();
     let allowed = |(i, j): (i64, i64)| match stance {
         Some(s) => {
-            let ground = match ctx.level.tile(i, j) {
-                Tile::Solid => (j + 1) as f32 <= s.y + d.slope_overhang + 1e-4,
-                _ => true,
+            let cap = match ctx.level.tile(i, j) {
+                Tile::Solid if (j + 1) as f32 <= s.y + d.slope_overhang + 1e-4 => d.slope_overhang,
+                Tile::Solid => return 0.0,
+                _ => ramp_cap,
             };
-            if ground {
-                g.tile_overlap(s, i, j)
-            } else {
-                0.0
-            }
+            g.tile_overlap(s, i, j).min(cap + 1e-4)
         }
         None => 0.0,
     };

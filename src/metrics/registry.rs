@@ -301,13 +301,12 @@ pub const METRICS: &[MetricDef] = &[
         "slope_gap_declared",
         "tiles",
         Slopes,
-        "slope_gap_max against the stance the configuration declares: the grounded gap over a walkable slope less the declared stance's gap, farthest from 0 (0: promise kept)",
+        "slope_gap_max against the stance the configuration declares: the grounded gap over a walkable slope less the declared stance's gap, farthest from 0 over three frames (0: promise kept)",
         "a walk over, or a rest on, a slope within the climb limit",
         "the configuration's declared contact: Rapier's offset along the ground's normal; the seed's box on the surface under its centre",
-        // Reported, not yet scored: Rapier reads 0.009 to 0.064 beyond its offset on slopes
-        // (largest at crests and the seed tile's steps) and whether that is its snap by design
-        // or a fault is not yet settled (issue 17 stays open on it).
-        0.0,
+        // Scored: a hover or sink that lasts is not in any configuration's declared design (a
+        // departure mended within three frames, as Rapier's snap mends a crest, is not charged).
+        1.0,
     ),
     def(
         "slope_overlap",

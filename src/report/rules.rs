@@ -70,7 +70,7 @@ pub const RULES: &[Rule] = &[
         metric: "penetration_beyond_declared",
         comparison: Comparison::Above,
         threshold: 0.01,
-        wording: "Ends up inside the level beyond what it declares (sinks into floors or slopes), by up to",
+        wording: "Ends up inside the level beyond what it declares (sinks into floors or slopes, or stands part-way inside a slope too steep to climb), by up to",
     },
     Rule {
         metric: "land_frame_error",
