@@ -388,20 +388,24 @@ fn feet_sunk_deep_below_a_ramp_are_seen_at_every_depth() {
     }
 }
 
+/// The sweep's own run of `walk_right` on `hill`.
+fn sweep_walk_right(hill: &platbench::level::Level) -> platbench::metrics::Evaluation {
+    let spec = hill
+        .scenarios
+        .iter()
+        .find(|s| s.name == "walk_right")
+        .expect("walk_right exists");
+    platbench::metrics::evaluate(hill, spec, &platbench::sweep::kind::run_default())
+        .expect("walk_right runs")
+}
+
 #[test]
 fn a_sweep_hovering_over_a_ramp_while_it_walks_is_seen() {
     // Found by review: lifting the sweep's feet 0.09 tiles on every grounded frame over the ramp
     // of its own walk_right moved only slope_gap_max. slope_gap_declared measures the gap
     // against the declared stance: the lift, less the landing frames it leaves out (1e-3: f32).
     let hill = level("slope_45");
-    let evals = evaluate_all(
-        std::slice::from_ref(&hill),
-        &platbench::sweep::kind::run_default(),
-    );
-    let (_, e) = evals
-        .iter()
-        .find(|(n, _)| n.ends_with(".walk_right"))
-        .expect("walk_right ran");
+    let e = sweep_walk_right(&hill);
     let before = metrics_of("slope_45", "walk_right", &e.trace, sweep_declared());
     assert_eq!(value(&before, "slope_gap_declared"), 0.0);
     let mut lifted = e.trace.clone();
@@ -423,14 +427,7 @@ fn a_hover_mended_within_three_frames_is_not_charged_but_one_that_lasts_is() {
     // the sweep's feet 0.05 tiles on one or two consecutive grounded frames over the ramp is not
     // charged, on three it is (the lift, 1e-3: f32).
     let hill = level("slope_45");
-    let evals = evaluate_all(
-        std::slice::from_ref(&hill),
-        &platbench::sweep::kind::run_default(),
-    );
-    let (_, e) = evals
-        .iter()
-        .find(|(n, _)| n.ends_with(".walk_right"))
-        .expect("walk_right ran");
+    let e = sweep_walk_right(&hill);
     let over_ramp: Vec<usize> = e
         .trace
         .rows
