@@ -156,3 +156,65 @@ fn the_readme_summary_is_what_platbench_prints() {
         assert!(text.contains(l), "README lacks the printed line {l:?}");
     }
 }
+
+#[test]
+fn the_committed_trade_off_scores_the_committed_baseline_with_the_default_score() {
+    // Found by review: the README's trade figures come from compare/tradeoff/tradeoff.csv, which
+    // the tests above check against the README but nothing checked against the code: a change
+    // of the default score left it stale. The grid's settings that are built-in configurations
+    // (the sweep's dt=1/60 is its default; "X dt=1/60" is X) ran the same 64 scenarios, so the
+    // default score of their baseline rows is their CSV error (1e-9: the CSV's f64 text).
+    use platbench::metrics::registry;
+    use platbench::metrics::score::Score;
+    use platbench::metrics::MetricRow;
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let base = platbench::report::diff::read_metrics(&root.join("compare/baseline"))
+        .expect("compare/baseline/metrics.csv");
+    let rows: Vec<MetricRow> = base
+        .iter()
+        .filter_map(|r| {
+            let d = registry::get(&r.metric)?;
+            Some(MetricRow {
+                level: r.level.clone(),
+                scenario: r.scenario.clone(),
+                backend: r.backend.clone(),
+                config: r.config.clone(),
+                metric: d.name,
+                value: r.value,
+                unit: d.unit,
+                reference: r.reference,
+                error: r.error,
+            })
+        })
+        .collect();
+    let mut matched = 0;
+    for t in committed_tradeoff()
+        .iter()
+        .filter(|t| t.scope == platbench::tradeoff::ALL)
+    {
+        let config = match (t.backend.as_str(), t.setting.as_str()) {
+            ("sweep", "dt=1/60") => "default",
+            (_, s) => s.strip_suffix(" dt=1/60").unwrap_or(s),
+        };
+        let of: Vec<MetricRow> = rows
+            .iter()
+            .filter(|r| r.backend == t.backend && r.config == config)
+            .cloned()
+            .collect();
+        if of.is_empty() {
+            continue;
+        }
+        matched += 1;
+        let e = Score::default().error(&of);
+        assert!(
+            (e - t.error).abs() < 1e-9,
+            "{} {}: the baseline scores {e}, the CSV says {}",
+            t.backend,
+            t.setting,
+            t.error
+        );
+    }
+    // The sweep's default, jump=continuous and integer/32; Rapier's per-tile capsule, merged
+    // capsule, per-tile and merged cuboid, the grounded feed; Box2D's two buildings.
+    assert!(matched >= 10, "{matched} settings matched a configuration");
+}

@@ -58,7 +58,7 @@ pub fn frame_faults(ctx: &Context) -> Vec<u8> {
         if k > 0 && stuck.get(k - 1).copied().unwrap_or(false) {
             f |= STUCK;
         }
-        let near = supported(&g, r);
+        let near = supported(ctx, &g, r);
         let before = k
             .checked_sub(1)
             .map(|j| (rows[j].is_grounded(), out[j] & AIRBORNE_NEAR_GROUND != 0));

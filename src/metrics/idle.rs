@@ -76,9 +76,9 @@ pub const STOPPED_STEP: f64 = 1e-6;
 /// riding and pushed by no platform), the largest displacement from where the character stood
 /// once it settled, in tiles; the largest over the spans. It settles at its first frame where
 /// neither the shared motion model's commanded walk nor its reported horizontal velocity glides
-/// it by [`STOPPED_STEP`] any more and it moved less than 1% of the run speed, or
-/// [`REST_WINDOW`] seconds after the glide ended if it never stops moving (0 if it never stands
-/// idle). Reported for every scenario whose script has an idle step and that rides no platform,
+/// it by [`STOPPED_STEP`] any more and it moved less than 1% of the run speed, and at the latest
+/// [`REST_WINDOW`] seconds after the commanded glide ended, whatever it moves or reports (0 if
+/// it never stands idle). Reported for every scenario whose script has an idle step and that rides no platform,
 /// whatever the controller does, so every configuration is measured on the same scenarios.
 pub fn idle_drift(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     let script = input_script(ctx.spec);
@@ -100,15 +100,19 @@ pub fn idle_drift(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
         let mut anchor: Option<usize> = None;
         while k < rows.len() && idle_frame(ctx, &shape, &script, rows, k) {
             let moved = (pos(&rows[k]) - pos(&rows[k - 1])).length();
-            // The glide is over when neither the commanded walk nor the velocity the
-            // controller reports (a jump off a ladder, a push) moves it by STOPPED_STEP a step.
-            let stopped = commanded.get(k - 1).is_none_or(|c| c.abs() < STOPPED_STEP)
-                && ((rows[k].vx * ctx.spec.dt) as f64).abs() < STOPPED_STEP;
-            if stopped && glide_end.is_none() {
+            // The commanded glide is over when the shared motion model's walk moves it by less
+            // than STOPPED_STEP a step. The velocity the controller reports (a jump off a
+            // ladder, a push) may glide it a little longer, but never past REST_WINDOW after
+            // the commanded glide: a controller that reports the drift it makes (a slide while
+            // standing) is measured from there, as one that reports none.
+            let commanded_stopped = commanded.get(k - 1).is_none_or(|c| c.abs() < STOPPED_STEP);
+            if commanded_stopped && glide_end.is_none() {
                 glide_end = Some(k);
             }
+            let stopped =
+                commanded_stopped && ((rows[k].vx * ctx.spec.dt) as f64).abs() < STOPPED_STEP;
             let waited = glide_end.is_some_and(|g| k >= g + settle);
-            if anchor.is_none() && stopped && (moved < still || waited) {
+            if anchor.is_none() && ((stopped && moved < still) || waited) {
                 anchor = Some(k);
             }
             if let Some(a) = anchor {

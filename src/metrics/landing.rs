@@ -106,7 +106,9 @@ pub(super) fn rest_frames(
     // speed), so deceleration along a slope is not counted as jitter.
     let still = ctx.params.run_speed * ctx.spec.dt * 0.01;
     let landed = (start..=n).find(|&k| {
-        rows[k].is_grounded() && supported(g, &rows[k]) && (rows[k].x - rows[k - 1].x).abs() < still
+        rows[k].is_grounded()
+            && supported(ctx, g, &rows[k])
+            && (rows[k].x - rows[k - 1].x).abs() < still
     });
     let from = landed.unwrap_or(n + 1 - needed);
     Some(from..n + 1)
@@ -145,21 +147,34 @@ pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) ->
 /// configuration declares there, beyond the declared tolerance (signed; 0: promise kept). See
 /// [`rest_gap_declared`].
 pub(super) fn gap_beyond_declared(ctx: &Context, g: &Ground, feet: glam::Vec2, gap: f64) -> f64 {
-    let under = ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5);
     // A gap kept along the normal of the ground the shape rests on reads vertically as
     // gap / cos(angle) (the normal a straight drop meets; a wall's is clamped at 84 degrees).
     let n = g.ground_normal(feet).unwrap_or(glam::Vec2::Y);
     let vertical = |along_normal: f32| (along_normal / n.y.max(0.1)) as f64;
-    let reference = match under {
-        Some((h, Some(_))) if ctx.declared.slope_overhang > 0.0 => {
-            g.gap(glam::Vec2::new(feet.x, ctx.declared.stance_height(h))) as f64
-        }
-        _ => vertical(ctx.declared.gap),
+    // Vertical for every controller: the drop to the ground less the declared gap's vertical
+    // reading, or, for the seed's centre-column stance over a slope, the feet's height less the
+    // stance's (its box overlaps the ramp there, and a depth along the ramp's normal would read
+    // a lift cos(angle) smaller than the drop another controller's lift reads).
+    let off = match stance_over_slope(ctx, feet) {
+        Some(stance) => (feet.y - stance) as f64,
+        None => gap - vertical(ctx.declared.gap),
     };
     // Within the declared tolerance of the promise counts as keeping it; beyond, the excess.
-    let off = gap - reference;
     let tolerance = vertical(ctx.declared.gap_tolerance);
     off.signum() * (off.abs() - tolerance).max(0.0)
+}
+
+/// For a controller that declares the seed's centre-column stance (`slope_overhang > 0`), the
+/// height its feet declare they stand at when the ground under their centre (from half a tile
+/// above to one tile below) is a slope: that surface, on its grid. `None` otherwise.
+pub(super) fn stance_over_slope(ctx: &Context, feet: glam::Vec2) -> Option<f32> {
+    if ctx.declared.slope_overhang <= 0.0 {
+        return None;
+    }
+    match ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5) {
+        Some((h, Some(_))) => Some(ctx.declared.stance_height(h)),
+        _ => None,
+    }
 }
 
 /// `penetration_beyond_declared`: over the run, the deepest overlap with the level beyond what
@@ -306,7 +321,15 @@ pub(super) fn rest_jitter(rows: &[TraceRow]) -> Measure {
 
 /// Whether the character's shape is within [`FLICKER_SUPPORT_TOLERANCE`] of the ground (or in
 /// it).
-pub fn supported(g: &Ground, r: &TraceRow) -> bool {
+pub fn supported(ctx: &Context, g: &Ground, r: &TraceRow) -> bool {
+    // The seed's box stands by its centre over a slope with its corners inside the ramp, so its
+    // shape touches the ramp until it hovers by the overhang: over a slope it is judged by its
+    // feet against its declared stance instead, as a touching shape is judged by its gap.
+    if let Some(stance) = stance_over_slope(ctx, pos(r)) {
+        if r.y - stance > FLICKER_SUPPORT_TOLERANCE {
+            return false;
+        }
+    }
     g.gap_at(pos(r), r.t as f64, standing(r)) <= FLICKER_SUPPORT_TOLERANCE
 }
 
@@ -314,10 +337,10 @@ pub fn supported(g: &Ground, r: &TraceRow) -> bool {
 /// [`FLICKER_SUPPORT_TOLERANCE`] below the shape (standing on air, or on a wall's side). Not in
 /// DESIGN.md's catalog: added because a controller that calls itself grounded mid-air resets
 /// its fall and can jump from there.
-pub fn false_grounded(g: &Ground, rows: &[TraceRow]) -> Measure {
+pub fn false_grounded(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let count = rows
         .iter()
-        .filter(|r| r.is_grounded() && !supported(g, r))
+        .filter(|r| r.is_grounded() && !supported(ctx, g, r))
         .count();
     Measure {
         metric: "false_grounded",
@@ -339,7 +362,7 @@ pub fn grounded_flicker(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure
         // Step k-1 produced row k: a jump pressed on that step explains leaving the ground.
         let jumped = script.get(k - 1).is_some_and(|i| i.jump)
             && (k < 2 || script.get(k - 2).is_none_or(|i| !i.jump));
-        if !jumped && supported(g, cur) {
+        if !jumped && supported(ctx, g, cur) {
             count += 1;
         }
     }

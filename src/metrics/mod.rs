@@ -132,7 +132,7 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     );
     push(rest.map(|_| landing::bounce_frames(ctx, &rows)));
     push(Some(landing::grounded_flicker(ctx, g, &rows)));
-    push(Some(landing::false_grounded(g, &rows)));
+    push(Some(landing::false_grounded(ctx, g, &rows)));
     push(jumping::apex_error(ctx, &rows));
     push(seams::progress_ratio(ctx, &rows));
     push(Some(seams::stuck_frames(ctx, &rows)));

@@ -301,11 +301,11 @@ pub const METRICS: &[MetricDef] = &[
         "slope_gap_declared",
         "tiles",
         Slopes,
-        "slope_gap_max against the stance the configuration declares: the grounded gap over a walkable slope less the declared stance's gap, farthest from 0 over three frames (0: promise kept)",
+        "slope_gap_max against the stance the configuration declares: the grounded gap over a walkable slope less the declared stance's gap, farthest from 0 (0: promise kept)",
         "a walk over, or a rest on, a slope within the climb limit",
         "the configuration's declared contact: Rapier's offset along the ground's normal; the seed's box on the surface under its centre",
-        // Scored: a hover or sink that lasts is not in any configuration's declared design (a
-        // departure mended within three frames, as Rapier's snap mends a crest, is not charged).
+        // Scored: a hover or sink beyond the declared contact is no configuration's declared
+        // design (Rapier's is its offset; its snap-to-ground promises no more than that).
         1.0,
     ),
     def(

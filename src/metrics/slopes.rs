@@ -105,17 +105,14 @@ pub const LANDING_SETTLE: f32 = 0.05;
 
 /// `slope_gap_declared`: over the frames reported grounded over a walkable slope, the signed
 /// gap less the gap of the stance the configuration declares there (as `rest_gap_declared`
-/// judges a rest), the one farthest from the promise that lasts [`LANDING_SETTLE`] (three
-/// frames at 60 Hz), in tiles: 0 where it stands as it declares, positive hovering above that,
-/// negative sunk below it. A run of such frames counts by its least departure over each
-/// [`LANDING_SETTLE`] of consecutive frames, so a hover or sink the player sees is charged and a
-/// departure the controller mends within the settle time is not: Rapier's snap-to-ground, by
-/// its rule, acts only on a step that does not move up, so the step that carries it over a
-/// crest leaves it above the far side, and it snaps down on the next. A
-/// landing's first frames ([`LANDING_SETTLE`]) are left out too (land_frame_error's business).
-/// `slope_gap_max` measures every frame against touching; this is the promise, and it is
-/// scored (a controller hovering over a ramp while it walks would otherwise be seen only at
-/// rest).
+/// judges a rest, vertically), the one farthest from the promise, in tiles: 0 where it stands as
+/// it declares, positive hovering above that, negative sunk below it. Every frame counts: a
+/// hover of one frame is seen (Rapier's snap-to-ground acts only on a step that does not move
+/// up, so the step that carries it over a convex corner of the ground can leave it above the
+/// surface until the next step; that is not its declared `offset`). A landing's first frames
+/// ([`LANDING_SETTLE`]) are left out (land_frame_error's business). `slope_gap_max` measures
+/// against touching; this is the promise, and it is scored (a controller hovering over a ramp
+/// while it walks would otherwise be seen only at rest).
 pub fn slope_gap_declared(
     ctx: &Context,
     g: &Ground,
@@ -125,16 +122,9 @@ pub fn slope_gap_declared(
     if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
         return None;
     }
-    // Frames within LANDING_SETTLE of the last airborne frame are left out; departures count
-    // when they last as long.
-    let settle = (LANDING_SETTLE / ctx.spec.dt).ceil().max(1.0) as usize;
+    // Frames within LANDING_SETTLE of the last airborne frame are left out.
+    let settle = (LANDING_SETTLE / ctx.spec.dt).ceil() as usize;
     let mut since_air = usize::MAX;
-    // The last `settle` departures of the current run of counted frames (a ring of at most
-    // MAX_SETTLE; a finer dt than 1/1200 s judges the last MAX_SETTLE frames).
-    const MAX_SETTLE: usize = 64;
-    let window = settle.min(MAX_SETTLE);
-    let mut ring = [0.0f64; MAX_SETTLE];
-    let mut run = 0usize;
     let mut worst = 0.0f64;
     for (r, o) in rows.iter().zip(on) {
         since_air = if r.is_grounded() {
@@ -143,23 +133,11 @@ pub fn slope_gap_declared(
             0
         };
         if !*o || !r.is_grounded() || since_air <= settle {
-            run = 0;
             continue;
         }
-        ring[run % window] =
-            super::landing::gap_beyond_declared(ctx, g, pos(r), g.gap(pos(r)) as f64);
-        run += 1;
-        if run >= window {
-            let least = ring[..window].iter().copied().fold(f64::INFINITY, |a, b| {
-                if b.abs() < a.abs() {
-                    b
-                } else {
-                    a
-                }
-            });
-            if least.abs() > worst.abs() {
-                worst = least;
-            }
+        let b = super::landing::gap_beyond_declared(ctx, g, pos(r), g.gap(pos(r)) as f64);
+        if b.abs() > worst.abs() {
+            worst = b;
         }
     }
     Some(Measure {

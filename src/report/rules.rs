@@ -73,6 +73,32 @@ pub const RULES: &[Rule] = &[
         wording: "Ends up inside the level beyond what it declares (sinks into floors or slopes, or stands part-way inside a slope too steep to climb), by up to",
     },
     Rule {
+        metric: "slope_gap_declared",
+        comparison: Comparison::MagnitudeAbove,
+        // The error score's clearly-wrong size for a length (0.01 tiles).
+        threshold: 0.01,
+        wording: "Floats above (or sinks into) walkable slopes beyond its declared contact while it reports grounded, on some frame, by up to (tiles)",
+    },
+    Rule {
+        metric: "rest_jitter",
+        comparison: Comparison::Above,
+        // The clearly-wrong size for a length (0.01 tiles).
+        threshold: 0.01,
+        wording: "Does not rest still: the feet move over the settled rest by up to (tiles)",
+    },
+    Rule {
+        metric: "bounce_frames",
+        comparison: Comparison::Above,
+        threshold: 0.0,
+        wording: "Bounces or lifts off after landing: frames airborne after first touching ground, up to",
+    },
+    Rule {
+        metric: "grounded_flicker",
+        comparison: Comparison::Above,
+        threshold: 0.0,
+        wording: "Flickers between grounded and airborne with ground under its feet: switches, up to",
+    },
+    Rule {
         metric: "land_frame_error",
         comparison: Comparison::Below,
         threshold: 0.0,
@@ -97,10 +123,31 @@ pub const RULES: &[Rule] = &[
         wording: "Catches on tile seams: stuck frames on open ground, up to",
     },
     Rule {
+        metric: "slope_speed_ratio",
+        comparison: Comparison::Below,
+        // A tenth below the run speed: a slow-down a player feels.
+        threshold: 0.9,
+        wording: "Slows horizontally on slopes (constant speed along the surface, or catching on the ramp): horizontal speed over the run speed down to",
+    },
+    Rule {
+        metric: "slope_surface_speed_ratio",
+        comparison: Comparison::Above,
+        // A tenth above the run speed.
+        threshold: 1.1,
+        wording: "Moves faster along slopes than it runs on flat ground (constant horizontal speed, the seed's model: 1.41 times the run speed along a 45-degree ramp, where Godot's floor_constant_speed keeps 1): speed along the surface over the run speed up to",
+    },
+    Rule {
         metric: "steep_blocked",
         comparison: Comparison::Below,
         threshold: 1.0,
         wording: "Climbs a slope steeper than its climb limit",
+    },
+    Rule {
+        metric: "carry_drift",
+        comparison: Comparison::Above,
+        // A tenth of a tile: 1.6 pixels of a 16-pixel tile, visible.
+        threshold: 0.1,
+        wording: "Loses its grip on moving platforms: the rider drifts relative to its platform by up to (tiles)",
     },
     Rule {
         metric: "carry_airborne_frames",
