@@ -102,3 +102,112 @@ fn every_builtin_level_builds_and_runs_on_both_buildings() {
     }
     assert!(n >= 2 * 17, "{n}");
 }
+
+/// The built-in ladder level (`compare/levels/ladders.toml`: a ladder in column 8 from the floor
+/// at y = 1 to its top at y = 6).
+fn ladders() -> platbench::level::Level {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/compare/levels/ladders.toml");
+    parse_level(&std::fs::read_to_string(path).unwrap(), path).unwrap()
+}
+
+/// Ladders by the shared rules with the pogo's stance: the spring holds the feet below a
+/// ladder's top by its sag (0.0288 tiles, the first test), farther than the 0.02 tiles within
+/// which the sweep and Rapier stand on a top, so holding down there must still grab the ladder;
+/// and the capsule floats a leg above the feet, so the climb down must end with the feet on the
+/// floor, not the capsule's bottom (which would stop the climb 0.25 tiles inside the floor, on
+/// the ladder for ever). Without both, the character stood on the top for good (ladder speed
+/// error -4 tiles/s, `platbench run`), or sank into the floor.
+#[test]
+fn the_pogo_climbs_down_from_a_ladder_top_it_sags_below_and_stops_on_the_floor() {
+    let level = ladders();
+    let params = MotionParams::default();
+    for colliders in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
+        let config = Box2dConfig {
+            colliders,
+            ..Default::default()
+        };
+        let mut b = Box2dBackend::new(&level, params.clone(), config).unwrap();
+        let id = b
+            .add_character(CharacterSpec {
+                spawn: Vec2::new(8.5, 6.0),
+                size: Vec2::new(0.8, 0.9),
+                velocity: Vec2::ZERO,
+            })
+            .unwrap();
+        for _ in 0..30 {
+            b.step(&[Input::default()], DT);
+        }
+        let s = b.state(id);
+        // Standing on the top, sunk below it by the sag (more than 0.02, less than 0.1).
+        assert!(s.grounded && s.pos.y < 6.0 - 0.02 && s.pos.y > 5.9, "{s:?}");
+        let down = Input {
+            down: true,
+            ..Default::default()
+        };
+        let mut climbed = 0;
+        let mut prev = s.pos.y;
+        for _ in 0..150 {
+            b.step(&[down], DT);
+            let s = b.state(id);
+            if s.ladder {
+                // At the ladder speed (4 tiles/s); 1e-4 tiles/s is f32 rounding of positions
+                // near y = 6.
+                assert!(
+                    ((prev - s.pos.y) / DT - params.ladder_speed).abs() < 1e-3,
+                    "{colliders:?}: {prev} -> {s:?}"
+                );
+                climbed += 1;
+            }
+            prev = s.pos.y;
+        }
+        // 5 tiles at 4 tiles/s take 75 steps: most of them on the ladder (the last step is
+        // cut short at the floor).
+        assert!(climbed >= 74, "{colliders:?}: {climbed} steps climbing");
+        let s = b.state(id);
+        // Off the ladder, on the floor (y = 1) where the pogo rests: within its sag.
+        assert!(!s.ladder && s.grounded, "{colliders:?}: {s:?}");
+        assert!((s.pos.y - 1.0).abs() < 0.05, "{colliders:?}: {s:?}");
+    }
+}
+
+/// Holding up past a ladder's top leaves the ladder and stands on the top, as on the other
+/// backends: feet the pogo sags below the top must not grab the ladder again (before: 8
+/// grounded flickers in `ladders.climb_up`, `platbench run --backend box2d`).
+#[test]
+fn holding_up_on_a_ladder_top_the_pogo_sags_below_does_not_grab_it_again() {
+    let level = ladders();
+    let mut b = Box2dBackend::new(&level, MotionParams::default(), Box2dConfig::default()).unwrap();
+    let id = b
+        .add_character(CharacterSpec {
+            spawn: Vec2::new(8.5, 1.0),
+            size: Vec2::new(0.8, 0.9),
+            velocity: Vec2::ZERO,
+        })
+        .unwrap();
+    let up = Input {
+        up: true,
+        ..Default::default()
+    };
+    // A grab on the top is left within the same step (the climb lifts the feet past the top),
+    // so it shows as a step off the ground: once landed on the top, the character must stay
+    // grounded while up is held.
+    let (mut left_at, mut landed) = (None, false);
+    for k in 0..150 {
+        b.step(&[up], DT);
+        let s = b.state(id);
+        if left_at.is_none() && !s.ladder && s.pos.y > 6.0 {
+            left_at = Some(k);
+        }
+        if landed {
+            assert!(
+                s.grounded && !s.ladder,
+                "step {k}: grabbed the ladder again: {s:?}"
+            );
+        }
+        landed |= left_at.is_some() && s.grounded;
+    }
+    // 5 tiles at 4 tiles/s: the top is passed after 75 steps.
+    assert!(left_at.is_some_and(|k| k < 80) && landed, "{left_at:?}");
+    let s = b.state(id);
+    assert!(s.grounded && (s.pos.y - 6.0).abs() < 0.05, "{s:?}");
+}

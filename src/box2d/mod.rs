@@ -358,9 +358,18 @@ impl Box2dBackend {
     fn step_character(&mut self, id: CharacterId, input: &Input, dt: f32) -> boxdd::Result<()> {
         let c = &mut self.characters[id];
         if let Some(level) = &self.ladders {
-            crate::ladder::enter(level, self.origin, &mut c.motion, &mut c.pos, c.size, input);
+            // The pogo holds the feet below a ladder's top by its sag, as below a one-way top.
+            crate::ladder::enter_within(
+                level,
+                self.origin,
+                &mut c.motion,
+                &mut c.pos,
+                c.size,
+                input,
+                ONE_WAY_TOLERANCE,
+            );
         }
-        let desired = c.motion.integrate(&self.params, input, dt);
+        let mut desired = c.motion.integrate(&self.params, input, dt);
         if c.motion.drop_through {
             c.drop_top = c.one_way_ground;
         }
@@ -370,12 +379,23 @@ impl Box2dBackend {
         if may_land_one_way {
             mask |= ONE_WAY;
         }
-        // The pogo (not on a ladder, where there is no gravity to hold against).
         let was_grounded = c.motion.grounded;
         let vel_y = c.motion.vel.y;
         let (on_ground, hit) = if on_ladder {
+            // On a ladder there is no gravity for the spring to hold against, and the capsule
+            // floats a leg above the feet: the pogo only senses the ground, and a climb down
+            // stops with the feet on it (the pogo at its rest length), which is reaching the
+            // ground that ends the climb (the shared ladder rules).
             self.characters[id].pogo_velocity = 0.0;
-            (false, None)
+            let (ray, hit) = self.pogo(id, mask)?;
+            let above = hit.map(|h| h.fraction * ray - self.characters[id].c1);
+            match above {
+                Some(a) if desired.y <= 0.0 && a <= -desired.y => {
+                    desired.y = -a.max(0.0);
+                    (true, hit)
+                }
+                _ => (false, None),
+            }
         } else {
             let (ray, hit) = self.pogo(id, mask)?;
             let c = &mut self.characters[id];
