@@ -211,3 +211,162 @@ fn holding_up_on_a_ladder_top_the_pogo_sags_below_does_not_grab_it_again() {
     let s = b.state(id);
     assert!(s.grounded && (s.pos.y - 6.0).abs() < 0.05, "{s:?}");
 }
+
+fn builtin(name: &str) -> platbench::level::Level {
+    let path = format!("{}/compare/levels/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    parse_level(&std::fs::read_to_string(&path).unwrap(), &path).unwrap()
+}
+
+/// The pogo's spring at rest under gravity: the read offset `x` from its rest length at which
+/// Box2D's implicit spring (`b2SpringDamper`) keeps a velocity `v` (see the first test).
+fn spring_offset(config: &Box2dConfig, v: f32) -> f32 {
+    let w = 2.0 * std::f32::consts::PI * config.pogo_hertz;
+    -v * (2.0 * config.pogo_damping_ratio + w * DT) / w
+}
+
+/// A rider on an elevator (`compare/levels/elevator.toml`, 3 tiles/s up, then down) lags it by
+/// the sample's 5 Hz pogo spring: to move with a ground at `u` the spring must give `u + g dt`
+/// (the shared motion feeds gravity each grounded step), which it does at the read offset
+/// `x = -(u + g dt)(2 zeta + w dt) / w`; the cast reads one linear slop short, and the platform
+/// moves before the mover (as the sample steps its world first), so after a step the feet are
+/// `x + slop + u dt` from the top: 0.182 below it going up, 0.124 above it going down, which is
+/// farther than the 0.1 tiles within which the metrics count a grounded character as supported
+/// (`false_grounded` 150 frames in `elevator.ride_turning_elevator`, `platbench run`). The sample
+/// reports ground whenever its pogo's cast hits: this is its behaviour, not a set-up of ours.
+#[test]
+fn a_rider_lags_the_elevator_by_the_sample_pogo_springs_steady_offset() {
+    let level = builtin("elevator");
+    let params = MotionParams::default();
+    let config = Box2dConfig::default();
+    let mut b = Box2dBackend::new(&level, params.clone(), config.clone()).unwrap();
+    let id = b
+        .add_character(CharacterSpec {
+            spawn: Vec2::new(5.0, 1.5),
+            size: Vec2::new(0.8, 0.9),
+            velocity: Vec2::ZERO,
+        })
+        .unwrap();
+    let slop = platbench::box2d::LINEAR_SLOP;
+    // The platform's top: 1.5 rising at 3 tiles/s for 4/3 s, then falling back at 3 tiles/s.
+    let mut steps = 0;
+    for (frame, top, u) in [(60u32, 4.5f32, 3.0f32), (140, 2.5, -3.0)] {
+        while steps < frame {
+            b.step(&[Input::default()], DT);
+            steps += 1;
+        }
+        let s = b.state(id);
+        let expected = spring_offset(&config, u + params.gravity * DT) + slop + u * DT;
+        assert!(s.grounded && s.platform == Some(0), "frame {frame}: {s:?}");
+        // 1e-3 tiles: the spring's transient after each turn (damping 0.8 at 5 Hz decays by
+        // e^-25 per second) is gone after the 0.6 s each phase runs before the check.
+        assert!(
+            (s.pos.y - top - expected).abs() < 1e-3,
+            "frame {frame}: feet {} - top {top} vs {expected}",
+            s.pos.y
+        );
+    }
+    // The lags themselves, as the doc states them.
+    assert!((spring_offset(&config, 3.5) + slop + 0.05 + 0.1816).abs() < 1e-3);
+    assert!((spring_offset(&config, -2.5) + slop - 0.05 - 0.1240).abs() < 1e-3);
+}
+
+/// At rest on a ramp the sample's default pogo, a horizontal segment 1.5 capsule radii wide,
+/// stands on its uphill end: the feet (the segment's centre) rest at the surface under that
+/// end, less the spring's sag under gravity (0.0338, the first test), plus the linear slop the
+/// cast stops short of the surface along its normal (0.005 / cos of the slope, read
+/// vertically). So they hover above the surface under their centre by 0.75 r tan(slope) less
+/// the sag: what `rest_gap_declared` charges on `slope_*.rest_on_slope` (0.035, 0.045 and 0.069
+/// tiles beyond the flat promise, `platbench run`) is the sample's segment pogo, not a set-up
+/// of ours.
+#[test]
+fn at_rest_on_a_ramp_the_segment_pogo_stands_on_its_uphill_end() {
+    let params = MotionParams::default();
+    let config = Box2dConfig::default();
+    let size = Vec2::new(0.8, 0.9);
+    let (r, _, _) = config.capsule(size);
+    let w = 2.0 * std::f32::consts::PI * config.pogo_hertz;
+    let sag = params.gravity * DT * (2.0 * config.pogo_damping_ratio + w * DT) / w;
+    // The built-in ramps' rest scenarios: spawn, and the slope's angle.
+    for (name, spawn, degrees) in [
+        ("slope_22_5", Vec2::new(11.5, 3.7782), 22.5f32),
+        ("slope_26_6", Vec2::new(10.5, 3.75), 26.565),
+        ("slope_45", Vec2::new(8.5, 4.0), 45.0),
+    ] {
+        let level = builtin(name);
+        let mut b = Box2dBackend::new(&level, params.clone(), config.clone()).unwrap();
+        let id = b
+            .add_character(CharacterSpec {
+                spawn,
+                size,
+                velocity: Vec2::ZERO,
+            })
+            .unwrap();
+        for _ in 0..90 {
+            b.step(&[Input::default()], DT);
+        }
+        let s = b.state(id);
+        let surface = |x: f32| level.surface_at(x, spawn.y + 1.0, 3.0).unwrap().0;
+        let (centre, uphill) = (surface(s.pos.x), surface(s.pos.x + 0.75 * r));
+        let cos = degrees.to_radians().cos();
+        assert!(
+            s.grounded && (s.ground_normal.y - cos).abs() < 1e-4,
+            "{name}: {s:?}"
+        );
+        let expected = uphill - sag + platbench::box2d::LINEAR_SLOP / cos;
+        // 1e-4 tiles: f32 rounding of a converged spring (as in the first test).
+        assert!(
+            (s.pos.y - expected).abs() < 1e-4,
+            "{name}: feet {} vs {expected}",
+            s.pos.y
+        );
+        // Above the surface under the centre by 0.75 r tan(slope) less the sag.
+        let hover = 0.75 * r * degrees.to_radians().tan() - sag;
+        assert!(
+            (s.pos.y - centre - hover).abs() < 0.01,
+            "{name}: {} above the centre's surface, {hover} expected",
+            s.pos.y - centre
+        );
+    }
+}
+
+/// The sample reports ground as soon as its pogo's cast hits while not rising (its "avoid
+/// snapping to ground if still going up": `onGround = hit && v.y <= 0.01`), and the cast
+/// reaches one capsule radius below the pogo's rest length: a falling character is grounded
+/// with its feet up to a radius (0.327 tiles here) above the floor, before they touch. So
+/// `land_frame_error` reads -4 frames on `drops.drop_0_5` (`platbench run`): the sample's
+/// definition of on-ground, not a set-up of ours.
+#[test]
+fn the_sample_pogo_reports_ground_once_its_cast_reaches_a_radius_below_the_feet() {
+    let level = parse_level(
+        "map = \"\"\"\n..........\n..........\n..........\n..........\n##########\n\"\"\"\n",
+        "flat.toml",
+    )
+    .unwrap();
+    let config = Box2dConfig::default();
+    let size = Vec2::new(0.8, 0.9);
+    let (r, _, _) = config.capsule(size);
+    let mut b = Box2dBackend::new(&level, MotionParams::default(), config).unwrap();
+    let id = b
+        .add_character(CharacterSpec {
+            spawn: Vec2::new(5.0, 1.5),
+            size,
+            velocity: Vec2::ZERO,
+        })
+        .unwrap();
+    let mut prev = b.state(id);
+    for _ in 0..60 {
+        b.step(&[Input::default()], DT);
+        let s = b.state(id);
+        if s.grounded {
+            // The step that first reports ground cast its pogo from where the previous step
+            // left the feet: within a radius of the floor (y = 1), less the cast's slop...
+            let height = prev.pos.y - 1.0;
+            assert!(height <= r && height > 0.1, "{prev:?} -> {s:?}");
+            // ...and the feet have not reached the floor.
+            assert!(s.pos.y > 1.0 + 0.1, "{s:?}");
+            return;
+        }
+        prev = s;
+    }
+    panic!("never grounded: {prev:?}");
+}
