@@ -207,7 +207,10 @@ impl BackendKind for Box2dKind {
         if b("carry_airborne_frames").any(|r| r.value > 0.0)
             || b("carry_drift").any(|r| r.value > 1e-3)
         {
-            out.push("box2d riders: the sample carries no rider; a platform moves the mover only through its collision planes (push limited to 0.1 tiles, the sample's elevator) and the pogo, so a horizontal platform slides out from under it.".into());
+            out.push("box2d riders: the sample carries no rider and Box2D documents no remedy (docs/character.md and the sample at 56edae79 never read the ground body's velocity); a platform moves the mover only through its collision planes (push limited to 0.1 tiles, the sample's elevator) and the pogo, so a horizontal platform slides out from under it.".into());
+        }
+        if b("false_grounded").any(|r| r.value > 0.0) {
+            out.push("box2d false_grounded: the sample's 5 Hz pogo spring follows moving ground at a steady lag (0.124 tiles above an elevator going down at 3 tiles/s), and the sample is on ground whenever the pogo's cast hits.".into());
         }
         if b("steep_blocked").any(|r| r.value == 0.0) {
             out.push("box2d climbs slopes steeper than the limit: the sample's pogo stands on any surface it touches (it has no slope limit).".into());
