@@ -275,9 +275,10 @@ fn a_rider_lags_the_elevator_by_the_sample_pogo_springs_steady_offset() {
 /// end, less the spring's sag under gravity (0.0338, the first test), plus the linear slop the
 /// cast stops short of the surface along its normal (0.005 / cos of the slope, read
 /// vertically). So they hover above the surface under their centre by 0.75 r tan(slope) less
-/// the sag: what `rest_gap_declared` charges on `slope_*.rest_on_slope` (0.035, 0.045 and 0.069
-/// tiles beyond the flat promise, `platbench run`) is the sample's segment pogo, not a set-up
-/// of ours.
+/// the sag: what `rest_gap_declared` charged on `slope_*.rest_on_slope` while the metrics
+/// declared Box2D's stance flat (0.035, 0.045 and 0.069 tiles, `platbench run`) is the sample's
+/// segment pogo, not a set-up of ours (the metrics now score it against that stance: the next
+/// test).
 #[test]
 fn at_rest_on_a_ramp_the_segment_pogo_stands_on_its_uphill_end() {
     let params = MotionParams::default();
@@ -369,4 +370,47 @@ fn the_sample_pogo_reports_ground_once_its_cast_reaches_a_radius_below_the_feet(
         prev = s;
     }
     panic!("never grounded: {prev:?}");
+}
+
+/// The metrics score the segment pogo against the stance it is built for: on a ramp it stands
+/// on its uphill end (the test above), so `rest_gap_declared` measures from there
+/// (`DeclaredContact::stance_half_width`) and charges only what it charges on flat ground, the
+/// spring's sag less the declared slop tolerance: `-(sag - slop / cos)`, read vertically on a
+/// ramp of that angle (-0.0288 flat, -0.0284, -0.0282 and -0.0267 on the three ramps). Before,
+/// the declared stance was the flat one and the segment's stance read 0.035, 0.045 and 0.069
+/// tiles too high.
+#[test]
+fn a_rest_on_a_ramp_is_scored_against_the_segment_pogos_stance() {
+    let params = MotionParams::default();
+    let config = Box2dConfig::default();
+    let w = 2.0 * std::f64::consts::PI * config.pogo_hertz as f64;
+    let dt = DT as f64;
+    let sag = params.gravity as f64 * dt * (2.0 * config.pogo_damping_ratio as f64 + w * dt) / w;
+    let run = platbench::box2d::kind::run_with(config);
+    for (name, degrees) in [
+        ("slope_22_5", 22.5f64),
+        ("slope_26_6", 26.565),
+        ("slope_45", 45.0),
+    ] {
+        let level = builtin(name);
+        let spec = level
+            .scenarios
+            .iter()
+            .find(|s| s.name == "rest_on_slope")
+            .unwrap();
+        let e = platbench::metrics::evaluate(&level, spec, &run).unwrap();
+        let declared = e
+            .metrics
+            .iter()
+            .find(|m| m.metric == "rest_gap_declared")
+            .unwrap()
+            .value;
+        let slop = platbench::box2d::LINEAR_SLOP as f64;
+        let expected = -(sag - slop / degrees.to_radians().cos());
+        // 2e-4 tiles: the rest's own 1e-4 (the tests above) and the metric's shape casts.
+        assert!(
+            (declared - expected).abs() < 2e-4,
+            "{name}: rest_gap_declared {declared}, expected {expected}"
+        );
+    }
 }

@@ -130,7 +130,10 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
 /// declared gap along the normal of the ground a straight drop meets (Rapier's `offset`:
 /// `offset / cos(angle)` vertically on a slope), or, for a controller that stands a box on the
 /// surface under its centre (the seed), the gap of that stance (inside a slope by its overhang;
-/// on integer positions, on the surface rounded up to its subpixel, [`crate::scenario::DeclaredContact::stance_height`]).
+/// on integer positions, on the surface rounded up to its subpixel, [`crate::scenario::DeclaredContact::stance_height`]),
+/// or, for a controller standing on a flat foot (Box2D's segment pogo,
+/// `DeclaredContact::stance_half_width`), the gap of its shape with the feet on the highest
+/// surface under the foot, plus its declared gap.
 pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let rest = rest_gap(ctx, g, rows);
     let feet = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
@@ -153,6 +156,16 @@ pub(super) fn gap_beyond_declared(ctx: &Context, g: &Ground, feet: glam::Vec2, g
     let reference = match under {
         Some((h, Some(_))) if ctx.declared.slope_overhang > 0.0 => {
             g.gap(glam::Vec2::new(feet.x, ctx.declared.stance_height(h))) as f64
+        }
+        // A flat foot stands on the highest surface under it: the shape's gap with the feet
+        // there, plus the declared gap.
+        Some((h, Some(_))) if ctx.declared.stance_half_width > 0.0 => {
+            let w = ctx.declared.stance_half_width;
+            let stance = [feet.x - w, feet.x + w]
+                .into_iter()
+                .filter_map(|x| ctx.level.surface_at(x, feet.y + 0.5, 1.5))
+                .fold(h, |top, (s, _)| top.max(s));
+            g.gap(glam::Vec2::new(feet.x, stance)) as f64 + vertical(ctx.declared.gap)
         }
         _ => vertical(ctx.declared.gap),
     };
