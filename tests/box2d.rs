@@ -414,3 +414,50 @@ fn a_rest_on_a_ramp_is_scored_against_the_segment_pogos_stance() {
         );
     }
 }
+
+/// Squeezed between a pushing block and a wall (`platforms.crushed_against_a_wall`: block 6
+/// slides to the wall at x = 59), the sample's mover is not crushed but climbs onto the block:
+/// the block may push the capsule only 0.1 tiles per solve (the push limit Box2D's docs give
+/// "a door or elevator"), so it overlaps the capsule and the pogo's segment, a cast that starts
+/// inside a shape hits at fraction 0, and the spring, reading full compression, lifts the feet
+/// onto the block's top (y = 2). That rise is `rest_jitter` 0.80 and `bounce_frames` 12 there
+/// (`platbench run`): Box2D's behaviour under the sample's pogo, not a set-up of ours.
+#[test]
+fn squeezed_against_a_wall_the_pogo_lifts_the_mover_onto_the_pusher() {
+    let level = builtin("platforms");
+    let params = MotionParams::default();
+    let config = Box2dConfig::default();
+    let mut b = Box2dBackend::new(&level, params.clone(), config.clone()).unwrap();
+    let spec = level
+        .scenarios
+        .iter()
+        .find(|s| s.name == "crushed_against_a_wall")
+        .unwrap();
+    let id = b
+        .add_character(CharacterSpec {
+            spawn: spec.spawn,
+            size: spec.size,
+            velocity: spec.velocity,
+        })
+        .unwrap();
+    let mut lifted_at = None;
+    for k in 0..130 {
+        b.step(&[Input::default()], DT);
+        let s = b.state(id);
+        assert!(s.pos.is_finite(), "step {k}: {s:?}");
+        if lifted_at.is_none() && s.grounded && s.platform == Some(6) {
+            lifted_at = Some(k);
+        }
+    }
+    let s = b.state(id);
+    let w = 2.0 * std::f32::consts::PI * config.pogo_hertz;
+    let sag = params.gravity * DT * (2.0 * config.pogo_damping_ratio + w * DT) / w;
+    let rest = 2.0 - sag + platbench::box2d::LINEAR_SLOP;
+    // On the block's top (y = 2), at the pogo's rest there within 0.01 tiles (the spring settles
+    // within 0.3 s of the lift: damping 0.8 at 5 Hz), some 20 steps after the pogo found it.
+    assert!(lifted_at.is_some_and(|k| k < 110), "{lifted_at:?}");
+    assert!(
+        s.grounded && s.platform == Some(6) && (s.pos.y - rest).abs() < 0.01,
+        "{s:?}, rest {rest}"
+    );
+}
