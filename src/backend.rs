@@ -168,6 +168,11 @@ pub struct DeclaredContact {
     /// limit; into a flat top that continues the ground, this overhang (a box standing at the
     /// foot of a too-steep slope is charged for the part of it deeper inside).
     pub slope_overhang: f32,
+    /// Half-width of a flat foot the controller stands on, in tiles: on a slope it stands on
+    /// the highest surface under the foot (Box2D's segment pogo, 0.75 capsule radius either
+    /// side, rests on its uphill end), so its feet are above the surface under their centre by
+    /// design; 0 for a controller that stands by its shape or its centre.
+    pub stance_half_width: f32,
     /// Subpixels per tile to which the controller rounds the surface height under its centre
     /// (integer positions: up to the next subpixel, [`crate::level::round_height_up`]); 0 for a
     /// controller that stands on the exact surface.

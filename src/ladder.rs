@@ -2,9 +2,11 @@
 //! [`crate::motion`]), and the rules to enter and leave the ladder state, shared by both
 //! backends so that only collision handling differs.
 //!
-//! - Enter: the box overlaps a ladder in the column under its centre and up is held, or the
-//!   character stands on a ladder's top and down is held. Entering clamps x to the ladder's
-//!   centre.
+//! - Enter: the box overlaps a ladder in the column under its centre and up is held (unless it
+//!   stands on that ladder's top: there is nothing above to climb), or the character stands on
+//!   a ladder's top and down is held. Entering clamps x to the ladder's centre. "Stands on the
+//!   top" is grounded with the feet within the backend's top tolerance of it
+//!   ([`TOP_TOLERANCE`] unless the backend holds its feet otherwise, see [`enter_within`]).
 //! - Leave: on jump (in the motion), when the feet rise above the ladder's top (the top is then
 //!   walkable like a one-way platform), when the box no longer overlaps the ladder, or when it
 //!   reaches the ground while climbing down.
@@ -30,7 +32,8 @@ fn ladder_here(level: &Level, origin: Vec2, feet: Vec2, size: Vec2) -> Option<(f
 }
 
 /// Before the motion integrates: enters the ladder state if the input and position allow it,
-/// clamping x to the ladder's centre.
+/// clamping x to the ladder's centre; feet within [`TOP_TOLERANCE`] of a ladder's top stand on
+/// it.
 pub fn enter(
     level: &Level,
     origin: Vec2,
@@ -39,15 +42,32 @@ pub fn enter(
     size: Vec2,
     input: &Input,
 ) {
+    enter_within(level, origin, m, pos, size, input, TOP_TOLERANCE)
+}
+
+/// [`enter`] for a backend whose grounded feet rest up to `top_tolerance` tiles from the
+/// surface they stand on (Box2D's pogo spring holds them below it by its sag).
+pub fn enter_within(
+    level: &Level,
+    origin: Vec2,
+    m: &mut MotionState,
+    pos: &mut Vec2,
+    size: Vec2,
+    input: &Input,
+    top_tolerance: f32,
+) {
     if m.on_ladder || !level.features.ladders {
         return;
     }
+    let on_top = |top: f32| m.grounded && (pos.y - top).abs() <= top_tolerance;
     let grab = if input.up {
-        ladder_here(level, origin, *pos, size)
+        // Feet standing on the ladder's top (sunk into it by less than the tolerance) have
+        // nothing above to climb.
+        ladder_here(level, origin, *pos, size).filter(|(_, _, top)| !on_top(*top))
     } else if input.down && m.grounded {
         // Standing on a ladder's top: the ladder is in the tile just below the feet.
         ladder_here(level, origin, *pos - Vec2::new(0.0, 0.5), size)
-            .filter(|(_, _, top)| (pos.y - top).abs() <= TOP_TOLERANCE)
+            .filter(|(_, _, top)| on_top(*top))
     } else {
         None
     };

@@ -61,8 +61,8 @@ pub fn grid() -> Vec<Setting> {
     Registry::builtin().tradeoff_settings()
 }
 
-/// Colours of the chart's backends, in the order they first appear in its rows (the built-in
-/// registry's order gives the sweep blue and Rapier green).
+/// Colours of the chart's backends that the built-in registry does not know, in the order they
+/// first appear in its rows.
 pub const PALETTE: &[&str] = &[
     "#1565c0", "#2e7d32", "#6a1b9a", "#ef6c00", "#c62828", "#00838f",
 ];
@@ -78,8 +78,13 @@ fn backends_in_order(rows: &[TradeoffRow]) -> Vec<String> {
     out
 }
 
-/// The colour of backend `name` among `backends`.
+/// The colour of backend `name` among `backends`: its kind's own colour
+/// ([`crate::backend::BackendKind::colour`], as the report's pictures draw it) for a built-in
+/// kind, else the palette's by order.
 fn backend_colour(backends: &[String], name: &str) -> String {
+    if let Some(k) = Registry::builtin().get(name) {
+        return k.colour().to_string();
+    }
     let k = backends.iter().position(|b| b == name).unwrap_or(0);
     PALETTE[k % PALETTE.len()].to_string()
 }
@@ -418,6 +423,32 @@ mod tests {
             pareto: false,
             scenarios: 1,
             scope: ALL.into(),
+        }
+    }
+
+    /// Each built-in backend is drawn in its kind's own colour, the one the report's pictures
+    /// use (before, the chart gave Box2D the palette's third colour, #6a1b9a, not its #00838f).
+    #[test]
+    fn the_chart_draws_each_builtin_backend_in_its_own_colour() {
+        let registry = Registry::builtin();
+        let names: Vec<String> = registry
+            .kinds()
+            .iter()
+            .map(|k| k.name().to_string())
+            .collect();
+        assert!(names.len() >= 3, "{names:?}");
+        let rows: Vec<TradeoffRow> = names
+            .iter()
+            .map(|n| TradeoffRow {
+                backend: n.clone(),
+                ..row(1.0, 0.1)
+            })
+            .collect();
+        let svg = chart_svg(&rows);
+        for n in &names {
+            let own = registry.colour(n);
+            assert_eq!(backend_colour(&names, n), own, "{n}");
+            assert!(svg.contains(own), "{n}: {own} not in the chart");
         }
     }
 

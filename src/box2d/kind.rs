@@ -4,7 +4,7 @@
 
 use glam::Vec2;
 
-use super::{Box2dBackend, Box2dConfig, CharacterShape, ColliderBuilding, LINEAR_SLOP};
+use super::{Box2dBackend, Box2dConfig, CharacterShape, ColliderBuilding, PogoShape, LINEAR_SLOP};
 use crate::backend::{
     require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
     DeclaredContact, SharedGeometry,
@@ -32,12 +32,21 @@ impl BackendSettings for Box2dConfig {
             && require_supported(NAME, "", level.features, Box2dBackend::SUPPORTED).is_ok()
     }
 
-    /// `b2SolvePlanes` keeps the capsule one linear slop off every plane it solves ("add slop
-    /// to prevent jitter"); the ground is held by the pogo spring, which promises no gap.
-    fn declared_contact(&self, _size: Vec2, _max_climb_angle: f32) -> DeclaredContact {
+    /// The pogo at its rest length: the feet one linear slop off the ground (the pogo's cast
+    /// stops that short of a surface, and `b2SolvePlanes` keeps the capsule that far off every
+    /// plane: "add slop to prevent jitter"). The sample's default pogo is a segment 0.75
+    /// capsule radius either side of the feet, which stands on its uphill end on a ramp; a
+    /// point stands at the centre, and a circle's stance on a ramp is not modelled (declared
+    /// flat).
+    fn declared_contact(&self, size: Vec2, _max_climb_angle: f32) -> DeclaredContact {
+        let stance_half_width = match self.pogo_shape {
+            PogoShape::Segment => 0.75 * self.capsule(size).0,
+            PogoShape::Point | PogoShape::Circle => 0.0,
+        };
         DeclaredContact {
             gap: LINEAR_SLOP,
             gap_tolerance: LINEAR_SLOP,
+            stance_half_width,
             ..DeclaredContact::default()
         }
     }
@@ -207,7 +216,10 @@ impl BackendKind for Box2dKind {
         if b("carry_airborne_frames").any(|r| r.value > 0.0)
             || b("carry_drift").any(|r| r.value > 1e-3)
         {
-            out.push("box2d riders: the sample carries no rider; a platform moves the mover only through its collision planes (push limited to 0.1 tiles, the sample's elevator) and the pogo, so a horizontal platform slides out from under it.".into());
+            out.push("box2d riders: the sample carries no rider and Box2D documents no remedy (docs/character.md and the sample at 56edae79 never read the ground body's velocity); a platform moves the mover only through its collision planes (push limited to 0.1 tiles, the sample's elevator) and the pogo, so a horizontal platform slides out from under it.".into());
+        }
+        if b("false_grounded").any(|r| r.value > 0.0) {
+            out.push("box2d false_grounded: the sample's 5 Hz pogo spring follows moving ground at a steady lag (0.124 tiles above an elevator going down at 3 tiles/s), and the sample is on ground whenever the pogo's cast hits.".into());
         }
         if b("steep_blocked").any(|r| r.value == 0.0) {
             out.push("box2d climbs slopes steeper than the limit: the sample's pogo stands on any surface it touches (it has no slope limit).".into());

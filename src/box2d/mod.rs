@@ -37,10 +37,12 @@ pub use world::{b2, ColliderBuilding, LevelWorld, ShapeTag, ONE_WAY, PLATFORM, S
 /// prevent jitter").
 pub const LINEAR_SLOP: f32 = 0.005;
 
-/// How far below a one-way platform's top the feet may be and still land on it, in tiles: the
-/// pogo holds the feet with a spring, which rests them below the surface by its sag under
-/// gravity (0.029 tiles at 60 Hz, `tests/box2d.rs`) and dips further on a landing. A tenth of a
-/// tile is a chosen margin over that sag, not a measured bound on the dip.
+/// How far below a one-way platform's top the feet may be and still land on it, and how far
+/// from a ladder's top they may be and still stand on it (the shared ladder rules'
+/// `enter_within`), in tiles: the pogo holds the feet with a spring, which rests them below the
+/// surface by its sag under gravity (0.029 tiles at 60 Hz, `tests/box2d.rs`) and dips further on
+/// a landing. A tenth of a tile is a chosen margin over that sag, not a measured bound on the
+/// dip.
 pub const ONE_WAY_TOLERANCE: f32 = 0.1;
 
 /// The shape the pogo casts down, as the sample offers them.
@@ -358,9 +360,18 @@ impl Box2dBackend {
     fn step_character(&mut self, id: CharacterId, input: &Input, dt: f32) -> boxdd::Result<()> {
         let c = &mut self.characters[id];
         if let Some(level) = &self.ladders {
-            crate::ladder::enter(level, self.origin, &mut c.motion, &mut c.pos, c.size, input);
+            // The pogo holds the feet below a ladder's top by its sag, as below a one-way top.
+            crate::ladder::enter_within(
+                level,
+                self.origin,
+                &mut c.motion,
+                &mut c.pos,
+                c.size,
+                input,
+                ONE_WAY_TOLERANCE,
+            );
         }
-        let desired = c.motion.integrate(&self.params, input, dt);
+        let mut desired = c.motion.integrate(&self.params, input, dt);
         if c.motion.drop_through {
             c.drop_top = c.one_way_ground;
         }
@@ -370,12 +381,23 @@ impl Box2dBackend {
         if may_land_one_way {
             mask |= ONE_WAY;
         }
-        // The pogo (not on a ladder, where there is no gravity to hold against).
         let was_grounded = c.motion.grounded;
         let vel_y = c.motion.vel.y;
         let (on_ground, hit) = if on_ladder {
+            // On a ladder there is no gravity for the spring to hold against, and the capsule
+            // floats a leg above the feet: the pogo only senses the ground, and a climb down
+            // stops with the feet on it (the pogo at its rest length), which is reaching the
+            // ground that ends the climb (the shared ladder rules).
             self.characters[id].pogo_velocity = 0.0;
-            (false, None)
+            let (ray, hit) = self.pogo(id, mask)?;
+            let above = hit.map(|h| h.fraction * ray - self.characters[id].c1);
+            match above {
+                Some(a) if desired.y <= 0.0 && a <= -desired.y => {
+                    desired.y = -a.max(0.0);
+                    (true, hit)
+                }
+                _ => (false, None),
+            }
         } else {
             let (ray, hit) = self.pogo(id, mask)?;
             let c = &mut self.characters[id];

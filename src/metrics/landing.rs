@@ -132,7 +132,10 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
 /// declared gap along the normal of the ground a straight drop meets (Rapier's `offset`:
 /// `offset / cos(angle)` vertically on a slope), or, for a controller that stands a box on the
 /// surface under its centre (the seed), the gap of that stance (inside a slope by its overhang;
-/// on integer positions, on the surface rounded up to its subpixel, [`crate::scenario::DeclaredContact::stance_height`]).
+/// on integer positions, on the surface rounded up to its subpixel, [`crate::scenario::DeclaredContact::stance_height`]),
+/// or, for a controller standing on a flat foot (Box2D's segment pogo,
+/// `DeclaredContact::stance_half_width`), the gap of its shape with the feet on the highest
+/// surface under the foot, plus its declared gap.
 pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
     let rest = rest_gap(ctx, g, rows);
     let feet = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
@@ -151,13 +154,25 @@ pub(super) fn gap_beyond_declared(ctx: &Context, g: &Ground, feet: glam::Vec2, g
     // gap / cos(angle) (the normal a straight drop meets; a wall's is clamped at 84 degrees).
     let n = g.ground_normal(feet).unwrap_or(glam::Vec2::Y);
     let vertical = |along_normal: f32| (along_normal / n.y.max(0.1)) as f64;
-    // Vertical for every controller: the drop to the ground less the declared gap's vertical
-    // reading, or, for the seed's centre-column stance over a slope, the feet's height less the
-    // stance's (its box overlaps the ramp there, and a depth along the ramp's normal would read
-    // a lift cos(angle) smaller than the drop another controller's lift reads).
+    // Vertical for every controller: the drop to the ground less the declared stance's, or,
+    // for the seed's centre-column stance over a slope, the feet's height less the stance's
+    // (its box overlaps the ramp there, and a depth along the ramp's normal would read a lift
+    // cos(angle) smaller than the drop another controller's lift reads).
     let off = match stance_over_slope(ctx, feet) {
         Some(stance) => (feet.y - stance) as f64,
-        None => gap - vertical(ctx.declared.gap),
+        None => match ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5) {
+            // A flat foot (Box2D's segment pogo) stands on the highest surface under it: the
+            // shape's gap with the feet there, plus the declared gap.
+            Some((h, Some(_))) if ctx.declared.stance_half_width > 0.0 => {
+                let w = ctx.declared.stance_half_width;
+                let stance = [feet.x - w, feet.x + w]
+                    .into_iter()
+                    .filter_map(|x| ctx.level.surface_at(x, feet.y + 0.5, 1.5))
+                    .fold(h, |top, (s, _)| top.max(s));
+                gap - (g.gap(glam::Vec2::new(feet.x, stance)) as f64 + vertical(ctx.declared.gap))
+            }
+            _ => gap - vertical(ctx.declared.gap),
+        },
     };
     // Within the declared tolerance of the promise counts as keeping it; beyond, the excess.
     let tolerance = vertical(ctx.declared.gap_tolerance);
