@@ -173,6 +173,11 @@ pub struct DeclaredContact {
     /// side, rests on its uphill end), so its feet are above the surface under their centre by
     /// design; 0 for a controller that stands by its shape or its centre.
     pub stance_half_width: f32,
+    /// How far below the ground's top the controller's feet rest by design, vertically, in
+    /// tiles: Box2D's pogo spring, fed gravity every step as the sample feeds it, settles where
+    /// its push balances gravity (a sag set by gravity, the step and the spring); 0 for a
+    /// controller that stands on its contact.
+    pub stance_sink: f32,
     /// Subpixels per tile to which the controller rounds the surface height under its centre
     /// (integer positions: up to the next subpixel, [`crate::level::round_height_up`]); 0 for a
     /// controller that stands on the exact surface.
@@ -235,6 +240,13 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     /// (tiles) with climb limit `max_climb_angle` (radians): what its documentation promises,
     /// so a metric can score it on keeping that promise.
     fn declared_contact(&self, size: Vec2, max_climb_angle: f32) -> DeclaredContact;
+    /// The contact declared for a run with motion `params` stepped by `dt` seconds (a substep
+    /// where the run substeps): [`BackendSettings::declared_contact`], unless the promise
+    /// depends on the motion (Box2D's pogo rests sunk by a sag set by gravity and the step).
+    fn declared_contact_in(&self, size: Vec2, params: &MotionParams, dt: f32) -> DeclaredContact {
+        let _ = dt;
+        self.declared_contact(size, params.max_climb_angle)
+    }
     /// The penetration `platbench stress` holds this configuration to for a character of outer
     /// `size` (tiles): its own contact tolerance.
     fn contact_tolerance(&self, size: Vec2) -> f64;

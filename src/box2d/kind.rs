@@ -51,6 +51,28 @@ impl BackendSettings for Box2dConfig {
         }
     }
 
+    /// As [`BackendSettings::declared_contact`], with the pogo's sag: the sample feeds gravity
+    /// every step and the spring (`b2SpringDamper`, `pogo_hertz`, `pogo_damping_ratio`) rests
+    /// where its push balances it, `g dt (2 zeta + omega dt) / omega` below the pogo's rest
+    /// length (0.0338 tiles at 60 Hz; `tests/box2d.rs` derives it and finds the feet there, less
+    /// the cast's linear slop). The feet stand that far down by design, so the metrics declare
+    /// that stance and allow that overlap, as Rapier's offset is declared.
+    fn declared_contact_in(&self, size: Vec2, params: &MotionParams, dt: f32) -> DeclaredContact {
+        let omega = 2.0 * std::f64::consts::PI * self.pogo_hertz as f64;
+        let (g, dt) = (params.gravity as f64, dt as f64);
+        let sag = if omega > 0.0 {
+            g * dt * (2.0 * self.pogo_damping_ratio as f64 + omega * dt) / omega
+        } else {
+            0.0
+        };
+        let sag = (sag as f32).max(0.0);
+        DeclaredContact {
+            stance_sink: sag,
+            overlap_tolerance: sag,
+            ..self.declared_contact(size, params.max_climb_angle)
+        }
+    }
+
     /// Box2D's linear slop: its collision tolerance.
     fn contact_tolerance(&self, _size: Vec2) -> f64 {
         LINEAR_SLOP as f64

@@ -169,9 +169,10 @@ pub(super) fn gap_beyond_declared(ctx: &Context, g: &Ground, feet: glam::Vec2, g
                     .into_iter()
                     .filter_map(|x| ctx.level.surface_at(x, feet.y + 0.5, 1.5))
                     .fold(h, |top, (s, _)| top.max(s));
-                gap - (g.gap(glam::Vec2::new(feet.x, stance)) as f64 + vertical(ctx.declared.gap))
+                gap - (g.gap(glam::Vec2::new(feet.x, stance)) as f64 + vertical(ctx.declared.gap)
+                    - ctx.declared.stance_sink as f64)
             }
-            _ => gap - vertical(ctx.declared.gap),
+            _ => gap - (vertical(ctx.declared.gap) - ctx.declared.stance_sink as f64),
         },
     };
     // Within the declared tolerance of the promise counts as keeping it; beyond, the excess.

@@ -240,9 +240,11 @@ pub fn with_context<R>(
         spec: &moved,
         params: &params,
         trace,
-        declared: run
-            .backend
-            .declared_contact(moved.size, params.max_climb_angle),
+        declared: run.backend.declared_contact_in(
+            moved.size,
+            &params,
+            spec.dt / run.substeps.max(1) as f32,
+        ),
     })
 }
 

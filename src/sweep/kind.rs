@@ -52,6 +52,7 @@ impl BackendSettings for SweepConfig {
                 gap_tolerance: self.epsilon,
                 slope_overhang: size.x * 0.5 * max_climb_angle.tan(),
                 stance_half_width: 0.0,
+                stance_sink: 0.0,
                 surface_grid: 0,
             },
             // No gap and no tolerance (it snaps exactly), and the seed's centre-column stance
