@@ -1013,7 +1013,8 @@ pub struct WorldVerdict {
     /// at every measured offset within `size`, broke at the next one past it, so the offsets
     /// between were not measured.
     pub holds: Option<bool>,
-    /// The verdict in words, naming the offsets and invariants.
+    /// The verdict in words, naming the offsets and invariants (for one broken at offset 0, how
+    /// far those that held there hold, [`reach`]).
     pub text: String,
     /// The combination cells with an offset within `size` where an invariant broke, as
     /// `offset x dt at (1e5, 1e-4): progress`.
@@ -1024,6 +1025,7 @@ pub struct WorldVerdict {
 /// (the base case elsewhere), and the combination cells within that offset that broke.
 pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
     let f = crate::report::format_setting;
+    let reaches = reach(rows);
     let mut out = Vec::new();
     for v in verdicts(rows)
         .into_iter()
@@ -1041,10 +1043,27 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
         let cover = values.iter().copied().find(|&x| x >= size);
         let first_break = v.up.first_break.clone();
         let (holds, text) = match (&first_break, cover) {
-            (Some((b, inv)), _) if *b <= size => (
-                Some(false),
-                format!("breaks at offset {} ({})", f(*b), inv.join(", ")),
-            ),
+            (Some((b, inv)), _) if *b <= size => {
+                let mut t = format!("breaks at offset {} ({})", f(*b), inv.join(", "));
+                // Broken at the origin already: how far the others hold ([`reach`]), so that
+                // an f32 and an f64 build still read apart.
+                if *b == 0.0 {
+                    if let Some(r) = reaches.iter().find(|r| r.config == v.config) {
+                        let aside = |e: &Edge| match (e.last_holding, &e.first_break) {
+                            (Some(l), Some((x, i))) => format!(
+                                "; those that held at 0 hold to {}, break at {} ({})",
+                                f(l),
+                                f(*x),
+                                i.join(", ")
+                            ),
+                            (Some(l), None) => format!("; those that held at 0 hold to {}", f(l)),
+                            (None, _) => String::new(),
+                        };
+                        t.push_str(&aside(&r.edge));
+                    }
+                }
+                (Some(false), t)
+            }
             (Some((b, inv)), Some(c)) if *b == c => (
                 None,
                 format!(
@@ -1252,6 +1271,20 @@ mod tests {
             vec!["offset x dt at (1e5, 0.001): jump_height"]
         );
         assert!(w(1e4).combinations.is_empty());
+        // Broken at the origin (the carry): the invariants that held there are followed out.
+        let rows: Vec<StressRow> = [0.0, 1e5, 1e14]
+            .iter()
+            .flat_map(|&v| {
+                [
+                    at("offset", v, "carry_no_drift", false),
+                    at("offset", v, "progress", v < 1e14),
+                ]
+            })
+            .collect();
+        assert_eq!(
+            world_verdicts(&rows, 1e5)[0].text,
+            "breaks at offset 0 (carry_no_drift); those that held at 0 hold to 1e5, break at 1e14 (progress)"
+        );
     }
 
     #[test]
