@@ -626,7 +626,8 @@ fn storage_unit(x: f64, per_tile: u32, precision: Precision) -> f64 {
 }
 
 /// Stuck steps of the walk over its flat, open floor: grounded steps commanded to move at least
-/// one storage unit ([`storage_unit`] at the character's world position) that moved less than
+/// one storage unit ([`storage_unit`] at the character's world position, and at least the f32
+/// spacing of the trace's level coordinates, the finest move a trace can show) that moved less than
 /// [`crate::metrics::seams::STUCK_FRACTION`] of the commanded step. A commanded step under one
 /// unit cannot move a stored position by itself (an integer mode carries the fraction to the
 /// next step; a float loses it): that is quantization, and what it costs shows in `progress`.
@@ -651,8 +652,12 @@ fn stuck_steps(
         if script[k].horizontal() == 0.0 || !after.is_grounded() {
             continue;
         }
+        // The trace holds level coordinates in f32: a step under their spacing cannot be seen
+        // moving, whatever the configuration stores (it only matters in f64, where the world
+        // spacing is finer than the trace's).
         let x = offset as f64 + before.x as f64;
-        if step.abs() < storage_unit(x, per_tile, run.backend.precision()) {
+        let seen = Precision::F32.spacing(before.x as f64);
+        if step.abs() < storage_unit(x, per_tile, run.backend.precision()).max(seen) {
             continue;
         }
         if (((after.x - before.x) as f64).abs()) < STUCK_FRACTION * step.abs() {

@@ -262,17 +262,17 @@ fn precision_runs_each_configuration_in_every_listed_precision_it_has_a_build_in
             (f[2].to_string(), f[3].to_string())
         })
         .collect();
-    // The 17 built-in configurations in f32, and the 12 Rapier ones again in f64 (every
-    // Rapier configuration has a build on rapier2d-f64); the sweep and Box2D have none, which
-    // stderr says.
-    assert_eq!(timed.len(), 17 + 12, "{metrics}");
+    // The 17 built-in configurations in f32, and again in f64 the 12 Rapier ones (every Rapier
+    // configuration has a build on rapier2d-f64) and the 2 float sweeps (the f64 mode); the
+    // integer sweep and Box2D have none.
+    assert_eq!(timed.len(), 17 + 14, "{metrics}");
     let f64s: Vec<&(String, String)> = timed.iter().filter(|(_, c)| c.ends_with(" f64")).collect();
-    assert_eq!(f64s.len(), 12);
+    assert_eq!(f64s.len(), 14);
+    assert_eq!(f64s.iter().filter(|(b, _)| b == "rapier").count(), 12);
     for (backend, config) in f64s {
-        assert_eq!(backend, "rapier");
         let f32_label = config.trim_end_matches(" f64");
         assert!(
-            timed.iter().any(|(b, c)| b == "rapier" && c == f32_label),
+            timed.iter().any(|(b, c)| b == backend && c == f32_label),
             "{config}"
         );
     }
@@ -284,12 +284,23 @@ fn precision_runs_each_configuration_in_every_listed_precision_it_has_a_build_in
         .arg(&level)
         .output()
         .unwrap();
-    assert!(!out.status.success());
+    assert_success(&out);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
-        stderr.contains("left out sweep default: no build in f64"),
+        stderr.contains("left out sweep positions=integer/32: no build in f64"),
         "{stderr}"
     );
+    assert!(
+        stderr.contains("left out box2d per-tile capsule: no build in f64"),
+        "{stderr}"
+    );
+    let out = platbench()
+        .args(["run", "--precision", "f64", "--backend", "box2d"])
+        .arg(&level)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         stderr.contains("no configuration that runs has a build in it"),
         "{stderr}"

@@ -288,3 +288,34 @@ fn rapier_f64_holds_where_f32_breaks_and_breaks_where_its_own_spacing_swallows_a
     let p = f64_1e14.iter().find(|r| r.invariant == "progress").unwrap();
     assert!(!p.holds && (p.measured - 0.9375).abs() < 0.005, "{p:?}");
 }
+
+#[test]
+fn the_sweep_in_f64_holds_to_1e13_tiles_and_breaks_where_its_spacing_swallows_a_step() {
+    let rows = stress_matrix(&[platbench::sweep::kind::run_double()], |_| {}).unwrap();
+    // The float sweep breaks at 1e7 (f32 spacing 1 tile; the first test above). In f64 the
+    // same rules and epsilon keep every invariant at every offset to 1e13 (f64 spacing 1/512
+    // there, under the 1e-3 epsilon) and at every other extreme of the matrix; it models no
+    // moving platforms yet, so it has no carry row.
+    for v in [0.0, 1e5, 1e6, 1e7, 1e8, 1e10, 1e12, 1e13] {
+        assert!(holds(&rows, "offset", v, &[]), "offset {v}");
+    }
+    for (dim, vs) in [
+        ("dt", vec![1e-4, 0.2]),
+        ("speed", vec![10.0, 1000.0]),
+        ("width", vec![0.01, 10.0]),
+        ("epsilon", vec![1e-1, 1e-9]),
+    ] {
+        for v in vs {
+            assert!(holds(&rows, dim, v, &[]), "{dim} {v}");
+        }
+    }
+    assert!(rows.iter().all(|r| r.invariant != "carry_no_drift"));
+    // At 1e14 the f64 spacing is 1/64 tile: the 0.1-tile walking step is 6.4 spacings and
+    // rounds to 6, a walk of 6/6.4 = 0.9375 of its distance, under PROGRESS_MIN (0.99), as
+    // Rapier's in f64 and the f32 sweep's where its own spacing is as coarse (1e5 at 1/240 s).
+    let p = rows
+        .iter()
+        .find(|r| r.dimension2.is_empty() && r.value == 1e14 && r.invariant == "progress")
+        .unwrap();
+    assert!(!p.holds && (p.measured - 0.9375).abs() < 0.005, "{p:?}");
+}
