@@ -17,7 +17,8 @@
 //!
 //! then, once every character has stepped, the moving platforms move and carry or push them
 //! ([`platforms`]). The step is generic over how positions are stored (`space.rs`): f32 with the
-//! seed's epsilon, or whole subpixels ([`grid`]). A level without slopes, one-way platforms,
+//! seed's epsilon, f64 with the same epsilon ([`Positions::Double`]), or whole subpixels
+//! ([`grid`]). A level without slopes, one-way platforms,
 //! ladders or platforms runs none of their code ([`SweepStats`] counts it).
 
 pub mod broadphase;
