@@ -195,6 +195,62 @@ impl DeclaredContact {
     }
 }
 
+/// The floating-point type a configuration keeps world positions in: what decides how far from
+/// the world's origin it can place a level before a position's spacing swallows a step.
+/// Whatever the precision, [`CharacterState`] and the traces are in level coordinates (f32, a
+/// few hundred tiles at most), so an f64 configuration keeps its precision in what it reports.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Precision {
+    /// `f32` world coordinates (rapier2d, parry2d, Box2D, the sweep's float mode).
+    #[default]
+    F32,
+    /// `f64` world coordinates (rapier2d-f64 and parry2d-f64; the sweep's double mode).
+    F64,
+}
+
+impl Precision {
+    /// Both precisions, f32 first.
+    pub const ALL: [Precision; 2] = [Precision::F32, Precision::F64];
+
+    /// `f32` or `f64`, as in `--precision` and configuration labels.
+    pub fn label(self) -> &'static str {
+        match self {
+            Precision::F32 => "f32",
+            Precision::F64 => "f64",
+        }
+    }
+
+    /// The precision a label of [`Precision::label`] names.
+    pub fn from_label(label: &str) -> Option<Precision> {
+        Self::ALL.into_iter().find(|p| p.label() == label)
+    }
+
+    /// The spacing of stored positions at world coordinate `x` (tiles): the distance from |x| to
+    /// the next larger value of this type, the smallest move a position there can make.
+    pub fn spacing(self, x: f64) -> f64 {
+        match self {
+            Precision::F32 => {
+                let x = (x as f32).abs();
+                (f32::from_bits(x.to_bits() + 1) - x) as f64
+            }
+            Precision::F64 => {
+                let x = x.abs();
+                f64::from_bits(x.to_bits() + 1) - x
+            }
+        }
+    }
+
+    /// A point `local` (level coordinates, tiles) as a backend of this precision places it in the
+    /// world at `origin` and reads it back in level coordinates: rounded to this type's spacing
+    /// at the world position.
+    pub fn placed(self, local: glam::DVec2, origin: Vec2) -> glam::DVec2 {
+        match self {
+            Precision::F32 => ((local.as_vec2() + origin) - origin).as_dvec2(),
+            Precision::F64 => (local + origin.as_dvec2()) - origin.as_dvec2(),
+        }
+    }
+}
+
 /// Level geometry a backend built once and shares between the configurations and scenarios a
 /// [`crate::scenario::Runner`] runs on one level (Rapier's colliders, built once per collider
 /// building whatever the character shape). Entries are keyed by a string the backend chooses
@@ -262,6 +318,17 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     }
     /// This configuration with its overlap tolerance set to `epsilon` (tiles), if it has one.
     fn with_epsilon(&self, _epsilon: f32) -> Option<std::sync::Arc<dyn BackendSettings>> {
+        None
+    }
+    /// The precision this configuration keeps world positions in. Default: f32.
+    fn precision(&self) -> Precision {
+        Precision::F32
+    }
+    /// This configuration built in `precision`, if it offers that precision besides its own
+    /// (`None` otherwise: a caller keeps the configuration itself for its own precision).
+    /// Default: none.
+    fn with_precision(&self, precision: Precision) -> Option<std::sync::Arc<dyn BackendSettings>> {
+        let _ = precision;
         None
     }
     /// Builds the backend over `level` with `params`, reusing geometry from `shared` where

@@ -3,7 +3,7 @@
 //! The pieces, in dependency order: [`level`] (the tile model, its text format and the Tiled import) ←
 //! [`motion`], [`ladder`] and [`backend`] (shared game rules and the controller interface: the
 //! [`backend::Backend`], [`backend::BackendSettings`] and [`backend::BackendKind`] traits) ← the
-//! controllers ([`sweep`], [`rapier`]), listed in one [`registry::Registry`] ← [`scenario`] (the
+//! controllers ([`sweep`], [`rapier`] in f32 and f64, [`box2d`]), listed in one [`registry::Registry`] ← [`scenario`] (the
 //! runner) and [`trace`] ← [`metrics`] ← [`report`], [`stress`], [`tradeoff`]. [`suite`] runs the
 //! comparison from code; [`parallel`] fans independent runs out over threads; [`cli`] is the
 //! `platbench` command line, which a user's crate gets with its own controller beside ours from

@@ -66,22 +66,74 @@ impl CharacterShape {
         Pose::from_translation(feet + Vec2::new(0.0, size.y * 0.5))
     }
 
-    /// The parry shape for a character of outer `size`, centred on its local origin.
-    pub fn build(self, size: Vec2) -> SharedShape {
+    /// The dimensions of the shape for a character of outer `size` (tiles), from which every
+    /// engine builds it in its own precision.
+    pub fn params(self, size: Vec2) -> ShapeParams {
         let half = size * 0.5;
         match self {
-            CharacterShape::Cuboid => SharedShape::cuboid(half.x, half.y),
+            CharacterShape::Cuboid => ShapeParams::Cuboid { half },
             CharacterShape::Capsule => {
                 let r = half.x.min(half.y);
-                SharedShape::capsule_y(half.y - r, r)
+                ShapeParams::Capsule {
+                    half_segment: half.y - r,
+                    radius: r,
+                }
             }
-            CharacterShape::Ball => SharedShape::ball(half.y),
+            CharacterShape::Ball => ShapeParams::Ball { radius: half.y },
             CharacterShape::RoundCuboid { border_fraction } => {
                 let b = (border_fraction * size.x).clamp(0.0, half.x.min(half.y));
-                SharedShape::round_cuboid(half.x - b, half.y - b, b)
+                ShapeParams::RoundCuboid {
+                    half: half - Vec2::splat(b),
+                    border: b,
+                }
             }
         }
     }
+
+    /// The parry shape for a character of outer `size`, centred on its local origin.
+    pub fn build(self, size: Vec2) -> SharedShape {
+        match self.params(size) {
+            ShapeParams::Cuboid { half } => SharedShape::cuboid(half.x, half.y),
+            ShapeParams::Capsule {
+                half_segment,
+                radius,
+            } => SharedShape::capsule_y(half_segment, radius),
+            ShapeParams::Ball { radius } => SharedShape::ball(radius),
+            ShapeParams::RoundCuboid { half, border } => {
+                SharedShape::round_cuboid(half.x, half.y, border)
+            }
+        }
+    }
+}
+
+/// A character shape's dimensions, in tiles, centred on its local origin
+/// ([`CharacterShape::params`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ShapeParams {
+    /// A box of half extents `half`.
+    Cuboid {
+        /// Half width and half height.
+        half: Vec2,
+    },
+    /// A vertical capsule: a segment of half length `half_segment` swept by a ball of `radius`.
+    Capsule {
+        /// Half the segment's length.
+        half_segment: f32,
+        /// The radius.
+        radius: f32,
+    },
+    /// A ball.
+    Ball {
+        /// The radius.
+        radius: f32,
+    },
+    /// A box of half extents `half` with a border of radius `border` around it.
+    RoundCuboid {
+        /// Half extents of the inner box.
+        half: Vec2,
+        /// Border radius.
+        border: f32,
+    },
 }
 
 #[cfg(test)]

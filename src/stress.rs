@@ -12,7 +12,7 @@
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
-use crate::backend::BackendError;
+use crate::backend::{BackendError, Precision};
 use crate::level::{InputEvent, Level, Platform, PlatformMotion, ScenarioSpec, Tile};
 use crate::metrics::seams::STUCK_FRACTION;
 use crate::metrics::{commanded_steps, evaluate_with, MetricRow};
@@ -53,7 +53,22 @@ fn base_value(name: &str) -> f64 {
     }
 }
 
-/// The dimensions of DESIGN.md's stress matrix.
+/// The largest offset (tiles) at which f32 configurations are run. Past it an f32 position's
+/// spacing is over a tile (8 tiles at 1e8): no probe's step can move a character, every f32
+/// configuration measured has broken at or before 1e7 (or refuses the level: integer
+/// positions past 2^24 tiles, Box2D), and Rapier's f32 casts there take seconds a point. The
+/// offsets past it ([`F64_OFFSETS`]) are run on f64 configurations only.
+pub const F32_OFFSET_LIMIT: f64 = 1e7;
+
+/// The offsets past [`F32_OFFSET_LIMIT`] that f64 configurations are run at, up to 1e15 tiles
+/// (f64 spacing 1/8 tile there, where an f32 position is at 1e6: the f64 edge, if it is the
+/// same spacing as the f32 one, falls inside the range). The probe level's origin is an f32
+/// ([`Level::origin`]): 1e8 to 1e10 are exact in f32, 1e11 and beyond are placed at the
+/// nearest f32 (within 6e-8 of the value, 1e12 at 999,999,995,904), as far out all the same.
+pub const F64_OFFSETS: [f64; 8] = [1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15];
+
+/// The dimensions of DESIGN.md's stress matrix (the offset's values past [`F32_OFFSET_LIMIT`]
+/// are run on f64 configurations only, [`points`]).
 pub fn dimensions() -> Vec<Dimension> {
     let dim = |name, values: Vec<f64>| Dimension {
         name,
@@ -61,7 +76,13 @@ pub fn dimensions() -> Vec<Dimension> {
         values,
     };
     vec![
-        dim("offset", vec![0.0, 1e3, 1e4, 1e5, 1e6, 1e7]),
+        dim(
+            "offset",
+            [0.0, 1e3, 1e4, 1e5, 1e6, 1e7]
+                .into_iter()
+                .chain(F64_OFFSETS)
+                .collect(),
+        ),
         dim("dt", vec![1e-4, 1.0 / 240.0, 1.0 / 60.0, 0.05, 0.2]),
         dim("speed", vec![10.0, 100.0, 1000.0]),
         dim("width", vec![0.01, 0.1, 0.8, 3.0, 10.0]),
@@ -307,26 +328,27 @@ fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
 /// two steps' displacements, which sums to at most twice the platform's largest displacement in
 /// one step, however long the ride: that is the allowance returned, computed from the platform's
 /// motion over the run (as the backends place it, so far from the origin a step is a multiple of
-/// the f32 spacing). More than the allowance (plus a rest's tolerance) is a rider that slips,
-/// bounces or falls off. A configuration on a subpixel grid of `grid` subpixels per tile (0 for
-/// none) moves the platform along its path rounded to that grid, in level coordinates whatever
-/// the offset; the drift is measured against that platform, the one it moves.
+/// the spacing of the configuration's `precision`). More than the allowance (plus a rest's
+/// tolerance) is a rider that slips, bounces or falls off. A configuration on a subpixel grid of
+/// `grid` subpixels per tile (0 for none) moves the platform along its path rounded to that
+/// grid, in level coordinates whatever the offset; the drift is measured against that platform,
+/// the one it moves.
 fn carry_drift(
     p: &Platform,
     origin: Vec2,
-    grid: u32,
+    (grid, precision): (u32, Precision),
     trace: &crate::trace::Trace,
     dt: f32,
 ) -> (f64, f64) {
-    // The platform where the backends put it: placed in the world in f32 (at 1e6 tiles from the
-    // origin, on a grid of 1/16 tile) and brought back to level coordinates, as the trace is;
-    // or on the subpixel grid.
+    // The platform where the backends put it: placed in the world in the configuration's
+    // precision (in f32 at 1e6 tiles from the origin, on a grid of 1/16 tile) and brought back
+    // to level coordinates, as the trace is; or on the subpixel grid.
     let at = |k: usize| {
         let t = k as f64 * dt as f64;
         if grid > 0 {
             p.placed_aabb(t, grid).mins.as_dvec2()
         } else {
-            ((p.position(t) + origin) - origin).as_dvec2()
+            precision.placed(p.position(t).as_dvec2(), origin)
         }
     };
     let rel = |k: usize| {
@@ -389,13 +411,18 @@ fn configured(run: &RunConfig, case: &Case, epsilon_varied: bool) -> Option<RunC
 
 /// Every point of the matrix for `runs`, in the order their rows are written: each dimension
 /// alone, value by value, then each pair of [`pairs`] cell by cell; within a value or cell,
-/// `runs` in order. The epsilon is varied only on configurations that have one.
+/// `runs` in order. The epsilon is varied only on configurations that have one, and offsets past
+/// [`F32_OFFSET_LIMIT`] only on f64 configurations.
 pub fn points(runs: &[RunConfig]) -> Vec<Point> {
     let mut out = Vec::new();
     for d in dimensions() {
         for &v in &d.values {
             let case = BASE.with(d.name, v);
+            let far = d.name == "offset" && v > F32_OFFSET_LIMIT;
             for base in runs {
+                if far && base.backend.precision() == Precision::F32 {
+                    continue;
+                }
                 if let Some(run) = configured(base, &case, d.name == "epsilon") {
                     out.push(Point {
                         run,
@@ -547,7 +574,8 @@ pub fn run_point(point: &Point) -> Result<Vec<StressRow>, BackendError> {
         if let Some(p) = spec.ride.and_then(|i| ride_level.platforms.get(i as usize)) {
             // A ride feeds only its own invariant (and `finite`): the others keep the meaning
             // they have on the static floor.
-            let (d, lag) = carry_drift(p, ride_level.origin, grid, &e.trace, case.dt);
+            let placing = (grid, run.backend.precision());
+            let (d, lag) = carry_drift(p, ride_level.origin, placing, &e.trace, case.dt);
             let tol = lag + tol_rest;
             if drift_tol == 0.0 || d - tol > drift - drift_tol {
                 (drift, drift_tol) = (d, tol);
@@ -586,11 +614,11 @@ pub fn run_point(point: &Point) -> Result<Vec<StressRow>, BackendError> {
     Ok(rows_of(point, &o, tol_pen, tol_rest))
 }
 
-/// The smallest move a stored position can make at world coordinate `x` (tiles): the f32
-/// spacing there, or one subpixel where the configuration keeps positions on a grid.
-fn storage_unit(x: f32, per_tile: u32) -> f64 {
-    let x = x.abs();
-    let spacing = (f32::from_bits(x.to_bits() + 1) - x) as f64;
+/// The smallest move a stored position can make at world coordinate `x` (tiles): the spacing
+/// of the configuration's `precision` there, or one subpixel where the configuration keeps
+/// positions on a grid.
+fn storage_unit(x: f64, per_tile: u32, precision: Precision) -> f64 {
+    let spacing = precision.spacing(x);
     match per_tile {
         0 => spacing,
         n => spacing.max(1.0 / n as f64),
@@ -598,7 +626,8 @@ fn storage_unit(x: f32, per_tile: u32) -> f64 {
 }
 
 /// Stuck steps of the walk over its flat, open floor: grounded steps commanded to move at least
-/// one storage unit ([`storage_unit`] at the character's world position) that moved less than
+/// one storage unit ([`storage_unit`] at the character's world position, and at least the f32
+/// spacing of the trace's level coordinates, the finest move a trace can show) that moved less than
 /// [`crate::metrics::seams::STUCK_FRACTION`] of the commanded step. A commanded step under one
 /// unit cannot move a stored position by itself (an integer mode carries the fraction to the
 /// next step; a float loses it): that is quantization, and what it costs shows in `progress`.
@@ -623,7 +652,12 @@ fn stuck_steps(
         if script[k].horizontal() == 0.0 || !after.is_grounded() {
             continue;
         }
-        if step.abs() < storage_unit(offset + before.x, per_tile) {
+        // The trace holds level coordinates in f32: a step under their spacing cannot be seen
+        // moving, whatever the configuration stores (it only matters in f64, where the world
+        // spacing is finer than the trace's).
+        let x = offset as f64 + before.x as f64;
+        let seen = Precision::F32.spacing(before.x as f64);
+        if step.abs() < storage_unit(x, per_tile, run.backend.precision()).max(seen) {
             continue;
         }
         if (((after.x - before.x) as f64).abs()) < STUCK_FRACTION * step.abs() {
@@ -892,6 +926,87 @@ impl Verdict {
     }
 }
 
+/// How far from the world's origin a configuration holds: its `offset` rows walked out from 0
+/// as a [`Verdict`] walks them, with the invariants that already broke at offset 0 set aside
+/// (they break for a reason other than the distance, such as Rapier's carry), so that an f32
+/// and an f64 build of one set-up compare on what the distance alone breaks.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reach {
+    /// Backend and configuration label.
+    pub config: String,
+    /// The invariants broken at offset 0, set aside, in [`INVARIANTS`] order.
+    pub at_origin: Vec<String>,
+    /// From offset 0 outwards: the last offset where every other invariant held, and the first
+    /// where one broke.
+    pub edge: Edge,
+}
+
+impl Reach {
+    /// `holds to 1e13; breaks at 1e14 (progress); set aside, broken at 0: carry_no_drift`.
+    pub fn text(&self) -> String {
+        let f = crate::report::format_setting;
+        let mut t = match (self.edge.last_holding, &self.edge.first_break) {
+            (Some(v), _) => format!("holds to {}", f(v)),
+            (None, _) => "breaks at 0".to_string(),
+        };
+        if let Some((v, b)) = &self.edge.first_break {
+            if self.edge.last_holding.is_some() {
+                t.push_str(&format!("; breaks at {} ({})", f(*v), b.join(", ")));
+            } else {
+                t.push_str(&format!(" ({})", b.join(", ")));
+            }
+        }
+        if !self.at_origin.is_empty() {
+            t.push_str(&format!(
+                "; set aside, broken at 0: {}",
+                self.at_origin.join(", ")
+            ));
+        }
+        t
+    }
+}
+
+/// Each configuration's [`Reach`], from the one-dimension `offset` rows of `rows`.
+pub fn reach(rows: &[StressRow]) -> Vec<Reach> {
+    let mut configs: Vec<String> = Vec::new();
+    let offset_rows: Vec<&StressRow> = rows
+        .iter()
+        .filter(|r| r.dimension2.is_empty() && r.dimension == "offset")
+        .collect();
+    for r in &offset_rows {
+        let c = format!("{} {}", r.backend, r.config);
+        if !configs.contains(&c) {
+            configs.push(c);
+        }
+    }
+    configs
+        .into_iter()
+        .map(|config| {
+            let mine: Vec<&StressRow> = offset_rows
+                .iter()
+                .copied()
+                .filter(|r| format!("{} {}", r.backend, r.config) == config)
+                .collect();
+            let at = |v: f64| mine.iter().copied().filter(move |r| r.value == v);
+            let at_origin = broken(at(0.0));
+            let mut values: Vec<f64> = mine.iter().map(|r| r.value).filter(|&v| v >= 0.0).collect();
+            values.sort_by(f64::total_cmp);
+            values.dedup();
+            let edge = edge(&values, |v| {
+                broken(at(v))
+                    .into_iter()
+                    .filter(|i| !at_origin.contains(i))
+                    .collect()
+            });
+            Reach {
+                config,
+                at_origin,
+                edge,
+            }
+        })
+        .collect()
+}
+
 /// Whether a configuration holds in a world `size` tiles across (positions up to `size` tiles
 /// from the origin), read from its `offset` rows.
 #[derive(Clone, Debug, PartialEq)]
@@ -903,7 +1018,8 @@ pub struct WorldVerdict {
     /// at every measured offset within `size`, broke at the next one past it, so the offsets
     /// between were not measured.
     pub holds: Option<bool>,
-    /// The verdict in words, naming the offsets and invariants.
+    /// The verdict in words, naming the offsets and invariants (for one broken at offset 0, how
+    /// far those that held there hold, [`reach`]).
     pub text: String,
     /// The combination cells with an offset within `size` where an invariant broke, as
     /// `offset x dt at (1e5, 1e-4): progress`.
@@ -914,6 +1030,7 @@ pub struct WorldVerdict {
 /// (the base case elsewhere), and the combination cells within that offset that broke.
 pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
     let f = crate::report::format_setting;
+    let reaches = reach(rows);
     let mut out = Vec::new();
     for v in verdicts(rows)
         .into_iter()
@@ -931,10 +1048,27 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
         let cover = values.iter().copied().find(|&x| x >= size);
         let first_break = v.up.first_break.clone();
         let (holds, text) = match (&first_break, cover) {
-            (Some((b, inv)), _) if *b <= size => (
-                Some(false),
-                format!("breaks at offset {} ({})", f(*b), inv.join(", ")),
-            ),
+            (Some((b, inv)), _) if *b <= size => {
+                let mut t = format!("breaks at offset {} ({})", f(*b), inv.join(", "));
+                // Broken at the origin already: how far the others hold ([`reach`]), so that
+                // an f32 and an f64 build still read apart.
+                if *b == 0.0 {
+                    if let Some(r) = reaches.iter().find(|r| r.config == v.config) {
+                        let aside = |e: &Edge| match (e.last_holding, &e.first_break) {
+                            (Some(l), Some((x, i))) => format!(
+                                "; those that held at 0 hold to {}, break at {} ({})",
+                                f(l),
+                                f(*x),
+                                i.join(", ")
+                            ),
+                            (Some(l), None) => format!("; those that held at 0 hold to {}", f(l)),
+                            (None, _) => String::new(),
+                        };
+                        t.push_str(&aside(&r.edge));
+                    }
+                }
+                (Some(false), t)
+            }
             (Some((b, inv)), Some(c)) if *b == c => (
                 None,
                 format!(
@@ -1142,13 +1276,52 @@ mod tests {
             vec!["offset x dt at (1e5, 0.001): jump_height"]
         );
         assert!(w(1e4).combinations.is_empty());
+        // Broken at the origin (the carry): the invariants that held there are followed out.
+        let rows: Vec<StressRow> = [0.0, 1e5, 1e14]
+            .iter()
+            .flat_map(|&v| {
+                [
+                    at("offset", v, "carry_no_drift", false),
+                    at("offset", v, "progress", v < 1e14),
+                ]
+            })
+            .collect();
+        assert_eq!(
+            world_verdicts(&rows, 1e5)[0].text,
+            "breaks at offset 0 (carry_no_drift); those that held at 0 hold to 1e5, break at 1e14 (progress)"
+        );
+    }
+
+    #[test]
+    fn reach_sets_aside_what_broke_at_the_origin() {
+        // carry breaks everywhere; progress from 1e14 on; penetration only at 1e15.
+        let mut rows = Vec::new();
+        for v in [0.0, 1e7, 1e13, 1e14, 1e15] {
+            rows.push(at("offset", v, "carry_no_drift", false));
+            rows.push(at("offset", v, "progress", v < 1e14));
+            rows.push(at("offset", v, "penetration", v < 1e15));
+        }
+        let r = &reach(&rows)[0];
+        assert_eq!(r.at_origin, vec!["carry_no_drift".to_string()]);
+        assert_eq!(r.edge.last_holding, Some(1e13));
+        assert_eq!(
+            r.text(),
+            "holds to 1e13; breaks at 1e14 (progress); set aside, broken at 0: carry_no_drift"
+        );
+        // The verdict itself still reads the break at the base case.
+        assert!(verdicts(&rows)[0]
+            .text()
+            .starts_with("breaks at the base case"));
     }
 
     #[test]
     fn storage_unit_is_the_f32_spacing_or_a_subpixel() {
         // 2^17 = 131072 > 1e5 >= 2^16: spacing 2^(16-23) = 1/128.
-        assert_eq!(storage_unit(1e5, 0), 1.0 / 128.0);
-        assert_eq!(storage_unit(1e5, 32), 1.0 / 32.0);
-        assert_eq!(storage_unit(1e7, 32), 1.0);
+        assert_eq!(storage_unit(1e5, 0, Precision::F32), 1.0 / 128.0);
+        assert_eq!(storage_unit(1e5, 32, Precision::F32), 1.0 / 32.0);
+        assert_eq!(storage_unit(1e7, 32, Precision::F32), 1.0);
+        // f64: 2^16 <= 1e5 < 2^17, spacing 2^(16-52).
+        assert_eq!(storage_unit(1e5, 0, Precision::F64), 2f64.powi(-36));
+        assert_eq!(storage_unit(1e10, 0, Precision::F64), 2f64.powi(33 - 52));
     }
 }

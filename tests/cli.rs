@@ -237,6 +237,77 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
 }
 
 #[test]
+fn precision_runs_each_configuration_in_every_listed_precision_it_has_a_build_in() {
+    let dir = tempfile::tempdir().unwrap();
+    let level = dir.path().join("t.toml");
+    std::fs::write(
+        &level,
+        "name = \"t\"\nmap = \"\"\"\n....\n####\n\"\"\"\n[[scenario]]\nname = \"stand\"\nspawn = [1.5, 1.0]\nduration = 0.5\n",
+    )
+    .unwrap();
+    let out_dir = dir.path().join("out");
+    let out = platbench()
+        .args(["run", "--timing", "--precision", "f32,f64", "--out"])
+        .arg(&out_dir)
+        .arg(&level)
+        .output()
+        .unwrap();
+    assert_success(&out);
+    let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
+    let timed: Vec<(String, String)> = metrics
+        .lines()
+        .filter(|l| l.contains(",ns_per_character_step,"))
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[2].to_string(), f[3].to_string())
+        })
+        .collect();
+    // The 17 built-in configurations in f32, and again in f64 the 12 Rapier ones (every Rapier
+    // configuration has a build on rapier2d-f64) and the 2 float sweeps (the f64 mode); the
+    // integer sweep and Box2D have none.
+    assert_eq!(timed.len(), 17 + 14, "{metrics}");
+    let f64s: Vec<&(String, String)> = timed.iter().filter(|(_, c)| c.ends_with(" f64")).collect();
+    assert_eq!(f64s.len(), 14);
+    assert_eq!(f64s.iter().filter(|(b, _)| b == "rapier").count(), 12);
+    for (backend, config) in f64s {
+        let f32_label = config.trim_end_matches(" f64");
+        assert!(
+            timed.iter().any(|(b, c)| b == backend && c == f32_label),
+            "{config}"
+        );
+    }
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("left out"), "{stderr}");
+    // Only f64: the configurations without an f64 build are left out, and said so.
+    let out = platbench()
+        .args(["run", "--precision", "f64", "--backend", "sweep,box2d"])
+        .arg(&level)
+        .output()
+        .unwrap();
+    assert_success(&out);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("left out sweep positions=integer/32: no build in f64"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("left out box2d per-tile capsule: no build in f64"),
+        "{stderr}"
+    );
+    let out = platbench()
+        .args(["run", "--precision", "f64", "--backend", "box2d"])
+        .arg(&level)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("no configuration that runs has a build in it"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn bad_command_line_values_are_named() {
     for (args, needle) in [
         (vec!["run", "--dt", "nan"], "--dt"),

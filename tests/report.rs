@@ -169,6 +169,13 @@ fn report_includes_the_tradeoff_chart_and_the_stability_table_when_given() {
         "{html}"
     );
     assert!(html.contains("Stability at the extremes"));
+    // How far from the origin it holds (stress::reach): nothing broke at 0, so nothing is set
+    // aside, and the edge is the verdict's.
+    assert!(
+        md.contains("| sweep default | holds to 1e6; breaks at 1e7 (penetration) |"),
+        "{md}"
+    );
+    assert!(html.contains("How far from the origin each configuration holds"));
 }
 
 #[test]

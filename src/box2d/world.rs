@@ -12,9 +12,9 @@ use boxdd::{
 use glam::Vec2;
 
 use crate::backend::BackendError;
+pub use crate::level::outlines::ColliderBuilding;
+use crate::level::outlines::{one_way_rects, slope_outlines};
 use crate::level::{Level, Platform};
-use crate::rapier::colliders::{one_way_rects, slope_outlines};
-pub use crate::rapier::ColliderBuilding;
 
 /// Filter category of the level's solid shapes.
 pub const SOLID: u64 = 1;

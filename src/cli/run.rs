@@ -9,6 +9,7 @@ use anyhow::{bail, Context as _, Result};
 use clap::Args;
 
 use super::{load_levels_with, out, output, Harness, ImportArgs};
+use crate::backend::Precision;
 use crate::metrics::{evaluate_with, MetricRow};
 use crate::parallel;
 use crate::report::summary_rows::SummaryRows;
@@ -50,7 +51,7 @@ pub(crate) struct RunArgs {
     /// Replace the committed baseline (compare/baseline for platbench itself; the harness's
     /// baseline directory for a crate calling platbench::cli) with this run: the only way it is
     /// written. Runs the built-in set with every configuration.
-    #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing", "traces"])]
+    #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing", "traces", "precisions"])]
     pub(crate) bless: bool,
     /// Override every scenario's time step, in seconds.
     #[arg(long, value_name = "SECONDS")]
@@ -70,6 +71,13 @@ pub(crate) struct RunArgs {
     /// comma-separate); all of them by default.
     #[arg(long = "shape", value_name = "SHAPE", value_delimiter = ',', value_parser = ["capsule", "cuboid", "ball", "round-cuboid"])]
     pub(crate) shapes: Vec<String>,
+    /// Precisions to run each configuration in (repeat or comma-separate: f32, f64): each
+    /// configuration runs in every listed precision it has a build in (Rapier's: both, on
+    /// rapier2d and rapier2d-f64; labels of the f64 builds end in ` f64`); one with none of them
+    /// is left out, said on stderr. Default: f32, the built-in comparison. With --timing,
+    /// `--precision f32,f64` times the f64 builds beside the f32 ones in the same run.
+    #[arg(long = "precision", value_name = "PRECISION", value_delimiter = ',', value_parser = ["f32", "f64"])]
+    pub(crate) precisions: Vec<String>,
     #[command(flatten)]
     pub(crate) import: ImportArgs,
 }
@@ -115,6 +123,50 @@ pub(crate) fn configs(h: &Harness, args: &RunArgs) -> Result<Vec<RunConfig>> {
             if let Some(b) = c.backend.with_epsilon(eps) {
                 c.backend = b;
             }
+        }
+    }
+    if !args.precisions.is_empty() {
+        let wanted: Vec<Precision> = args
+            .precisions
+            .iter()
+            .filter_map(|p| Precision::from_label(p))
+            .collect();
+        let mut out = Vec::new();
+        for c in set {
+            let own = c.backend.precision();
+            let mut any = false;
+            for &p in &wanted {
+                if p == own {
+                    out.push(c.clone());
+                    any = true;
+                } else if let Some(b) = c.backend.with_precision(p) {
+                    let label = match p {
+                        Precision::F64 => format!("{} f64", c.label),
+                        Precision::F32 => c.label.trim_end_matches(" f64").to_string(),
+                    };
+                    out.push(RunConfig {
+                        backend: b,
+                        label,
+                        ..c.clone()
+                    });
+                    any = true;
+                }
+            }
+            if !any {
+                eprintln!(
+                    "  left out {} {}: no build in {}",
+                    c.backend.backend(),
+                    c.label,
+                    args.precisions.join(", ")
+                );
+            }
+        }
+        set = out;
+        if set.is_empty() {
+            bail!(
+                "--precision {}: no configuration that runs has a build in it",
+                args.precisions.join(",")
+            );
         }
     }
     Ok(set)

@@ -50,6 +50,19 @@ pub(crate) fn stress(
         ]);
     }
     out(&t.to_string());
+    out("");
+    let mut t = table(
+        [
+            "configuration",
+            "how far from the origin it holds (offset, tiles; what broke at 0 set aside)",
+        ]
+        .map(String::from)
+        .to_vec(),
+    );
+    for r in crate::stress::reach(&rows) {
+        t.add_row(vec![r.config.clone(), r.text()]);
+    }
+    out(&t.to_string());
     for t in crate::report::html::pair_tables(&rows) {
         out("");
         out(&t);

@@ -7,6 +7,7 @@
 
 pub mod import;
 pub mod ldtk;
+pub mod outlines;
 mod parse;
 mod platform;
 pub mod probes;

@@ -12,7 +12,7 @@ use super::{
 };
 use crate::backend::{
     require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
-    DeclaredContact, SharedGeometry,
+    DeclaredContact, Precision, SharedGeometry,
 };
 use crate::level::{Features, Level};
 use crate::metrics::MetricRow;
@@ -52,8 +52,20 @@ impl BackendSettings for RapierConfig {
         0.01 * size.y as f64
     }
 
-    /// Builds over the level's colliders for `self.colliders`, built once per level and
-    /// collider building whatever the character shape.
+    fn precision(&self) -> Precision {
+        self.precision
+    }
+
+    /// Every Rapier configuration has a build in both precisions.
+    fn with_precision(&self, precision: Precision) -> Option<std::sync::Arc<dyn BackendSettings>> {
+        Some(std::sync::Arc::new(RapierConfig {
+            precision,
+            ..self.clone()
+        }))
+    }
+
+    /// Builds over the level's colliders for `self.colliders` in `self.precision`, built once
+    /// per level, collider building and precision whatever the character shape.
     fn build(
         &self,
         level: &Level,
@@ -61,14 +73,31 @@ impl BackendSettings for RapierConfig {
         shared: &mut SharedGeometry,
     ) -> Result<Box<dyn Backend>, BackendError> {
         let key = format!("{NAME}:{}", self.colliders.label());
-        let world: Rc<StaticWorld> =
-            shared.get_or_build(&key, || StaticWorld::new(level, self.colliders));
-        Ok(Box::new(RapierBackend::with_world(
-            level,
-            world,
-            params.clone(),
-            self.clone(),
-        )?))
+        Ok(match self.precision {
+            Precision::F32 => {
+                let world: Rc<StaticWorld> =
+                    shared.get_or_build(&key, || StaticWorld::new(level, self.colliders));
+                Box::new(RapierBackend::with_world(
+                    level,
+                    world,
+                    params.clone(),
+                    self.clone(),
+                )?)
+            }
+            Precision::F64 => {
+                use super::double;
+                let world: Rc<double::StaticWorld> = shared
+                    .get_or_build(&format!("{key}:f64"), || {
+                        double::StaticWorld::new(level, self.colliders)
+                    });
+                Box::new(double::RapierBackend::with_world(
+                    level,
+                    world,
+                    params.clone(),
+                    self.clone(),
+                )?)
+            }
+        })
     }
 
     fn as_any(&self) -> &dyn std::any::Any {
@@ -143,14 +172,20 @@ impl BackendKind for RapierKind {
     /// The capsule on per-tile and merged colliders, and on per-tile colliders fed as Rapier's
     /// docs and examples advise for a character that gets stuck (no vertical move while
     /// grounded except on platforms): the set-up that walks, so that `progress` is measured on
-    /// one that holds it at the base case.
+    /// one that holds it at the base case; then that set-up again on rapier2d-f64, so that
+    /// how far each precision holds is read off the same probes.
     fn stress_configs(&self) -> Vec<RunConfig> {
+        let advised = RapierConfig {
+            grounded_move: GroundedMove::NoneExceptOnPlatforms,
+            ..Default::default()
+        };
         vec![
             run(ColliderBuilding::PerTile, CharacterShape::Capsule),
             run(ColliderBuilding::Merged, CharacterShape::Capsule),
+            run_with(advised.clone()),
             run_with(RapierConfig {
-                grounded_move: GroundedMove::NoneExceptOnPlatforms,
-                ..Default::default()
+                precision: Precision::F64,
+                ..advised
             }),
         ]
     }

@@ -3,9 +3,10 @@
 //! each frame after the characters have moved (the same order as the sweep). The step integrates
 //! only these kinematic bodies (the levels have no dynamic body) and updates the broad phase;
 //! it also gives each body the velocity Rapier's character controller reads to carry riders.
+//! Compiled once per precision (`super::precision`).
 
-use glam::Vec2;
-use rapier2d::prelude::{
+use super::precision::{engine, s, v, Vect};
+use engine::prelude::{
     CCDSolver, ColliderBuilder, ImpulseJointSet, IntegrationParameters, IslandManager,
     MultibodyJointSet, NarrowPhase, PhysicsPipeline, RigidBodyBuilder, RigidBodyHandle,
     SoftBodySet,
@@ -14,23 +15,10 @@ use rapier2d::prelude::{
 use super::colliders::{StaticWorld, ONE_WAY};
 use crate::level::{Level, Platform};
 
-/// How a rider is carried by a moving platform.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PlatformCarry {
-    /// What Rapier's controller does by itself: it adds the velocity of the kinematic body it
-    /// stands on to the move (its kinematic friction). The reference measured this to carry a
-    /// horizontal rider exactly.
-    Controller,
-    /// The controller's carry plus the platform's displacement added to the desired
-    /// translation when grounded on it, as Rapier users often bolt on. The reference measured it
-    /// to over-carry (1.35x horizontally) and to sink into a descending elevator.
-    ControllerPlusDisplacement,
-}
-
 /// The platforms' bodies and the pipeline that moves them.
 pub struct Platforms {
     specs: Vec<Platform>,
-    origin: Vec2,
+    origin: Vect,
     /// One kinematic body per platform, in the level's order.
     pub bodies: Vec<RigidBodyHandle>,
     pipeline: PhysicsPipeline,
@@ -48,13 +36,14 @@ impl Platforms {
     pub fn new(level: &Level, world: &mut StaticWorld) -> Self {
         let mut bodies = Vec::with_capacity(level.platforms.len());
         for p in &level.platforms {
-            let b = p.aabb(0.0).translated(level.origin);
+            let b = p.aabb(0.0);
+            let (mins, maxs) = (v(b.mins) + v(level.origin), v(b.maxs) + v(level.origin));
             let body = world.bodies.insert(
                 RigidBodyBuilder::kinematic_position_based()
-                    .translation(b.center())
+                    .translation(mins.midpoint(maxs))
                     .build(),
             );
-            let half = b.half_extents();
+            let half = (maxs - mins) * 0.5;
             let mut collider = ColliderBuilder::cuboid(half.x, half.y);
             if p.one_way {
                 collider = collider.user_data(ONE_WAY);
@@ -66,7 +55,7 @@ impl Platforms {
         }
         let mut platforms = Platforms {
             specs: level.platforms.clone(),
-            origin: level.origin,
+            origin: v(level.origin),
             bodies,
             pipeline: PhysicsPipeline::new(),
             params: IntegrationParameters::default(),
@@ -83,12 +72,13 @@ impl Platforms {
     }
 
     /// Centre of platform `i` at time `t`, in the world.
-    fn center(&self, i: usize, t: f64) -> Vec2 {
-        self.specs[i].aabb(t).translated(self.origin).center()
+    fn center(&self, i: usize, t: f64) -> Vect {
+        let b = self.specs[i].aabb(t);
+        (v(b.mins) + self.origin).midpoint(v(b.maxs) + self.origin)
     }
 
     /// Platform `i`'s displacement from `t0` to `t1`.
-    pub fn displacement(&self, i: usize, t0: f64, t1: f64) -> Vec2 {
+    pub fn displacement(&self, i: usize, t0: f64, t1: f64) -> Vect {
         self.center(i, t1) - self.center(i, t0)
     }
 
@@ -100,9 +90,9 @@ impl Platforms {
                 b.set_next_kinematic_translation(c);
             }
         }
-        self.params.dt = dt;
+        self.params.dt = s(dt);
         self.pipeline.step(
-            Vec2::ZERO,
+            Vect::ZERO,
             &self.params,
             &mut self.islands,
             &mut world.broad_phase,

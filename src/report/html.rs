@@ -276,6 +276,19 @@ fn stability_section(rows: &[StressRow]) -> (String, String) {
         let _ = writeln!(md, "| {config} | {dim} | {ok} | {bad} |");
     }
     html.push_str("</tbody></table>");
+    html.push_str("<h3>How far from the origin each configuration holds</h3><p>The offset rows walked out from 0, with the invariants that already broke at 0 set aside (they break for another reason than the distance), so that f32 and f64 builds of one set-up compare on what the distance breaks:</p><table><thead><tr><th>configuration</th><th>offset (tiles)</th></tr></thead><tbody>");
+    md.push_str("\n### How far from the origin each configuration holds\n\nThe offset rows walked out from 0, with the invariants that already broke at 0 set aside:\n\n| configuration | offset (tiles) |\n|---|---|\n");
+    for r in crate::stress::reach(rows) {
+        let text = r.text();
+        let _ = write!(
+            html,
+            "<tr><td>{}</td><td>{}</td></tr>",
+            escape(&r.config),
+            escape(&text)
+        );
+        let _ = writeln!(md, "| {} | {text} |", r.config);
+    }
+    html.push_str("</tbody></table>");
     let grids = pair_grids(rows);
     if !grids.is_empty() {
         html.push_str("<h3>Combinations</h3><p>Pairs of dimensions whose failures interact, each on a small grid (the base case elsewhere). One cell per pair of values, coloured by the first invariant that broke there (green: every invariant held):</p><p class=\"legend\">");

@@ -7,10 +7,10 @@ use std::sync::Arc;
 
 use glam::Vec2;
 
-use super::{Positions, SweepBackend, SweepConfig, INTEGER_SUPPORTED};
+use super::{Positions, SweepBackend, SweepConfig, DOUBLE_SUPPORTED, INTEGER_SUPPORTED};
 use crate::backend::{
     require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
-    DeclaredContact, SharedGeometry, ShownByDefault,
+    DeclaredContact, Precision, SharedGeometry, ShownByDefault,
 };
 use crate::level::{Features, Level};
 use crate::metrics::MetricRow;
@@ -34,6 +34,7 @@ impl BackendSettings for SweepConfig {
     fn supports(&self, level: &Level) -> bool {
         let supported = match self.positions {
             Positions::Float => SweepBackend::SUPPORTED,
+            Positions::Double => DOUBLE_SUPPORTED,
             Positions::Integer { per_tile } => {
                 if super::grid::Grid::new(per_tile, level.origin, &level.name).is_err() {
                     return false;
@@ -46,7 +47,7 @@ impl BackendSettings for SweepConfig {
 
     fn declared_contact(&self, size: Vec2, max_climb_angle: f32) -> DeclaredContact {
         match self.positions {
-            Positions::Float => DeclaredContact {
+            Positions::Float | Positions::Double => DeclaredContact {
                 gap: 0.0,
                 overlap_tolerance: self.epsilon,
                 gap_tolerance: self.epsilon,
@@ -68,7 +69,7 @@ impl BackendSettings for SweepConfig {
     /// The epsilon in float mode; none on integer positions (they snap exactly).
     fn contact_tolerance(&self, _size: Vec2) -> f64 {
         match self.positions {
-            Positions::Float => self.epsilon as f64,
+            Positions::Float | Positions::Double => self.epsilon as f64,
             Positions::Integer { .. } => 0.0,
         }
     }
@@ -80,12 +81,34 @@ impl BackendSettings for SweepConfig {
             Positions::Integer { per_tile } => {
                 super::grid::subpixel_size(size, per_tile as i64).as_vec2() / per_tile as f32
             }
-            Positions::Float => size,
+            Positions::Float | Positions::Double => size,
         }
     }
 
     fn epsilon(&self) -> Option<f32> {
-        (self.positions == Positions::Float).then_some(self.epsilon)
+        matches!(self.positions, Positions::Float | Positions::Double).then_some(self.epsilon)
+    }
+
+    /// f64 in the f64 mode ([`Positions::Double`]), else f32 (the integer mode's tile faces are
+    /// f32, exact to 2^24 tiles).
+    fn precision(&self) -> Precision {
+        match self.positions {
+            Positions::Double => Precision::F64,
+            _ => Precision::F32,
+        }
+    }
+
+    /// The float mode and the f64 mode are each other's build in the other precision.
+    fn with_precision(&self, precision: Precision) -> Option<Arc<dyn BackendSettings>> {
+        let positions = match (self.positions, precision) {
+            (Positions::Float, Precision::F64) => Positions::Double,
+            (Positions::Double, Precision::F32) => Positions::Float,
+            _ => return None,
+        };
+        Some(Arc::new(SweepConfig {
+            positions,
+            ..self.clone()
+        }))
     }
 
     /// Sets the epsilon (integer positions ignore it).
@@ -129,6 +152,17 @@ pub fn run_integer(per_tile: u32) -> RunConfig {
         format!("positions=integer/{per_tile}"),
         SweepConfig {
             positions: Positions::Integer { per_tile },
+            ..Default::default()
+        },
+    )
+}
+
+/// The default sweep in f64 world coordinates ([`Positions::Double`]), labelled `default f64`.
+pub fn run_double() -> RunConfig {
+    RunConfig::new(
+        "default f64",
+        SweepConfig {
+            positions: Positions::Double,
             ..Default::default()
         },
     )
@@ -189,7 +223,7 @@ impl BackendKind for SweepKind {
     }
 
     fn stress_configs(&self) -> Vec<RunConfig> {
-        vec![run_default(), run_integer(32)]
+        vec![run_default(), run_integer(32), run_double()]
     }
 
     /// dt from 1/30 to 1/480 s, substeps, the epsilon, the jump mode and integer positions.

@@ -17,7 +17,8 @@
 //!
 //! then, once every character has stepped, the moving platforms move and carry or push them
 //! ([`platforms`]). The step is generic over how positions are stored (`space.rs`): f32 with the
-//! seed's epsilon, or whole subpixels ([`grid`]). A level without slopes, one-way platforms,
+//! seed's epsilon, f64 with the same epsilon ([`Positions::Double`]), or whole subpixels
+//! ([`grid`]). A level without slopes, one-way platforms,
 //! ladders or platforms runs none of their code ([`SweepStats`] counts it).
 
 pub mod broadphase;
@@ -42,7 +43,7 @@ use crate::level::{Features, Level};
 use crate::motion::{Input, MotionParams, MotionState};
 use broadphase::{BoxKind, NearCache, StaticTiles};
 use grid::{Grid, GridBox, GridPos};
-use space::{FloatSpace, GridSpace, Space};
+use space::{DoubleSpace, FloatSpace, GridSpace, Space};
 
 /// How the sweep stores positions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,7 +59,19 @@ pub enum Positions {
         /// Subpixels per tile (16 and 32 are what pixel-art platformers use).
         per_tile: u32,
     },
+    /// f64 world coordinates with the seed's epsilon tolerance: the float mode's rules, every
+    /// move swept and snapped in f64 ([`resolve::move_axis_f64`]), for levels far from the
+    /// world's origin. Moving platforms are not modelled yet in this mode (refused).
+    Double,
 }
+
+/// The features the f64 mode models (no moving platforms yet).
+pub const DOUBLE_SUPPORTED: Features = Features {
+    slopes: true,
+    one_way: true,
+    ladders: true,
+    moving_platforms: false,
+};
 
 /// The features the integer mode models.
 pub const INTEGER_SUPPORTED: Features = Features {
@@ -133,6 +146,8 @@ struct Character {
     near: NearCache,
     /// Its box on the subpixel grid, in integer mode (unused otherwise).
     on_grid: GridPos,
+    /// Feet position in world coordinates, in f64 mode (unused otherwise).
+    pos64: glam::DVec2,
 }
 
 /// How often each feature's code ran: evidence that a step costs only what the level contains.
@@ -182,10 +197,11 @@ impl SweepBackend {
         let (name, supported) = match config.positions {
             Positions::Float => ("sweep", Self::SUPPORTED),
             Positions::Integer { .. } => ("sweep (integer positions)", INTEGER_SUPPORTED),
+            Positions::Double => ("sweep (f64 positions)", DOUBLE_SUPPORTED),
         };
         require_supported(name, &level.name, level.features, supported)?;
         let grid = match config.positions {
-            Positions::Float => None,
+            Positions::Float | Positions::Double => None,
             Positions::Integer { per_tile } => {
                 Some(Grid::new(per_tile, level.origin, &level.name)?)
             }
@@ -205,8 +221,17 @@ impl SweepBackend {
                 expected: "a finite number >= 0 (tiles)",
             });
         }
+        // The f64 mode keeps the static boxes in the level's own coordinates (exact in f32) and
+        // places them at the origin in f64.
+        let tiles = if config.positions == Positions::Double {
+            let mut local = level.geometry();
+            local.origin = Vec2::ZERO;
+            StaticTiles::new(&local)
+        } else {
+            StaticTiles::new(level)
+        };
         Ok(SweepBackend {
-            tiles: StaticTiles::new(level),
+            tiles,
             platforms: platforms::Platforms::new(
                 level,
                 grid.as_ref(),
@@ -276,6 +301,7 @@ impl Backend for SweepBackend {
                 .map(|g| GridPos::spawn(&g, spec.spawn, spec.size))
                 .unwrap_or_default(),
             pos: spec.spawn + self.origin,
+            pos64: spec.spawn.as_dvec2() + self.origin.as_dvec2(),
             size: spec.size,
             motion: MotionState::with_velocity(spec.velocity),
             ground_normal: Vec2::ZERO,
@@ -299,6 +325,13 @@ impl Backend for SweepBackend {
         let (stats, characters) = (&mut self.stats, &mut self.characters);
         match self.grid {
             Some(grid) => step_all(&GridSpace { grid }, &w, stats, characters, inputs, dt),
+            None if self.config.positions == Positions::Double => {
+                let s = DoubleSpace {
+                    eps: self.config.epsilon,
+                    origin: self.origin.as_dvec2(),
+                };
+                step_all(&s, &w, stats, characters, inputs, dt)
+            }
             None => {
                 let s = FloatSpace {
                     eps: self.config.epsilon,
@@ -334,6 +367,9 @@ impl Backend for SweepBackend {
         CharacterState {
             pos: match &self.grid {
                 Some(g) => g.feet(&c.on_grid.b),
+                None if self.config.positions == Positions::Double => {
+                    (c.pos64 - self.origin.as_dvec2()).as_vec2()
+                }
                 None => c.pos - self.origin,
             },
             vel: c.motion.vel,

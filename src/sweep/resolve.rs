@@ -120,6 +120,94 @@ pub fn move_axis(
     }
 }
 
+/// [`move_axis`] with the position in f64 world coordinates (the sweep's f64 mode): the same
+/// sweep, snap and epsilon fudge, every comparison and the snap in f64. The static boxes are
+/// kept in the level's own coordinates (`tiles` built at origin 0, where f32 is exact for tile
+/// faces) and placed at `origin` in f64; the broadphase is asked in f32 level coordinates with a
+/// margin of [`F64_QUERY_MARGIN`] so that its rounding never hides a box, and the boxes it
+/// returns are filtered again in f64. No moving platforms (the f64 mode refuses them).
+#[allow(clippy::too_many_arguments)]
+pub fn move_axis_f64(
+    tiles: &StaticTiles,
+    near: &mut NearCache,
+    origin: glam::DVec2,
+    pos: &mut glam::DVec2,
+    size: Vec2,
+    axis: Axis,
+    delta: f32,
+    epsilon: f32,
+    skip: impl Fn(f64, BoxKind) -> bool,
+) -> Option<BoxKind> {
+    use glam::DVec2;
+    if delta == 0.0 {
+        return None;
+    }
+    let (delta, epsilon) = (delta as f64, epsilon as f64);
+    let a = axis.index();
+    let o = 1 - a;
+    let half = size.x as f64 * 0.5;
+    let bmin = DVec2::new(pos.x - half, pos.y);
+    let bmax = DVec2::new(pos.x + half, pos.y + size.y as f64);
+    let (lo, hi) = (bmin[a], bmax[a]);
+    let (mut smin, mut smax) = (bmin, bmax);
+    if delta > 0.0 {
+        smax[a] = hi + delta + epsilon;
+    } else {
+        smin[a] = lo + delta - epsilon;
+    }
+    smin[o] += epsilon;
+    smax[o] -= epsilon;
+    let area = Aabb::new(
+        (smin - origin).as_vec2() - Vec2::splat(F64_QUERY_MARGIN),
+        (smax - origin).as_vec2() + Vec2::splat(F64_QUERY_MARGIN),
+    );
+    let mut closest: Option<(f64, BoxKind)> = None;
+    for (t, kind) in near.query(tiles, &area) {
+        let (tmin, tmax) = (t.mins.as_dvec2() + origin, t.maxs.as_dvec2() + origin);
+        // The f64 box must touch the swept box (the f32 query's inclusive test, in f64).
+        let touches = (0..2).all(|k| tmin[k] <= smax[k] && tmax[k] >= smin[k]);
+        let across = bmax[o].min(tmax[o]) - bmin[o].max(tmin[o]) > epsilon;
+        if !touches || skip(tmax.y, kind) || !across {
+            continue;
+        }
+        if delta > 0.0 {
+            let face = tmin[a];
+            if face >= hi - epsilon
+                && face <= hi + delta + epsilon
+                && closest.is_none_or(|(c, _)| face < c)
+            {
+                closest = Some((face, kind));
+            }
+        } else {
+            let face = tmax[a];
+            if face <= lo + epsilon
+                && face >= lo + delta - epsilon
+                && closest.is_none_or(|(c, _)| face > c)
+            {
+                closest = Some((face, kind));
+            }
+        }
+    }
+    match closest {
+        None => {
+            pos[a] += delta;
+            None
+        }
+        Some((face, kind)) => {
+            pos[a] = if delta > 0.0 {
+                face - (hi - pos[a])
+            } else {
+                face + (pos[a] - lo)
+            };
+            Some(kind)
+        }
+    }
+}
+
+/// How far beyond the swept box (tiles) the f64 mode asks the f32 broadphase: level coordinates
+/// within a few thousand tiles of the level's corner round by under 1e-3 tile in f32.
+pub const F64_QUERY_MARGIN: f32 = 1e-2;
+
 /// Step 3, the x move ("integrate x one step forward, x before y"): sweeps the box along x and
 /// snaps it flush to the closest obstacle. One-way boxes never block it (the seed: "don't
 /// collide x axis step"), nor does the mass under a ramp: solids carrying a slope, and solids

@@ -8,6 +8,8 @@
 //!
 //! - [`FloatSpace`]: f32 feet in world tiles, moves snapped flush by [`super::resolve::move_axis`]
 //!   with the seed's epsilon fudge.
+//! - [`DoubleSpace`]: the float rules with f64 feet in world tiles, moves swept and snapped in
+//!   f64 with the same epsilon.
 //! - [`GridSpace`]: a box of whole subpixels (`i64`) with each axis's unused fraction carried
 //!   ([`super::grid`]), moves snapped flush in exact integer arithmetic, no epsilon.
 //!
@@ -252,6 +254,145 @@ impl Space for FloatSpace {
             );
         }
         (c.pos - start - delta).length() > self.eps
+    }
+}
+
+/// f64 world positions with the seed's epsilon fudge: [`FloatSpace`]'s rules with the feet kept
+/// in f64 (`Character::pos64`) and every move swept and snapped in f64
+/// ([`super::resolve::move_axis_f64`]). The stages' frame is the level's own coordinates (as on
+/// the grid), where f32 is fine for the slope and ladder rules; a position they do not change
+/// keeps its f64 bits. Moving platforms are refused in this mode, so the platform methods only
+/// convert.
+#[derive(Clone, Copy, Debug)]
+pub struct DoubleSpace {
+    /// The seed's overlap tolerance, tiles.
+    pub eps: f32,
+    /// The level's corner in the world, tiles.
+    pub origin: glam::DVec2,
+}
+
+impl Space for DoubleSpace {
+    type Coord = f64;
+    type Saved = glam::DVec2;
+
+    fn eps(&self) -> f32 {
+        self.eps
+    }
+    fn unit(&self) -> f32 {
+        0.0
+    }
+    fn eps_coord(&self) -> f64 {
+        self.eps as f64
+    }
+    fn origin(&self) -> Vec2 {
+        Vec2::ZERO
+    }
+    fn feet(&self, c: &Character) -> Vec2 {
+        (c.pos64 - self.origin).as_vec2()
+    }
+    fn size(&self, c: &Character) -> Vec2 {
+        c.size
+    }
+    fn bottom(&self, c: &Character) -> f64 {
+        c.pos64.y
+    }
+    fn coord_y(&self, y: f32) -> f64 {
+        self.origin.y + y as f64
+    }
+    fn save(&self, c: &Character) -> glam::DVec2 {
+        c.pos64
+    }
+    fn saved_feet(&self, s: &glam::DVec2) -> Vec2 {
+        (*s - self.origin).as_vec2()
+    }
+    fn restore_x(&self, c: &mut Character, s: &glam::DVec2) {
+        c.pos64.x = s.x;
+    }
+    fn with_feet(&self, c: &mut Character, f: impl FnOnce(&mut Vec2, &mut MotionState)) {
+        let mut feet = self.feet(c);
+        let before = feet;
+        f(&mut feet, &mut c.motion);
+        if feet.x != before.x {
+            c.pos64.x = self.origin.x + feet.x as f64;
+        }
+        if feet.y != before.y {
+            c.pos64.y = self.origin.y + feet.y as f64;
+        }
+    }
+    fn set_feet_y(&self, c: &mut Character, y: f32) {
+        c.pos64.y = self.coord_y(y);
+    }
+    fn move_axis(
+        &self,
+        w: &World,
+        c: &mut Character,
+        axis: Axis,
+        delta: f32,
+        _min_fall: bool,
+        skip: impl Fn(f64, BoxKind) -> bool,
+    ) -> Option<BoxKind> {
+        super::resolve::move_axis_f64(
+            w.tiles,
+            &mut c.near,
+            self.origin,
+            &mut c.pos64,
+            c.size,
+            axis,
+            delta,
+            self.eps,
+            skip,
+        )
+    }
+    fn rect(&self, c: &Character) -> Rect<f64> {
+        let half = c.size.x as f64 * 0.5;
+        Rect {
+            min: [c.pos64.x - half, c.pos64.y],
+            max: [c.pos64.x + half, c.pos64.y + c.size.y as f64],
+        }
+    }
+    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<f64> {
+        let b = p.aabb(t);
+        Rect {
+            min: [b.mins.x as f64, b.mins.y as f64],
+            max: [b.maxs.x as f64, b.maxs.y as f64],
+        }
+    }
+    fn platform_now(&self, ps: &Platforms, i: usize) -> Rect<f64> {
+        let b = ps.boxes[i].0;
+        Rect {
+            min: [b.mins.x as f64, b.mins.y as f64],
+            max: [b.maxs.x as f64, b.maxs.y as f64],
+        }
+    }
+    fn set_platform(&self, ps: &mut Platforms, i: usize, r: Rect<f64>) {
+        ps.boxes[i].0 = Aabb::new(
+            glam::DVec2::from_array(r.min).as_vec2(),
+            glam::DVec2::from_array(r.max).as_vec2(),
+        );
+    }
+    fn to_tiles(&self, v: f64) -> f32 {
+        v as f32
+    }
+    fn length_up(&self, tiles: f32) -> f64 {
+        tiles as f64
+    }
+    fn shove(&self, tiles: &StaticTiles, c: &mut Character, delta: [f64; 2]) -> bool {
+        let skip = |_: f64, k: BoxKind| matches!(k, BoxKind::OneWay | BoxKind::Platform { .. });
+        let start = c.pos64;
+        for (axis, d) in [(Axis::X, delta[0]), (Axis::Y, delta[1])] {
+            super::resolve::move_axis_f64(
+                tiles,
+                &mut c.near,
+                self.origin,
+                &mut c.pos64,
+                c.size,
+                axis,
+                d as f32,
+                self.eps,
+                skip,
+            );
+        }
+        (c.pos64 - start - glam::DVec2::from_array(delta)).length() > self.eps as f64
     }
 }
 
