@@ -46,6 +46,10 @@ impl BackendSettings for Box2dConfig {
         DeclaredContact {
             gap: LINEAR_SLOP,
             gap_tolerance: LINEAR_SLOP,
+            // Box2D's collision tolerance: "a small length used as a collision and constraint
+            // tolerance ... visually insignificant" (b2_linearSlop); contacts within it are
+            // contacts (contact_tolerance below, which stress holds it to).
+            overlap_tolerance: LINEAR_SLOP,
             stance_half_width,
             ..DeclaredContact::default()
         }
@@ -56,7 +60,8 @@ impl BackendSettings for Box2dConfig {
     /// where its push balances it, `g dt (2 zeta + omega dt) / omega` below the pogo's rest
     /// length (0.0338 tiles at 60 Hz; `tests/box2d.rs` derives it and finds the feet there, less
     /// the cast's linear slop). The feet stand that far down by design, so the metrics declare
-    /// that stance and allow that overlap, as Rapier's offset is declared.
+    /// that stance and allow that sink into the ground under the feet (never into a wall or a
+    /// ceiling), as Rapier's offset is declared.
     fn declared_contact_in(&self, size: Vec2, params: &MotionParams, dt: f32) -> DeclaredContact {
         let omega = 2.0 * std::f64::consts::PI * self.pogo_hertz as f64;
         let (g, dt) = (params.gravity as f64, dt as f64);
@@ -68,7 +73,6 @@ impl BackendSettings for Box2dConfig {
         let sag = (sag as f32).max(0.0);
         DeclaredContact {
             stance_sink: sag,
-            overlap_tolerance: sag,
             ..self.declared_contact(size, params.max_climb_angle)
         }
     }

@@ -245,9 +245,29 @@ pub fn beyond_declared(ctx: &Context, g: &Ground, r: &TraceRow) -> f32 {
             };
             g.tile_overlap(s, i, j).min(cap + 1e-4)
         }
+        // A stance declared sunk (Box2D's pogo sag) allows that sink into the ground under the
+        // feet only, never into a wall or a ceiling: a tile whose top is at or above the feet
+        // and below mid-body (the floor, however deep the feet are in it, not a wall beside the
+        // body), or a ramp that starts below mid-body (the ramp ahead of feet walking up it).
+        None if d.stance_sink > 0.0 => {
+            let mid = p.y + 0.5 * ctx.spec.size.y;
+            let under = match ctx.level.tile(i, j) {
+                Tile::Solid => {
+                    let top = (j + 1) as f32;
+                    top >= p.y - 1e-4 && top <= mid
+                }
+                Tile::Slope(_) => (j as f32) <= mid,
+                _ => false,
+            };
+            if under {
+                d.stance_sink
+            } else {
+                0.0
+            }
+        }
         None => 0.0,
     };
-    let mut worst = g.sunk_on_one_way(p, r.t as f64, standing(r));
+    let mut worst = (g.sunk_on_one_way(p, r.t as f64, standing(r)) - d.stance_sink).max(0.0);
     g.each_overlap(p, true, true, |tile, depth| {
         worst = worst.max(depth - allowed(tile));
     });

@@ -99,6 +99,13 @@ pub const RULES: &[Rule] = &[
         wording: "Flickers between grounded and airborne with ground under its feet: switches, up to",
     },
     Rule {
+        metric: "apex_error",
+        comparison: Comparison::MagnitudeAbove,
+        // The clearly-wrong size for a length (0.01 tiles).
+        threshold: 0.01,
+        wording: "Jumps off the requested height: apex minus the requested height, by up to (tiles)",
+    },
+    Rule {
         metric: "land_frame_error",
         comparison: Comparison::Below,
         threshold: 0.0,
@@ -123,6 +130,12 @@ pub const RULES: &[Rule] = &[
         wording: "Catches on tile seams: stuck frames on open ground, up to",
     },
     Rule {
+        metric: "slope_airborne_frames",
+        comparison: Comparison::Above,
+        threshold: 0.0,
+        wording: "Leaves walkable slopes airborne while walking them (launches off crests or down ramps): frames, up to",
+    },
+    Rule {
         metric: "slope_speed_ratio",
         comparison: Comparison::Below,
         // A tenth below the run speed: a slow-down a player feels.
@@ -143,6 +156,18 @@ pub const RULES: &[Rule] = &[
         wording: "Climbs a slope steeper than its climb limit",
     },
     Rule {
+        metric: "oneway_result",
+        comparison: Comparison::Below,
+        threshold: 1.0,
+        wording: "Ends a one-way platform scenario elsewhere than the seed's rule puts it",
+    },
+    Rule {
+        metric: "ladder_result",
+        comparison: Comparison::Below,
+        threshold: 1.0,
+        wording: "Ends a ladder scenario elsewhere than expected (top, bottom, floor)",
+    },
+    Rule {
         metric: "carry_drift",
         comparison: Comparison::Above,
         // A tenth of a tile: 1.6 pixels of a 16-pixel tile, visible.
@@ -154,6 +179,19 @@ pub const RULES: &[Rule] = &[
         comparison: Comparison::Above,
         threshold: 0.0,
         wording: "Airborne while riding a moving platform (a platform dropping faster than gravity leaves any rider; beyond that the grip is lost): frames, up to",
+    },
+    Rule {
+        metric: "push_penetration",
+        comparison: Comparison::Above,
+        // A tenth of a tile: visible.
+        threshold: 0.1,
+        wording: "Lets moving platforms into the character (pushed or squeezed), by up to (tiles)",
+    },
+    Rule {
+        metric: "crush_count",
+        comparison: Comparison::Above,
+        threshold: 0.0,
+        wording: "Ends up crushed inside a moving platform (a platform squeezing it against the level): times, up to",
     },
     Rule {
         metric: "idle_drift",
@@ -351,5 +389,27 @@ mod tests {
         let e = setting_effects(&rows);
         assert_eq!(e.len(), 1, "{e:?}");
         assert!(e[0].contains("rest_gap 0.2000 -> 0"), "{e:?}");
+    }
+
+    #[test]
+    fn every_scored_metric_has_a_statement() {
+        // Found by review: metrics the default score charges had no statement in the report,
+        // so a configuration's fault there showed only in a table.
+        let scored: Vec<&str> = crate::metrics::registry::METRICS
+            .iter()
+            .filter(|d| d.weight > 0.0)
+            .map(|d| d.name)
+            .collect();
+        assert!(!scored.is_empty());
+        for m in scored {
+            assert!(RULES.iter().any(|r| r.metric == m), "no rule for {m}");
+        }
+        for r in RULES {
+            assert!(
+                crate::metrics::registry::get(r.metric).is_some(),
+                "{}",
+                r.metric
+            );
+        }
     }
 }
