@@ -460,3 +460,64 @@ fn squeezed_against_a_wall_the_pogo_lifts_the_mover_onto_the_pusher() {
         "{s:?}, rest {rest}"
     );
 }
+
+/// The declared sag follows the run's step and spring, as the mover's rest does: on
+/// `drops.drop_1` (a 1-tile drop, 1.5 s, most of it at rest) `rest_gap_declared` reads 0 at
+/// dt 1/30, 1/120 and 1/480, with 2 substeps, and with a 10 Hz pogo (the second review measured
+/// the whole trade-off grid so; this pins a cross-section of it). 2e-4 tiles: the rest's own
+/// 1e-4 and the metric's shape casts, as above.
+#[test]
+fn the_declared_sag_is_the_rest_at_every_step_and_spring() {
+    let level = builtin("drops");
+    let base = level
+        .scenarios
+        .iter()
+        .find(|s| s.name == "drop_1")
+        .expect("drop_1")
+        .clone();
+    let cases: [(f32, u32, f32); 5] = [
+        (1.0 / 30.0, 1, 5.0),
+        (1.0 / 120.0, 1, 5.0),
+        (1.0 / 480.0, 1, 5.0),
+        (1.0 / 60.0, 2, 5.0),
+        (1.0 / 60.0, 1, 10.0),
+    ];
+    for (dt, substeps, hertz) in cases {
+        let mut spec = base.clone();
+        spec.dt = dt;
+        let mut run = platbench::box2d::kind::run_with(Box2dConfig {
+            pogo_hertz: hertz,
+            ..Box2dConfig::default()
+        });
+        run.substeps = substeps;
+        let e = platbench::metrics::evaluate(&level, &spec, &run).unwrap();
+        let value = |m: &str| {
+            e.metrics
+                .iter()
+                .find(|r| r.metric == m)
+                .unwrap_or_else(|| panic!("{m}"))
+                .value
+        };
+        let (declared, touching) = (value("rest_gap_declared"), value("rest_gap"));
+        assert!(
+            declared.abs() < 2e-4,
+            "dt {dt}, substeps {substeps}, {hertz} Hz: rest_gap_declared {declared} (rest_gap {touching})"
+        );
+        // The sag is the mover's: the touching-model gap reads the cast's slop less the spring
+        // formula's sag at the step the mover takes (dt / substeps).
+        let (w, step) = (
+            2.0 * std::f64::consts::PI * hertz as f64,
+            (dt / substeps as f32) as f64,
+        );
+        let (g, zeta) = (
+            MotionParams::default().gravity as f64,
+            Box2dConfig::default().pogo_damping_ratio as f64,
+        );
+        let sag = g * step * (2.0 * zeta + w * step) / w;
+        let expected = platbench::box2d::LINEAR_SLOP as f64 - sag;
+        assert!(
+            (touching - expected).abs() < 2e-4,
+            "dt {dt}, substeps {substeps}, {hertz} Hz: rest_gap {touching}, expected {expected}"
+        );
+    }
+}
