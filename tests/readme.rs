@@ -218,3 +218,81 @@ fn the_committed_trade_off_scores_the_committed_baseline_with_the_default_score(
     // capsule, per-tile and merged cuboid, the grounded feed; Box2D's two buildings.
     assert!(matched >= 10, "{matched} settings matched a configuration");
 }
+
+#[test]
+fn the_readme_box2d_figures_are_the_committed_baseline() {
+    // Found by review: the Box2D section's slope figures stayed stale after a re-bless, and no
+    // test read them. Each (scenario, configuration, metric) figure the section quotes is the
+    // committed baseline's value, as the README prints it (four decimals).
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let base = platbench::report::diff::read_metrics(&root.join("compare/baseline"))
+        .expect("compare/baseline/metrics.csv");
+    // The section itself (the summary table above repeats some of these values).
+    let whole = readme();
+    let start = whole
+        .find("## The Box2D backend")
+        .expect("the Box2D section");
+    let section = &whole[start..];
+    let section = &section[..section[3..].find("\n## ").map_or(section.len(), |k| k + 3)];
+    let text = section.split_whitespace().collect::<Vec<_>>().join(" ");
+    let figures: [(&str, &str, &str, &str); 6] = [
+        (
+            "slope_45",
+            "walk_right",
+            "per-tile capsule",
+            "slope_gap_declared",
+        ),
+        (
+            "slope_45",
+            "walk_right",
+            "merged capsule",
+            "slope_gap_declared",
+        ),
+        (
+            "slope_22_5",
+            "walk_right",
+            "per-tile capsule",
+            "slope_gap_declared",
+        ),
+        (
+            "slope_26_6",
+            "walk_right",
+            "per-tile capsule",
+            "slope_gap_declared",
+        ),
+        (
+            "drops",
+            "drop_50",
+            "per-tile capsule",
+            "penetration_beyond_declared",
+        ),
+        (
+            "elevator",
+            "ride_turning_elevator",
+            "per-tile capsule",
+            "false_grounded",
+        ),
+    ];
+    for (level, scenario, config, metric) in figures {
+        let r = base
+            .iter()
+            .find(|r| {
+                (r.level.as_str(), r.scenario.as_str(), r.backend.as_str())
+                    == (level, scenario, "box2d")
+                    && r.config == config
+                    && r.metric == metric
+            })
+            .unwrap_or_else(|| {
+                panic!("{level}.{scenario} box2d {config} {metric} in the baseline")
+            });
+        let figure = if r.unit == "frames" {
+            format!("`{metric}` {}", r.value)
+        } else {
+            format!("{:.4}", r.value)
+        };
+        assert!(
+            text.contains(&figure),
+            "README's Box2D section lacks {figure:?} ({level}.{scenario} {config} {metric})"
+        );
+    }
+}
