@@ -13,7 +13,7 @@ use platbench::metrics::{evaluate_with, MetricRow};
 use platbench::parallel::{default_jobs, for_each_ordered};
 use platbench::registry::Registry;
 use platbench::report::summary_rows::SummaryRows;
-use platbench::report::summary_table;
+use platbench::report::summary_table_in;
 use platbench::scenario::{RunConfig, Runner};
 
 /// Runs every (level, scenario, configuration) on `jobs` threads and returns the summary.
@@ -51,7 +51,8 @@ fn run_set(levels: &[Level], configs: &[RunConfig], jobs: usize) -> String {
         },
     )
     .expect("the consumer never fails");
-    summary_table(&kept.into_rows())
+    let (rows, coverage) = kept.into_parts();
+    summary_table_in(&rows, &coverage)
 }
 
 fn builtin_set(c: &mut Criterion) {

@@ -63,7 +63,7 @@ fn step_cost(c: &mut Criterion) {
                             let mut backend = fresh(&level, spec, &run);
                             let n = left.min(script.len());
                             let start = Instant::now();
-                            for input in &script[..n] {
+                            for input in script.range(0..n) {
                                 backend.step(std::slice::from_ref(black_box(input)), spec.dt);
                             }
                             total += start.elapsed();

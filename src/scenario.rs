@@ -82,28 +82,198 @@ pub fn step_count(spec: &ScenarioSpec) -> usize {
 }
 
 /// The held buttons for each step `0..step_count`: an event at time `t` takes effect from the
-/// step that starts at frame `round(t / dt)`.
-pub fn input_script(spec: &ScenarioSpec) -> Vec<Input> {
+/// step that starts at frame `round(t / dt)` (or, if an earlier event in the list takes effect
+/// later, from that step: events apply in their order).
+pub fn input_script(spec: &ScenarioSpec) -> Script {
     let n = step_count(spec);
-    let mut out = Vec::with_capacity(n);
-    let mut cur = Input::default();
-    let mut events = spec.inputs.iter().peekable();
-    for k in 0..n {
-        while let Some(e) = events.next_if(|e| (e.t / spec.dt).round() as usize <= k) {
-            let set = |b: &mut bool, v: Option<bool>| {
-                if let Some(v) = v {
-                    *b = v;
-                }
-            };
-            set(&mut cur.left, e.left);
-            set(&mut cur.right, e.right);
-            set(&mut cur.up, e.up);
-            set(&mut cur.down, e.down);
-            set(&mut cur.jump, e.jump);
-        }
-        out.push(cur);
+    let mut changes: Vec<(usize, Input)> = Vec::new();
+    if n > 0 {
+        changes.push((0, Input::default()));
     }
-    out
+    let mut cur = Input::default();
+    let mut at = 0usize;
+    for e in &spec.inputs {
+        let step = ((e.t / spec.dt).round() as usize).max(at);
+        if step >= n {
+            break;
+        }
+        let set = |b: &mut bool, v: Option<bool>| {
+            if let Some(v) = v {
+                *b = v;
+            }
+        };
+        set(&mut cur.left, e.left);
+        set(&mut cur.right, e.right);
+        set(&mut cur.up, e.up);
+        set(&mut cur.down, e.down);
+        set(&mut cur.jump, e.jump);
+        at = step;
+        match changes.last_mut() {
+            Some(last) if last.0 == step => last.1 = cur,
+            _ => changes.push((step, cur)),
+        }
+    }
+    Script { changes, len: n }
+}
+
+/// A scenario's held buttons for each of its steps, stored as the steps where they change, so
+/// a script takes memory in its events, not its steps (a 100,000 s soak is 6,000,000 steps).
+/// Read like a slice of [`Input`]: `script[k]`, `get`, `iter`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Script {
+    /// `(first step, buttons held from it)`, by increasing step; the first at step 0.
+    changes: Vec<(usize, Input)>,
+    len: usize,
+}
+
+impl Script {
+    /// Number of steps.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the script has no step.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Index in `changes` of the change in force at step `k < len`.
+    fn change_at(&self, k: usize) -> usize {
+        self.changes.partition_point(|c| c.0 <= k).saturating_sub(1)
+    }
+
+    /// The buttons held on step `k`, if the script has that step.
+    pub fn get(&self, k: usize) -> Option<&Input> {
+        (k < self.len).then(|| &self.changes[self.change_at(k)].1)
+    }
+
+    /// The buttons of every step, in order.
+    pub fn iter(&self) -> ScriptIter<'_> {
+        self.range(0..self.len)
+    }
+
+    /// The buttons of steps `range` (clipped to the script).
+    pub fn range(&self, range: std::ops::Range<usize>) -> ScriptIter<'_> {
+        let end = range.end.min(self.len);
+        let k = range.start.min(end);
+        ScriptIter {
+            changes: &self.changes,
+            k,
+            end,
+            c: if k < end { self.change_at(k) } else { 0 },
+        }
+    }
+
+    /// The last step whose buttons satisfy `pred`, as `iter().rposition(pred)` would find it
+    /// (without visiting every step).
+    pub fn rposition(&self, pred: impl Fn(&Input) -> bool) -> Option<usize> {
+        self.changes
+            .iter()
+            .enumerate()
+            .rev()
+            .filter(|(_, c)| c.0 < self.len)
+            .find(|(_, c)| pred(&c.1))
+            .map(|(i, _)| self.changes.get(i + 1).map_or(self.len, |c| c.0) - 1)
+    }
+}
+
+impl std::ops::Index<usize> for Script {
+    type Output = Input;
+
+    fn index(&self, k: usize) -> &Input {
+        match self.get(k) {
+            Some(i) => i,
+            None => panic!("step {k} of a script of {} steps", self.len),
+        }
+    }
+}
+
+/// The buttons of consecutive steps of a [`Script`].
+#[derive(Clone, Debug)]
+pub struct ScriptIter<'a> {
+    changes: &'a [(usize, Input)],
+    k: usize,
+    end: usize,
+    c: usize,
+}
+
+impl<'a> Iterator for ScriptIter<'a> {
+    type Item = &'a Input;
+
+    fn next(&mut self) -> Option<&'a Input> {
+        if self.k >= self.end {
+            return None;
+        }
+        self.c = forward(self.changes, self.c, self.k);
+        self.k += 1;
+        Some(&self.changes[self.c].1)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = self.end - self.k;
+        (n, Some(n))
+    }
+}
+
+impl ExactSizeIterator for ScriptIter<'_> {}
+
+/// Index in `changes` of the change in force at step `k`, moving forward from `c`, the one in
+/// force at an earlier step.
+fn forward(changes: &[(usize, Input)], mut c: usize, k: usize) -> usize {
+    while changes.get(c + 1).is_some_and(|next| next.0 <= k) {
+        c += 1;
+    }
+    c
+}
+
+/// The buttons of every step of a [`Script`], owned.
+#[derive(Clone, Debug)]
+pub struct ScriptSteps {
+    script: Script,
+    k: usize,
+    c: usize,
+}
+
+impl Iterator for ScriptSteps {
+    type Item = Input;
+
+    fn next(&mut self) -> Option<Input> {
+        if self.k >= self.script.len {
+            return None;
+        }
+        self.c = forward(&self.script.changes, self.c, self.k);
+        self.k += 1;
+        Some(self.script.changes[self.c].1)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = self.script.len - self.k;
+        (n, Some(n))
+    }
+}
+
+impl ExactSizeIterator for ScriptSteps {}
+
+impl IntoIterator for Script {
+    type Item = Input;
+    type IntoIter = ScriptSteps;
+
+    fn into_iter(self) -> ScriptSteps {
+        ScriptSteps {
+            script: self,
+            k: 0,
+            c: 0,
+        }
+    }
+}
+
+impl<'a> IntoIterator for &'a Script {
+    type Item = &'a Input;
+    type IntoIter = ScriptIter<'a>;
+
+    fn into_iter(self) -> ScriptIter<'a> {
+        self.iter()
+    }
 }
 
 /// Runs scenarios of one level, building each backend's level geometry once and sharing it
@@ -138,9 +308,25 @@ impl<'a> Runner<'a> {
 
     /// Runs one scenario of the level on one configuration (see [`run_scenario`]).
     pub fn run(&mut self, spec: &ScenarioSpec, run: &RunConfig) -> Result<Trace, BackendError> {
+        check_dt(spec)?;
+        let mut rows = Vec::with_capacity(step_count(spec) + 1);
+        let mut trace = self.record(spec, run, &mut |r| rows.push(r))?;
+        trace.rows = rows;
+        Ok(trace)
+    }
+
+    /// Runs one scenario of the level on one configuration, handing each row to `sink` as it is
+    /// made (row 0 the spawn state, row `k` the state after `k` steps), and returns the trace's
+    /// labels with no rows: a run of any length, streamed (see [`crate::trace::RowStore`]).
+    pub fn record(
+        &mut self,
+        spec: &ScenarioSpec,
+        run: &RunConfig,
+        sink: &mut dyn FnMut(TraceRow),
+    ) -> Result<Trace, BackendError> {
         let params = effective_params(&run.params, spec);
         let backend = self.build(run, &params)?;
-        drive(self.level, spec, run, backend)
+        drive(self.level, spec, run, backend, sink)
     }
 }
 
@@ -188,12 +374,14 @@ pub fn run_scenario(
     Runner::new(level).run(spec, run)
 }
 
-/// Steps `backend` through the scenario's script and records the trace.
+/// Steps `backend` through the scenario's script, handing each row to `sink` as it is made,
+/// and returns the trace's labels with no rows.
 fn drive(
     level: &Level,
     spec: &ScenarioSpec,
     run: &RunConfig,
     mut backend: Box<dyn Backend>,
+    sink: &mut dyn FnMut(TraceRow),
 ) -> Result<Trace, BackendError> {
     check_dt(spec)?;
     let id = backend.add_character(CharacterSpec {
@@ -202,13 +390,12 @@ fn drive(
         velocity: spec.velocity,
     })?;
     let script = input_script(spec);
-    let mut rows = Vec::with_capacity(script.len() + 1);
     let initial = crate::backend::CharacterState {
         pos: spec.spawn,
         vel: spec.velocity,
         ..Default::default()
     };
-    rows.push(TraceRow::from_state(0, 0.0, id as u32, &initial));
+    sink(TraceRow::from_state(0, 0.0, id as u32, &initial));
     let mut input = [Input::default()];
     for (k, step_input) in script.iter().enumerate() {
         input[0] = *step_input;
@@ -216,7 +403,7 @@ fn drive(
             backend.step(&input, spec.dt / run.substeps.max(1) as f32);
         }
         let frame = (k + 1) as u32;
-        rows.push(TraceRow::from_state(
+        sink(TraceRow::from_state(
             frame,
             frame as f32 * spec.dt,
             id as u32,
@@ -228,7 +415,7 @@ fn drive(
         scenario: spec.name.clone(),
         backend: backend.name().to_string(),
         config: run.label.clone(),
-        rows,
+        rows: Vec::new(),
     })
 }
 
@@ -289,5 +476,73 @@ mod tests {
             [false, false, true, true, true, false, false, false, false, false]
         );
         assert!(script[5].jump && !script[4].jump);
+    }
+
+    /// The script as a vector, one entry a step, read the plain way: the reference the compact
+    /// [`Script`] must match (events applied in their order, each from its frame).
+    fn naive(s: &ScenarioSpec) -> Vec<Input> {
+        let n = step_count(s);
+        let mut out = Vec::new();
+        let mut cur = Input::default();
+        let mut events = s.inputs.iter().peekable();
+        for k in 0..n {
+            while let Some(e) = events.next_if(|e| (e.t / s.dt).round() as usize <= k) {
+                cur.left = e.left.unwrap_or(cur.left);
+                cur.right = e.right.unwrap_or(cur.right);
+                cur.up = e.up.unwrap_or(cur.up);
+                cur.down = e.down.unwrap_or(cur.down);
+                cur.jump = e.jump.unwrap_or(cur.jump);
+            }
+            out.push(cur);
+        }
+        out
+    }
+
+    #[test]
+    fn the_compact_script_reads_as_one_input_per_step() {
+        let ev = |t: f32, right: bool, jump: Option<bool>| InputEvent {
+            t,
+            right: Some(right),
+            jump,
+            ..Default::default()
+        };
+        // In order, out of order (an earlier event later in the list), two on one frame, one
+        // before 0, one past the end, one on the last step.
+        let cases = [
+            vec![],
+            vec![ev(0.0, true, None)],
+            vec![ev(0.03, true, None), ev(0.01, false, Some(true))],
+            vec![
+                ev(0.02, true, None),
+                ev(0.02, false, Some(true)),
+                ev(0.05, true, None),
+            ],
+            vec![
+                ev(-1.0, true, None),
+                ev(0.09, false, None),
+                ev(0.5, true, None),
+            ],
+        ];
+        for inputs in cases {
+            let s = spec(inputs);
+            let (script, plain) = (input_script(&s), naive(&s));
+            assert_eq!(script.len(), plain.len());
+            assert_eq!(script.iter().copied().collect::<Vec<_>>(), plain);
+            for (k, i) in plain.iter().enumerate() {
+                assert_eq!(script[k], *i);
+                assert_eq!(
+                    script.range(k..plain.len()).copied().collect::<Vec<_>>(),
+                    plain[k..]
+                );
+            }
+            assert_eq!(script.get(plain.len()), None);
+            for pred in [
+                |i: &Input| i.right,
+                |i: &Input| i.jump,
+                |i: &Input| *i != Input::default(),
+            ] {
+                assert_eq!(script.rposition(pred), plain.iter().rposition(pred));
+            }
+        }
     }
 }

@@ -645,7 +645,7 @@ fn stuck_steps(
         .declared_contact(spec.size, params.max_climb_angle)
         .surface_grid;
     let mut count = 0u32;
-    for (k, step) in commanded.iter().enumerate() {
+    for (k, step) in commanded.enumerate() {
         let (Some(before), Some(after)) = (trace.rows.get(k), trace.rows.get(k + 1)) else {
             break;
         };

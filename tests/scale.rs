@@ -195,7 +195,7 @@ fn stress_and_sweep_rows_are_the_same_on_one_thread_and_on_two() {
 fn the_summary_of_the_kept_rows_is_the_summary_of_every_row_on_the_built_in_set() {
     use platbench::registry::Registry;
     use platbench::report::summary_rows::SummaryRows;
-    use platbench::report::summary_table;
+    use platbench::report::{summary_table, summary_table_in};
     let registry = Registry::builtin();
     let configs = registry.builtin_configs();
     let levels = common::builtin_levels();
@@ -222,9 +222,71 @@ fn the_summary_of_the_kept_rows_is_the_summary_of_every_row_on_the_built_in_set(
     // unit test in src/report/summary_rows.rs: on the built-in set every configuration may
     // model every level.
     assert!(!groups.is_empty());
-    let kept = kept.into_rows();
-    // One row per run at least, and fewer than all of them.
-    assert!(kept.len() >= runs && kept.len() < all.len());
-    assert_eq!(summary_table(&kept), summary_table(&all));
+    let (kept, coverage) = kept.into_parts();
+    // Rows that do not grow with the runs: at most the first row of each metric and three per
+    // group, metric and configuration (fewer than one per run here).
+    let metrics = platbench::metrics::METRICS.len();
+    assert!(kept.len() <= metrics * (1 + 3 * groups.len() * configs.len()));
+    assert!(kept.len() < all.len() && runs > 0);
+    assert_eq!(summary_table_in(&kept, &coverage), summary_table(&all));
     assert_eq!(registry.notes(&kept), registry.notes(&all));
+}
+
+/// A run's rows spilled to a temporary file measure exactly as rows held in memory: every
+/// built-in scenario on every sweep configuration and the first Rapier and Box2D ones, spilled
+/// after its first row and read back three rows at a time (so every metric reads across block
+/// boundaries and evicts), gives the same metric rows bit for bit and the same trace CSV as the
+/// in-memory run. `platbench run` measures a run of more than `SPILL_ROWS` rows this way.
+#[test]
+fn a_spilled_run_measures_bit_for_bit_as_one_held_in_memory() {
+    use platbench::metrics::{evaluate_recorded, evaluate_with};
+    use platbench::scenario::{RunConfig, Runner};
+    use platbench::trace::RowStore;
+
+    let mut configs: Vec<RunConfig> = Vec::new();
+    for c in RunConfig::builtin_set() {
+        let kind = c.backend.backend();
+        if kind == "sweep" || !configs.iter().any(|k| k.backend.backend() == kind) {
+            configs.push(c);
+        }
+    }
+    assert!(configs.len() >= 4, "{} configurations", configs.len());
+    let bits = |rows: &[platbench::metrics::MetricRow]| -> Vec<(String, u64, u64)> {
+        rows.iter()
+            .map(|r| {
+                (
+                    r.metric.to_string(),
+                    r.value.to_bits(),
+                    r.reference.to_bits(),
+                )
+            })
+            .collect()
+    };
+    let (mut runs, mut spilled) = (0, 0);
+    for level in common::builtin_levels() {
+        let mut runner = Runner::new(&level);
+        for spec in &level.scenarios {
+            for run in &configs {
+                let held = match evaluate_with(&mut runner, spec, run) {
+                    // A level the configuration does not model.
+                    Err(platbench::backend::BackendError::Unsupported { .. }) => continue,
+                    e => e.unwrap(),
+                };
+                let store = RowStore::with_limits(1, 3);
+                let rec = evaluate_recorded(&mut runner, spec, run, store).unwrap();
+                let what = format!("{}.{} on {}", level.name, spec.name, run.label);
+                assert_eq!(bits(&rec.metrics), bits(&held.metrics), "{what}");
+                assert_eq!(rec.trace.file_name(), held.trace.file_name());
+                let (mut a, mut b) = (Vec::new(), Vec::new());
+                rec.write_csv(&mut a).unwrap();
+                held.trace.write_csv(&mut b).unwrap();
+                assert!(a == b, "{what}: trace CSV differs");
+                runs += 1;
+                spilled += rec.rows.spilled() as usize;
+            }
+        }
+    }
+    // Every run spilled (each has more than one row); the built-in set has 64 scenarios.
+    assert!(runs >= 64 * 3, "{runs} runs");
+    assert_eq!(spilled, runs);
 }

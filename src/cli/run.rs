@@ -10,11 +10,12 @@ use clap::Args;
 
 use super::{load_levels_with, out, output, Harness, ImportArgs};
 use crate::backend::Precision;
-use crate::metrics::{evaluate_with, MetricRow};
+use crate::metrics::{evaluate_recorded, evaluate_with, MetricRow, RecordError};
 use crate::parallel;
 use crate::report::summary_rows::SummaryRows;
-use crate::report::{detail_table, summary_table};
+use crate::report::{detail_table, summary_table_in, Coverage};
 use crate::scenario::{RunConfig, Runner};
+use crate::trace::RowStore;
 
 #[derive(Args, Default)]
 #[command(allow_negative_numbers = true)]
@@ -273,7 +274,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         args.traces.unwrap_or(Traces::All)
     };
     let started = Instant::now();
-    let (metrics, rows, written) = match &target {
+    let (metrics, coverage, rows, written) = match &target {
         Some(target) => {
             let mut result = None;
             output::write_output(target, kind, args.force, |dir| {
@@ -285,7 +286,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         None => execute(&levels, &configs, args, jobs, None)?,
     };
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
-    let mut text = summary_table(&metrics);
+    let mut text = summary_table_in(&metrics, &coverage);
     for n in h.registry.notes(&metrics) {
         text.push_str(&format!("\n- {n}"));
     }
@@ -347,23 +348,28 @@ enum Outcome {
 /// Runs every scenario of `levels` on every configuration on `jobs` threads, writing each trace
 /// `dir` asks for as soon as its run ends and metrics.csv as the rows come, in run order (level,
 /// scenario, configuration) whatever the threads. Returns the metric rows the summary needs
-/// (every row with --detail; see [`SummaryRows`]), the number of rows, and the number of traces
-/// written.
+/// (every row with --detail; see [`SummaryRows`]) with the scenarios each configuration ran,
+/// the number of rows, and the number of traces written.
 fn execute<'a>(
     levels: &'a [crate::level::Level],
     configs: &[RunConfig],
     args: &RunArgs,
     jobs: usize,
     dir: Option<(&std::path::Path, Traces)>,
-) -> Result<(Vec<MetricRow>, usize, usize)> {
-    let mut items: Vec<(usize, usize, usize)> = Vec::new();
-    for (li, level) in levels.iter().enumerate() {
-        for si in 0..level.scenarios.len() {
-            for ci in 0..configs.len() {
-                items.push((li, si, ci));
-            }
-        }
+) -> Result<(Vec<MetricRow>, Coverage, usize, usize)> {
+    // The runs, in order (level, scenario, configuration), found from their index through each
+    // level's first run: memory in the levels, not the runs.
+    let mut firsts: Vec<usize> = Vec::with_capacity(levels.len());
+    let mut runs = 0usize;
+    for level in levels {
+        firsts.push(runs);
+        runs += level.scenarios.len() * configs.len();
     }
+    let item = |i: usize| {
+        let li = firsts.partition_point(|&f| f <= i) - 1;
+        let k = i - firsts[li];
+        (li, k / configs.len(), k % configs.len())
+    };
     let traces_dir = dir.map(|(d, _)| d.join("traces"));
     if let Some(t) = &traces_dir {
         std::fs::create_dir(t).with_context(|| format!("cannot create {}", t.display()))?;
@@ -383,7 +389,7 @@ fn execute<'a>(
     // One runner per thread, kept while its jobs stay on one level (they come in level order).
     let init = || None::<(usize, Runner<'a>)>;
     let work = |cache: &mut Option<(usize, Runner<'a>)>, i: usize| -> Result<Outcome> {
-        let (li, si, ci) = items[i];
+        let (li, si, ci) = item(i);
         let (level, spec, run) = (&levels[li], &levels[li].scenarios[si], &configs[ci]);
         if cache.as_ref().is_none_or(|(l, _)| *l != li) {
             *cache = Some((li, Runner::new(level)));
@@ -391,8 +397,8 @@ fn execute<'a>(
         let Some((_, runner)) = cache.as_mut() else {
             unreachable!("set just above")
         };
-        let e = match evaluate_with(runner, spec, run) {
-            Err(e @ crate::backend::BackendError::Unsupported { .. }) => {
+        let mut e = match evaluate_recorded(runner, spec, run, RowStore::default()) {
+            Err(RecordError::Backend(e @ crate::backend::BackendError::Unsupported { .. })) => {
                 return Ok(Outcome::Skipped(format!(
                     "{} {}: {e}",
                     run.backend.backend(),
@@ -414,7 +420,7 @@ fn execute<'a>(
             let ns = crate::scenario::time_scenario(runner, spec, run, 5)?;
             metrics.push(crate::metrics::timing_row(level, spec, run, ns));
         }
-        metrics.extend(e.metrics);
+        metrics.extend(std::mem::take(&mut e.metrics));
         let keep = match mode {
             Traces::None => false,
             Traces::Failing => failing(&metrics),
@@ -424,18 +430,20 @@ fn execute<'a>(
             let path = t.join(e.trace.file_name());
             let file = std::fs::File::create(&path)
                 .with_context(|| format!("cannot create {}", path.display()))?;
-            e.trace
-                .write_csv(std::io::BufWriter::new(file))
+            e.write_csv(std::io::BufWriter::new(file))
                 .with_context(|| format!("cannot write {}", path.display()))?;
         }
         Ok(Outcome::Ran(metrics, keep))
     };
     // Progress within a level, only for a person watching: a terminal's stderr.
     let live = std::io::stderr().is_terminal();
-    let total = items
+    let total: usize = levels
         .iter()
-        .filter(|&&(li, _, ci)| configs[ci].backend.supports(&levels[li]))
-        .count();
+        .map(|l| {
+            let modelled = configs.iter().filter(|c| c.backend.supports(l)).count();
+            l.scenarios.len() * modelled
+        })
+        .sum();
     // Every row for --detail; else only those the summary needs (see SummaryRows), grouped by
     // the set of configurations that model the level.
     let mut metrics: Vec<MetricRow> = Vec::new();
@@ -458,8 +466,8 @@ fn execute<'a>(
     let (mut done, mut written) = (0usize, 0usize);
     let mut skipped: Vec<String> = Vec::new();
     let mut level_start = Instant::now();
-    parallel::for_each_ordered(jobs, items.len(), init, work, |i, outcome| {
-        let (li, si, ci) = items[i];
+    parallel::for_each_ordered(jobs, runs, init, work, |i, outcome| {
+        let (li, si, ci) = item(i);
         let level = &levels[li];
         if si == 0 && ci == 0 {
             level_start = Instant::now();
@@ -514,8 +522,12 @@ fn execute<'a>(
         w.flush()
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
-    if !args.detail {
-        metrics = kept.into_rows();
-    }
-    Ok((metrics, rows_seen, written))
+    let coverage = if args.detail {
+        Coverage::of(&metrics)
+    } else {
+        let (rows, coverage) = kept.into_parts();
+        metrics = rows;
+        coverage
+    };
+    Ok((metrics, coverage, rows_seen, written))
 }

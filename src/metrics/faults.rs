@@ -46,7 +46,7 @@ pub const INSIDE_TOLERANCE: f32 = 1e-3;
 pub fn frame_faults(ctx: &Context) -> Vec<u8> {
     let rows: Vec<TraceRow> = ctx.trace.character(0).copied().collect();
     let g = Ground::new(ctx.level, ctx.shape, ctx.spec.size);
-    let stuck = stuck_steps(ctx, &rows);
+    let stuck: Vec<bool> = stuck_steps(ctx, crate::trace::Frames::new(&rows)).collect();
     let mut out: Vec<u8> = Vec::with_capacity(rows.len());
     for (k, r) in rows.iter().enumerate() {
         let mut f = 0;

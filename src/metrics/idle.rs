@@ -2,11 +2,12 @@
 
 use super::landing::REST_WINDOW;
 use super::platforms::ON_PLATFORM;
+use super::reference::Cursor;
 use super::{commanded_steps, pos, Context, Measure};
 use crate::motion::Input;
-use crate::scenario::input_script;
+use crate::scenario::{input_script, Script};
 use crate::shape::CharacterShape;
-use crate::trace::TraceRow;
+use crate::trace::{Frames, TraceRow};
 use parry2d::bounding_volume::Aabb;
 use parry2d::shape::SharedShape;
 
@@ -19,21 +20,16 @@ pub const SIDE_OVERLAP: f32 = 1e-4;
 /// not on a ladder, riding no platform (as the trace says, or standing on one: feet within
 /// [`ON_PLATFORM`] plus the platform's step of its top over it, since not every backend names
 /// the platform it rides), and not pushed (see [`pushed`]).
-fn idle_frame(
-    ctx: &Context,
-    shape: &SharedShape,
-    script: &[Input],
-    rows: &[TraceRow],
-    k: usize,
-) -> bool {
-    let r = &rows[k];
+fn idle_frame(ctx: &Context, shape: &SharedShape, script: &Script, rows: Frames, k: usize) -> bool {
+    let r = &rows.at(k);
     let idle = script.get(k - 1).is_some_and(|i| *i == Input::default());
     if !idle || !r.is_grounded() || r.ladder != 0 || r.platform.is_some() {
         return false;
     }
     // The shape's own box (a ball is as wide as it is tall).
     let shape_box = |feet| shape.compute_aabb(&CharacterShape::pose(feet, ctx.spec.size));
-    let before = shape_box(pos(&rows[k - 1]));
+    let prev = rows.at(k - 1);
+    let before = shape_box(pos(&prev));
     let half = before.half_extents().x;
     let dt = ctx.spec.dt as f64;
     let carried_or_pushed = ctx.level.platforms.iter().any(|p| {
@@ -45,7 +41,7 @@ fn idle_frame(
                 && feet.x + half > b.mins.x
                 && feet.x - half < b.maxs.x
         };
-        on(b1, r) || on(b0, &rows[k - 1]) || (!p.one_way && pushed(&before, &b0, step))
+        on(b1, r) || on(b0, &prev) || (!p.one_way && pushed(&before, &b0, step))
     });
     !carried_or_pushed
 }
@@ -80,12 +76,17 @@ pub const STOPPED_STEP: f64 = 1e-6;
 /// [`REST_WINDOW`] seconds after the commanded glide ended, whatever it moves or reports (0 if
 /// it never stands idle). Reported for every scenario whose script has an idle step and that rides no platform,
 /// whatever the controller does, so every configuration is measured on the same scenarios.
-pub fn idle_drift(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn idle_drift(ctx: &Context, rows: Frames) -> Option<Measure> {
     let script = input_script(ctx.spec);
     if ctx.spec.ride.is_some() || !script.iter().any(|i| *i == Input::default()) {
         return None;
     }
-    let commanded = commanded_steps(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt);
+    let mut commanded = Cursor::new(commanded_steps(
+        ctx.params,
+        &script,
+        ctx.spec.velocity.x,
+        ctx.spec.dt,
+    ));
     let still = ctx.params.run_speed * ctx.spec.dt * 0.01;
     let settle = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
     let shape = ctx.shape.build(ctx.spec.size);
@@ -97,9 +98,10 @@ pub fn idle_drift(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
             continue;
         }
         let mut glide_end: Option<usize> = None;
-        let mut anchor: Option<usize> = None;
+        let mut anchor: Option<TraceRow> = None;
         while k < rows.len() && idle_frame(ctx, &shape, &script, rows, k) {
-            let moved = (pos(&rows[k]) - pos(&rows[k - 1])).length();
+            let r = rows.at(k);
+            let moved = (pos(&r) - pos(&rows.at(k - 1))).length();
             // The commanded glide is over when the shared motion model's walk moves it by less
             // than STOPPED_STEP a step. The velocity the controller reports (a jump off a
             // ladder, a push) may glide it a little longer, but never past REST_WINDOW after
@@ -109,14 +111,13 @@ pub fn idle_drift(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
             if commanded_stopped && glide_end.is_none() {
                 glide_end = Some(k);
             }
-            let stopped =
-                commanded_stopped && ((rows[k].vx * ctx.spec.dt) as f64).abs() < STOPPED_STEP;
+            let stopped = commanded_stopped && ((r.vx * ctx.spec.dt) as f64).abs() < STOPPED_STEP;
             let waited = glide_end.is_some_and(|g| k >= g + settle);
             if anchor.is_none() && ((stopped && moved < still) || waited) {
-                anchor = Some(k);
+                anchor = Some(r);
             }
             if let Some(a) = anchor {
-                let d = (pos(&rows[k]) - pos(&rows[a])).length();
+                let d = (pos(&r) - pos(&a)).length();
                 worst = Some(worst.map_or(d, |w| w.max(d)));
             }
             k += 1;

@@ -2,14 +2,14 @@
 
 use super::{Context, Measure};
 use crate::scenario::input_script;
-use crate::trace::TraceRow;
+use crate::trace::Frames;
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
 /// `apex_error`: the rise of the feet from take-off to the apex of the first jump, minus the
 /// requested jump height, in tiles. Only for a jump with no solid within the jump's reach above
 /// the character.
-pub fn apex_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn apex_error(ctx: &Context, rows: Frames) -> Option<Measure> {
     let script = input_script(ctx.spec);
     let press = script
         .iter()

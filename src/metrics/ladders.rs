@@ -3,13 +3,13 @@
 use super::oneway::ended_as_expected;
 use super::{Context, Measure};
 use crate::scenario::input_script;
-use crate::trace::TraceRow;
+use crate::trace::Frames;
 
 /// `ladder_speed_error`: on a level with ladders, for a scenario that climbs (up or down held),
 /// the measured climbing speed minus the configured ladder speed, in tiles/s: the worst over the
 /// steps spent on the ladder from start to end while climbing (steps entering or leaving the
 /// ladder are not climbing at speed). A character that never climbed measures speed 0.
-pub fn ladder_speed_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn ladder_speed_error(ctx: &Context, rows: Frames) -> Option<Measure> {
     let script = input_script(ctx.spec);
     if !ctx.level.features.ladders || !script.iter().any(|i| i.up || i.down) {
         return None;
@@ -18,10 +18,11 @@ pub fn ladder_speed_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
     let mut worst: Option<f64> = None;
     for k in 1..rows.len() {
         let i = script[k - 1];
-        if !(rows[k - 1].ladder == 1 && rows[k].ladder == 1 && i.up != i.down && !i.jump) {
+        let (prev, cur) = (rows.at(k - 1), rows.at(k));
+        if !(prev.ladder == 1 && cur.ladder == 1 && i.up != i.down && !i.jump) {
             continue;
         }
-        let speed = ((rows[k].y - rows[k - 1].y) as f64 / ctx.spec.dt as f64).abs();
+        let speed = ((cur.y - prev.y) as f64 / ctx.spec.dt as f64).abs();
         let err = speed - target;
         if worst.is_none_or(|w| err.abs() > w.abs()) {
             worst = Some(err);
@@ -38,6 +39,6 @@ pub fn ladder_speed_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
 /// (`expect_y`: at the top, back at the bottom, or on the floor after jumping off), else 0. Not
 /// in DESIGN.md's catalog: added so that entering and leaving a ladder is checked, not only the
 /// climbing speed.
-pub fn ladder_result(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn ladder_result(ctx: &Context, rows: Frames) -> Option<Measure> {
     ended_as_expected(ctx, rows, "ladder_result", ctx.level.features.ladders)
 }

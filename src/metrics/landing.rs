@@ -5,7 +5,7 @@ use super::ground::Ground;
 use super::{pos, predicted_landing_frame, standing, Context, Measure};
 use crate::level::Tile;
 use crate::scenario::input_script;
-use crate::trace::TraceRow;
+use crate::trace::{Frames, TraceRow};
 
 /// Idle time at the end of a scenario needed for the rest metrics, in seconds.
 pub const REST_WINDOW: f32 = 0.5;
@@ -18,10 +18,10 @@ pub const FLICKER_SUPPORT_TOLERANCE: f32 = 0.1;
 /// (solid tiles' squares and slope tiles' true solid parts, nothing left out) over the whole run,
 /// in tiles, from parry's contact query (not from a backend's contacts); on grounded frames
 /// standing on a one-way top (platform or ladder top), how far it is sunk below that top.
-pub fn max_penetration(g: &Ground, rows: &[TraceRow]) -> Measure {
+pub fn max_penetration(g: &Ground, rows: Frames) -> Measure {
     let worst = rows
         .iter()
-        .map(|r| g.penetration(pos(r), r.t as f64, standing(r)))
+        .map(|r| g.penetration(pos(&r), r.t as f64, standing(&r)))
         .fold(0.0f32, f32::max);
     Measure {
         metric: "max_penetration",
@@ -33,7 +33,7 @@ pub fn max_penetration(g: &Ground, rows: &[TraceRow]) -> Measure {
 /// `land_frame_error`: first grounded frame minus the frame the discrete integrator predicts,
 /// for a character that starts in the air, above ground, with no horizontal velocity and no
 /// input before it should land.
-pub fn land_frame_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn land_frame_error(ctx: &Context, rows: Frames) -> Option<Measure> {
     let spec = ctx.spec;
     if spec.velocity.x != 0.0 {
         return None;
@@ -88,12 +88,12 @@ pub fn land_frame_error(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
 pub(super) fn rest_frames(
     ctx: &Context,
     g: &Ground,
-    rows: &[TraceRow],
+    rows: Frames,
 ) -> Option<std::ops::Range<usize>> {
     let script = input_script(ctx.spec);
     let idle = crate::motion::Input::default();
     let n = script.len();
-    let first_idle_step = script.iter().rposition(|i| *i != idle).map_or(0, |k| k + 1);
+    let first_idle_step = script.rposition(|i| *i != idle).map_or(0, |k| k + 1);
     // Step k produces row k + 1; the idle window's rows are first_idle_step + 1 ..= n.
     let window_rows = n.saturating_sub(first_idle_step);
     let needed = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
@@ -106,9 +106,8 @@ pub(super) fn rest_frames(
     // speed), so deceleration along a slope is not counted as jitter.
     let still = ctx.params.run_speed * ctx.spec.dt * 0.01;
     let landed = (start..=n).find(|&k| {
-        rows[k].is_grounded()
-            && supported(ctx, g, &rows[k])
-            && (rows[k].x - rows[k - 1].x).abs() < still
+        let r = rows.at(k);
+        r.is_grounded() && supported(ctx, g, &r) && (r.x - rows.at(k - 1).x).abs() < still
     });
     let from = landed.unwrap_or(n + 1 - needed);
     Some(from..n + 1)
@@ -116,12 +115,12 @@ pub(super) fn rest_frames(
 
 /// `rest_gap`: signed gap from the character's shape down to the ground at the last frame
 /// (negative: sunk into a solid), in tiles; see [`Ground::gap`].
-pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
-    let last = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
+pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
+    let last = rows.last().map_or(ctx.spec.spawn, |r| pos(&r));
     Measure {
         metric: "rest_gap",
         value: rows.last().map_or(g.gap_at(last, 0.0, false), |r| {
-            g.gap_at(last, r.t as f64, standing(r))
+            g.gap_at(last, r.t as f64, standing(&r))
         }) as f64,
         reference: 0.0,
     }
@@ -136,9 +135,9 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure 
 /// or, for a controller standing on a flat foot (Box2D's segment pogo,
 /// `DeclaredContact::stance_half_width`), the gap of its shape with the feet on the highest
 /// surface under the foot, plus its declared gap.
-pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
     let rest = rest_gap(ctx, g, rows);
-    let feet = rows.last().map(pos).unwrap_or(ctx.spec.spawn);
+    let feet = rows.last().map_or(ctx.spec.spawn, |r| pos(&r));
     Measure {
         metric: "rest_gap_declared",
         value: gap_beyond_declared(ctx, g, feet, rest.value),
@@ -200,10 +199,10 @@ pub(super) fn stance_over_slope(ctx: &Context, feet: glam::Vec2) -> Option<f32> 
 /// its centre: the designed overhang into a ramp (or the ground that continues it) at that very
 /// place, measured the same way as the overlap itself. Sunk below that stance, the difference
 /// counts. A controller keeping its promise scores 0.
-pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
     let worst = rows
         .iter()
-        .map(|r| beyond_declared(ctx, g, r))
+        .map(|r| beyond_declared(ctx, g, &r))
         .fold(0.0f32, f32::max);
     Measure {
         metric: "penetration_beyond_declared",
@@ -311,11 +310,11 @@ fn stance_surface(ctx: &Context, p: glam::Vec2, overhang: f32) -> Option<f32> {
 /// the character spends airborne after it first touched ground: a landing that bounces or lifts
 /// off again. `rest_jitter` judges only the settled rest and `land_frame_error` only the first
 /// grounded frame, so without this a bounce after landing would be charged nowhere.
-pub(super) fn bounce_frames(ctx: &Context, rows: &[TraceRow]) -> Measure {
+pub(super) fn bounce_frames(ctx: &Context, rows: Frames) -> Measure {
     let script = input_script(ctx.spec);
     let idle = crate::motion::Input::default();
-    let first_idle_row = script.iter().rposition(|i| *i != idle).map_or(0, |k| k + 1) + 1;
-    let span = rows.get(first_idle_row.min(rows.len())..).unwrap_or(&[]);
+    let first_idle_row = script.rposition(|i| *i != idle).map_or(0, |k| k + 1) + 1;
+    let span = rows.slice(first_idle_row.min(rows.len())..rows.len());
     let count = span
         .iter()
         .skip_while(|r| !r.is_grounded())
@@ -338,7 +337,7 @@ pub(super) fn settled(ctx: &Context, rest: std::ops::Range<usize>) -> std::ops::
 
 /// `rest_jitter`: max minus min of y over the settled resting frames (see [`settled`]), in
 /// tiles.
-pub(super) fn rest_jitter(rows: &[TraceRow]) -> Measure {
+pub(super) fn rest_jitter(rows: Frames) -> Measure {
     let (lo, hi) = rows
         .iter()
         .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), r| {
@@ -373,7 +372,7 @@ pub fn supported(ctx: &Context, g: &Ground, r: &TraceRow) -> bool {
 /// [`FLICKER_SUPPORT_TOLERANCE`] below the shape (standing on air, or on a wall's side). Not in
 /// DESIGN.md's catalog: added because a controller that calls itself grounded mid-air resets
 /// its fall and can jump from there.
-pub fn false_grounded(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+pub fn false_grounded(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
     let count = rows
         .iter()
         .filter(|r| r.is_grounded() && !supported(ctx, g, r))
@@ -387,18 +386,18 @@ pub fn false_grounded(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
 
 /// `grounded_flicker`: grounded-to-airborne switches that no jump explains while the ground is
 /// still within [`FLICKER_SUPPORT_TOLERANCE`] under the feet.
-pub fn grounded_flicker(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Measure {
+pub fn grounded_flicker(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
     let script = input_script(ctx.spec);
     let mut count = 0u32;
     for k in 1..rows.len() {
-        let (prev, cur) = (&rows[k - 1], &rows[k]);
+        let (prev, cur) = (rows.at(k - 1), rows.at(k));
         if !prev.is_grounded() || cur.is_grounded() {
             continue;
         }
         // Step k-1 produced row k: a jump pressed on that step explains leaving the ground.
         let jumped = script.get(k - 1).is_some_and(|i| i.jump)
             && (k < 2 || script.get(k - 2).is_none_or(|i| !i.jump));
-        if !jumped && supported(ctx, g, cur) {
+        if !jumped && supported(ctx, g, &cur) {
             count += 1;
         }
     }

@@ -35,7 +35,7 @@ use crate::level::{Level, ScenarioSpec};
 use crate::motion::MotionParams;
 pub use crate::scenario::DeclaredContact;
 use crate::shape::CharacterShape;
-use crate::trace::{Trace, TraceRow};
+use crate::trace::{write_rows_csv, Frames, RowStore, Rows, Trace, TraceRow};
 use glam::Vec2;
 use ground::Ground;
 
@@ -90,7 +90,7 @@ pub struct Context<'a> {
     pub declared: DeclaredContact,
 }
 
-/// Computes every metric that applies to the scenario.
+/// Computes every metric that applies to the scenario, from character 0's rows of the trace.
 pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     // Character 0's rows: the trace itself when it holds no other (every scenario the harness
     // runs), so a long trace is not copied.
@@ -99,6 +99,14 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
     } else {
         ctx.trace.character(0).copied().collect()
     };
+    compute_frames(ctx, Frames::new(&rows))
+}
+
+/// Computes every metric that applies to the scenario from `rows`, character 0's rows, wherever
+/// they are held (in memory or spilled, [`crate::trace::RowStore`]); `ctx.trace` gives only the
+/// labels. Memory: the level's, plus one bit per frame for the slope frames (at most
+/// [`crate::limits::MAX_FRAMES`] bits, 1.25 MB), whatever the run's length otherwise.
+pub fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
     let ground = Ground::new(ctx.level, ctx.shape, ctx.spec.size);
     let g = &ground;
     let mut out = Vec::new();
@@ -117,48 +125,84 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
             });
         }
     };
-    push(landing::land_frame_error(ctx, &rows));
-    let rest = landing::rest_frames(ctx, g, &rows);
-    push(rest.clone().map(|r| landing::rest_gap(ctx, g, &rows[r])));
+    push(landing::land_frame_error(ctx, rows));
+    let rest = landing::rest_frames(ctx, g, rows);
     push(
         rest.clone()
-            .map(|r| landing::rest_gap_declared(ctx, g, &rows[r])),
+            .map(|r| landing::rest_gap(ctx, g, rows.slice(r))),
     );
-    push(Some(landing::max_penetration(g, &rows)));
-    push(Some(landing::penetration_beyond_declared(ctx, g, &rows)));
     push(
         rest.clone()
-            .map(|r| landing::rest_jitter(&rows[landing::settled(ctx, r)])),
+            .map(|r| landing::rest_gap_declared(ctx, g, rows.slice(r))),
     );
-    push(rest.map(|_| landing::bounce_frames(ctx, &rows)));
-    push(Some(landing::grounded_flicker(ctx, g, &rows)));
-    push(Some(landing::false_grounded(ctx, g, &rows)));
-    push(jumping::apex_error(ctx, &rows));
-    push(seams::progress_ratio(ctx, &rows));
-    push(Some(seams::stuck_frames(ctx, &rows)));
-    let on_slope = slopes::slope_frames(ctx, &rows);
-    push(slopes::slope_airborne_frames(ctx, &rows, &on_slope));
-    push(slopes::slope_gap_max(ctx, g, &rows, &on_slope));
-    push(slopes::slope_gap_declared(ctx, g, &rows, &on_slope));
-    push(slopes::slope_overlap(ctx, g, &rows));
-    let [horizontal, along] = slopes::slope_speed_ratios(ctx, &rows, &on_slope);
+    push(Some(landing::max_penetration(g, rows)));
+    push(Some(landing::penetration_beyond_declared(ctx, g, rows)));
+    push(
+        rest.clone()
+            .map(|r| landing::rest_jitter(rows.slice(landing::settled(ctx, r)))),
+    );
+    push(rest.map(|_| landing::bounce_frames(ctx, rows)));
+    push(Some(landing::grounded_flicker(ctx, g, rows)));
+    push(Some(landing::false_grounded(ctx, g, rows)));
+    push(jumping::apex_error(ctx, rows));
+    push(seams::progress_ratio(ctx, rows));
+    push(Some(seams::stuck_frames(ctx, rows)));
+    let on_slope = slopes::slope_frames(ctx, rows);
+    push(slopes::slope_airborne_frames(ctx, rows, &on_slope));
+    push(slopes::slope_gap_max(ctx, g, rows, &on_slope));
+    push(slopes::slope_gap_declared(ctx, g, rows, &on_slope));
+    push(slopes::slope_overlap(ctx, g, rows));
+    let [horizontal, along] = slopes::slope_speed_ratios(ctx, rows, &on_slope);
     push(horizontal);
     push(along);
-    push(slopes::steep_blocked(ctx, &rows));
-    push(oneway::oneway_result(ctx, &rows));
-    push(ladders::ladder_speed_error(ctx, &rows));
-    push(ladders::ladder_result(ctx, &rows));
-    let ride = platforms::ride_frames(ctx, &rows);
-    push(ride.as_ref().map(|r| platforms::carry_drift(ctx, &rows, r)));
+    push(slopes::steep_blocked(ctx, rows));
+    push(oneway::oneway_result(ctx, rows));
+    push(ladders::ladder_speed_error(ctx, rows));
+    push(ladders::ladder_result(ctx, rows));
+    let ride = platforms::ride_frames(ctx, rows);
+    push(ride.as_ref().map(|r| platforms::carry_drift(ctx, rows, r)));
     push(
         ride.as_ref()
-            .map(|r| platforms::carry_airborne_frames(&rows, r)),
+            .map(|r| platforms::carry_airborne_frames(rows, r)),
     );
-    push(platforms::push_penetration(ctx, &ground, &rows));
-    push(platforms::crush_count(ctx, &ground, &rows));
-    push(Some(walls::tunneled(ctx, &rows)));
-    push(idle::idle_drift(ctx, &rows));
+    push(platforms::push_penetration(ctx, &ground, rows));
+    push(platforms::crush_count(ctx, &ground, rows));
+    push(Some(walls::tunneled(ctx, rows)));
+    push(idle::idle_drift(ctx, rows));
     out
+}
+
+/// One bit per frame (the frames over a walkable slope): an eighth of the memory of a
+/// `Vec<bool>`, so a run of [`crate::limits::MAX_FRAMES`] frames takes 1.25 MB.
+pub struct FrameBits {
+    words: Vec<u64>,
+    len: usize,
+}
+
+impl FrameBits {
+    /// The bits of `bits`, in order.
+    pub fn collect(bits: impl ExactSizeIterator<Item = bool>) -> Self {
+        let mut words = vec![0u64; bits.len().div_ceil(64)];
+        let mut len = 0;
+        for (k, bit) in bits.enumerate() {
+            if bit {
+                words[k / 64] |= 1 << (k % 64);
+            }
+            len = k + 1;
+        }
+        FrameBits { words, len }
+    }
+
+    /// Bit `k`. Panics past the end, as indexing a slice does.
+    pub fn get(&self, k: usize) -> bool {
+        assert!(k < self.len, "bit {k} of {}", self.len);
+        self.words[k / 64] >> (k % 64) & 1 == 1
+    }
+
+    /// The bits in order.
+    pub fn iter(&self) -> impl Iterator<Item = bool> + '_ {
+        (0..self.len).map(|k| self.get(k))
+    }
 }
 
 /// A trace row's feet.
@@ -219,6 +263,63 @@ pub fn evaluate_with(
     let trace = runner.run(spec, run)?;
     let metrics = with_context(runner.level(), spec, run, &trace, compute);
     Ok(Evaluation { trace, metrics })
+}
+
+/// A run recorded with its rows streamed into a [`RowStore`] (spilled to a temporary file past
+/// its limit) and measured from there: what `platbench run` does, so that its memory does not
+/// grow with the length of a scenario.
+pub struct Recorded {
+    /// The run's labels (its `rows` are empty: the rows are in `rows`).
+    pub trace: Trace,
+    /// Character 0's rows.
+    pub rows: Rows,
+    /// The metrics that apply to the scenario.
+    pub metrics: Vec<MetricRow>,
+}
+
+impl Recorded {
+    /// Writes the rows as the trace's CSV (see [`Trace::write_csv`]).
+    pub fn write_csv<W: std::io::Write>(&self, w: W) -> Result<(), csv::Error> {
+        write_rows_csv(self.rows.frames().iter(), w)?;
+        match self.rows.take_error() {
+            Some(e) => Err(e.into()),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Why a recorded run failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RecordError {
+    /// The backend refused or failed the run.
+    #[error(transparent)]
+    Backend(#[from] crate::backend::BackendError),
+    /// The temporary file holding a long run's rows could not be written or read back.
+    #[error("cannot hold the run's rows in a temporary file: {0}")]
+    Spill(#[from] std::io::Error),
+}
+
+/// Runs `spec` on `run`, streaming its rows into `store`, and measures it from there (see
+/// [`Recorded`]); the metrics are those [`evaluate_with`] gives, bit for bit.
+pub fn evaluate_recorded(
+    runner: &mut crate::scenario::Runner,
+    spec: &ScenarioSpec,
+    run: &crate::scenario::RunConfig,
+    mut store: RowStore,
+) -> Result<Recorded, RecordError> {
+    let trace = runner.record(spec, run, &mut |r| store.push(r))?;
+    let rows = store.finish()?;
+    let metrics = with_context(runner.level(), spec, run, &trace, |ctx| {
+        compute_frames(ctx, rows.frames())
+    });
+    if let Some(e) = rows.take_error() {
+        return Err(e.into());
+    }
+    Ok(Recorded {
+        trace,
+        rows,
+        metrics,
+    })
 }
 
 /// Calls `f` with the context the metrics read for `trace`, a run of `spec` on `run`: the

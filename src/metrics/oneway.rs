@@ -1,7 +1,7 @@
 //! One-way platforms: where the character ends against where the seed's rule puts it.
 
 use super::{Context, Measure};
-use crate::trace::TraceRow;
+use crate::trace::Frames;
 
 /// How close to the expected height the feet must end for `oneway_result`, in tiles: above
 /// Rapier's offset, far below a tile.
@@ -9,7 +9,7 @@ pub const EXPECT_TOLERANCE: f32 = 0.05;
 
 /// `oneway_result`: on a level with one-way platforms, 1 if the character ended where the
 /// scenario says the seed's rule puts it (`expect_y`: on the platform, or below it), else 0.
-pub fn oneway_result(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn oneway_result(ctx: &Context, rows: Frames) -> Option<Measure> {
     ended_as_expected(ctx, rows, "oneway_result", ctx.level.features.one_way)
 }
 
@@ -17,7 +17,7 @@ pub fn oneway_result(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
 /// metric `metric`, when `applies` and the scenario states an `expect_y`.
 pub(super) fn ended_as_expected(
     ctx: &Context,
-    rows: &[TraceRow],
+    rows: Frames,
     metric: &'static str,
     applies: bool,
 ) -> Option<Measure> {

@@ -3,7 +3,7 @@
 use super::ground::Ground;
 use super::{pos, Context, Measure};
 use crate::scenario::input_script;
-use crate::trace::TraceRow;
+use crate::trace::{Frames, TraceRow};
 
 /// Platform `p`'s box at frame `k`, where the configuration places it: on its exact path, or
 /// rounded to the subpixel grid a configuration on integer positions moves it on
@@ -32,12 +32,12 @@ pub const ON_PLATFORM: f32 = 0.05;
 /// (grounded, feet within [`ON_PLATFORM`] of its top, overlapping it in x) with idle input and no
 /// velocity of its own, to the end of that idle input (or the end); from the first step if it
 /// never stands on it. `None` if the scenario names no platform.
-pub(super) fn ride_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::Range<usize>> {
+pub(super) fn ride_frames(ctx: &Context, rows: Frames) -> Option<std::ops::Range<usize>> {
     let p = ctx.level.platforms.get(ctx.spec.ride? as usize)?;
     let script = input_script(ctx.spec);
     let half = ctx.spec.size.x * 0.5;
     let on = |k: usize| {
-        let r = &rows[k];
+        let r = rows.at(k);
         let b = placed(ctx, p, k);
         r.is_grounded()
             && (r.y - b.maxs.y).abs() <= ON_PLATFORM
@@ -54,7 +54,7 @@ pub(super) fn ride_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::
     // platform, idle and not moving on its own (no walk or slide left over).
     // A controller that never stands on it is measured over the whole run.
     let start = (1..rows.len())
-        .find(|&k| on(k) && idle(k) && rows[k].vx.abs() < 1e-3)
+        .find(|&k| on(k) && idle(k) && rows.at(k).vx.abs() < 1e-3)
         .unwrap_or(1.min(rows.len()));
     let end = (start..rows.len())
         .find(|&k| !idle(k))
@@ -64,9 +64,9 @@ pub(super) fn ride_frames(ctx: &Context, rows: &[TraceRow]) -> Option<std::ops::
 
 /// `carry_drift`: over the idle part of the ride, the largest change of the character's position
 /// relative to its platform, in tiles.
-pub fn carry_drift(ctx: &Context, rows: &[TraceRow], ride: &std::ops::Range<usize>) -> Measure {
+pub fn carry_drift(ctx: &Context, rows: Frames, ride: &std::ops::Range<usize>) -> Measure {
     let p = &ctx.level.platforms[ctx.spec.ride.unwrap_or(0) as usize];
-    let rel = |k: usize| pos(&rows[k]) - placed(ctx, p, k).mins;
+    let rel = |k: usize| pos(&rows.at(k)) - placed(ctx, p, k).mins;
     let first = rel(ride.start);
     let drift = ride
         .clone()
@@ -80,10 +80,10 @@ pub fn carry_drift(ctx: &Context, rows: &[TraceRow], ride: &std::ops::Range<usiz
 }
 
 /// `carry_airborne_frames`: frames airborne during the idle part of the ride.
-pub fn carry_airborne_frames(rows: &[TraceRow], ride: &std::ops::Range<usize>) -> Measure {
+pub fn carry_airborne_frames(rows: Frames, ride: &std::ops::Range<usize>) -> Measure {
     Measure {
         metric: "carry_airborne_frames",
-        value: ride.clone().filter(|&k| !rows[k].is_grounded()).count() as f64,
+        value: ride.clone().filter(|&k| !rows.at(k).is_grounded()).count() as f64,
         reference: 0.0,
     }
 }
@@ -91,14 +91,14 @@ pub fn carry_airborne_frames(rows: &[TraceRow], ride: &std::ops::Range<usize>) -
 /// `push_penetration`: on a level with moving platforms, the deepest overlap of the character's
 /// shape with a platform that is not one-way, over the run, in tiles (parry's penetration depth,
 /// [`Ground::box_penetration`], against the platform where the configuration places it).
-pub fn push_penetration(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<Measure> {
+pub fn push_penetration(ctx: &Context, g: &Ground, rows: Frames) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
     let deepest = rows
         .iter()
         .enumerate()
-        .map(|(k, r)| platform_depth(ctx, g, r, k))
+        .map(|(k, r)| platform_depth(ctx, g, &r, k))
         .fold(0.0f32, f32::max);
     Some(Measure {
         metric: "push_penetration",
@@ -115,11 +115,11 @@ pub const CRUSH_DEPTH: f32 = 0.25;
 /// up inside a (not one-way) platform by more than [`CRUSH_DEPTH`]: crushed against the level, or
 /// run through by a platform that did not push it. Read from the geometry, so a backend without a
 /// crush event (Rapier) is counted the same way as the sweep, whose trace also flags the crush.
-pub fn crush_count(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<Measure> {
+pub fn crush_count(ctx: &Context, g: &Ground, rows: Frames) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
-    let inside = |k: usize| platform_depth(ctx, g, &rows[k], k) > CRUSH_DEPTH;
+    let inside = |k: usize| platform_depth(ctx, g, &rows.at(k), k) > CRUSH_DEPTH;
     let count = (1..rows.len())
         .filter(|&k| inside(k) && !inside(k - 1))
         .count();

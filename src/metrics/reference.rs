@@ -1,6 +1,8 @@
 //! Analytic references for the metrics: what the shared motion model predicts with no
 //! collision error, computed in f64.
 
+use std::borrow::Borrow;
+
 use crate::motion::{Input, MotionParams};
 
 /// The first step count `n >= 1` after which a body dropped from `height` above the ground
@@ -30,32 +32,82 @@ pub fn predicted_landing_frame(height: f64, vy0: f64, g: f64, dt: f64) -> Option
 
 /// Horizontal distance the shared motion model commands over the script, on flat ground with no
 /// obstacle: the run acceleration while a direction is held, the ground friction otherwise.
-pub fn commanded_distance(p: &MotionParams, script: &[Input], vx0: f32, dt: f32) -> f64 {
-    commanded_steps(p, script, vx0, dt).iter().sum()
+pub fn commanded_distance(
+    p: &MotionParams,
+    script: impl IntoIterator<Item = impl Borrow<Input>>,
+    vx0: f32,
+    dt: f32,
+) -> f64 {
+    commanded_steps(p, script, vx0, dt).sum()
 }
 
 /// The horizontal displacement the shared motion model commands at each step of the script,
-/// on flat ground with no obstacle (see [`commanded_distance`]).
-pub fn commanded_steps(p: &MotionParams, script: &[Input], vx0: f32, dt: f32) -> Vec<f64> {
+/// on flat ground with no obstacle (see [`commanded_distance`]), computed as it is read.
+pub fn commanded_steps<I: IntoIterator<Item = impl Borrow<Input>>>(
+    p: &MotionParams,
+    script: I,
+    vx0: f32,
+    dt: f32,
+) -> impl Iterator<Item = f64> {
     let (mut vx, dt) = (vx0 as f64, dt as f64);
-    let mut d = Vec::with_capacity(script.len());
-    for i in script {
-        let dir = i.horizontal() as f64;
+    let (run_speed, run_accel, friction) = (
+        p.run_speed as f64,
+        p.run_accel as f64,
+        p.ground_friction as f64,
+    );
+    script.into_iter().map(move |i| {
+        let dir = i.borrow().horizontal() as f64;
         if dir != 0.0 {
-            let target = dir * p.run_speed as f64;
-            let step = p.run_accel as f64 * dt;
+            let target = dir * run_speed;
+            let step = run_accel * dt;
             vx = if vx < target {
                 (vx + step).min(target)
             } else {
                 (vx - step).max(target)
             };
         }
-        d.push(vx * dt);
+        let d = vx * dt;
         if dir == 0.0 {
-            vx *= p.ground_friction as f64;
+            vx *= friction;
+        }
+        d
+    })
+}
+
+/// An iterator read forward by index: `get(k)` is its `k`-th item, for `k` never below the one
+/// asked last (a metric walking the frames forward reads the commanded steps as it goes).
+pub struct Cursor<I: Iterator> {
+    it: I,
+    next: usize,
+    last: Option<I::Item>,
+}
+
+impl<I: Iterator> Cursor<I>
+where
+    I::Item: Copy,
+{
+    /// A cursor before the first item.
+    pub fn new(it: I) -> Self {
+        Cursor {
+            it,
+            next: 0,
+            last: None,
         }
     }
-    d
+
+    /// Item `k`, or `None` past the end. Panics if `k` is below the item asked last.
+    pub fn get(&mut self, k: usize) -> Option<I::Item> {
+        assert!(
+            k + 1 >= self.next,
+            "item {k} read after item {}",
+            self.next - 1
+        );
+        while self.next <= k {
+            self.last = self.it.next();
+            self.next += 1;
+        }
+        self.last
+    }
 }
 
 #[cfg(test)]

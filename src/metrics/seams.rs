@@ -5,7 +5,7 @@ use super::slopes::steep_columns;
 use super::{commanded_distance, commanded_steps, pos, Context, Measure};
 use crate::level::{character_box, Tile};
 use crate::scenario::input_script;
-use crate::trace::TraceRow;
+use crate::trace::Frames;
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
@@ -15,7 +15,7 @@ pub const PROGRESS_SPAWN_HEIGHT: f32 = 0.05;
 
 /// `progress_ratio`: distance walked over distance commanded, for a walk that starts on the
 /// ground with the whole commanded path flat, supported and free of obstacles.
-pub fn progress_ratio(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn progress_ratio(ctx: &Context, rows: Frames) -> Option<Measure> {
     let spec = ctx.spec;
     let script = input_script(spec);
     if spec.velocity != Vec2::ZERO || script.iter().all(|i| i.horizontal() == 0.0 || i.jump) {
@@ -68,8 +68,8 @@ pub const STUCK_FLOOR_BAND: f32 = 0.05;
 /// `stuck_frames`: steps in which the character was commanded to move horizontally, was
 /// grounded, and moved less than [`STUCK_FRACTION`] of the commanded step, while nothing in the
 /// level blocked that step (a wall being pushed against is not "stuck").
-pub fn stuck_frames(ctx: &Context, rows: &[TraceRow]) -> Measure {
-    let count = stuck_steps(ctx, rows).iter().filter(|s| **s).count();
+pub fn stuck_frames(ctx: &Context, rows: Frames) -> Measure {
+    let count = stuck_steps(ctx, rows).filter(|s| *s).count();
     Measure {
         metric: "stuck_frames",
         value: count as f64,
@@ -78,30 +78,30 @@ pub fn stuck_frames(ctx: &Context, rows: &[TraceRow]) -> Measure {
 }
 
 /// Per step `k` (from row `k` to row `k + 1`), whether it was stuck as [`stuck_frames`] counts
-/// it; one entry per step the script and the rows both cover.
-pub fn stuck_steps(ctx: &Context, rows: &[TraceRow]) -> Vec<bool> {
+/// it; one entry per step the script and the rows both cover, computed as it is read.
+pub fn stuck_steps<'a>(ctx: &'a Context, rows: Frames<'a>) -> impl Iterator<Item = bool> + 'a {
     let script = input_script(ctx.spec);
-    let commanded = commanded_steps(ctx.params, &script, ctx.spec.velocity.x, ctx.spec.dt);
     let size = ctx.spec.size;
-    let mut out = Vec::with_capacity(commanded.len());
-    for (k, step) in commanded.iter().enumerate() {
+    let commanded = commanded_steps(ctx.params, script.clone(), ctx.spec.velocity.x, ctx.spec.dt);
+    let steps = script.into_iter().zip(commanded).enumerate();
+    steps.map_while(move |(k, (input, step))| {
+        let step = &step;
         let (Some(before), Some(after)) = (rows.get(k), rows.get(k + 1)) else {
-            break;
+            return None;
         };
-        let stuck = script[k].horizontal() != 0.0
+        let stuck = input.horizontal() != 0.0
             && after.is_grounded()
             && step.abs() >= 1e-9
             && ((after.x - before.x) as f64).abs() < STUCK_FRACTION * step.abs()
             && {
                 // The box moved by the commanded step, lifted out of the floor band.
-                let mut ahead = character_box(pos(before) + Vec2::new(*step as f32, 0.0), size);
+                let mut ahead = character_box(pos(&before) + Vec2::new(*step as f32, 0.0), size);
                 ahead.mins.y += STUCK_FLOOR_BAND;
                 let dir = step.signum() as f32;
                 let steep_ahead = steep_columns(ctx, dir)
                     .any(|i| (i as f32) < ahead.maxs.x && (i as f32 + 1.0) > ahead.mins.x);
                 ctx.level.solids_overlapping(&ahead).next().is_none() && !steep_ahead
             };
-        out.push(stuck);
-    }
-    out
+        Some(stuck)
+    })
 }

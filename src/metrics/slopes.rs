@@ -2,9 +2,9 @@
 //! climb limit.
 
 use super::ground::Ground;
-use super::{commanded_distance, pos, Context, Measure};
+use super::{commanded_distance, pos, Context, FrameBits, Measure};
 use crate::scenario::input_script;
-use crate::trace::TraceRow;
+use crate::trace::Frames;
 
 /// Columns holding a slope that rises in direction `dir` (+1 right, -1 left) more steeply than
 /// the climb limit somewhere in the tile.
@@ -21,21 +21,22 @@ pub(super) fn steep_columns<'a>(ctx: &'a Context, dir: f32) -> impl Iterator<Ite
 
 /// For each row, whether the ground under the character's centre (from half a tile above its
 /// feet to one tile below) is a slope no steeper than the climb limit.
-pub(super) fn slope_frames(ctx: &Context, rows: &[TraceRow]) -> Vec<bool> {
+pub(super) fn slope_frames(ctx: &Context, rows: Frames) -> FrameBits {
     let limit = ctx.params.max_climb_angle.tan() + 1e-3;
-    rows.iter()
-        .map(|r| match ctx.level.surface_at(r.x, r.y + 0.5, 1.5) {
-            Some((_, Some((i, j)))) => {
-                let n = ctx.level.slope_normal(i, j, r.x);
-                (n.x / n.y).abs() <= limit
-            }
-            _ => false,
-        })
-        .collect()
+    FrameBits::collect(
+        rows.iter()
+            .map(|r| match ctx.level.surface_at(r.x, r.y + 0.5, 1.5) {
+                Some((_, Some((i, j)))) => {
+                    let n = ctx.level.slope_normal(i, j, r.x);
+                    (n.x / n.y).abs() <= limit
+                }
+                _ => false,
+            }),
+    )
 }
 
 /// Whether the scenario walks (a direction held at some point) and never jumps.
-pub(super) fn walks_without_jumping(script: &[crate::motion::Input]) -> bool {
+pub(super) fn walks_without_jumping(script: &crate::scenario::Script) -> bool {
     script.iter().any(|i| i.horizontal() != 0.0) && !script.iter().any(|i| i.jump)
 }
 
@@ -62,13 +63,13 @@ pub(super) fn walks_over_slopes(ctx: &Context) -> bool {
 }
 
 /// `slope_airborne_frames`: frames airborne over a walkable slope while walking, without a jump.
-pub fn slope_airborne_frames(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
+pub fn slope_airborne_frames(ctx: &Context, rows: Frames, on: &FrameBits) -> Option<Measure> {
     if !walks_over_slopes(ctx) {
         return None;
     }
     let script = input_script(ctx.spec);
     let count = (1..rows.len())
-        .filter(|&k| on[k] && script[k - 1].horizontal() != 0.0 && !rows[k].is_grounded())
+        .filter(|&k| on.get(k) && script[k - 1].horizontal() != 0.0 && !rows.at(k).is_grounded())
         .count();
     Some(Measure {
         metric: "slope_airborne_frames",
@@ -81,15 +82,15 @@ pub fn slope_airborne_frames(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> O
 /// between the character's shape and the level's surface that is farthest from touching, in
 /// tiles: positive a gap above the surface, negative the depth inside it (the seed's box
 /// overhanging a ramp reads as inside it). 0 if it never stood on one.
-pub fn slope_gap_max(ctx: &Context, g: &Ground, rows: &[TraceRow], on: &[bool]) -> Option<Measure> {
+pub fn slope_gap_max(ctx: &Context, g: &Ground, rows: Frames, on: &FrameBits) -> Option<Measure> {
     if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
         return None;
     }
     let worst = rows
         .iter()
-        .zip(on)
-        .filter(|(r, o)| **o && r.is_grounded())
-        .map(|(r, _)| g.gap(pos(r)))
+        .zip(on.iter())
+        .filter(|(r, o)| *o && r.is_grounded())
+        .map(|(r, _)| g.gap(pos(&r)))
         .fold(0.0f32, |a, b| if b.abs() > a.abs() { b } else { a });
     Some(Measure {
         metric: "slope_gap_max",
@@ -116,8 +117,8 @@ pub const LANDING_SETTLE: f32 = 0.05;
 pub fn slope_gap_declared(
     ctx: &Context,
     g: &Ground,
-    rows: &[TraceRow],
-    on: &[bool],
+    rows: Frames,
+    on: &FrameBits,
 ) -> Option<Measure> {
     if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
         return None;
@@ -126,16 +127,16 @@ pub fn slope_gap_declared(
     let settle = (LANDING_SETTLE / ctx.spec.dt).ceil() as usize;
     let mut since_air = usize::MAX;
     let mut worst = 0.0f64;
-    for (r, o) in rows.iter().zip(on) {
+    for (r, o) in rows.iter().zip(on.iter()) {
         since_air = if r.is_grounded() {
             since_air.saturating_add(1)
         } else {
             0
         };
-        if !*o || !r.is_grounded() || since_air <= settle {
+        if !o || !r.is_grounded() || since_air <= settle {
             continue;
         }
-        let b = super::landing::gap_beyond_declared(ctx, g, pos(r), g.gap(pos(r)) as f64);
+        let b = super::landing::gap_beyond_declared(ctx, g, pos(&r), g.gap(pos(&r)) as f64);
         if b.abs() > worst.abs() {
             worst = b;
         }
@@ -153,13 +154,13 @@ pub fn slope_gap_declared(
 /// box overhangs the ramp by up to half its width times the gradient (0.4 tiles vertically on a
 /// 45-degree ramp for a 0.8-wide box, 0.28 along the ramp's normal): this is that overlap, by
 /// design, reported as what it is.
-pub fn slope_overlap(ctx: &Context, g: &Ground, rows: &[TraceRow]) -> Option<Measure> {
+pub fn slope_overlap(ctx: &Context, g: &Ground, rows: Frames) -> Option<Measure> {
     if !ctx.level.features.slopes {
         return None;
     }
     let worst = rows
         .iter()
-        .map(|r| g.slope_penetration(pos(r)))
+        .map(|r| g.slope_penetration(pos(&r)))
         .fold(0.0f32, f32::max);
     Some(Measure {
         metric: "slope_overlap",
@@ -191,7 +192,7 @@ pub(super) fn rest_on_slope(ctx: &Context) -> bool {
 ///
 /// A controller is not wrong for following either model: the report shows both. 0 if it never
 /// walked the slope at full speed.
-pub fn slope_speed_ratios(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> [Option<Measure>; 2] {
+pub fn slope_speed_ratios(ctx: &Context, rows: Frames, on: &FrameBits) -> [Option<Measure>; 2] {
     // A walk into a too-steep rise is steep_blocked's business, not a speed.
     if !walks_over_slopes(ctx) || steep_ahead(ctx) {
         return [None, None];
@@ -199,28 +200,28 @@ pub fn slope_speed_ratios(ctx: &Context, rows: &[TraceRow], on: &[bool]) -> [Opt
     let script = input_script(ctx.spec);
     // Steps at full commanded speed: the same direction held since the ramp-up ended.
     let ramp = (ctx.params.run_speed / (ctx.params.run_accel * ctx.spec.dt)).ceil() as usize + 1;
-    let steps: Vec<usize> = (1..rows.len())
-        .filter(|&k| {
+    // Read twice (a count, then each sum), not collected: a soak run has millions of them.
+    let steps = || {
+        (1..rows.len()).filter(|&k| {
             let dir = script[k - 1].horizontal();
             dir != 0.0
-                && on[k]
-                && on[k - 1]
+                && on.get(k)
+                && on.get(k - 1)
                 && k > ramp
-                && script[k - 1 - ramp..k]
-                    .iter()
-                    .all(|i| i.horizontal() == dir)
+                && script.range(k - 1 - ramp..k).all(|i| i.horizontal() == dir)
         })
-        .collect();
+    };
+    let count = steps().count();
     let dt = ctx.spec.dt as f64;
     let mean = |speed: &dyn Fn(usize) -> f64| {
-        if steps.is_empty() {
+        if count == 0 {
             0.0
         } else {
-            steps.iter().map(|&k| speed(k)).sum::<f64>() / steps.len() as f64
+            steps().map(speed).sum::<f64>() / count as f64
         }
     };
-    let horizontal = mean(&|k| ((rows[k].x - rows[k - 1].x) as f64 / dt).abs());
-    let along = mean(&|k| (pos(&rows[k]) - pos(&rows[k - 1])).length() as f64 / dt);
+    let horizontal = mean(&|k| ((rows.at(k).x - rows.at(k - 1).x) as f64 / dt).abs());
+    let along = mean(&|k| (pos(&rows.at(k)) - pos(&rows.at(k - 1))).length() as f64 / dt);
     let run = ctx.params.run_speed as f64;
     [
         Some(Measure {
@@ -247,7 +248,7 @@ pub(super) fn steep_ahead(ctx: &Context) -> bool {
 
 /// `steep_blocked`: for a walk toward a slope that rises more steeply than the climb limit, 1 if
 /// the character never got half a tile above where it started, else 0.
-pub fn steep_blocked(ctx: &Context, rows: &[TraceRow]) -> Option<Measure> {
+pub fn steep_blocked(ctx: &Context, rows: Frames) -> Option<Measure> {
     let script = input_script(ctx.spec);
     if !walks_without_jumping(&script) {
         return None;

@@ -2,17 +2,18 @@
 
 use super::{pos, Context, Measure};
 use crate::level::{character_box, Level};
-use crate::trace::TraceRow;
+use crate::trace::Frames;
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
 /// `tunneled`: 1 if between two frames the character passed entirely through a solid tile that
 /// overlapped its box's cross-section both before and after the move, else 0.
-pub fn tunneled(ctx: &Context, rows: &[TraceRow]) -> Measure {
+pub fn tunneled(ctx: &Context, rows: Frames) -> Measure {
     let size = ctx.spec.size;
-    let passed = rows.windows(2).any(|w| {
-        let a = character_box(pos(&w[0]), size);
-        let b = character_box(pos(&w[1]), size);
+    let pairs = rows.iter().zip(rows.iter().skip(1));
+    let passed = pairs.into_iter().any(|(r0, r1)| {
+        let a = character_box(pos(&r0), size);
+        let b = character_box(pos(&r1), size);
         passed_through(ctx.level, &a, &b, 0) || passed_through(ctx.level, &a, &b, 1)
     });
     Measure {

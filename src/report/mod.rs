@@ -10,6 +10,8 @@ pub mod summary_rows;
 
 use comfy_table::{presets, CellAlignment, Table};
 
+use std::collections::{HashMap, HashSet};
+
 use crate::metrics::{registry, MetricRow};
 
 /// Formats a metric value compactly: integers as integers, small magnitudes in scientific form.
@@ -74,6 +76,12 @@ fn new_table(header: Vec<String>) -> Table {
 /// that ran fewer scenarios than the others says "over N of M", and the first row gives the
 /// ideal value.
 pub fn summary_table(rows: &[MetricRow]) -> String {
+    summary_table_in(rows, &Coverage::of(rows))
+}
+
+/// [`summary_table`] of `rows` with the scenarios each configuration ran given by `coverage`
+/// (the rows may then be only those [`summary_rows::SummaryRows`] kept).
+pub fn summary_table_in(rows: &[MetricRow], coverage: &Coverage) -> String {
     let mut out = String::new();
     for title in registry::SUMMARY_GROUPS {
         let in_group =
@@ -85,12 +93,12 @@ pub fn summary_table(rows: &[MetricRow]) -> String {
             out.push_str("\n\n");
         }
         out.push_str(&format!("{title}:\n"));
-        out.push_str(&group_table(&worst_matrix(rows, in_group)));
+        out.push_str(&group_table(&worst_matrix_in(rows, coverage, in_group)));
     }
     let unknown = |m: &str| registry::get(m).is_none();
     if rows.iter().any(|r| unknown(r.metric)) {
         out.push_str("\n\n");
-        out.push_str(&group_table(&worst_matrix(rows, unknown)));
+        out.push_str(&group_table(&worst_matrix_in(rows, coverage, unknown)));
     }
     out
 }
@@ -125,26 +133,105 @@ impl WorstMatrix {
 /// One scenario's row of a metric for a configuration: (level, scenario), badness, value.
 type Cell<'a> = ((&'a str, &'a str), f64, f64);
 
+/// Which scenarios each configuration ran: what the summary counts ("over N of M") and judges
+/// "best" within. [`Coverage::of`] reads it off every row; [`summary_rows::SummaryRows`] keeps it
+/// as counts and groups of levels, in memory that does not grow with the number of runs.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Coverage {
+    /// Configuration columns in the order they first ran, each with the scenarios it ran.
+    configs: Vec<(String, usize)>,
+    /// Scenarios any configuration ran.
+    all: usize,
+    /// Per group: which configurations (by index in `configs`) ran its scenarios.
+    groups: Vec<Vec<bool>>,
+    /// The group of a scenario, by level, then scenario.
+    by_scenario: HashMap<String, HashMap<String, usize>>,
+    /// The group of every scenario of a level, where `by_scenario` does not say.
+    by_level: HashMap<String, usize>,
+}
+
+impl Coverage {
+    /// The coverage of `rows`, every row of a run: each scenario a group of its own.
+    pub fn of(rows: &[MetricRow]) -> Self {
+        let mut c = Coverage::default();
+        let mut seen: HashMap<(&str, &str), HashSet<usize>> = HashMap::new();
+        for r in rows {
+            let ci = c.config(column(r));
+            let key = (r.level.as_str(), r.scenario.as_str());
+            let ran = seen.entry(key).or_default();
+            if ran.is_empty() {
+                c.all += 1;
+            }
+            if ran.insert(ci) {
+                c.configs[ci].1 += 1;
+            }
+        }
+        for ((level, scenario), ran) in seen {
+            let group = (0..c.configs.len()).map(|i| ran.contains(&i)).collect();
+            c.groups.push(group);
+            c.by_scenario
+                .entry(level.to_string())
+                .or_default()
+                .insert(scenario.to_string(), c.groups.len() - 1);
+        }
+        c
+    }
+
+    /// The index of configuration column `column`, added if new.
+    fn config(&mut self, column: String) -> usize {
+        match self.configs.iter().position(|(c, _)| *c == column) {
+            Some(i) => i,
+            None => {
+                self.configs.push((column, 0));
+                self.configs.len() - 1
+            }
+        }
+    }
+
+    /// Counts one run of configuration `column` on a new scenario of `level` (`first`: no
+    /// configuration ran that scenario before), whose configurations are those of `group`.
+    pub(crate) fn add_run(&mut self, level: &str, group: usize, column: String, first: bool) {
+        let ci = self.config(column);
+        self.configs[ci].1 += 1;
+        self.all += first as usize;
+        if self.groups.len() <= group {
+            self.groups.resize(group + 1, Vec::new());
+        }
+        let g = &mut self.groups[group];
+        if g.len() <= ci {
+            g.resize(ci + 1, false);
+        }
+        g[ci] = true;
+        if !self.by_level.contains_key(level) {
+            self.by_level.insert(level.to_string(), group);
+        }
+    }
+
+    /// Whether configuration `config` ran scenario `key` (level, scenario).
+    fn ran(&self, config: usize, key: (&str, &str)) -> bool {
+        let group = match self.by_scenario.get(key.0).and_then(|s| s.get(key.1)) {
+            Some(g) => Some(*g),
+            None => self.by_level.get(key.0).copied(),
+        };
+        group.is_some_and(|g| self.groups[g].get(config).copied().unwrap_or(false))
+    }
+}
+
 /// Computes the worst-per-configuration matrix of the metrics `keep` selects. Scenario coverage
 /// is counted over all of `rows` (every metric), so pass the whole run.
 pub fn worst_matrix(rows: &[MetricRow], keep: impl Fn(&str) -> bool) -> WorstMatrix {
-    let mut configs: Vec<String> = Vec::new();
+    worst_matrix_in(rows, &Coverage::of(rows), keep)
+}
+
+/// [`worst_matrix`] with the scenarios each configuration ran given by `coverage`.
+pub fn worst_matrix_in(
+    rows: &[MetricRow],
+    cov: &Coverage,
+    keep: impl Fn(&str) -> bool,
+) -> WorstMatrix {
+    let configs: Vec<String> = cov.configs.iter().map(|(c, _)| c.clone()).collect();
     let mut metrics: Vec<(&'static str, &'static str, f64)> = Vec::new();
-    let mut ran: Vec<std::collections::BTreeSet<(&str, &str)>> = Vec::new();
-    let mut all = std::collections::BTreeSet::new();
     for r in rows {
-        let c = column(r);
-        let ci = match configs.iter().position(|x| *x == c) {
-            Some(i) => i,
-            None => {
-                configs.push(c);
-                ran.push(Default::default());
-                configs.len() - 1
-            }
-        };
-        let key = (r.level.as_str(), r.scenario.as_str());
-        ran[ci].insert(key);
-        all.insert(key);
         if keep(r.metric) && !metrics.iter().any(|(m, _, _)| *m == r.metric) {
             metrics.push((r.metric, r.unit, r.reference));
         }
@@ -167,7 +254,7 @@ pub fn worst_matrix(rows: &[MetricRow], keep: impl Fn(&str) -> bool) -> WorstMat
     let worst_over = |cells: &[Cell], within: Option<usize>| {
         cells
             .iter()
-            .filter(|(k, _, _)| within.is_none_or(|d| ran[d].contains(k)))
+            .filter(|(k, _, _)| within.is_none_or(|d| cov.ran(d, *k)))
             .max_by(|a, b| a.1.total_cmp(&b.1))
             .map(|&(_, b, v)| (b, v))
     };
@@ -202,7 +289,7 @@ pub fn worst_matrix(rows: &[MetricRow], keep: impl Fn(&str) -> bool) -> WorstMat
                 .collect()
         })
         .collect();
-    let coverage = ran.iter().map(|r| (r.len(), all.len())).collect();
+    let coverage = cov.configs.iter().map(|(_, n)| (*n, cov.all)).collect();
     WorstMatrix {
         configs,
         coverage,

@@ -10,16 +10,16 @@
 //! groups (the levels that the same configurations model), within which every scenario was run
 //! by the same configurations. Kept, in their original order:
 //!
-//! - the first row of every run (so every configuration's scenarios are still counted);
 //! - the first row of every metric (its unit and reference);
-//! - per group, metric and configuration: the worst row, the lowest value and the highest value.
+//! - per group, metric and configuration: the worst row, the lowest value and the highest value;
 //!
-//! That is one row per run plus at most three per group, metric and configuration, instead of
-//! every row (about 11 per run on the built-in set).
+//! and, as a [`Coverage`], how many scenarios each configuration ran and which groups it ran.
+//! That is at most three rows per group, metric and configuration and one entry per level,
+//! however many runs: memory does not grow with the number of scenarios (issue 24).
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 
-use super::{badness, column};
+use super::{badness, column, Coverage};
 use crate::metrics::MetricRow;
 
 /// A kept row and its position in the stream.
@@ -41,8 +41,13 @@ struct Extremes {
 pub struct SummaryRows {
     /// Rows seen so far.
     seq: u64,
-    /// The first row of each run and of each metric.
+    /// The first row of each metric.
     always: Vec<Kept>,
+    /// The scenarios each configuration ran.
+    coverage: Coverage,
+    /// The (level, scenario) of the last run: runs of one scenario come together (level names
+    /// are unique in a run, scenario names within a level), so a new one is a new scenario.
+    last: Option<(String, String)>,
     /// The metrics seen so far.
     metrics: HashSet<&'static str>,
     /// Per (group, metric, configuration column).
@@ -55,11 +60,21 @@ impl SummaryRows {
     /// share one; one group per level is always right, one per set of configurations keeps
     /// fewer rows).
     pub fn push_run(&mut self, group: usize, rows: Vec<MetricRow>) {
-        for (i, r) in rows.into_iter().enumerate() {
+        if let Some(r) = rows.first() {
+            let key = (r.level.as_str(), r.scenario.as_str());
+            let first = self
+                .last
+                .as_ref()
+                .is_none_or(|(l, s)| (l.as_str(), s.as_str()) != key);
+            if first {
+                self.last = Some((r.level.clone(), r.scenario.clone()));
+            }
+            self.coverage.add_run(&r.level, group, column(r), first);
+        }
+        for r in rows {
             let seq = self.seq;
             self.seq += 1;
-            if i == 0 || self.metrics.insert(r.metric) {
-                self.metrics.insert(r.metric);
+            if self.metrics.insert(r.metric) {
                 self.always.push((seq, r.clone()));
             }
             let e = self
@@ -82,22 +97,23 @@ impl SummaryRows {
         }
     }
 
-    /// The kept rows, each once, in the order they came.
-    pub fn into_rows(self) -> Vec<MetricRow> {
+    /// The kept rows, each once, in the order they came, and the scenarios each configuration
+    /// ran: [`super::summary_table_in`] of the two is [`super::summary_table`] of every row.
+    pub fn into_parts(self) -> (Vec<MetricRow>, Coverage) {
         let mut kept: BTreeMap<u64, MetricRow> = self.always.into_iter().collect();
         for e in self.extremes.into_values() {
             for (seq, r) in [e.worst, e.min, e.max].into_iter().flatten() {
                 kept.insert(seq, r);
             }
         }
-        kept.into_values().collect()
+        (kept.into_values().collect(), self.coverage)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::summary_table;
+    use crate::report::{summary_table, summary_table_in};
 
     fn row(level: &str, scenario: &str, config: &str, metric: &'static str, v: f64) -> MetricRow {
         MetricRow {
@@ -175,9 +191,9 @@ mod tests {
             all.extend(rows.iter().cloned());
             kept.push_run(g, rows);
         }
-        let kept = kept.into_rows();
+        let (kept, coverage) = kept.into_parts();
         assert!(kept.len() < all.len(), "nothing was left out");
-        assert_eq!(summary_table(&kept), summary_table(&all));
+        assert_eq!(summary_table_in(&kept, &coverage), summary_table(&all));
         // The lowest and highest values survive, for the notes.
         for v in [-0.5, 0.5] {
             assert!(kept.iter().any(|r| r.value == v));

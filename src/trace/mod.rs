@@ -11,6 +11,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::backend::CharacterState;
 
+pub mod store;
+pub use store::{Frames, RowStore, Rows};
+
 /// One character's state at one frame.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TraceRow {
@@ -115,18 +118,26 @@ impl Trace {
 
     /// Writes the rows as CSV with a header.
     pub fn write_csv<W: Write>(&self, w: W) -> Result<(), csv::Error> {
-        let mut wr = csv::Writer::from_writer(w);
-        for r in &self.rows {
-            wr.serialize(r)?;
-        }
-        wr.flush()?;
-        Ok(())
+        write_rows_csv(self.rows.iter().copied(), w)
     }
 
     /// Reads rows written by [`Trace::write_csv`].
     pub fn read_rows<R: Read>(r: R) -> Result<Vec<TraceRow>, csv::Error> {
         csv::Reader::from_reader(r).deserialize().collect()
     }
+}
+
+/// Writes `rows` as a trace's CSV with a header (see [`Trace::write_csv`]).
+pub fn write_rows_csv<W: Write>(
+    rows: impl IntoIterator<Item = TraceRow>,
+    w: W,
+) -> Result<(), csv::Error> {
+    let mut wr = csv::Writer::from_writer(w);
+    for r in rows {
+        wr.serialize(r)?;
+    }
+    wr.flush()?;
+    Ok(())
 }
 
 #[cfg(test)]
