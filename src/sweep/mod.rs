@@ -61,17 +61,13 @@ pub enum Positions {
     },
     /// f64 world coordinates with the seed's epsilon tolerance: the float mode's rules, every
     /// move swept and snapped in f64 ([`resolve::move_axis_f64`]), for levels far from the
-    /// world's origin. Moving platforms are not modelled yet in this mode (refused).
+    /// world's origin. Moving platforms follow their path in level coordinates placed at the
+    /// origin in f64, and carry, push and crush by f64 displacements ([`platforms`]).
     Double,
 }
 
-/// The features the f64 mode models (no moving platforms yet).
-pub const DOUBLE_SUPPORTED: Features = Features {
-    slopes: true,
-    one_way: true,
-    ladders: true,
-    moving_platforms: false,
-};
+/// The features the f64 mode models: all of them.
+pub const DOUBLE_SUPPORTED: Features = Features::ALL;
 
 /// The features the integer mode models.
 pub const INTEGER_SUPPORTED: Features = Features {
@@ -235,6 +231,7 @@ impl SweepBackend {
             platforms: platforms::Platforms::new(
                 level,
                 grid.as_ref(),
+                config.positions == Positions::Double,
                 config.rider_follow,
                 params.gravity,
             ),
@@ -264,6 +261,8 @@ struct World<'a> {
     platform_boxes: &'a [(Aabb, BoxKind)],
     /// Moving platforms' boxes at the current frame on the subpixel grid (integer mode).
     platform_grid: &'a [(GridBox, BoxKind)],
+    /// Moving platforms' boxes at the current frame in f64 world tiles (f64 mode).
+    platform_double: &'a [(space::Rect<f64>, BoxKind)],
     level: &'a Level,
     params: &'a MotionParams,
     /// `tan(max_climb_angle)`.
@@ -317,6 +316,7 @@ impl Backend for SweepBackend {
             tiles: &self.tiles,
             platform_boxes: &self.platforms.boxes,
             platform_grid: &self.platforms.grid_boxes,
+            platform_double: &self.platforms.double_boxes,
             level: &self.level,
             params: &self.params,
             climb_gradient: self.climb_gradient,
@@ -348,6 +348,13 @@ impl Backend for SweepBackend {
             match self.grid {
                 Some(grid) => {
                     let s = GridSpace { grid };
+                    self.platforms.step(&s, tiles, characters, t1, dt)
+                }
+                None if self.config.positions == Positions::Double => {
+                    let s = DoubleSpace {
+                        eps: self.config.epsilon,
+                        origin: self.origin.as_dvec2(),
+                    };
                     self.platforms.step(&s, tiles, characters, t1, dt)
                 }
                 None => {
