@@ -134,6 +134,40 @@ pub fn require_supported(
     }
 }
 
+/// Refuses a level placed beyond [`crate::limits::MAX_F32_ORIGIN`] tiles from the world's
+/// origin for an f32 configuration (`precision`): there an f32 position moves in whole tiles or
+/// more, so nothing it does means anything, and its f64 build places the level exactly. An f64
+/// configuration runs any origin a level can have.
+pub fn origin_supported(
+    backend: &'static str,
+    precision: Precision,
+    level: &Level,
+) -> Result<(), BackendError> {
+    let far = level.origin.abs().max_element() > crate::limits::MAX_F32_ORIGIN;
+    if precision == Precision::F32 && far {
+        return Err(BackendError::Unsupported {
+            backend,
+            feature: format!(
+                "a level origin of ({}, {}) tiles in f32 (beyond {} tiles an f32 position moves \
+                 in whole tiles; its f64 build runs it: --precision f64)",
+                level.origin.x,
+                level.origin.y,
+                crate::limits::MAX_F32_ORIGIN
+            ),
+            level: level.name.clone(),
+        });
+    }
+    Ok(())
+}
+
+/// Whether `settings` runs `level`: it models the level's features
+/// ([`BackendSettings::supports`]) and, in f32, the level is within
+/// [`crate::limits::MAX_F32_ORIGIN`] of the world's origin ([`origin_supported`]).
+pub fn runs(settings: &dyn BackendSettings, level: &Level) -> bool {
+    settings.supports(level)
+        && origin_supported(settings.backend(), settings.precision(), level).is_ok()
+}
+
 /// A character controller driving characters over one level.
 pub trait Backend {
     /// Short backend name, as in CSV files (`sweep`, `rapier`).
@@ -241,12 +275,16 @@ impl Precision {
     }
 
     /// A point `local` (level coordinates, tiles) as a backend of this precision places it in the
-    /// world at `origin` and reads it back in level coordinates: rounded to this type's spacing
-    /// at the world position.
-    pub fn placed(self, local: glam::DVec2, origin: Vec2) -> glam::DVec2 {
+    /// world at `origin` (an f32 backend at `origin` rounded to the nearest f32, as
+    /// [`Level::origin_f32`]) and reads it back in level coordinates: rounded to this type's
+    /// spacing at the world position.
+    pub fn placed(self, local: glam::DVec2, origin: glam::DVec2) -> glam::DVec2 {
         match self {
-            Precision::F32 => ((local.as_vec2() + origin) - origin).as_dvec2(),
-            Precision::F64 => (local + origin.as_dvec2()) - origin.as_dvec2(),
+            Precision::F32 => {
+                let o = origin.as_vec2();
+                ((local.as_vec2() + o) - o).as_dvec2()
+            }
+            Precision::F64 => (local + origin) - origin,
         }
     }
 }

@@ -227,7 +227,7 @@ fn the_sweep_in_f64_carries_as_the_float_mode_at_the_origin_and_1e12_tiles_out()
         .iter()
         .map(|l| {
             let mut l = l.clone();
-            l.origin = glam::Vec2::splat(1e12);
+            l.origin = glam::DVec2::splat(1e12);
             l
         })
         .collect();

@@ -212,7 +212,7 @@ fn rapier_fed_as_advised_walks_alone_and_breaks_progress_at_1e5_with_dt_1_240() 
         let point = Point {
             run: run.clone(),
             case,
-            dimension: ("offset", case.offset as f64),
+            dimension: ("offset", case.offset),
             dimension2: Some(("dt", case.dt as f64)),
         };
         let rows = run_point(&point).unwrap();

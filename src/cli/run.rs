@@ -247,7 +247,13 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
     let scenarios: usize = levels.iter().map(|l| l.scenarios.len()).sum();
     let total: usize = levels
         .iter()
-        .map(|l| l.scenarios.len() * configs.iter().filter(|c| c.backend.supports(l)).count())
+        .map(|l| {
+            l.scenarios.len()
+                * configs
+                    .iter()
+                    .filter(|c| crate::backend::runs(&*c.backend, l))
+                    .count()
+        })
         .sum();
     let skipped_runs = scenarios * configs.len() - total;
     // Timing measures one thread with nothing else running beside it.
@@ -434,7 +440,7 @@ fn execute<'a>(
     let live = std::io::stderr().is_terminal();
     let total = items
         .iter()
-        .filter(|&&(li, _, ci)| configs[ci].backend.supports(&levels[li]))
+        .filter(|&&(li, _, ci)| crate::backend::runs(&*configs[ci].backend, &levels[li]))
         .count();
     // Every row for --detail; else only those the summary needs (see SummaryRows), grouped by
     // the set of configurations that model the level.
@@ -444,7 +450,10 @@ fn execute<'a>(
     let group_of: Vec<usize> = levels
         .iter()
         .map(|l| {
-            let set: Vec<bool> = configs.iter().map(|c| c.backend.supports(l)).collect();
+            let set: Vec<bool> = configs
+                .iter()
+                .map(|c| crate::backend::runs(&*c.backend, l))
+                .collect();
             match groups.iter().position(|g| *g == set) {
                 Some(i) => i,
                 None => {

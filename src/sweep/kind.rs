@@ -36,7 +36,7 @@ impl BackendSettings for SweepConfig {
             Positions::Float => SweepBackend::SUPPORTED,
             Positions::Double => DOUBLE_SUPPORTED,
             Positions::Integer { per_tile } => {
-                if super::grid::Grid::new(per_tile, level.origin, &level.name).is_err() {
+                if super::grid::Grid::new(per_tile, level.origin_f32(), &level.name).is_err() {
                     return false;
                 }
                 INTEGER_SUPPORTED

@@ -171,8 +171,9 @@ pub struct SweepBackend {
     /// The level's grid, for the per-column feature rules (slopes).
     level: Level,
     stats: SweepStats,
-    /// The level's corner in the world.
-    origin: Vec2,
+    /// The level's corner in the world, tiles (the float mode places the level at it rounded
+    /// to f32, the f64 mode at it exactly).
+    origin: glam::DVec2,
     params: MotionParams,
     config: SweepConfig,
     /// The subpixel grid, in integer mode.
@@ -199,7 +200,7 @@ impl SweepBackend {
         let grid = match config.positions {
             Positions::Float | Positions::Double => None,
             Positions::Integer { per_tile } => {
-                Some(Grid::new(per_tile, level.origin, &level.name)?)
+                Some(Grid::new(per_tile, level.origin_f32(), &level.name)?)
             }
         };
         params.validate()?;
@@ -221,7 +222,7 @@ impl SweepBackend {
         // places them at the origin in f64.
         let tiles = if config.positions == Positions::Double {
             let mut local = level.geometry();
-            local.origin = Vec2::ZERO;
+            local.origin = glam::DVec2::ZERO;
             StaticTiles::new(&local)
         } else {
             StaticTiles::new(level)
@@ -299,8 +300,8 @@ impl Backend for SweepBackend {
                 .grid
                 .map(|g| GridPos::spawn(&g, spec.spawn, spec.size))
                 .unwrap_or_default(),
-            pos: spec.spawn + self.origin,
-            pos64: spec.spawn.as_dvec2() + self.origin.as_dvec2(),
+            pos: spec.spawn + self.origin.as_vec2(),
+            pos64: spec.spawn.as_dvec2() + self.origin,
             size: spec.size,
             motion: MotionState::with_velocity(spec.velocity),
             ground_normal: Vec2::ZERO,
@@ -328,14 +329,14 @@ impl Backend for SweepBackend {
             None if self.config.positions == Positions::Double => {
                 let s = DoubleSpace {
                     eps: self.config.epsilon,
-                    origin: self.origin.as_dvec2(),
+                    origin: self.origin,
                 };
                 step_all(&s, &w, stats, characters, inputs, dt)
             }
             None => {
                 let s = FloatSpace {
                     eps: self.config.epsilon,
-                    origin: self.origin,
+                    origin: self.origin.as_vec2(),
                 };
                 step_all(&s, &w, stats, characters, inputs, dt)
             }
@@ -353,14 +354,14 @@ impl Backend for SweepBackend {
                 None if self.config.positions == Positions::Double => {
                     let s = DoubleSpace {
                         eps: self.config.epsilon,
-                        origin: self.origin.as_dvec2(),
+                        origin: self.origin,
                     };
                     self.platforms.step(&s, tiles, characters, t1, dt)
                 }
                 None => {
                     let s = FloatSpace {
                         eps: self.config.epsilon,
-                        origin: self.origin,
+                        origin: self.origin.as_vec2(),
                     };
                     self.platforms.step(&s, tiles, characters, t1, dt)
                 }
@@ -375,9 +376,9 @@ impl Backend for SweepBackend {
             pos: match &self.grid {
                 Some(g) => g.feet(&c.on_grid.b),
                 None if self.config.positions == Positions::Double => {
-                    (c.pos64 - self.origin.as_dvec2()).as_vec2()
+                    (c.pos64 - self.origin).as_vec2()
                 }
-                None => c.pos - self.origin,
+                None => c.pos - self.origin.as_vec2(),
             },
             vel: c.motion.vel,
             grounded: c.motion.grounded,

@@ -114,7 +114,7 @@ impl Platforms {
         let states: Vec<PlatformState> = level
             .platforms
             .iter()
-            .map(|p| PlatformState::new(p, level.origin.as_dvec2()))
+            .map(|p| PlatformState::new(p, level.origin))
             .collect();
         let kind = |i: usize, p: &Platform| BoxKind::Platform {
             index: i as u32,
@@ -124,7 +124,7 @@ impl Platforms {
             .platforms
             .iter()
             .enumerate()
-            .map(|(i, p)| (p.aabb(0.0).translated(level.origin), kind(i, p)))
+            .map(|(i, p)| (p.aabb(0.0).translated(level.origin_f32()), kind(i, p)))
             .collect();
         let grid_boxes = match grid {
             Some(g) => states
