@@ -134,25 +134,22 @@ pub fn require_supported(
     }
 }
 
-/// Refuses a level placed beyond [`crate::limits::MAX_F32_ORIGIN`] tiles from the world's
-/// origin for an f32 configuration (`precision`): there an f32 position moves in whole tiles or
-/// more, so nothing it does means anything, and its f64 build places the level exactly. An f64
-/// configuration runs any origin a level can have.
-pub fn origin_supported(
-    backend: &'static str,
-    precision: Precision,
-    level: &Level,
-) -> Result<(), BackendError> {
-    let far = level.origin.abs().max_element() > crate::limits::MAX_F32_ORIGIN;
-    if precision == Precision::F32 && far {
+/// Refuses a level placed farther from the world's origin than `settings` holds
+/// ([`BackendSettings::max_origin`]: an f32 configuration's positions there move in whole
+/// tiles or more, so nothing it does means anything; its f64 build places the level exactly).
+pub fn origin_supported(settings: &dyn BackendSettings, level: &Level) -> Result<(), BackendError> {
+    let max = settings.max_origin();
+    if level.origin.abs().max_element() > max {
         return Err(BackendError::Unsupported {
-            backend,
+            backend: settings.backend(),
             feature: format!(
-                "a level origin of ({}, {}) tiles in f32 (beyond {} tiles an f32 position moves \
-                 in whole tiles; its f64 build runs it: --precision f64)",
+                "a level origin of ({}, {}) tiles in {} (this configuration holds to {max} tiles \
+                 from the world's origin; an f64 build places any origin to {} tiles exactly: \
+                 --precision f64)",
                 level.origin.x,
                 level.origin.y,
-                crate::limits::MAX_F32_ORIGIN
+                settings.precision().label(),
+                crate::limits::MAX_ORIGIN
             ),
             level: level.name.clone(),
         });
@@ -161,11 +158,9 @@ pub fn origin_supported(
 }
 
 /// Whether `settings` runs `level`: it models the level's features
-/// ([`BackendSettings::supports`]) and, in f32, the level is within
-/// [`crate::limits::MAX_F32_ORIGIN`] of the world's origin ([`origin_supported`]).
+/// ([`BackendSettings::supports`]) and holds the level's origin ([`origin_supported`]).
 pub fn runs(settings: &dyn BackendSettings, level: &Level) -> bool {
-    settings.supports(level)
-        && origin_supported(settings.backend(), settings.precision(), level).is_ok()
+    settings.supports(level) && origin_supported(settings, level).is_ok()
 }
 
 /// A character controller driving characters over one level.
@@ -361,6 +356,17 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     /// The precision this configuration keeps world positions in. Default: f32.
     fn precision(&self) -> Precision {
         Precision::F32
+    }
+    /// How far from the world's origin this configuration places a level, in tiles on each axis
+    /// (a level farther out is refused, [`origin_supported`]). Default: by
+    /// [`BackendSettings::precision`], [`crate::limits::MAX_F32_ORIGIN`] in f32 (beyond it an
+    /// f32 position moves in whole tiles), [`crate::limits::MAX_ORIGIN`] in f64 (every origin a
+    /// level can have).
+    fn max_origin(&self) -> f64 {
+        match self.precision() {
+            Precision::F32 => crate::limits::MAX_F32_ORIGIN,
+            Precision::F64 => crate::limits::MAX_ORIGIN,
+        }
     }
     /// This configuration built in `precision`, if it offers that precision besides its own
     /// (`None` otherwise: a caller keeps the configuration itself for its own precision).

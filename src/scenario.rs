@@ -133,8 +133,7 @@ impl<'a> Runner<'a> {
         run: &RunConfig,
         params: &MotionParams,
     ) -> Result<Box<dyn Backend>, BackendError> {
-        let (name, precision) = (run.backend.backend(), run.backend.precision());
-        crate::backend::origin_supported(name, precision, self.level)?;
+        crate::backend::origin_supported(&*run.backend, self.level)?;
         run.backend.build(self.level, params, &mut self.shared)
     }
 
