@@ -167,7 +167,7 @@ impl LevelColliders {
     /// Builds the colliders of `level`.
     pub fn new(level: &Level) -> Self {
         let mut obstacles = Vec::new();
-        let o = level.origin;
+        let o = level.origin_f32();
         let mut push = |shape: SharedShape, pose: Pose, one_way_top| {
             let aabb = shape.compute_aabb(&pose);
             obstacles.push(Obstacle {
@@ -263,7 +263,7 @@ impl MoveAndSlide {
         Ok(MoveAndSlide {
             colliders,
             ladders: level.features.ladders.then(|| level.geometry()),
-            origin: level.origin,
+            origin: level.origin_f32(),
             params,
             config,
             characters: Vec::new(),

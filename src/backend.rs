@@ -134,6 +134,35 @@ pub fn require_supported(
     }
 }
 
+/// Refuses a level placed farther from the world's origin than `settings` holds
+/// ([`BackendSettings::max_origin`]: an f32 configuration's positions there move in whole
+/// tiles or more, so nothing it does means anything; its f64 build places the level exactly).
+pub fn origin_supported(settings: &dyn BackendSettings, level: &Level) -> Result<(), BackendError> {
+    let max = settings.max_origin();
+    if level.origin.abs().max_element() > max {
+        return Err(BackendError::Unsupported {
+            backend: settings.backend(),
+            feature: format!(
+                "a level origin of ({}, {}) tiles in {} (this configuration holds to {max} tiles \
+                 from the world's origin; an f64 build places any origin to {} tiles exactly: \
+                 --precision f64)",
+                level.origin.x,
+                level.origin.y,
+                settings.precision().label(),
+                crate::limits::MAX_ORIGIN
+            ),
+            level: level.name.clone(),
+        });
+    }
+    Ok(())
+}
+
+/// Whether `settings` runs `level`: it models the level's features
+/// ([`BackendSettings::supports`]) and holds the level's origin ([`origin_supported`]).
+pub fn runs(settings: &dyn BackendSettings, level: &Level) -> bool {
+    settings.supports(level) && origin_supported(settings, level).is_ok()
+}
+
 /// A character controller driving characters over one level.
 pub trait Backend {
     /// Short backend name, as in CSV files (`sweep`, `rapier`).
@@ -241,12 +270,16 @@ impl Precision {
     }
 
     /// A point `local` (level coordinates, tiles) as a backend of this precision places it in the
-    /// world at `origin` and reads it back in level coordinates: rounded to this type's spacing
-    /// at the world position.
-    pub fn placed(self, local: glam::DVec2, origin: Vec2) -> glam::DVec2 {
+    /// world at `origin` (an f32 backend at `origin` rounded to the nearest f32, as
+    /// [`Level::origin_f32`]) and reads it back in level coordinates: rounded to this type's
+    /// spacing at the world position.
+    pub fn placed(self, local: glam::DVec2, origin: glam::DVec2) -> glam::DVec2 {
         match self {
-            Precision::F32 => ((local.as_vec2() + origin) - origin).as_dvec2(),
-            Precision::F64 => (local + origin.as_dvec2()) - origin.as_dvec2(),
+            Precision::F32 => {
+                let o = origin.as_vec2();
+                ((local.as_vec2() + o) - o).as_dvec2()
+            }
+            Precision::F64 => (local + origin) - origin,
         }
     }
 }
@@ -323,6 +356,17 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     /// The precision this configuration keeps world positions in. Default: f32.
     fn precision(&self) -> Precision {
         Precision::F32
+    }
+    /// How far from the world's origin this configuration places a level, in tiles on each axis
+    /// (a level farther out is refused, [`origin_supported`]). Default: by
+    /// [`BackendSettings::precision`], [`crate::limits::MAX_F32_ORIGIN`] in f32 (beyond it an
+    /// f32 position moves in whole tiles), [`crate::limits::MAX_ORIGIN`] in f64 (every origin a
+    /// level can have).
+    fn max_origin(&self) -> f64 {
+        match self.precision() {
+            Precision::F32 => crate::limits::MAX_F32_ORIGIN,
+            Precision::F64 => crate::limits::MAX_ORIGIN,
+        }
     }
     /// This configuration built in `precision`, if it offers that precision besides its own
     /// (`None` otherwise: a caller keeps the configuration itself for its own precision).

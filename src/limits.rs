@@ -4,7 +4,8 @@
 //! lists the same numbers.
 //!
 //! Why these numbers: they are generous multiples of what the stress matrix exercises (offsets
-//! to 1e7 tiles, dt 1e-4 to 0.2 s, speeds to 1000 tiles/s, widths 0.01 to 10 tiles), and
+//! to 1e7 tiles in f32 and 1e15 in f64, the level origin's limits; dt 1e-4 to 0.2 s, speeds to
+//! 1000 tiles/s, widths 0.01 to 10 tiles), and
 //! together they keep every quantity a run computes finite and its work proportional to the
 //! frames and tiles asked for: a fall under the largest gravity for the longest duration
 //! reaches `0.5 * 1e5 * 1e5^2 = 5e14` tiles, within f32 and far within the sweep's integer
@@ -27,10 +28,22 @@ pub const MAX_LEVEL_FRAMES: u64 = 50_000_000;
 pub const MAX_DURATION: f64 = 1e5;
 /// Smallest and largest time step, in seconds.
 pub const DT_RANGE: (f64, f64) = (1e-6, 1.0);
-/// Largest distance of a level's origin, a platform's corner or waypoint, a sine amplitude, a
-/// circle radius or an `expect_y` from zero, in tiles: beyond 1e7 an f32 position moves in whole
-/// tiles, and nothing a controller does there means anything.
+/// Largest distance of a platform's corner or waypoint, a sine amplitude, a circle radius or an
+/// `expect_y` from zero, in tiles: these are level coordinates, which every backend keeps in f32,
+/// and beyond 1e7 an f32 position moves in whole tiles, where nothing a controller does means
+/// anything.
 pub const MAX_COORD: f64 = 1e7;
+/// Largest distance of a level's origin from the world's origin, in tiles, on each axis: the
+/// offsets `platbench stress` measures f64 configurations at (f64 spacing 1/8 tile there). The
+/// origin is kept in f64, so anything up to this is placed exactly by an f64 configuration.
+pub const MAX_ORIGIN: f64 = 1e15;
+/// Largest distance of a level's origin from the world's origin, in tiles, at which an f32
+/// configuration runs it ([`crate::backend::BackendSettings::max_origin`]): beyond it an f32
+/// position's spacing is over a tile (1 tile at 1e7, 8 at 1e8), every f32 configuration
+/// measured has broken (`platbench stress`), and Rapier's f32 casts take seconds a step. Such a
+/// level is skipped by f32 configurations and runs on f64 ones (`--precision f64`); the sweep's
+/// integer positions, whose positions are whole subpixels, hold to 2^24 tiles.
+pub const MAX_F32_ORIGIN: f64 = 1e7;
 /// Smallest and largest character width or height, in tiles.
 pub const SIZE_RANGE: (f64, f64) = (1e-3, 1e3);
 /// Largest speed (a run speed, an initial velocity component, a ladder or platform speed), in

@@ -303,6 +303,7 @@ impl<'a> Runner<'a> {
         run: &RunConfig,
         params: &MotionParams,
     ) -> Result<Box<dyn Backend>, BackendError> {
+        crate::backend::origin_supported(&*run.backend, self.level)?;
         run.backend.build(self.level, params, &mut self.shared)
     }
 

@@ -58,13 +58,13 @@ fn base_value(name: &str) -> f64 {
 /// configuration measured has broken at or before 1e7 (or refuses the level: integer
 /// positions past 2^24 tiles, Box2D), and Rapier's f32 casts there take seconds a point. The
 /// offsets past it ([`F64_OFFSETS`]) are run on f64 configurations only.
-pub const F32_OFFSET_LIMIT: f64 = 1e7;
+pub const F32_OFFSET_LIMIT: f64 = crate::limits::MAX_F32_ORIGIN;
 
 /// The offsets past [`F32_OFFSET_LIMIT`] that f64 configurations are run at, up to 1e15 tiles
 /// (f64 spacing 1/8 tile there, where an f32 position is at 1e6: the f64 edge, if it is the
-/// same spacing as the f32 one, falls inside the range). The probe level's origin is an f32
-/// ([`Level::origin`]): 1e8 to 1e10 are exact in f32, 1e11 and beyond are placed at the
-/// nearest f32 (within 6e-8 of the value, 1e12 at 999,999,995,904), as far out all the same.
+/// same spacing as the f32 one, falls inside the range). The probe level's origin is f64
+/// ([`Level::origin`]), so each offset is placed exactly (1e12 at 1,000,000,000,000, where an
+/// f32 origin would be 999,999,995,904); [`crate::limits::MAX_ORIGIN`] is the last of them.
 pub const F64_OFFSETS: [f64; 8] = [1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15];
 
 /// The dimensions of DESIGN.md's stress matrix (the offset's values past [`F32_OFFSET_LIMIT`]
@@ -129,8 +129,9 @@ pub fn pairs() -> Vec<(Dimension, Dimension)> {
 /// One point of the matrix: the value of every dimension.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Case {
-    /// Offset of the probe level's origin from the world origin, in tiles (both axes).
-    pub offset: f32,
+    /// Offset of the probe level's origin from the world origin, in tiles (both axes), in f64 so
+    /// that the far offsets are exact ([`F64_OFFSETS`]).
+    pub offset: f64,
     /// Time step, in seconds.
     pub dt: f32,
     /// The fast mover's speed towards the wall, in tiles/s.
@@ -145,7 +146,7 @@ impl Case {
     /// The value of dimension `name` (0 for an unknown name).
     pub fn get(&self, name: &str) -> f64 {
         match name {
-            "offset" => self.offset as f64,
+            "offset" => self.offset,
             "dt" => self.dt as f64,
             "speed" => self.speed as f64,
             "width" => self.width as f64,
@@ -157,7 +158,7 @@ impl Case {
     /// This case with dimension `name` set to `v` (an unknown name changes nothing).
     pub fn with(mut self, name: &str, v: f64) -> Self {
         match name {
-            "offset" => self.offset = v as f32,
+            "offset" => self.offset = v,
             "dt" => self.dt = v as f32,
             "speed" => self.speed = v as f32,
             "width" => self.width = v as f32,
@@ -236,7 +237,7 @@ const RIDE_PERIOD: f32 = 4.0;
 /// `platforms` level measures that), which would hide every extreme behind it.
 /// Merged, the floor is one 300-tile box: long enough to matter, short of the thousands of tiles
 /// on which Rapier's rounded shapes sink (a separate finding).
-fn probe_level(offset: f32, with_platforms: bool) -> Level {
+fn probe_level(offset: f64, with_platforms: bool) -> Level {
     let (w, h) = (300u32, 40u32);
     let mut tiles = vec![Tile::Empty; (w * h) as usize];
     for i in 0..w {
@@ -246,7 +247,7 @@ fn probe_level(offset: f32, with_platforms: bool) -> Level {
         tiles[(j * w + 250) as usize] = Tile::Solid;
     }
     let mut l = Level::from_tiles("stress", w, h, tiles);
-    l.origin = Vec2::splat(offset);
+    l.origin = glam::DVec2::splat(offset);
     if with_platforms {
         for (x, amplitude) in [(12.0, Vec2::new(4.0, 0.0)), (30.0, Vec2::new(0.0, 2.0))] {
             l.platforms.push(Platform {
@@ -335,7 +336,7 @@ fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
 /// the one it moves.
 fn carry_drift(
     p: &Platform,
-    origin: Vec2,
+    origin: glam::DVec2,
     (grid, precision): (u32, Precision),
     trace: &crate::trace::Trace,
     dt: f32,
@@ -635,7 +636,7 @@ fn stuck_steps(
     run: &RunConfig,
     spec: &ScenarioSpec,
     trace: &crate::trace::Trace,
-    offset: f32,
+    offset: f64,
 ) -> f64 {
     let script = input_script(spec);
     let params = effective_params(&run.params, spec);
@@ -655,7 +656,7 @@ fn stuck_steps(
         // The trace holds level coordinates in f32: a step under their spacing cannot be seen
         // moving, whatever the configuration stores (it only matters in f64, where the world
         // spacing is finer than the trace's).
-        let x = offset as f64 + before.x as f64;
+        let x = offset + before.x as f64;
         let seen = Precision::F32.spacing(before.x as f64);
         if step.abs() < storage_unit(x, per_tile, run.backend.precision()).max(seen) {
             continue;

@@ -308,6 +308,73 @@ fn precision_runs_each_configuration_in_every_listed_precision_it_has_a_build_in
 }
 
 #[test]
+fn a_level_file_placed_1e12_tiles_out_runs_on_the_f64_configurations_and_skips_the_f32_ones() {
+    // Issue 22: a level file's origin is f64 (to 1e15 tiles), so 1e12 is placed exactly (as an
+    // f32 it would be 999,999,995,904). The f32 configurations refuse it (beyond 1e7 an f32
+    // position moves in whole tiles; limits::MAX_F32_ORIGIN) and say so; the f64 builds run it.
+    let dir = tempfile::tempdir().unwrap();
+    let text = |origin: &str| {
+        format!(
+            "name = \"far\"\n{origin}map = \"\"\"\n............\n............\n............\n############\n\"\"\"\n\
+             [[platform]]\nrect = [2.0, 2.0, 3.0, 0.5]\nsine = {{ amplitude = [3.0, 0.0], period = 4.0 }}\n\
+             [[scenario]]\nname = \"ride\"\nspawn = [3.5, 2.5]\nduration = 4.0\nride = 0\n\
+             [[scenario]]\nname = \"stand\"\nspawn = [9.5, 1.0]\nduration = 1.0\n"
+        )
+    };
+    let run = |name: &str, origin: &str| {
+        let level = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&level, text(origin)).unwrap();
+        let out_dir = dir.path().join(name);
+        let out = platbench()
+            .args(["run", "--precision", "f32,f64", "--backend", "sweep,rapier"])
+            .args(["--traces", "none", "--out"])
+            .arg(&out_dir)
+            .arg(&level)
+            .output()
+            .unwrap();
+        assert_success(&out);
+        let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
+        (String::from_utf8_lossy(&out.stderr).to_string(), metrics)
+    };
+    let (stderr, far) = run("far", "origin = [1e12, 1e12]\n");
+    let refused = "a level origin of (1000000000000, 1000000000000) tiles in f32";
+    assert!(
+        stderr.contains(&format!(
+            "skipped sweep default: the sweep backend does not support {refused}"
+        )),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("skipped rapier per-tile capsule:"),
+        "{stderr}"
+    );
+    // Only f64 configurations have rows: the two float sweeps' f64 mode and the 12 Rapier ones.
+    let config = |l: &str| l.split(',').nth(3).unwrap().to_string();
+    let mut configs: Vec<String> = far.lines().skip(1).map(config).collect();
+    configs.sort();
+    configs.dedup();
+    assert!(configs.iter().all(|c| c.ends_with(" f64")), "{configs:?}");
+    assert_eq!(configs.len(), 2 + 12, "{configs:?}");
+    // The f64 sweep there carries its rider as at the origin: within sqrt(2) f64 spacings at
+    // 1e12 (2^-13 tile) plus the trace's f32 rounding (the bound of tests/platforms.rs).
+    let (_, near) = run("near", "");
+    let value = |csv: &str, scenario: &str, config: &str, metric: &str| -> f64 {
+        csv.lines()
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .find(|f| f[1] == scenario && f[3] == config && f[4] == metric)
+            .unwrap_or_else(|| panic!("{scenario} {config} {metric}"))[5]
+            .parse()
+            .unwrap()
+    };
+    let bound = 2f64.sqrt() * 2f64.powi(-13) + 2f64.powi(-18);
+    let drift = value(&far, "ride", "default f64", "carry_drift");
+    assert!(drift <= bound, "carry_drift {drift} at 1e12");
+    assert!(value(&near, "ride", "default f64", "carry_drift") <= 1e-6);
+    // At the origin the f32 configurations run as always.
+    assert!(value(&near, "stand", "default", "rest_gap").abs() <= 1e-3);
+}
+
+#[test]
 fn bad_command_line_values_are_named() {
     for (args, needle) in [
         (vec!["run", "--dt", "nan"], "--dt"),

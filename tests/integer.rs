@@ -125,7 +125,7 @@ fn a_surface_off_the_grid_is_stood_on_rounded_up_to_its_subpixel() {
 fn far_from_the_origin_the_integer_mode_rests_exactly_where_the_float_mode_sinks() {
     // drops.drop_1 placed 1e7 tiles from the origin, where f32 positions are whole tiles apart.
     let mut l = level("drops");
-    l.origin = glam::Vec2::splat(1e7);
+    l.origin = glam::DVec2::splat(1e7);
     let spec = l
         .scenarios
         .iter()

@@ -215,3 +215,81 @@ fn a_rider_lifted_into_a_ceiling_is_crushed_on_the_move_that_squeezes_it() {
         assert_eq!(first_inside.crushed, 1, "{}: {first_inside:?}", run.label);
     }
 }
+
+#[test]
+fn the_sweep_in_f64_carries_as_the_float_mode_at_the_origin_and_1e12_tiles_out() {
+    use platbench::sweep::kind::{run_default, run_double};
+    // Every built-in level with moving platforms (issue 22: the f64 mode models them).
+    let levels = [level("platforms"), level("moving_wall"), level("elevator")];
+    let float = evaluate_all(&levels, &run_default());
+    let double = evaluate_all(&levels, &run_double());
+    let far: Vec<_> = levels
+        .iter()
+        .map(|l| {
+            let mut l = l.clone();
+            l.origin = glam::DVec2::splat(1e12);
+            l
+        })
+        .collect();
+    let double_far = evaluate_all(&far, &run_double());
+    assert_eq!((float.len(), double.len(), double_far.len()), (12, 12, 12));
+    for (f, d) in some_rows(&float, "carry_drift")
+        .into_iter()
+        .zip(rows(&double, "carry_drift"))
+    {
+        assert_eq!(f.scenario, d.scenario);
+        // At the origin both carry by the platform's own displacement; what drift they show is
+        // rounding: the float mode's of its f32 world positions (measured up to 2.1e-5 tiles,
+        // walk_on_platform), the f64 mode's only that of the trace's f32 level coordinates
+        // (measured up to 4.8e-7). Bounds: issue 5's 1e-4 on the difference (the float carry's
+        // own bound), and for f64 one f32 spacing at the levels' largest coordinate (under 64
+        // tiles: 2^-18).
+        assert!(
+            (f.value - d.value).abs() <= 1e-4,
+            "{}: {} {}",
+            f.scenario,
+            f.value,
+            d.value
+        );
+        assert!(
+            d.value <= 2f64.powi(-18),
+            "{}: f64 drift {}",
+            d.scenario,
+            d.value
+        );
+    }
+    for (d, x) in some_rows(&double, "carry_drift")
+        .into_iter()
+        .zip(rows(&double_far, "carry_drift"))
+    {
+        // 1e12 tiles out (f64 spacing 2^-13 there): the platform's corner is placed at the
+        // nearest f64 (half a spacing off its path on each axis) and the rider carried with it
+        // exactly, so against the exact path it shows at most one spacing per axis, sqrt(2)
+        // spacings on a diagonal, plus the trace's f32 rounding (2^-18). Measured up to 1.4e-4.
+        let bound = 2f64.sqrt() * 2f64.powi(-13) + 2f64.powi(-18);
+        assert!(
+            x.value <= bound,
+            "{}: drift {} at 1e12",
+            x.scenario,
+            x.value
+        );
+        assert_eq!(d.scenario, x.scenario);
+    }
+    // Whether a rider stays on, and whether it is crushed, do not change: equal everywhere.
+    for m in ["carry_airborne_frames", "crush_count"] {
+        let of = |e| rows(e, m).into_iter().map(|r| r.value).collect::<Vec<_>>();
+        assert_eq!(of(&float), of(&double), "{m}");
+        assert_eq!(of(&double), of(&double_far), "{m}");
+    }
+    // Frame by frame, the far run's trace follows the origin's: every move there is rounded
+    // to 2^-13 tile, and over a scenario those roundings add up to at most 1.9e-4 tiles
+    // (measured, walk_on_platform); the bound is the sweep's epsilon (1e-3), its own contact
+    // tolerance.
+    for (d, x) in double.iter().zip(&double_far) {
+        assert_eq!(d.1.trace.rows.len(), x.1.trace.rows.len(), "{}", d.0);
+        for (a, b) in d.1.trace.rows.iter().zip(&x.1.trace.rows) {
+            let off = (a.x - b.x).abs().max((a.y - b.y).abs());
+            assert!(off <= 1e-3, "{} frame {}: {off}", d.0, a.frame);
+        }
+    }
+}

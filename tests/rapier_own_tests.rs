@@ -20,7 +20,7 @@ fn ground_detection(colliders: ColliderBuilding, snap: bool) -> (f32, u32) {
     let mut tiles = vec![Tile::Solid; 2002];
     tiles.extend(vec![Tile::Empty; 2002]);
     let mut level = Level::from_tiles("ground", 2002, 2, tiles);
-    level.origin = Vec2::new(-1001.0, -1.0);
+    level.origin = glam::DVec2::new(-1001.0, -1.0);
     let config = RapierConfig {
         colliders,
         shape: CharacterShape::Ball,

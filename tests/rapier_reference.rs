@@ -33,7 +33,7 @@ fn floor(width: u32, left: f32) -> Level {
     let mut tiles = vec![Tile::Solid; width as usize];
     tiles.extend(vec![Tile::Empty; width as usize * 3]);
     let mut level = Level::from_tiles("floor", width, 4, tiles);
-    level.origin = Vec2::new(left, -1.0);
+    level.origin = Vec2::new(left, -1.0).as_dvec2();
     level
 }
 
@@ -60,7 +60,7 @@ fn walk_fed(
     still_when_grounded: bool,
 ) -> Walk {
     let mut b = RapierBackend::new(level, MotionParams::default(), config).unwrap();
-    let spawn = Vec2::new(x - level.origin.x, 1.0 + h);
+    let spawn = Vec2::new(x - level.origin_f32().x, 1.0 + h);
     let id = b
         .add_character(CharacterSpec {
             spawn,

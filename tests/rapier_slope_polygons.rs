@@ -68,7 +68,7 @@ fn per_tile_slope_polygons_are_the_tile_cut_by_the_line() {
             let pts: Vec<Vec2> = poly
                 .points()
                 .iter()
-                .map(|p| pose.transform_point(*p) - level.origin)
+                .map(|p| pose.transform_point(*p) - level.origin_f32())
                 .collect();
             let centroid = pts.iter().copied().sum::<Vec2>() / pts.len() as f32;
             let (i, j) = (centroid.x.floor() as i64, centroid.y.floor() as i64);

@@ -212,7 +212,7 @@ fn rapier_fed_as_advised_walks_alone_and_breaks_progress_at_1e5_with_dt_1_240() 
         let point = Point {
             run: run.clone(),
             case,
-            dimension: ("offset", case.offset as f64),
+            dimension: ("offset", case.offset),
             dimension2: Some(("dt", case.dt as f64)),
         };
         let rows = run_point(&point).unwrap();
@@ -294,8 +294,8 @@ fn the_sweep_in_f64_holds_to_1e13_tiles_and_breaks_where_its_spacing_swallows_a_
     let rows = stress_matrix(&[platbench::sweep::kind::run_double()], |_| {}).unwrap();
     // The float sweep breaks at 1e7 (f32 spacing 1 tile; the first test above). In f64 the
     // same rules and epsilon keep every invariant at every offset to 1e13 (f64 spacing 1/512
-    // there, under the 1e-3 epsilon) and at every other extreme of the matrix; it models no
-    // moving platforms yet, so it has no carry row.
+    // there, under the 1e-3 epsilon) and at every other extreme of the matrix, the carry on
+    // both moving platforms included (issue 22: the f64 mode models them).
     for v in [0.0, 1e5, 1e6, 1e7, 1e8, 1e10, 1e12, 1e13] {
         assert!(holds(&rows, "offset", v, &[]), "offset {v}");
     }
@@ -309,7 +309,11 @@ fn the_sweep_in_f64_holds_to_1e13_tiles_and_breaks_where_its_spacing_swallows_a_
             assert!(holds(&rows, dim, v, &[]), "{dim} {v}");
         }
     }
-    assert!(rows.iter().all(|r| r.invariant != "carry_no_drift"));
+    // A carry row at every value of every dimension (offsets to 1e15, dt, speed, width,
+    // epsilon: 14 + 5 + 3 + 5 + 5), every one holding (the carry test below has the figures).
+    let carry = |r: &&StressRow| r.dimension2.is_empty() && r.invariant == "carry_no_drift";
+    assert_eq!(rows.iter().filter(carry).count(), 14 + 5 + 3 + 5 + 5);
+    assert!(rows.iter().filter(carry).all(|r| r.holds));
     // At 1e14 the f64 spacing is 1/64 tile: the 0.1-tile walking step is 6.4 spacings and
     // rounds to 6, a walk of 6/6.4 = 0.9375 of its distance, under PROGRESS_MIN (0.99), as
     // Rapier's in f64 and the f32 sweep's where its own spacing is as coarse (1e5 at 1/240 s).
@@ -318,4 +322,43 @@ fn the_sweep_in_f64_holds_to_1e13_tiles_and_breaks_where_its_spacing_swallows_a_
         .find(|r| r.dimension2.is_empty() && r.value == 1e14 && r.invariant == "progress")
         .unwrap();
     assert!(!p.holds && (p.measured - 0.9375).abs() < 0.005, "{p:?}");
+}
+
+/// The `carry_no_drift` row of `run` alone at `offset` (the base case elsewhere).
+fn carry_at(run: &platbench::scenario::RunConfig, offset: f64) -> StressRow {
+    use platbench::stress::{run_point, Point, BASE};
+    let point = Point {
+        run: run.clone(),
+        case: BASE.with("offset", offset),
+        dimension: ("offset", offset),
+        dimension2: None,
+    };
+    run_point(&point)
+        .unwrap()
+        .into_iter()
+        .find(|r| r.invariant == "carry_no_drift")
+        .unwrap_or_else(|| panic!("{}: no carry row at {offset}", run.label))
+}
+
+#[test]
+fn the_sweep_in_f64_carries_its_riders_at_1e13_tiles_where_the_f32_sweep_loses_them_at_1e7() {
+    use platbench::sweep::kind::{run_default, run_double};
+    // The f64 mode moves its platforms along their path placed at the origin in f64 and carries
+    // the rider by the same f64 displacement: the rider never moves on its platform. Measured
+    // (`platbench stress`): drift 4.8e-7 tiles at every offset to 1e9, 0 from 1e10 to 1e15.
+    // 4.8e-7 is one f32 spacing at the rides' heights (4 to 8 tiles: 2^-21), the rounding of
+    // the trace's f32 level coordinates, not a move; the bound 1e-6 is two of them.
+    for offset in [0.0, 1e6, 1e7, 1e13] {
+        let r = carry_at(&run_double(), offset);
+        assert!(r.holds && r.measured <= 1e-6, "f64 at {offset}: {r:?}");
+    }
+    // The f32 sweep holds at 1e6 (f32 spacing 1/16 tile; drift 0 measured) and loses its riders
+    // at 1e7 (spacing 1 tile: a platform's step of under 0.11 tile rounds to nothing, so the
+    // rider is left where the platform leaves it): drift 1504 tiles measured, against an
+    // allowance of 2.0 (two of the placed platform's one-tile steps). The f32 sweep is not run
+    // past 1e7 (`stress::F32_OFFSET_LIMIT`); run alone at 1e13 its carry reads 0 only because
+    // the platform placed in f32 (spacing 2^20 tiles) does not move either.
+    assert!(carry_at(&run_default(), 1e6).holds);
+    let r = carry_at(&run_default(), 1e7);
+    assert!(!r.holds && r.measured > 100.0, "f32 at 1e7: {r:?}");
 }

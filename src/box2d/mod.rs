@@ -265,7 +265,7 @@ impl Box2dBackend {
             frame: 0,
             time: 0.0,
             ladders: level.features.ladders.then(|| level.geometry()),
-            origin: level.origin,
+            origin: level.origin_f32(),
             params,
             config,
             characters: Vec::new(),

@@ -105,7 +105,7 @@ impl LevelWorld {
             "box2d ground body",
             world.create_body(b2("box2d body", foundation.body_builder().build())?),
         )?;
-        let origin = level.origin;
+        let origin = level.origin_f32();
         let solid = b2(
             "box2d shape",
             ShapeDef::builder().filter(filter(SOLID)).build(),

@@ -248,7 +248,13 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
     let scenarios: usize = levels.iter().map(|l| l.scenarios.len()).sum();
     let total: usize = levels
         .iter()
-        .map(|l| l.scenarios.len() * configs.iter().filter(|c| c.backend.supports(l)).count())
+        .map(|l| {
+            l.scenarios.len()
+                * configs
+                    .iter()
+                    .filter(|c| crate::backend::runs(&*c.backend, l))
+                    .count()
+        })
         .sum();
     let skipped_runs = scenarios * configs.len() - total;
     // Timing measures one thread with nothing else running beside it.
@@ -440,7 +446,10 @@ fn execute<'a>(
     let total: usize = levels
         .iter()
         .map(|l| {
-            let modelled = configs.iter().filter(|c| c.backend.supports(l)).count();
+            let modelled = configs
+                .iter()
+                .filter(|c| crate::backend::runs(&*c.backend, l))
+                .count();
             l.scenarios.len() * modelled
         })
         .sum();
@@ -452,7 +461,10 @@ fn execute<'a>(
     let group_of: Vec<usize> = levels
         .iter()
         .map(|l| {
-            let set: Vec<bool> = configs.iter().map(|c| c.backend.supports(l)).collect();
+            let set: Vec<bool> = configs
+                .iter()
+                .map(|c| crate::backend::runs(&*c.backend, l))
+                .collect();
             match groups.iter().position(|g| *g == set) {
                 Some(i) => i,
                 None => {

@@ -22,7 +22,7 @@ pub use tiled::{
     TiledImport, TiledWarning,
 };
 
-use glam::Vec2;
+use glam::{DVec2, Vec2};
 use parry2d::bounding_volume::Aabb;
 
 /// What one grid cell holds.
@@ -311,9 +311,11 @@ pub struct Level {
     /// Height in tiles.
     pub height: u32,
     /// Where the level's corner (tile (0, 0)'s lower left) sits in the backends' world, in
-    /// tiles. Controllers compute in world coordinates, where f32 rounding depends on the
-    /// magnitude; traces and metrics stay in level coordinates. Default: the origin.
-    pub origin: Vec2,
+    /// tiles, in f64 so that a far offset is exact (1e12 is not an f32). Controllers compute in
+    /// world coordinates, where rounding depends on the magnitude: an f32 backend places the
+    /// level at this origin rounded to the nearest f32 ([`Level::origin_f32`]), an f64 backend
+    /// at the origin itself; traces and metrics stay in level coordinates. Default: the origin.
+    pub origin: DVec2,
     /// Tiles row by row from the bottom (`j * width + i`).
     tiles: Vec<Tile>,
     /// What the level contains.
@@ -343,12 +345,19 @@ impl Level {
             source: format!("builtin:{name}"),
             width,
             height,
-            origin: Vec2::ZERO,
+            origin: DVec2::ZERO,
             tiles,
             features,
             scenarios: Vec::new(),
             platforms: Vec::new(),
         }
+    }
+
+    /// The origin as an f32 backend places the level: [`Level::origin`] rounded to the nearest
+    /// f32 (exact for every origin a level file could give before origins were f64, up to 1e7
+    /// tiles).
+    pub fn origin_f32(&self) -> Vec2 {
+        self.origin.as_vec2()
     }
 
     /// A copy of the level's geometry without its scenarios, for a backend to keep.

@@ -158,9 +158,10 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
     level.description = raw.description.unwrap_or_default();
     if let Some(o) = &raw.origin {
         let [x, y] = *o.get_ref();
-        level.origin = Vec2::new(
-            coord(&loc, &o.span(), "origin x", x)?,
-            coord(&loc, &o.span(), "origin y", y)?,
+        let range = (-limits::MAX_ORIGIN, limits::MAX_ORIGIN);
+        level.origin = glam::DVec2::new(
+            ranged_f64(&loc, &o.span(), "origin x", x, range, "tiles")?,
+            ranged_f64(&loc, &o.span(), "origin y", y, range, "tiles")?,
         );
     }
     level.source = file.to_string();
@@ -584,6 +585,18 @@ fn ranged(
     range: (f64, f64),
     unit: &str,
 ) -> Result<f32, LevelError> {
+    ranged_f64(loc, span, what, v, range, unit).map(|v| v as f32)
+}
+
+/// [`ranged`] kept in f64 (a level's origin, exact far beyond what an f32 holds).
+fn ranged_f64(
+    loc: &Locator,
+    span: &Range<usize>,
+    what: &str,
+    v: f64,
+    range: (f64, f64),
+    unit: &str,
+) -> Result<f64, LevelError> {
     if !limits::within(v, range) {
         let lo = if range.0 == f64::MIN_POSITIVE {
             "0 < ".to_string()
@@ -595,7 +608,7 @@ fn ranged(
             format!("{what} is {v}; expected {lo}{what} <= {} ({unit})", range.1),
         ));
     }
-    Ok(v as f32)
+    Ok(v)
 }
 
 /// A coordinate or length within [`limits::MAX_COORD`] of zero, in tiles.
@@ -928,5 +941,39 @@ inputs = [ { t = 0.0, right = true }, { t = 0.5, right = false } ]
     fn empty_map_is_an_error() {
         let e = err("map = \"\"\n");
         assert!(e.message.contains("empty"), "{e}");
+    }
+
+    #[test]
+    fn an_origin_is_exact_in_f64_up_to_1e15_tiles_and_an_error_beyond() {
+        let with =
+            |o: &str| format!("name = \"t\"\norigin = {o}\nmap = \"\"\"\n....\n####\n\"\"\"\n");
+        // 1e12 and 1e15 - 0.125 are not f32s (the nearest are 999,999,995,904 and
+        // 999,999,986,991,104): kept exactly, for an f64 backend to place the level there.
+        let l = parse_level(&with("[1e12, -999999999999999.875]"), "o.toml").unwrap();
+        assert_eq!(l.origin, glam::DVec2::new(1e12, -(1e15 - 0.125)));
+        // Within 1e7 the f32 backends' origin is the one they always had (the f32 nearest).
+        let l = parse_level(&with("[1234.5, 0.1]"), "o.toml").unwrap();
+        assert_eq!(l.origin_f32(), Vec2::new(1234.5, 0.1f32));
+        // Beyond limits::MAX_ORIGIN (1e15, the stress matrix's largest offset): located, with
+        // the range expected.
+        for (o, what) in [
+            ("[2e15, 0.0]", "origin x"),
+            ("[0.0, -1e16]", "origin y"),
+            ("[nan, 0.0]", "origin x"),
+        ] {
+            let e = parse_level(&with(o), "o.toml").unwrap_err();
+            assert_eq!(
+                (e.file.as_str(), e.line, e.column),
+                ("o.toml", 2, 10),
+                "{e}"
+            );
+            assert!(e.message.starts_with(&format!("{what} is ")), "{e}");
+            assert!(
+                e.message.contains(&format!(
+                    "expected -1000000000000000 <= {what} <= 1000000000000000 (tiles)"
+                )),
+                "{e}"
+            );
+        }
     }
 }

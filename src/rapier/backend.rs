@@ -8,7 +8,7 @@ use std::rc::Rc;
 
 use glam::Vec2;
 
-use super::precision::{back, engine, s, v, Real, Vect};
+use super::precision::{back, engine, level_origin, s, v, Real, Vect};
 use super::precision::{ladder_enter, ladder_leave, NAME};
 use super::{
     one_way_top, CharacterShape, GroundedMove, Length, PlatformCarry, PlatformOrder, Platforms,
@@ -161,7 +161,7 @@ impl RapierBackend {
             platforms,
             frame: 0,
             ladders: level.features.ladders.then(|| level.geometry()),
-            origin: v(level.origin),
+            origin: level_origin(level),
             dispatcher: DefaultQueryDispatcher,
             controller,
             params,

@@ -2,7 +2,7 @@
 //! `BroadPhaseBvh`. Compiled once per precision (`super::precision`): on rapier2d for
 //! [`crate::rapier`], on rapier2d-f64 for [`crate::rapier::double`].
 
-use super::precision::{engine, top_bits, top_from_bits, v, Real, Vect};
+use super::precision::{engine, level_origin, top_bits, top_from_bits, v, Real, Vect};
 use engine::prelude::{
     BroadPhaseBvh, Collider, ColliderBuilder, ColliderHandle, ColliderSet, IntegrationParameters,
     RigidBodySet,
@@ -32,7 +32,7 @@ impl StaticWorld {
             ColliderBuilding::PerTile => level.solid_boxes().collect::<Vec<_>>(),
             ColliderBuilding::Merged => level.merged_solid_rects(),
         };
-        let origin = v(level.origin);
+        let origin = level_origin(level);
         let mut colliders = ColliderSet::new();
         let mut handles: Vec<ColliderHandle> = rects
             .iter()

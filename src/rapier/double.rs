@@ -56,6 +56,11 @@ mod precision {
     pub fn s(x: f32) -> Real {
         x as f64
     }
+    /// Where `level`'s corner sits in the engine's world: its f64 origin, exactly.
+    #[inline]
+    pub fn level_origin(level: &crate::level::Level) -> Vect {
+        level.origin
+    }
     /// A one-way top's bits, for a collider's `user_data`.
     pub fn top_bits(top: Real) -> u128 {
         top.to_bits() as u128

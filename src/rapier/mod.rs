@@ -60,6 +60,12 @@ mod precision {
     pub fn s(x: f32) -> Real {
         x
     }
+    /// Where `level`'s corner sits in the engine's world: its f64 origin rounded to the nearest
+    /// f32 ([`crate::level::Level::origin_f32`]).
+    #[inline]
+    pub fn level_origin(level: &crate::level::Level) -> Vect {
+        level.origin_f32()
+    }
     /// A one-way top's bits, for a collider's `user_data`.
     pub fn top_bits(top: Real) -> u128 {
         top.to_bits() as u128

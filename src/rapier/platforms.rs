@@ -5,7 +5,7 @@
 //! it also gives each body the velocity Rapier's character controller reads to carry riders.
 //! Compiled once per precision (`super::precision`).
 
-use super::precision::{engine, s, v, Vect};
+use super::precision::{engine, level_origin, s, v, Vect};
 use engine::prelude::{
     CCDSolver, ColliderBuilder, ImpulseJointSet, IntegrationParameters, IslandManager,
     MultibodyJointSet, NarrowPhase, PhysicsPipeline, RigidBodyBuilder, RigidBodyHandle,
@@ -37,7 +37,10 @@ impl Platforms {
         let mut bodies = Vec::with_capacity(level.platforms.len());
         for p in &level.platforms {
             let b = p.aabb(0.0);
-            let (mins, maxs) = (v(b.mins) + v(level.origin), v(b.maxs) + v(level.origin));
+            let (mins, maxs) = (
+                v(b.mins) + level_origin(level),
+                v(b.maxs) + level_origin(level),
+            );
             let body = world.bodies.insert(
                 RigidBodyBuilder::kinematic_position_based()
                     .translation(mins.midpoint(maxs))
@@ -55,7 +58,7 @@ impl Platforms {
         }
         let mut platforms = Platforms {
             specs: level.platforms.clone(),
-            origin: v(level.origin),
+            origin: level_origin(level),
             bodies,
             pipeline: PhysicsPipeline::new(),
             params: IntegrationParameters::default(),

@@ -91,7 +91,7 @@ impl StaticTiles {
         let mut kinds = Vec::new();
         for b in level.solid_boxes() {
             let under = level.supports_slope(b.mins.x as i64, b.mins.y as i64);
-            boxes.push(b.translated(level.origin));
+            boxes.push(b.translated(level.origin_f32()));
             kinds.push(if under {
                 BoxKind::UnderSlope
             } else {
@@ -100,7 +100,7 @@ impl StaticTiles {
         }
         if level.features.one_way || level.features.ladders {
             for b in level.one_way_boxes() {
-                boxes.push(b.translated(level.origin));
+                boxes.push(b.translated(level.origin_f32()));
                 kinds.push(BoxKind::OneWay);
             }
         }

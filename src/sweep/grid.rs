@@ -265,7 +265,7 @@ mod tests {
             t[(j * w + 10) as usize] = Tile::Solid;
         }
         let mut l = Level::from_tiles("room", w, h, t);
-        l.origin = origin;
+        l.origin = origin.as_dvec2();
         (StaticTiles::new(&l), Grid::new(16, origin, "room").unwrap())
     }
 

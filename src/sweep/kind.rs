@@ -36,7 +36,7 @@ impl BackendSettings for SweepConfig {
             Positions::Float => SweepBackend::SUPPORTED,
             Positions::Double => DOUBLE_SUPPORTED,
             Positions::Integer { per_tile } => {
-                if super::grid::Grid::new(per_tile, level.origin, &level.name).is_err() {
+                if super::grid::Grid::new(per_tile, level.origin_f32(), &level.name).is_err() {
                     return false;
                 }
                 INTEGER_SUPPORTED
@@ -95,6 +95,17 @@ impl BackendSettings for SweepConfig {
         match self.positions {
             Positions::Double => Precision::F64,
             _ => Precision::F32,
+        }
+    }
+
+    /// Integer positions hold to 2^24 tiles ([`super::grid::MAX_GRID_EXTENT`]: their tile faces
+    /// are f32, exact that far, and their positions whole subpixels, which an f32 spacing over a
+    /// tile does not touch); the float and f64 modes by their precision.
+    fn max_origin(&self) -> f64 {
+        match self.positions {
+            Positions::Integer { .. } => super::grid::MAX_GRID_EXTENT,
+            Positions::Float => crate::limits::MAX_F32_ORIGIN,
+            Positions::Double => crate::limits::MAX_ORIGIN,
         }
     }
 
@@ -322,5 +333,56 @@ impl BackendKind for SweepKind {
             out.push("sweep penetration_beyond_declared at a too-steep slope: the climb limit is tested on the centre column, so the box stops with its centre at the foot of the steep rise and its leading half inside it (0.4 sin(63.4 degrees) = 0.36 tiles deep on the 63.4-degree ramp, 0.07 beyond the 0.28 a walkable ramp gives); the seed's alternative, colliding the higher side like a solid box, is not modelled.".into());
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::backend::{origin_supported, runs};
+    use crate::level::Tile;
+
+    #[test]
+    fn each_mode_holds_the_origins_its_storage_places_and_refuses_farther() {
+        let level = |o: f64| {
+            let mut l = Level::from_tiles(
+                "l",
+                2,
+                2,
+                vec![Tile::Solid, Tile::Solid, Tile::Empty, Tile::Empty],
+            );
+            l.origin = glam::DVec2::new(o, 0.0);
+            l
+        };
+        let float = SweepConfig::default();
+        let double = SweepConfig {
+            positions: Positions::Double,
+            ..float.clone()
+        };
+        let integer = SweepConfig {
+            positions: Positions::Integer { per_tile: 32 },
+            ..float.clone()
+        };
+        // Float: to limits::MAX_F32_ORIGIN (1e7, f32 spacing 1 tile); integer positions to
+        // 2^24 (their f32 tile faces' exact extent); f64 to limits::MAX_ORIGIN (1e15).
+        for (o, f, i, d) in [
+            (1e7, true, true, true),
+            (1.6e7, false, true, true),
+            (2e7, false, false, true),
+            (1e15, false, false, true),
+            (2e15, false, false, false),
+        ] {
+            let l = level(o);
+            assert_eq!(origin_supported(&float, &l).is_ok(), f, "float at {o}");
+            assert_eq!(runs(&integer, &l), i, "integer at {o}");
+            assert_eq!(runs(&double, &l), d, "f64 at {o}");
+        }
+        let e = origin_supported(&float, &level(-2e7))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("a level origin of (-20000000, 0) tiles in f32"),
+            "{e}"
+        );
     }
 }

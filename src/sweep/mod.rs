@@ -61,17 +61,13 @@ pub enum Positions {
     },
     /// f64 world coordinates with the seed's epsilon tolerance: the float mode's rules, every
     /// move swept and snapped in f64 ([`resolve::move_axis_f64`]), for levels far from the
-    /// world's origin. Moving platforms are not modelled yet in this mode (refused).
+    /// world's origin. Moving platforms follow their path in level coordinates placed at the
+    /// origin in f64, and carry, push and crush by f64 displacements ([`platforms`]).
     Double,
 }
 
-/// The features the f64 mode models (no moving platforms yet).
-pub const DOUBLE_SUPPORTED: Features = Features {
-    slopes: true,
-    one_way: true,
-    ladders: true,
-    moving_platforms: false,
-};
+/// The features the f64 mode models: all of them.
+pub const DOUBLE_SUPPORTED: Features = Features::ALL;
 
 /// The features the integer mode models.
 pub const INTEGER_SUPPORTED: Features = Features {
@@ -175,8 +171,9 @@ pub struct SweepBackend {
     /// The level's grid, for the per-column feature rules (slopes).
     level: Level,
     stats: SweepStats,
-    /// The level's corner in the world.
-    origin: Vec2,
+    /// The level's corner in the world, tiles (the float mode places the level at it rounded
+    /// to f32, the f64 mode at it exactly).
+    origin: glam::DVec2,
     params: MotionParams,
     config: SweepConfig,
     /// The subpixel grid, in integer mode.
@@ -203,7 +200,7 @@ impl SweepBackend {
         let grid = match config.positions {
             Positions::Float | Positions::Double => None,
             Positions::Integer { per_tile } => {
-                Some(Grid::new(per_tile, level.origin, &level.name)?)
+                Some(Grid::new(per_tile, level.origin_f32(), &level.name)?)
             }
         };
         params.validate()?;
@@ -225,7 +222,7 @@ impl SweepBackend {
         // places them at the origin in f64.
         let tiles = if config.positions == Positions::Double {
             let mut local = level.geometry();
-            local.origin = Vec2::ZERO;
+            local.origin = glam::DVec2::ZERO;
             StaticTiles::new(&local)
         } else {
             StaticTiles::new(level)
@@ -235,6 +232,7 @@ impl SweepBackend {
             platforms: platforms::Platforms::new(
                 level,
                 grid.as_ref(),
+                config.positions == Positions::Double,
                 config.rider_follow,
                 params.gravity,
             ),
@@ -264,6 +262,8 @@ struct World<'a> {
     platform_boxes: &'a [(Aabb, BoxKind)],
     /// Moving platforms' boxes at the current frame on the subpixel grid (integer mode).
     platform_grid: &'a [(GridBox, BoxKind)],
+    /// Moving platforms' boxes at the current frame in f64 world tiles (f64 mode).
+    platform_double: &'a [(space::Rect<f64>, BoxKind)],
     level: &'a Level,
     params: &'a MotionParams,
     /// `tan(max_climb_angle)`.
@@ -300,8 +300,8 @@ impl Backend for SweepBackend {
                 .grid
                 .map(|g| GridPos::spawn(&g, spec.spawn, spec.size))
                 .unwrap_or_default(),
-            pos: spec.spawn + self.origin,
-            pos64: spec.spawn.as_dvec2() + self.origin.as_dvec2(),
+            pos: spec.spawn + self.origin.as_vec2(),
+            pos64: spec.spawn.as_dvec2() + self.origin,
             size: spec.size,
             motion: MotionState::with_velocity(spec.velocity),
             ground_normal: Vec2::ZERO,
@@ -317,6 +317,7 @@ impl Backend for SweepBackend {
             tiles: &self.tiles,
             platform_boxes: &self.platforms.boxes,
             platform_grid: &self.platforms.grid_boxes,
+            platform_double: &self.platforms.double_boxes,
             level: &self.level,
             params: &self.params,
             climb_gradient: self.climb_gradient,
@@ -328,14 +329,14 @@ impl Backend for SweepBackend {
             None if self.config.positions == Positions::Double => {
                 let s = DoubleSpace {
                     eps: self.config.epsilon,
-                    origin: self.origin.as_dvec2(),
+                    origin: self.origin,
                 };
                 step_all(&s, &w, stats, characters, inputs, dt)
             }
             None => {
                 let s = FloatSpace {
                     eps: self.config.epsilon,
-                    origin: self.origin,
+                    origin: self.origin.as_vec2(),
                 };
                 step_all(&s, &w, stats, characters, inputs, dt)
             }
@@ -350,10 +351,17 @@ impl Backend for SweepBackend {
                     let s = GridSpace { grid };
                     self.platforms.step(&s, tiles, characters, t1, dt)
                 }
+                None if self.config.positions == Positions::Double => {
+                    let s = DoubleSpace {
+                        eps: self.config.epsilon,
+                        origin: self.origin,
+                    };
+                    self.platforms.step(&s, tiles, characters, t1, dt)
+                }
                 None => {
                     let s = FloatSpace {
                         eps: self.config.epsilon,
-                        origin: self.origin,
+                        origin: self.origin.as_vec2(),
                     };
                     self.platforms.step(&s, tiles, characters, t1, dt)
                 }
@@ -368,9 +376,9 @@ impl Backend for SweepBackend {
             pos: match &self.grid {
                 Some(g) => g.feet(&c.on_grid.b),
                 None if self.config.positions == Positions::Double => {
-                    (c.pos64 - self.origin.as_dvec2()).as_vec2()
+                    (c.pos64 - self.origin).as_vec2()
                 }
-                None => c.pos - self.origin,
+                None => c.pos - self.origin.as_vec2(),
             },
             vel: c.motion.vel,
             grounded: c.motion.grounded,

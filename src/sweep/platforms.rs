@@ -16,13 +16,16 @@
 //! the platform, so a rider stays on an elevator that turns from up to down.
 //!
 //! Written once over [`Space`]: in float the platforms follow their exact path and the moves
-//! are f32 with the seed's epsilon; on the subpixel grid a platform's box is its path rounded to
+//! are f32 with the seed's epsilon; in f64 ([`super::Positions::Double`]) they follow the same
+//! path (its f32 level coordinates, the float mode's at the origin) placed at the level's origin
+//! in f64, and the moves are f64 with the same epsilon, so a platform far from the origin moves
+//! as one at the origin does, up to the f64 spacing there; on the subpixel grid a platform's box is its path rounded to
 //! the nearest subpixel at each step ([`crate::level::Platform::grid_box`]: its motion stays a
 //! function of time, a step's move is the difference of two rounded positions, so no rounding
 //! accumulates), and riders are carried, characters pushed and crushes found in whole
 //! subpixels, as Celeste's and TowerFall's solids move their actors.
 
-use glam::Vec2;
+use glam::{DVec2, Vec2};
 use parry2d::bounding_volume::Aabb;
 
 use super::broadphase::{BoxKind, StaticTiles};
@@ -34,14 +37,15 @@ use crate::level::Platform;
 /// A platform's motion and where it is.
 pub struct PlatformState {
     spec: Platform,
-    origin: Vec2,
+    /// The level's corner in the world, tiles.
+    origin: DVec2,
     /// Its downward speed during the last step, in tiles/s (0 when rising or level).
     down_speed: f32,
 }
 
 impl PlatformState {
     /// The platform at t = 0, placed at the level's origin.
-    pub fn new(spec: &Platform, origin: Vec2) -> Self {
+    pub fn new(spec: &Platform, origin: DVec2) -> Self {
         PlatformState {
             spec: spec.clone(),
             origin,
@@ -49,9 +53,25 @@ impl PlatformState {
         }
     }
 
-    /// Its box in the world at time `t`.
+    /// Its box in the world at time `t`, in f32 (the float mode): its box in level
+    /// coordinates placed at the origin rounded to f32.
     pub(super) fn aabb(&self, t: f64) -> Aabb {
-        self.spec.aabb(t).translated(self.origin)
+        self.spec.aabb(t).translated(self.origin.as_vec2())
+    }
+
+    /// Its box in the world at time `t`, in f64 (the f64 mode): its corner in level coordinates
+    /// ([`Platform::position`], the float mode's at the origin) placed at the origin in f64,
+    /// rounded once to the f64 spacing at the world position, and its size added in f64. The
+    /// far faces are not the float mode's f32 sums: a rider carried by the corner's exact f64
+    /// moves stays exactly on the top `corner + height` (an f32-rounded top would sit up to half
+    /// an f32 spacing off it, more than an epsilon of 1e-7 tile, and the rider would fall
+    /// through).
+    pub(super) fn aabb_f64(&self, t: f64) -> Rect<f64> {
+        let min = self.spec.position(t).as_dvec2() + self.origin;
+        Rect {
+            min: min.to_array(),
+            max: (min + self.spec.size.as_dvec2()).to_array(),
+        }
     }
 
     /// Its box on `grid` at time `t`, in world subpixels: its path rounded to the nearest
@@ -73,6 +93,8 @@ pub(super) struct Platforms {
     pub boxes: Vec<(Aabb, BoxKind)>,
     /// Their boxes at the current frame on the subpixel grid (integer mode; empty otherwise).
     pub grid_boxes: Vec<(GridBox, BoxKind)>,
+    /// Their boxes at the current frame in f64 world tiles (f64 mode; empty otherwise).
+    pub double_boxes: Vec<(Rect<f64>, BoxKind)>,
     /// How a rider follows a descending platform.
     pub rule: RiderFollow,
     /// Gravity, tiles/s² (for [`RiderFollow::Gravity`]).
@@ -80,10 +102,12 @@ pub(super) struct Platforms {
 }
 
 impl Platforms {
-    /// `level`'s platforms at t = 0 (on `grid` too, in integer mode).
+    /// `level`'s platforms at t = 0 (on `grid` too, in integer mode; in f64 too when
+    /// `double`).
     pub fn new(
         level: &crate::level::Level,
         grid: Option<&Grid>,
+        double: bool,
         rule: RiderFollow,
         gravity: f32,
     ) -> Self {
@@ -100,7 +124,7 @@ impl Platforms {
             .platforms
             .iter()
             .enumerate()
-            .map(|(i, p)| (p.aabb(0.0).translated(level.origin), kind(i, p)))
+            .map(|(i, p)| (p.aabb(0.0).translated(level.origin_f32()), kind(i, p)))
             .collect();
         let grid_boxes = match grid {
             Some(g) => states
@@ -110,10 +134,19 @@ impl Platforms {
                 .collect(),
             None => Vec::new(),
         };
+        let double_boxes = match double {
+            true => states
+                .iter()
+                .enumerate()
+                .map(|(i, p)| (p.aabb_f64(0.0), kind(i, &p.spec)))
+                .collect(),
+            false => Vec::new(),
+        };
         Platforms {
             states,
             boxes,
             grid_boxes,
+            double_boxes,
             rule,
             gravity,
         }
@@ -255,5 +288,41 @@ mod tests {
         assert_eq!(overlap(&a, &b), [2, -2]);
         assert_eq!(abs(-3i64), 3);
         assert_eq!(abs(2.5f32), 2.5);
+    }
+
+    #[test]
+    fn in_f64_a_platform_far_out_moves_as_at_the_origin_up_to_the_f64_spacing() {
+        let spec = Platform {
+            start: Vec2::new(12.0, 6.0),
+            size: Vec2::new(12.0, 0.5),
+            motion: crate::level::PlatformMotion::Sine {
+                amplitude: Vec2::new(4.0, 0.0),
+                period: 4.0,
+            },
+            one_way: false,
+        };
+        let near = PlatformState::new(&spec, DVec2::ZERO);
+        let origin = DVec2::splat(1e12);
+        let far = PlatformState::new(&spec, origin);
+        // f64 spacing at 1e12 (2^39 <= 1e12 < 2^40): 2^(39-52) = 2^-13 tile. Placing the box is
+        // one rounded addition, so each face is within half a spacing of the origin's face
+        // moved out; in f32 the same box would move in steps of 2^(39-23) = 65536 tiles.
+        let half = 0.5 * 2f64.powi(-13);
+        for k in [0u32, 1, 7, 59, 600] {
+            let t = k as f64 / 60.0;
+            let (a, b) = (near.aabb_f64(t), far.aabb_f64(t));
+            for i in 0..2 {
+                assert!((b.min[i] - origin[i] - a.min[i]).abs() <= half, "t {t}");
+                assert!((b.max[i] - origin[i] - a.max[i]).abs() <= half, "t {t}");
+            }
+            // At the origin its corner is the float mode's, bit for bit, and its far faces the
+            // corner plus the size, exact in f64 (the float mode's are rounded to f32).
+            let float = Rect::from(near.aabb(t));
+            assert_eq!(float.min.map(f64::from), a.min);
+            for i in 0..2 {
+                assert_eq!(a.max[i], a.min[i] + spec.size[i] as f64);
+                assert!((float.max[i] as f64 - a.max[i]).abs() <= 1e-6);
+            }
+        }
     }
 }

@@ -18,7 +18,7 @@ use parry2d::bounding_volume::{Aabb, BoundingVolume};
 
 use super::broadphase::{BoxKind, NearCache, StaticTiles};
 use super::oneway;
-use super::space::Space;
+use super::space::{Rect, Space};
 use super::{Character, World};
 
 /// The axis of a move.
@@ -125,16 +125,18 @@ pub fn move_axis(
 /// kept in the level's own coordinates (`tiles` built at origin 0, where f32 is exact for tile
 /// faces) and placed at `origin` in f64; the broadphase is asked in f32 level coordinates with a
 /// margin of [`F64_QUERY_MARGIN`] so that its rounding never hides a box, and the boxes it
-/// returns are filtered again in f64. No moving platforms (the f64 mode refuses them).
+/// returns are filtered again in f64. The `extra` boxes (moving platforms at their current
+/// place) are f64 world boxes already. `skip` gets a box's top (f64 world tiles) and its kind.
 #[allow(clippy::too_many_arguments)]
 pub fn move_axis_f64(
     tiles: &StaticTiles,
     near: &mut NearCache,
+    extra: &[(Rect<f64>, BoxKind)],
     origin: glam::DVec2,
     pos: &mut glam::DVec2,
     size: Vec2,
     axis: Axis,
-    delta: f32,
+    delta: f64,
     epsilon: f32,
     skip: impl Fn(f64, BoxKind) -> bool,
 ) -> Option<BoxKind> {
@@ -142,7 +144,7 @@ pub fn move_axis_f64(
     if delta == 0.0 {
         return None;
     }
-    let (delta, epsilon) = (delta as f64, epsilon as f64);
+    let epsilon = epsilon as f64;
     let a = axis.index();
     let o = 1 - a;
     let half = size.x as f64 * 0.5;
@@ -161,9 +163,14 @@ pub fn move_axis_f64(
         (smin - origin).as_vec2() - Vec2::splat(F64_QUERY_MARGIN),
         (smax - origin).as_vec2() + Vec2::splat(F64_QUERY_MARGIN),
     );
+    let placed = near
+        .query(tiles, &area)
+        .map(|(t, kind)| (t.mins.as_dvec2() + origin, t.maxs.as_dvec2() + origin, kind));
+    let moving = extra
+        .iter()
+        .map(|(t, kind)| (DVec2::from_array(t.min), DVec2::from_array(t.max), *kind));
     let mut closest: Option<(f64, BoxKind)> = None;
-    for (t, kind) in near.query(tiles, &area) {
-        let (tmin, tmax) = (t.mins.as_dvec2() + origin, t.maxs.as_dvec2() + origin);
+    for (tmin, tmax, kind) in placed.chain(moving) {
         // The f64 box must touch the swept box (the f32 query's inclusive test, in f64).
         let touches = (0..2).all(|k| tmin[k] <= smax[k] && tmax[k] >= smin[k]);
         let across = bmax[o].min(tmax[o]) - bmin[o].max(tmin[o]) > epsilon;

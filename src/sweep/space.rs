@@ -9,7 +9,7 @@
 //! - [`FloatSpace`]: f32 feet in world tiles, moves snapped flush by [`super::resolve::move_axis`]
 //!   with the seed's epsilon fudge.
 //! - [`DoubleSpace`]: the float rules with f64 feet in world tiles, moves swept and snapped in
-//!   f64 with the same epsilon.
+//!   f64 with the same epsilon, moving platforms as f64 world boxes.
 //! - [`GridSpace`]: a box of whole subpixels (`i64`) with each axis's unused fraction carried
 //!   ([`super::grid`]), moves snapped flush in exact integer arithmetic, no epsilon.
 //!
@@ -261,8 +261,9 @@ impl Space for FloatSpace {
 /// in f64 (`Character::pos64`) and every move swept and snapped in f64
 /// ([`super::resolve::move_axis_f64`]). The stages' frame is the level's own coordinates (as on
 /// the grid), where f32 is fine for the slope and ladder rules; a position they do not change
-/// keeps its f64 bits. Moving platforms are refused in this mode, so the platform methods only
-/// convert.
+/// keeps its f64 bits. Moving platforms are f64 world boxes (`Platforms::double_boxes`): their
+/// path in level coordinates placed at the origin in f64, and they carry, push and crush by
+/// f64 displacements.
 #[derive(Clone, Copy, Debug)]
 pub struct DoubleSpace {
     /// The seed's overlap tolerance, tiles.
@@ -334,11 +335,12 @@ impl Space for DoubleSpace {
         super::resolve::move_axis_f64(
             w.tiles,
             &mut c.near,
+            w.platform_double,
             self.origin,
             &mut c.pos64,
             c.size,
             axis,
-            delta,
+            delta as f64,
             self.eps,
             skip,
         )
@@ -351,24 +353,13 @@ impl Space for DoubleSpace {
         }
     }
     fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<f64> {
-        let b = p.aabb(t);
-        Rect {
-            min: [b.mins.x as f64, b.mins.y as f64],
-            max: [b.maxs.x as f64, b.maxs.y as f64],
-        }
+        p.aabb_f64(t)
     }
     fn platform_now(&self, ps: &Platforms, i: usize) -> Rect<f64> {
-        let b = ps.boxes[i].0;
-        Rect {
-            min: [b.mins.x as f64, b.mins.y as f64],
-            max: [b.maxs.x as f64, b.maxs.y as f64],
-        }
+        ps.double_boxes[i].0
     }
     fn set_platform(&self, ps: &mut Platforms, i: usize, r: Rect<f64>) {
-        ps.boxes[i].0 = Aabb::new(
-            glam::DVec2::from_array(r.min).as_vec2(),
-            glam::DVec2::from_array(r.max).as_vec2(),
-        );
+        ps.double_boxes[i].0 = r;
     }
     fn to_tiles(&self, v: f64) -> f32 {
         v as f32
@@ -383,11 +374,12 @@ impl Space for DoubleSpace {
             super::resolve::move_axis_f64(
                 tiles,
                 &mut c.near,
+                &[],
                 self.origin,
                 &mut c.pos64,
                 c.size,
                 axis,
-                d as f32,
+                d,
                 self.eps,
                 skip,
             );
