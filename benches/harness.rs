@@ -9,12 +9,13 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use platbench::level::Level;
-use platbench::metrics::{evaluate_with, MetricRow};
+use platbench::metrics::{evaluate_recorded, MetricRow};
 use platbench::parallel::{default_jobs, for_each_ordered};
 use platbench::registry::Registry;
 use platbench::report::summary_rows::SummaryRows;
 use platbench::report::summary_table_in;
 use platbench::scenario::{RunConfig, Runner};
+use platbench::trace::RowStore;
 
 /// Runs every (level, scenario, configuration) on `jobs` threads and returns the summary.
 fn run_set(levels: &[Level], configs: &[RunConfig], jobs: usize) -> String {
@@ -39,14 +40,14 @@ fn run_set(levels: &[Level], configs: &[RunConfig], jobs: usize) -> String {
                 *cache = Some((li, Runner::new(&levels[li])));
             }
             let (_, runner) = cache.as_mut().expect("set just above");
-            evaluate_with(runner, &levels[li].scenarios[si], &configs[ci])
+            // As `platbench run` measures: the rows streamed into a store.
+            let store = RowStore::default();
+            evaluate_recorded(runner, &levels[li].scenarios[si], &configs[ci], store)
                 .expect("the built-in set runs")
                 .metrics
         },
-        |i, rows| {
-            // One group per level: the summary's groups need only be no coarser than the sets
-            // of configurations that model a level.
-            kept.push_run(items[i].0, rows);
+        |_, rows| {
+            kept.push_run(rows);
             Ok::<(), ()>(())
         },
     )

@@ -157,6 +157,44 @@ impl Registry {
     }
 }
 
+/// The notes of a stream of runs without holding every row: each run's rows are read as they
+/// come and the rows of the first run that calls for each note are kept. A note is about the
+/// rows of one run (a row past a threshold, or two rows of the same run), so the notes of the
+/// kept runs are [`Registry::notes`] of every row, in the same order. Memory: one run's rows per
+/// distinct note.
+pub struct RunNotes<'r> {
+    registry: &'r Registry,
+    seen: std::collections::HashSet<String>,
+    rows: Vec<MetricRow>,
+}
+
+impl<'r> RunNotes<'r> {
+    /// No run read yet.
+    pub fn new(registry: &'r Registry) -> Self {
+        RunNotes {
+            registry,
+            seen: Default::default(),
+            rows: Vec::new(),
+        }
+    }
+
+    /// Reads the rows of one run.
+    pub fn push_run(&mut self, rows: &[MetricRow]) {
+        let mut new = false;
+        for n in self.registry.notes(rows) {
+            new |= self.seen.insert(n);
+        }
+        if new {
+            self.rows.extend_from_slice(rows);
+        }
+    }
+
+    /// The notes of every run read.
+    pub fn notes(&self) -> Vec<String> {
+        self.registry.notes(&self.rows)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -173,6 +211,46 @@ mod tests {
             reference: 0.0,
             error: stuck,
         }
+    }
+
+    #[test]
+    fn the_notes_of_the_kept_runs_are_the_notes_of_every_row() {
+        // The sweep's note on a too-steep slope needs a penetration row and a steep_blocked row
+        // of the same run; here the run that has both comes between two that do not, and its
+        // steep_blocked value is neither the lowest nor the highest (the summary drops it).
+        let r = |scenario: &str, metric: &'static str, value: f64| MetricRow {
+            scenario: scenario.into(),
+            metric,
+            value,
+            error: value,
+            ..row("sweep", "default", 0.0)
+        };
+        let runs = [
+            vec![
+                r("a", "penetration_beyond_declared", 0.0),
+                r("a", "steep_blocked", 0.0),
+            ],
+            vec![
+                r("b", "penetration_beyond_declared", 0.07),
+                r("b", "steep_blocked", 0.5),
+            ],
+            vec![r("c", "penetration_beyond_declared", 0.2)],
+            vec![r("d", "steep_blocked", 1.0)],
+        ];
+        let registry = Registry::builtin();
+        let all: Vec<MetricRow> = runs.iter().flatten().cloned().collect();
+        let mut notes = RunNotes::new(&registry);
+        for run in &runs {
+            notes.push_run(run);
+        }
+        let expected = registry.notes(&all);
+        assert!(
+            expected.iter().any(|n| n.contains("too-steep slope")),
+            "{expected:?}"
+        );
+        assert_eq!(notes.notes(), expected);
+        // Only the run that called for a note is kept.
+        assert_eq!(notes.rows.len(), 2);
     }
 
     #[test]

@@ -201,19 +201,20 @@ fn the_summary_of_the_kept_rows_is_the_summary_of_every_row_on_the_built_in_set(
     let levels = common::builtin_levels();
     let mut all = Vec::new();
     let mut kept = SummaryRows::default();
+    let mut notes = platbench::registry::RunNotes::new(&registry);
     let mut groups: Vec<Vec<bool>> = Vec::new();
     let mut runs = 0;
     for level in &levels {
         let set: Vec<bool> = configs.iter().map(|c| c.backend.supports(level)).collect();
-        let group = groups.iter().position(|g| *g == set).unwrap_or_else(|| {
+        if !groups.contains(&set) {
             groups.push(set);
-            groups.len() - 1
-        });
+        }
         for spec in &level.scenarios {
             for run in configs.iter().filter(|c| c.backend.supports(level)) {
                 let e = platbench::metrics::evaluate(level, spec, run).unwrap();
                 all.extend(e.metrics.iter().cloned());
-                kept.push_run(group, e.metrics);
+                notes.push_run(&e.metrics);
+                kept.push_run(e.metrics);
                 runs += 1;
             }
         }
@@ -229,7 +230,8 @@ fn the_summary_of_the_kept_rows_is_the_summary_of_every_row_on_the_built_in_set(
     assert!(kept.len() <= metrics * (1 + 3 * groups.len() * configs.len()));
     assert!(kept.len() < all.len() && runs > 0);
     assert_eq!(summary_table_in(&kept, &coverage), summary_table(&all));
-    assert_eq!(registry.notes(&kept), registry.notes(&all));
+    assert_eq!(notes.notes(), registry.notes(&all));
+    assert!(!notes.notes().is_empty());
 }
 
 /// A run's rows spilled to a temporary file measure exactly as rows held in memory: every
@@ -289,4 +291,42 @@ fn a_spilled_run_measures_bit_for_bit_as_one_held_in_memory() {
     // Every run spilled (each has more than one row); the built-in set has 64 scenarios.
     assert!(runs >= 64 * 3, "{runs} runs");
     assert_eq!(spilled, runs);
+}
+
+/// A run long enough to spill (more than `SPILL_ROWS` rows) writes the same directory on one
+/// thread and on two, byte for byte, and its trace has every row.
+#[test]
+fn a_run_that_spills_is_byte_identical_on_one_thread_and_on_two() {
+    let dir = tempfile::tempdir().unwrap();
+    // 1,100 s at 60 Hz: 66,001 rows, past the 65,536 a run holds in memory.
+    let map = format!("#{}#\n", ".".repeat(18)).repeat(3) + &"#".repeat(20);
+    let level = format!(
+        "name = \"soak\"\nmap = \"\"\"\n{map}\n\"\"\"\n\n[[scenario]]\nname = \"walk\"\n\
+         spawn = [10.5, 1.0]\nduration = 1100.0\n\
+         inputs = [ {{ t = 1.0, right = true }}, {{ t = 2.0, right = false, left = true }}, {{ t = 3.0, left = false }} ]\n"
+    );
+    let file = dir.path().join("soak.toml");
+    std::fs::write(&file, level).unwrap();
+    let (one, two) = (dir.path().join("one"), dir.path().join("two"));
+    for (jobs, out_dir) in [("1", &one), ("2", &two)] {
+        let out = platbench()
+            .args(["run", "--backend", "sweep", "--jobs", jobs, "--out"])
+            .arg(out_dir)
+            .arg(&file)
+            .output()
+            .unwrap();
+        assert_success(&out);
+    }
+    let (a, b) = (files(&one), files(&two));
+    let trace = a
+        .iter()
+        .find(|(name, _)| name.ends_with("soak.walk.sweep.csv"))
+        .expect("the default sweep's trace");
+    // A header and one row per frame.
+    assert_eq!(trace.1.iter().filter(|&&c| c == b'\n').count(), 1 + 66_001);
+    assert_eq!(a.len(), b.len());
+    for ((na, da), (nb, db)) in a.iter().zip(&b) {
+        assert_eq!(na, nb);
+        assert!(da == db, "{na} differs");
+    }
 }

@@ -280,20 +280,28 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         args.traces.unwrap_or(Traces::All)
     };
     let started = Instant::now();
-    let (metrics, coverage, rows, written) = match &target {
+    let reg = &h.registry;
+    let (metrics, coverage, notes, rows, written) = match &target {
         Some(target) => {
             let mut result = None;
             output::write_output(target, kind, args.force, |dir| {
-                result = Some(execute(&levels, &configs, args, jobs, Some((dir, traces)))?);
+                result = Some(execute(
+                    &levels,
+                    &configs,
+                    reg,
+                    args,
+                    jobs,
+                    Some((dir, traces)),
+                )?);
                 Ok(())
             })?;
             result.unwrap_or_default()
         }
-        None => execute(&levels, &configs, args, jobs, None)?,
+        None => execute(&levels, &configs, reg, args, jobs, None)?,
     };
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
     let mut text = summary_table_in(&metrics, &coverage);
-    for n in h.registry.notes(&metrics) {
+    for n in notes {
         text.push_str(&format!("\n- {n}"));
     }
     out(&text);
@@ -351,18 +359,23 @@ enum Outcome {
     Ran(Vec<MetricRow>, bool),
 }
 
+/// What [`execute`] returns: the rows the summary reads, the scenarios each configuration ran,
+/// the notes, the number of metric rows, the number of traces written.
+type Executed = (Vec<MetricRow>, Coverage, Vec<String>, usize, usize);
+
 /// Runs every scenario of `levels` on every configuration on `jobs` threads, writing each trace
 /// `dir` asks for as soon as its run ends and metrics.csv as the rows come, in run order (level,
 /// scenario, configuration) whatever the threads. Returns the metric rows the summary needs
 /// (every row with --detail; see [`SummaryRows`]) with the scenarios each configuration ran,
-/// the number of rows, and the number of traces written.
+/// the notes on the rows, the number of rows, and the number of traces written.
 fn execute<'a>(
     levels: &'a [crate::level::Level],
     configs: &[RunConfig],
+    registry: &crate::registry::Registry,
     args: &RunArgs,
     jobs: usize,
     dir: Option<(&std::path::Path, Traces)>,
-) -> Result<(Vec<MetricRow>, Coverage, usize, usize)> {
+) -> Result<Executed> {
     // The runs, in order (level, scenario, configuration), found from their index through each
     // level's first run: memory in the levels, not the runs.
     let mut firsts: Vec<usize> = Vec::with_capacity(levels.len());
@@ -404,12 +417,26 @@ fn execute<'a>(
             unreachable!("set just above")
         };
         let mut e = match evaluate_recorded(runner, spec, run, RowStore::default()) {
-            Err(RecordError::Backend(e @ crate::backend::BackendError::Unsupported { .. })) => {
+            Err(RecordError::Backend(crate::backend::BackendError::Unsupported {
+                backend,
+                feature,
+                level: named,
+            })) => {
+                // A refusal of one character names no level: name the one it ran on.
+                let e = crate::backend::BackendError::Unsupported {
+                    backend,
+                    feature,
+                    level: if named.is_empty() {
+                        level.name.clone()
+                    } else {
+                        named
+                    },
+                };
                 return Ok(Outcome::Skipped(format!(
                     "{} {}: {e}",
                     run.backend.backend(),
                     run.label
-                )))
+                )));
             }
             e => e.with_context(|| {
                 format!(
@@ -453,30 +480,15 @@ fn execute<'a>(
             l.scenarios.len() * modelled
         })
         .sum();
-    // Every row for --detail; else only those the summary needs (see SummaryRows), grouped by
-    // the set of configurations that model the level.
+    // Every row for --detail; else only those the summary needs (see SummaryRows).
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut kept = SummaryRows::default();
-    let mut groups: Vec<Vec<bool>> = Vec::new();
-    let group_of: Vec<usize> = levels
-        .iter()
-        .map(|l| {
-            let set: Vec<bool> = configs
-                .iter()
-                .map(|c| crate::backend::runs(&*c.backend, l))
-                .collect();
-            match groups.iter().position(|g| *g == set) {
-                Some(i) => i,
-                None => {
-                    groups.push(set);
-                    groups.len() - 1
-                }
-            }
-        })
-        .collect();
+    let mut notes = crate::registry::RunNotes::new(registry);
     let mut rows_seen = 0usize;
     let (mut done, mut written) = (0usize, 0usize);
-    let mut skipped: Vec<String> = Vec::new();
+    // The last refusal said for each configuration: a refusal repeated scenario after scenario
+    // is said once, and nothing grows with the scenarios.
+    let mut said: Vec<Option<String>> = vec![None; configs.len()];
     let mut level_start = Instant::now();
     parallel::for_each_ordered(jobs, runs, init, work, |i, outcome| {
         let (li, si, ci) = item(i);
@@ -486,9 +498,9 @@ fn execute<'a>(
         }
         match outcome? {
             Outcome::Skipped(note) => {
-                if !skipped.contains(&note) {
+                if said[ci].as_ref() != Some(&note) {
                     eprintln!("  skipped {note}");
-                    skipped.push(note);
+                    said[ci] = Some(note);
                 }
             }
             Outcome::Ran(rows, wrote) => {
@@ -502,7 +514,8 @@ fn execute<'a>(
                 if args.detail {
                     metrics.extend(rows);
                 } else {
-                    kept.push_run(group_of[li], rows);
+                    notes.push_run(&rows);
+                    kept.push_run(rows);
                 }
                 written += wrote as usize;
                 done += 1;
@@ -534,12 +547,12 @@ fn execute<'a>(
         w.flush()
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
-    let coverage = if args.detail {
-        Coverage::of(&metrics)
+    let (coverage, notes) = if args.detail {
+        (Coverage::of(&metrics), registry.notes(&metrics))
     } else {
         let (rows, coverage) = kept.into_parts();
         metrics = rows;
-        coverage
+        (coverage, notes.notes())
     };
-    Ok((metrics, coverage, rows_seen, written))
+    Ok((metrics, coverage, notes, rows_seen, written))
 }

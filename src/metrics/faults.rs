@@ -42,9 +42,10 @@ pub const NAMES: [(u8, &str); 5] = [
 /// (0.02 px at their 22 px per tile, below what can be seen).
 pub const INSIDE_TOLERANCE: f32 = 1e-3;
 
-/// The fault bits of each of character 0's rows, in frame order.
+/// The fault bits of each of the measured character's rows (the trace's first), in frame order.
 pub fn frame_faults(ctx: &Context) -> Vec<u8> {
-    let rows: Vec<TraceRow> = ctx.trace.character(0).copied().collect();
+    let id = ctx.trace.rows.first().map_or(0, |r| r.character);
+    let rows: Vec<TraceRow> = ctx.trace.character(id).copied().collect();
     let g = Ground::new(ctx.level, ctx.shape, ctx.spec.size);
     let stuck: Vec<bool> = stuck_steps(ctx, crate::trace::Frames::new(&rows)).collect();
     let mut out: Vec<u8> = Vec::with_capacity(rows.len());

@@ -9,7 +9,7 @@
 //! above, `progress_ratio` for a walk over flat open ground, `rest_gap` and `rest_jitter` for
 //! scenarios that end with at least [`landing::REST_WINDOW`] seconds of idle input.
 //! `max_penetration`, `grounded_flicker`, `stuck_frames` and `tunneled` apply to every scenario.
-//! Only character 0 is measured.
+//! Only the scenario's character is measured (the trace's first character).
 
 pub mod faults;
 pub mod ground;
@@ -90,22 +90,24 @@ pub struct Context<'a> {
     pub declared: DeclaredContact,
 }
 
-/// Computes every metric that applies to the scenario, from character 0's rows of the trace.
+/// Computes every metric that applies to the scenario, from the rows of the trace's first
+/// character (the one the scenario spawns: the runner adds one, whatever id its backend gives it).
 pub fn compute(ctx: &Context) -> Vec<MetricRow> {
-    // Character 0's rows: the trace itself when it holds no other (every scenario the harness
-    // runs), so a long trace is not copied.
-    let rows: std::borrow::Cow<[TraceRow]> = if ctx.trace.rows.iter().all(|r| r.character == 0) {
+    // The first character's rows: the trace itself when it holds no other (every scenario the
+    // harness runs), so a long trace is not copied.
+    let id = ctx.trace.rows.first().map_or(0, |r| r.character);
+    let rows: std::borrow::Cow<[TraceRow]> = if ctx.trace.rows.iter().all(|r| r.character == id) {
         std::borrow::Cow::Borrowed(&ctx.trace.rows)
     } else {
-        ctx.trace.character(0).copied().collect()
+        ctx.trace.character(id).copied().collect()
     };
     compute_frames(ctx, Frames::new(&rows))
 }
 
-/// Computes every metric that applies to the scenario from `rows`, character 0's rows, wherever
-/// they are held (in memory or spilled, [`crate::trace::RowStore`]); `ctx.trace` gives only the
-/// labels. Memory: the level's, plus one bit per frame for the slope frames (at most
-/// [`crate::limits::MAX_FRAMES`] bits, 1.25 MB), whatever the run's length otherwise.
+/// Computes every metric that applies to the scenario from `rows`, the measured character's
+/// rows, wherever they are held (in memory or spilled, [`crate::trace::RowStore`]); `ctx.trace`
+/// gives only the labels. Memory: the level's and a few values per metric, whatever the run's
+/// length (nothing is kept per frame).
 pub fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
     let ground = Ground::new(ctx.level, ctx.shape, ctx.spec.size);
     let g = &ground;
@@ -147,10 +149,10 @@ pub fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
     push(jumping::apex_error(ctx, rows));
     push(seams::progress_ratio(ctx, rows));
     push(Some(seams::stuck_frames(ctx, rows)));
-    let on_slope = slopes::slope_frames(ctx, rows);
+    let on_slope = slopes::SlopeFrames::new(ctx, rows);
     push(slopes::slope_airborne_frames(ctx, rows, &on_slope));
-    push(slopes::slope_gap_max(ctx, g, rows, &on_slope));
-    push(slopes::slope_gap_declared(ctx, g, rows, &on_slope));
+    push(slopes::slope_gap_max(ctx, g, &on_slope));
+    push(slopes::slope_gap_declared(ctx, g, &on_slope));
     push(slopes::slope_overlap(ctx, g, rows));
     let [horizontal, along] = slopes::slope_speed_ratios(ctx, rows, &on_slope);
     push(horizontal);
@@ -170,39 +172,6 @@ pub fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
     push(Some(walls::tunneled(ctx, rows)));
     push(idle::idle_drift(ctx, rows));
     out
-}
-
-/// One bit per frame (the frames over a walkable slope): an eighth of the memory of a
-/// `Vec<bool>`, so a run of [`crate::limits::MAX_FRAMES`] frames takes 1.25 MB.
-pub struct FrameBits {
-    words: Vec<u64>,
-    len: usize,
-}
-
-impl FrameBits {
-    /// The bits of `bits`, in order.
-    pub fn collect(bits: impl ExactSizeIterator<Item = bool>) -> Self {
-        let mut words = vec![0u64; bits.len().div_ceil(64)];
-        let mut len = 0;
-        for (k, bit) in bits.enumerate() {
-            if bit {
-                words[k / 64] |= 1 << (k % 64);
-            }
-            len = k + 1;
-        }
-        FrameBits { words, len }
-    }
-
-    /// Bit `k`. Panics past the end, as indexing a slice does.
-    pub fn get(&self, k: usize) -> bool {
-        assert!(k < self.len, "bit {k} of {}", self.len);
-        self.words[k / 64] >> (k % 64) & 1 == 1
-    }
-
-    /// The bits in order.
-    pub fn iter(&self) -> impl Iterator<Item = bool> + '_ {
-        (0..self.len).map(|k| self.get(k))
-    }
 }
 
 /// A trace row's feet.
@@ -271,7 +240,7 @@ pub fn evaluate_with(
 pub struct Recorded {
     /// The run's labels (its `rows` are empty: the rows are in `rows`).
     pub trace: Trace,
-    /// Character 0's rows.
+    /// The run's rows (one character's: the runner adds one).
     pub rows: Rows,
     /// The metrics that apply to the scenario.
     pub metrics: Vec<MetricRow>,
@@ -295,7 +264,10 @@ pub enum RecordError {
     #[error(transparent)]
     Backend(#[from] crate::backend::BackendError),
     /// The temporary file holding a long run's rows could not be written or read back.
-    #[error("cannot hold the run's rows in a temporary file: {0}")]
+    #[error(
+        "cannot hold the run's rows in a temporary file in {} (set TMPDIR to a writable folder with room for 44 bytes a frame)",
+        std::env::temp_dir().display()
+    )]
     Spill(#[from] std::io::Error),
 }
 

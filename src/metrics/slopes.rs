@@ -2,7 +2,7 @@
 //! climb limit.
 
 use super::ground::Ground;
-use super::{commanded_distance, pos, Context, FrameBits, Measure};
+use super::{commanded_distance, pos, Context, Measure};
 use crate::scenario::input_script;
 use crate::trace::Frames;
 
@@ -20,19 +20,43 @@ pub(super) fn steep_columns<'a>(ctx: &'a Context, dir: f32) -> impl Iterator<Ite
 }
 
 /// For each row, whether the ground under the character's centre (from half a tile above its
-/// feet to one tile below) is a slope no steeper than the climb limit.
-pub(super) fn slope_frames(ctx: &Context, rows: Frames) -> FrameBits {
-    let limit = ctx.params.max_climb_angle.tan() + 1e-3;
-    FrameBits::collect(
-        rows.iter()
-            .map(|r| match ctx.level.surface_at(r.x, r.y + 0.5, 1.5) {
-                Some((_, Some((i, j)))) => {
-                    let n = ctx.level.slope_normal(i, j, r.x);
-                    (n.x / n.y).abs() <= limit
-                }
-                _ => false,
-            }),
-    )
+/// feet to one tile below) is a slope no steeper than the climb limit: read from the row when
+/// asked, so nothing is kept per frame.
+pub(super) struct SlopeFrames<'a> {
+    ctx: &'a Context<'a>,
+    rows: Frames<'a>,
+    limit: f32,
+}
+
+impl<'a> SlopeFrames<'a> {
+    /// The slope frames of `rows`.
+    pub(super) fn new(ctx: &'a Context<'a>, rows: Frames<'a>) -> Self {
+        SlopeFrames {
+            ctx,
+            rows,
+            limit: ctx.params.max_climb_angle.tan() + 1e-3,
+        }
+    }
+
+    /// Whether row `k` stands over a walkable slope.
+    pub(super) fn get(&self, k: usize) -> bool {
+        self.on(&self.rows.at(k))
+    }
+
+    fn on(&self, r: &crate::trace::TraceRow) -> bool {
+        match self.ctx.level.surface_at(r.x, r.y + 0.5, 1.5) {
+            Some((_, Some((i, j)))) => {
+                let n = self.ctx.level.slope_normal(i, j, r.x);
+                (n.x / n.y).abs() <= self.limit
+            }
+            _ => false,
+        }
+    }
+
+    /// Each row with whether it stands over a walkable slope, in order.
+    pub(super) fn rows(&self) -> impl Iterator<Item = (crate::trace::TraceRow, bool)> + '_ {
+        self.rows.iter().map(|r| (r, self.on(&r)))
+    }
 }
 
 /// Whether the scenario walks (a direction held at some point) and never jumps.
@@ -63,7 +87,11 @@ pub(super) fn walks_over_slopes(ctx: &Context) -> bool {
 }
 
 /// `slope_airborne_frames`: frames airborne over a walkable slope while walking, without a jump.
-pub fn slope_airborne_frames(ctx: &Context, rows: Frames, on: &FrameBits) -> Option<Measure> {
+pub(super) fn slope_airborne_frames(
+    ctx: &Context,
+    rows: Frames,
+    on: &SlopeFrames,
+) -> Option<Measure> {
     if !walks_over_slopes(ctx) {
         return None;
     }
@@ -82,13 +110,12 @@ pub fn slope_airborne_frames(ctx: &Context, rows: Frames, on: &FrameBits) -> Opt
 /// between the character's shape and the level's surface that is farthest from touching, in
 /// tiles: positive a gap above the surface, negative the depth inside it (the seed's box
 /// overhanging a ramp reads as inside it). 0 if it never stood on one.
-pub fn slope_gap_max(ctx: &Context, g: &Ground, rows: Frames, on: &FrameBits) -> Option<Measure> {
+pub(super) fn slope_gap_max(ctx: &Context, g: &Ground, on: &SlopeFrames) -> Option<Measure> {
     if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
         return None;
     }
-    let worst = rows
-        .iter()
-        .zip(on.iter())
+    let worst = on
+        .rows()
         .filter(|(r, o)| *o && r.is_grounded())
         .map(|(r, _)| g.gap(pos(&r)))
         .fold(0.0f32, |a, b| if b.abs() > a.abs() { b } else { a });
@@ -114,12 +141,7 @@ pub const LANDING_SETTLE: f32 = 0.05;
 /// ([`LANDING_SETTLE`]) are left out (land_frame_error's business). `slope_gap_max` measures
 /// against touching; this is the promise, and it is scored (a controller hovering over a ramp
 /// while it walks would otherwise be seen only at rest).
-pub fn slope_gap_declared(
-    ctx: &Context,
-    g: &Ground,
-    rows: Frames,
-    on: &FrameBits,
-) -> Option<Measure> {
+pub(super) fn slope_gap_declared(ctx: &Context, g: &Ground, on: &SlopeFrames) -> Option<Measure> {
     if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
         return None;
     }
@@ -127,7 +149,7 @@ pub fn slope_gap_declared(
     let settle = (LANDING_SETTLE / ctx.spec.dt).ceil() as usize;
     let mut since_air = usize::MAX;
     let mut worst = 0.0f64;
-    for (r, o) in rows.iter().zip(on.iter()) {
+    for (r, o) in on.rows() {
         since_air = if r.is_grounded() {
             since_air.saturating_add(1)
         } else {
@@ -192,7 +214,11 @@ pub(super) fn rest_on_slope(ctx: &Context) -> bool {
 ///
 /// A controller is not wrong for following either model: the report shows both. 0 if it never
 /// walked the slope at full speed.
-pub fn slope_speed_ratios(ctx: &Context, rows: Frames, on: &FrameBits) -> [Option<Measure>; 2] {
+pub(super) fn slope_speed_ratios(
+    ctx: &Context,
+    rows: Frames,
+    on: &SlopeFrames,
+) -> [Option<Measure>; 2] {
     // A walk into a too-steep rise is steep_blocked's business, not a speed.
     if !walks_over_slopes(ctx) || steep_ahead(ctx) {
         return [None, None];

@@ -10,7 +10,7 @@ pub mod summary_rows;
 
 use comfy_table::{presets, CellAlignment, Table};
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 use crate::metrics::{registry, MetricRow};
 
@@ -135,7 +135,8 @@ type Cell<'a> = ((&'a str, &'a str), f64, f64);
 
 /// Which scenarios each configuration ran: what the summary counts ("over N of M") and judges
 /// "best" within. [`Coverage::of`] reads it off every row; [`summary_rows::SummaryRows`] keeps it
-/// as counts and groups of levels, in memory that does not grow with the number of runs.
+/// as counts and groups of scenarios (by the set of configurations that ran them), placing only
+/// the scenarios of the rows it keeps, in memory that does not grow with the number of runs.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Coverage {
     /// Configuration columns in the order they first ran, each with the scenarios it ran.
@@ -145,34 +146,30 @@ pub struct Coverage {
     /// Per group: which configurations (by index in `configs`) ran its scenarios.
     groups: Vec<Vec<bool>>,
     /// The group of a scenario, by level, then scenario.
-    by_scenario: HashMap<String, HashMap<String, usize>>,
-    /// The group of every scenario of a level, where `by_scenario` does not say.
-    by_level: HashMap<String, usize>,
+    placed: HashMap<String, HashMap<String, usize>>,
 }
 
 impl Coverage {
-    /// The coverage of `rows`, every row of a run: each scenario a group of its own.
+    /// The coverage of `rows`, every row of a run.
     pub fn of(rows: &[MetricRow]) -> Self {
         let mut c = Coverage::default();
-        let mut seen: HashMap<(&str, &str), HashSet<usize>> = HashMap::new();
+        let mut seen: HashMap<(&str, &str), Vec<String>> = HashMap::new();
+        let mut order: Vec<(&str, &str)> = Vec::new();
         for r in rows {
-            let ci = c.config(column(r));
+            c.config(column(r));
             let key = (r.level.as_str(), r.scenario.as_str());
-            let ran = seen.entry(key).or_default();
-            if ran.is_empty() {
-                c.all += 1;
-            }
-            if ran.insert(ci) {
-                c.configs[ci].1 += 1;
+            let ran = seen.entry(key).or_insert_with(|| {
+                order.push(key);
+                Vec::new()
+            });
+            let col = column(r);
+            if !ran.contains(&col) {
+                ran.push(col);
             }
         }
-        for ((level, scenario), ran) in seen {
-            let group = (0..c.configs.len()).map(|i| ran.contains(&i)).collect();
-            c.groups.push(group);
-            c.by_scenario
-                .entry(level.to_string())
-                .or_default()
-                .insert(scenario.to_string(), c.groups.len() - 1);
+        for key in order {
+            let g = c.add_scenario(&seen[&key]);
+            c.place(key.0, key.1, g);
         }
         c
     }
@@ -188,32 +185,46 @@ impl Coverage {
         }
     }
 
-    /// Counts one run of configuration `column` on a new scenario of `level` (`first`: no
-    /// configuration ran that scenario before), whose configurations are those of `group`.
-    pub(crate) fn add_run(&mut self, level: &str, group: usize, column: String, first: bool) {
-        let ci = self.config(column);
-        self.configs[ci].1 += 1;
-        self.all += first as usize;
-        if self.groups.len() <= group {
-            self.groups.resize(group + 1, Vec::new());
+    /// Counts one scenario run by the configuration columns `columns`; returns its group.
+    pub(crate) fn add_scenario(&mut self, columns: &[String]) -> usize {
+        let mut set = Vec::new();
+        for c in columns {
+            let ci = self.config(c.clone());
+            self.configs[ci].1 += 1;
+            if set.len() <= ci {
+                set.resize(ci + 1, false);
+            }
+            set[ci] = true;
         }
-        let g = &mut self.groups[group];
-        if g.len() <= ci {
-            g.resize(ci + 1, false);
+        self.all += 1;
+        // Configurations first seen later are false in earlier groups: compare up to the longer.
+        let same = |g: &Vec<bool>| {
+            (0..g.len().max(set.len()))
+                .all(|i| g.get(i).copied().unwrap_or(false) == set.get(i).copied().unwrap_or(false))
+        };
+        match self.groups.iter().position(same) {
+            Some(g) => g,
+            None => {
+                self.groups.push(set);
+                self.groups.len() - 1
+            }
         }
-        g[ci] = true;
-        if !self.by_level.contains_key(level) {
-            self.by_level.insert(level.to_string(), group);
-        }
+    }
+
+    /// Records that scenario `scenario` of `level` is in group `group`.
+    pub(crate) fn place(&mut self, level: &str, scenario: &str, group: usize) {
+        self.placed
+            .entry(level.to_string())
+            .or_default()
+            .insert(scenario.to_string(), group);
     }
 
     /// Whether configuration `config` ran scenario `key` (level, scenario).
     fn ran(&self, config: usize, key: (&str, &str)) -> bool {
-        let group = match self.by_scenario.get(key.0).and_then(|s| s.get(key.1)) {
-            Some(g) => Some(*g),
-            None => self.by_level.get(key.0).copied(),
-        };
-        group.is_some_and(|g| self.groups[g].get(config).copied().unwrap_or(false))
+        self.placed
+            .get(key.0)
+            .and_then(|s| s.get(key.1))
+            .is_some_and(|&g| self.groups[g].get(config).copied().unwrap_or(false))
     }
 }
 

@@ -6,24 +6,25 @@
 //! `|error|`, as `Iterator::max_by` picks it), judged over all scenarios and over the scenarios
 //! each other configuration ran; it counts the scenarios each configuration ran; it prints each
 //! metric's reference from its first row; and the notes look for a row above or below a
-//! threshold. A configuration runs every scenario of a level or none of it, so runs are put in
-//! groups (the levels that the same configurations model), within which every scenario was run
-//! by the same configurations. Kept, in their original order:
+//! threshold. Scenarios are put in groups by the set of configurations that ran them (a
+//! configuration may skip a whole level or, refusing a character, one scenario), so that within
+//! a group every scenario was run by the same configurations. Kept, in their original order:
 //!
 //! - the first row of every metric (its unit and reference);
 //! - per group, metric and configuration: the worst row, the lowest value and the highest value;
 //!
-//! and, as a [`Coverage`], how many scenarios each configuration ran and which groups it ran.
-//! That is at most three rows per group, metric and configuration and one entry per level,
-//! however many runs: memory does not grow with the number of scenarios (issue 24).
+//! and, as a [`Coverage`], how many scenarios each configuration ran and, for each kept row, its
+//! group. That is at most three rows per group, metric and configuration, and one scenario's
+//! rows waiting to be grouped, however many runs: memory does not grow with the number of
+//! scenarios (issue 24).
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 use super::{badness, column, Coverage};
 use crate::metrics::MetricRow;
 
-/// A kept row and its position in the stream.
-type Kept = (u64, MetricRow);
+/// A kept row, its position in the stream and its group.
+type Kept = (u64, usize, MetricRow);
 
 /// The rows kept for one group, metric and configuration.
 #[derive(Default)]
@@ -36,7 +37,7 @@ struct Extremes {
     max: Option<Kept>,
 }
 
-/// Rows gathered run by run; [`SummaryRows::into_rows`] gives those the summary needs.
+/// Rows gathered run by run; [`SummaryRows::into_parts`] gives those the summary needs.
 #[derive(Default)]
 pub struct SummaryRows {
     /// Rows seen so far.
@@ -45,9 +46,9 @@ pub struct SummaryRows {
     always: Vec<Kept>,
     /// The scenarios each configuration ran.
     coverage: Coverage,
-    /// The (level, scenario) of the last run: runs of one scenario come together (level names
-    /// are unique in a run, scenario names within a level), so a new one is a new scenario.
-    last: Option<(String, String)>,
+    /// The runs of the current scenario, grouped once its last run is in: the runs of one
+    /// scenario come together (level names are unique in a run, scenario names within a level).
+    pending: Vec<Vec<MetricRow>>,
     /// The metrics seen so far.
     metrics: HashSet<&'static str>,
     /// Per (group, metric, configuration column).
@@ -55,27 +56,38 @@ pub struct SummaryRows {
 }
 
 impl SummaryRows {
-    /// Adds the rows of one run; `group` names the run's group: levels modelled by different
-    /// sets of configurations must be in different groups (levels modelled by the same set may
-    /// share one; one group per level is always right, one per set of configurations keeps
-    /// fewer rows).
-    pub fn push_run(&mut self, group: usize, rows: Vec<MetricRow>) {
-        if let Some(r) = rows.first() {
-            let key = (r.level.as_str(), r.scenario.as_str());
-            let first = self
-                .last
-                .as_ref()
-                .is_none_or(|(l, s)| (l.as_str(), s.as_str()) != key);
-            if first {
-                self.last = Some((r.level.clone(), r.scenario.clone()));
-            }
-            self.coverage.add_run(&r.level, group, column(r), first);
+    /// Adds the rows of one run (a run with no row counts for nothing). Runs must come scenario
+    /// by scenario, as `platbench run` makes them.
+    pub fn push_run(&mut self, rows: Vec<MetricRow>) {
+        let Some(r) = rows.first() else {
+            return;
+        };
+        let same = self
+            .pending
+            .first()
+            .and_then(|p| p.first())
+            .is_some_and(|p| {
+                (p.level.as_str(), p.scenario.as_str()) == (r.level.as_str(), r.scenario.as_str())
+            });
+        if !same {
+            self.flush();
         }
-        for r in rows {
+        self.pending.push(rows);
+    }
+
+    /// Groups the pending scenario by the configurations that ran it and keeps its rows.
+    fn flush(&mut self) {
+        if self.pending.is_empty() {
+            return;
+        }
+        let runs = std::mem::take(&mut self.pending);
+        let columns: Vec<String> = runs.iter().map(|rows| column(&rows[0])).collect();
+        let group = self.coverage.add_scenario(&columns);
+        for r in runs.into_iter().flatten() {
             let seq = self.seq;
             self.seq += 1;
             if self.metrics.insert(r.metric) {
-                self.always.push((seq, r.clone()));
+                self.always.push((seq, group, r.clone()));
             }
             let e = self
                 .extremes
@@ -84,29 +96,42 @@ impl SummaryRows {
             let b = badness(&r);
             if e.worst
                 .as_ref()
-                .is_none_or(|(_, w)| b.total_cmp(&badness(w)).is_ge())
+                .is_none_or(|(_, _, w)| b.total_cmp(&badness(w)).is_ge())
             {
-                e.worst = Some((seq, r.clone()));
+                e.worst = Some((seq, group, r.clone()));
             }
-            if e.min.as_ref().is_none_or(|(_, m)| r.value < m.value) {
-                e.min = Some((seq, r.clone()));
+            if e.min.as_ref().is_none_or(|(_, _, m)| r.value < m.value) {
+                e.min = Some((seq, group, r.clone()));
             }
-            if e.max.as_ref().is_none_or(|(_, m)| r.value > m.value) {
-                e.max = Some((seq, r));
+            if e.max.as_ref().is_none_or(|(_, _, m)| r.value > m.value) {
+                e.max = Some((seq, group, r));
             }
         }
     }
 
     /// The kept rows, each once, in the order they came, and the scenarios each configuration
     /// ran: [`super::summary_table_in`] of the two is [`super::summary_table`] of every row.
-    pub fn into_parts(self) -> (Vec<MetricRow>, Coverage) {
-        let mut kept: BTreeMap<u64, MetricRow> = self.always.into_iter().collect();
+    pub fn into_parts(mut self) -> (Vec<MetricRow>, Coverage) {
+        self.flush();
+        let mut kept: BTreeMap<u64, (usize, MetricRow)> = self
+            .always
+            .into_iter()
+            .map(|(seq, g, r)| (seq, (g, r)))
+            .collect();
         for e in self.extremes.into_values() {
-            for (seq, r) in [e.worst, e.min, e.max].into_iter().flatten() {
-                kept.insert(seq, r);
+            for (seq, g, r) in [e.worst, e.min, e.max].into_iter().flatten() {
+                kept.insert(seq, (g, r));
             }
         }
-        (kept.into_values().collect(), self.coverage)
+        let mut coverage = self.coverage;
+        let rows = kept
+            .into_values()
+            .map(|(g, r)| {
+                coverage.place(&r.level, &r.scenario, g);
+                r
+            })
+            .collect();
+        (rows, coverage)
     }
 }
 
@@ -114,6 +139,31 @@ impl SummaryRows {
 mod tests {
     use super::*;
     use crate::report::{summary_table, summary_table_in};
+
+    #[test]
+    fn a_scenario_one_configuration_refused_is_judged_without_it() {
+        // Level l1: y refused scenario s2 (a character it cannot build), so s2 is not in the
+        // scenarios both ran. Over s1 and s3, x (worst 0.01) beats y (worst 0.03); counting s2
+        // as y's too, x's 0.5 there would hand the mark to y. y ran 2 of 3 scenarios.
+        let r = |s: &str, c: &str, v: f64| row("l1", s, c, "max_penetration", v);
+        let runs = vec![
+            vec![r("s1", "x", 0.01)],
+            vec![r("s1", "y", 0.02)],
+            vec![r("s2", "x", 0.5)],
+            vec![r("s3", "x", 0.0)],
+            vec![r("s3", "y", 0.03)],
+        ];
+        let all: Vec<MetricRow> = runs.iter().flatten().cloned().collect();
+        let mut kept = SummaryRows::default();
+        for run in runs {
+            kept.push_run(run);
+        }
+        let (rows, coverage) = kept.into_parts();
+        let table = summary_table(&all);
+        assert!(table.contains("b y (over 2 of 3)"), "{table}");
+        assert!(table.contains("0.5000*"), "{table}");
+        assert_eq!(summary_table_in(&rows, &coverage), table);
+    }
 
     fn row(level: &str, scenario: &str, config: &str, metric: &'static str, v: f64) -> MetricRow {
         MetricRow {
@@ -187,9 +237,9 @@ mod tests {
                 ],
             ),
         ];
-        for (g, rows) in runs {
+        for (_, rows) in runs {
             all.extend(rows.iter().cloned());
-            kept.push_run(g, rows);
+            kept.push_run(rows);
         }
         let (kept, coverage) = kept.into_parts();
         assert!(kept.len() < all.len(), "nothing was left out");
