@@ -154,6 +154,21 @@ pub fn origin_supported(settings: &dyn BackendSettings, level: &Level) -> Result
             level: level.name.clone(),
         });
     }
+    if let Some(max) = settings.max_reach() {
+        let reach = level.reach();
+        if reach > max {
+            return Err(BackendError::Unsupported {
+                backend: settings.backend(),
+                feature: format!(
+                    "a level reaching {reach} tiles from the world's origin, its origin ({}, {}) \
+                     plus its size and its platforms' paths (this configuration places a level \
+                     exactly within {max} tiles of the world's origin)",
+                    level.origin.x, level.origin.y,
+                ),
+                level: level.name.clone(),
+            });
+        }
+    }
     Ok(())
 }
 
@@ -367,6 +382,14 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
             Precision::F32 => crate::limits::MAX_F32_ORIGIN,
             Precision::F64 => crate::limits::MAX_ORIGIN,
         }
+    }
+    /// How far from the world's origin everything of a level placed by this configuration must
+    /// lie, in tiles on each axis ([`Level::reach`]: its tile faces and its platforms' paths), if
+    /// the configuration is exact only that far (a level reaching farther is refused,
+    /// [`origin_supported`]). Default: none (the origin's bound, [`BackendSettings::max_origin`],
+    /// is the only one).
+    fn max_reach(&self) -> Option<f64> {
+        None
     }
     /// This configuration built in `precision`, if it offers that precision besides its own
     /// (`None` otherwise: a caller keeps the configuration itself for its own precision).
