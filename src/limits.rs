@@ -65,6 +65,16 @@ pub fn dt_in_range(dt: f64) -> bool {
     dt.is_finite() && (dt as f32) >= DT_RANGE.0 as f32 && (dt as f32) <= DT_RANGE.1 as f32
 }
 
+/// `v` as an error message prints it: as Rust prints an f64, except from 1e16 on (past every
+/// range here) in exponent form (`1e308`, not its 309 digits).
+pub fn show(v: f64) -> String {
+    if v.is_finite() && v.abs() >= 1e16 {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// Whether `v` is finite and within `lo..=hi`.
 pub fn within(v: f64, (lo, hi): (f64, f64)) -> bool {
     v.is_finite() && v >= lo && v <= hi
