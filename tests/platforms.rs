@@ -300,3 +300,35 @@ fn the_sweep_in_f64_carries_as_the_float_mode_at_the_origin_and_1e12_tiles_out()
         }
     }
 }
+
+#[test]
+fn rapier_f64_stops_its_rider_a_frame_at_the_turn_at_the_origin_and_not_1e12_tiles_out() {
+    // README (f64 worlds): Rapier's controller, not the harness. At the origin the capsule
+    // rests exactly at the controller's offset above platform 0; just after the platform turns
+    // (t = 4 s) a cast along the surface reads the contact normal tilted 2.5e-14 against the
+    // move and applies nothing: the rider stays put a frame. 1e12 tiles out it reads (0, 1).
+    let run = platbench::rapier::kind::run_with(platbench::rapier::RapierConfig {
+        colliders: ColliderBuilding::PerTile,
+        shape: CharacterShape::Capsule,
+        precision: platbench::rapier::Precision::F64,
+        ..Default::default()
+    });
+    let mut l = level("platforms");
+    l.scenarios.retain(|s| s.name == "ride_horizontal");
+    let mut far = l.clone();
+    far.origin = glam::DVec2::splat(1e12);
+    let at_origin = evaluate_all(std::slice::from_ref(&l), &run);
+    let out = evaluate_all(std::slice::from_ref(&far), &run);
+    // One frame of the platform's 2 tiles/s at dt 1/60 is 1/30 tile; 1e-5: the trace's f32
+    // level coordinates (measured 0.03333330).
+    let drift = value(&at_origin, "ride_horizontal", "carry_drift");
+    assert!((drift - 1.0 / 30.0).abs() < 1e-5, "at the origin: {drift}");
+    let rows = &find(&at_origin, "ride_horizontal").trace.rows;
+    assert_eq!(rows[242].x, rows[243].x, "the stop, frames 242 and 243");
+    // Far out: no stop; what drift is left is the f64 spacing there (2^-13 = 1.2e-4 a
+    // coordinate; measured 6.6e-5), under 1e-4, issue 5's carry bound.
+    let far_drift = value(&out, "ride_horizontal", "carry_drift");
+    assert!(far_drift < 1e-4, "1e12 tiles out: {far_drift}");
+    let rows = &find(&out, "ride_horizontal").trace.rows;
+    assert!(rows.windows(2).skip(1).all(|w| w[0].x != w[1].x));
+}
