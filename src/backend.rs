@@ -87,15 +87,22 @@ pub struct CharacterState {
 /// Why a backend could not be built for a level.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BackendError {
-    /// The level contains something this backend does not model yet.
-    #[error("the {backend} backend does not support {feature} yet (level {level})")]
+    /// The level contains something this backend does not model yet, or (`beyond_bound`) lies
+    /// beyond a bound the configuration keeps on purpose (how far from the world's origin it
+    /// places a level, [`origin_supported`]).
+    #[error(
+        "the {backend} backend {} (level {level})",
+        if *beyond_bound { format!("refuses {feature}: a bound it keeps by design") } else { format!("does not support {feature} yet") }
+    )]
     Unsupported {
         /// Backend name.
         backend: &'static str,
-        /// What it lacks.
+        /// What it lacks, or what lies beyond its bound.
         feature: String,
         /// The level's name.
         level: String,
+        /// Whether it is a deliberate bound (a level placed too far out), not a missing feature.
+        beyond_bound: bool,
     },
     /// A parameter is out of its valid range.
     #[error("invalid parameter {name} = {value}: {expected}")]
@@ -130,6 +137,7 @@ pub fn require_supported(
             backend,
             feature: names.join(", "),
             level: level_name.to_string(),
+            beyond_bound: false,
         })
     }
 }
@@ -152,7 +160,24 @@ pub fn origin_supported(settings: &dyn BackendSettings, level: &Level) -> Result
                 crate::limits::MAX_ORIGIN
             ),
             level: level.name.clone(),
+            beyond_bound: true,
         });
+    }
+    if let Some(max) = settings.max_reach() {
+        let reach = level.reach();
+        if reach > max {
+            return Err(BackendError::Unsupported {
+                backend: settings.backend(),
+                feature: format!(
+                    "a level reaching {reach} tiles from the world's origin, its origin ({}, {}) \
+                     plus its size and its platforms' paths (this configuration places a level \
+                     exactly within {max} tiles of the world's origin)",
+                    level.origin.x, level.origin.y,
+                ),
+                level: level.name.clone(),
+                beyond_bound: true,
+            });
+        }
     }
     Ok(())
 }
@@ -367,6 +392,14 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
             Precision::F32 => crate::limits::MAX_F32_ORIGIN,
             Precision::F64 => crate::limits::MAX_ORIGIN,
         }
+    }
+    /// How far from the world's origin everything of a level placed by this configuration must
+    /// lie, in tiles on each axis ([`Level::reach`]: its tile faces and its platforms' paths), if
+    /// the configuration is exact only that far (a level reaching farther is refused,
+    /// [`origin_supported`]). Default: none (the origin's bound, [`BackendSettings::max_origin`],
+    /// is the only one).
+    fn max_reach(&self) -> Option<f64> {
+        None
     }
     /// This configuration built in `precision`, if it offers that precision besides its own
     /// (`None` otherwise: a caller keeps the configuration itself for its own precision).

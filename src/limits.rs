@@ -42,7 +42,8 @@ pub const MAX_ORIGIN: f64 = 1e15;
 /// position's spacing is over a tile (1 tile at 1e7, 8 at 1e8), every f32 configuration
 /// measured has broken (`platbench stress`), and Rapier's f32 casts take seconds a step. Such a
 /// level is skipped by f32 configurations and runs on f64 ones (`--precision f64`); the sweep's
-/// integer positions, whose positions are whole subpixels, hold to 2^24 tiles.
+/// integer positions, whose positions are whole subpixels, hold to 2^24 tiles (the level's
+/// whole reach, origin plus size and platform paths, [`crate::level::Level::reach`]).
 pub const MAX_F32_ORIGIN: f64 = 1e7;
 /// Smallest and largest character width or height, in tiles.
 pub const SIZE_RANGE: (f64, f64) = (1e-3, 1e3);
@@ -62,6 +63,16 @@ pub const MAX_EPSILON: f64 = 1.0;
 /// `1e-6` read into an f32, a hair below 1e-6, is in).
 pub fn dt_in_range(dt: f64) -> bool {
     dt.is_finite() && (dt as f32) >= DT_RANGE.0 as f32 && (dt as f32) <= DT_RANGE.1 as f32
+}
+
+/// `v` as an error message prints it: as Rust prints an f64, except from 1e16 on (past every
+/// range here) in exponent form (`1e308`, not its 309 digits).
+pub fn show(v: f64) -> String {
+    if v.is_finite() && v.abs() >= 1e16 {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
 }
 
 /// Whether `v` is finite and within `lo..=hi`.

@@ -344,3 +344,39 @@ fn the_metrics_measure_the_box_the_integer_mode_moves() {
     let last = e.trace.rows.last().expect("rows");
     assert_eq!(last.x + moved.x * 0.5, 19.0);
 }
+
+#[test]
+fn at_2_24_tiles_out_the_integer_mode_runs_as_at_the_origin_and_a_tile_farther_is_refused() {
+    use platbench::backend::{runs, BackendError};
+    let run = platbench::sweep::kind::run_integer(PER_TILE);
+    // 2^24 tiles: how far an f32 tile face is exact (sweep::grid::MAX_GRID_EXTENT); the levels
+    // are placed so that their farthest tile face or platform box lies exactly there.
+    let edge = 16_777_216.0;
+    for name in ["flat_seams", "platforms"] {
+        let at_origin = level(name);
+        let mut far = at_origin.clone();
+        let o = edge - at_origin.reach();
+        far.origin = glam::DVec2::splat(o);
+        assert_eq!(far.reach(), edge, "{name}");
+        assert!(runs(&*run.backend, &far), "{name} at {o}");
+        let near = evaluate_all(std::slice::from_ref(&at_origin), &run);
+        let there = evaluate_all(std::slice::from_ref(&far), &run);
+        // Whole subpixels in i64 and exact tile faces: every metric as at the origin, to the
+        // bit (none is measured: the positions are the origin's plus a whole number of tiles).
+        for ((n, a), (_, b)) in near.iter().zip(&there) {
+            for (x, y) in a.metrics.iter().zip(&b.metrics) {
+                assert_eq!((x.metric, x.value), (y.metric, y.value), "{n} at {o} tiles");
+            }
+        }
+        // One tile farther the level's last face is 2^24 + 1, which an f32 rounds to 2^24 (the
+        // floor of flat_seams at origin 2^24 lost its height: max_penetration 0.84): refused.
+        far.origin = glam::DVec2::splat(o + 1.0);
+        assert!(!runs(&*run.backend, &far), "{name} at {}", o + 1.0);
+        let spec = &far.scenarios[0];
+        let e = evaluate(&far, spec, &run).err();
+        assert!(
+            matches!(e, Some(BackendError::Unsupported { .. })),
+            "{name}: {e:?}"
+        );
+    }
+}

@@ -113,6 +113,20 @@ fn broken_projects_are_errors_with_file_line_and_column() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("expected 1 to 16000000 cells"), "{e}");
+    // A level at worldX = i64::MAX: its right edge (worldX + pxWid + grid - 1) overflowed an
+    // i64 (wrapping in release); now refused where it stands, past 10^15 pixels.
+    std::fs::write(
+        &p,
+        "{\"worldLayout\":\"Free\",\"levels\":[\n{\"identifier\":\"a\",\"worldX\":0,\"worldY\":0,\"pxWid\":16,\"pxHei\":16,\"layerInstances\":[{\"__identifier\":\"g\",\"__type\":\"IntGrid\",\"__cWid\":1,\"__cHei\":1,\"__gridSize\":16,\"intGridCsv\":[1]}]},\n{\"identifier\":\"b\",\"worldX\":9223372036854775807,\"worldY\":0,\"pxWid\":16,\"pxHei\":16,\"layerInstances\":[]}]}",
+    )
+    .unwrap();
+    let e = import_ldtk_with(&p, &ImportOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("bad.ldtk:3:") && e.contains("size of 9223372036854775807; expected"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -275,11 +275,18 @@ fn the_sweep_in_f64_carries_as_the_float_mode_at_the_origin_and_1e12_tiles_out()
         );
         assert_eq!(d.scenario, x.scenario);
     }
+    let of = |e, m| rows(e, m).into_iter().map(|r| r.value).collect::<Vec<_>>();
     // Whether a rider stays on, and whether it is crushed, do not change: equal everywhere.
     for m in ["carry_airborne_frames", "crush_count"] {
-        let of = |e| rows(e, m).into_iter().map(|r| r.value).collect::<Vec<_>>();
-        assert_eq!(of(&float), of(&double), "{m}");
-        assert_eq!(of(&double), of(&double_far), "{m}");
+        assert_eq!(of(&float, m), of(&double, m), "{m}");
+        assert_eq!(of(&double, m), of(&double_far, m), "{m}");
+    }
+    // Nor what the metrics read of its ground: the far trace keeps the origin's grounded and
+    // platform flags, and the rider within 6e-5 of the platform's top, so the same counts.
+    // (The metric's cast missed a platform 1e-5 to 1e-4 below a box: 26 false_grounded frames
+    // on `diagonal` and 24 on `circle` at 1e12, none at the origin.)
+    for m in ["false_grounded", "grounded_flicker"] {
+        assert_eq!(of(&double, m), of(&double_far, m), "{m}");
     }
     // Frame by frame, the far run's trace follows the origin's: every move there is rounded
     // to 2^-13 tile, and over a scenario those roundings add up to at most 1.9e-4 tiles
@@ -292,4 +299,36 @@ fn the_sweep_in_f64_carries_as_the_float_mode_at_the_origin_and_1e12_tiles_out()
             assert!(off <= 1e-3, "{} frame {}: {off}", d.0, a.frame);
         }
     }
+}
+
+#[test]
+fn rapier_f64_stops_its_rider_a_frame_at_the_turn_at_the_origin_and_not_1e12_tiles_out() {
+    // README (f64 worlds): Rapier's controller, not the harness. At the origin the capsule
+    // rests exactly at the controller's offset above platform 0; just after the platform turns
+    // (t = 4 s) a cast along the surface reads the contact normal tilted 2.5e-14 against the
+    // move and applies nothing: the rider stays put a frame. 1e12 tiles out it reads (0, 1).
+    let run = platbench::rapier::kind::run_with(platbench::rapier::RapierConfig {
+        colliders: ColliderBuilding::PerTile,
+        shape: CharacterShape::Capsule,
+        precision: platbench::rapier::Precision::F64,
+        ..Default::default()
+    });
+    let mut l = level("platforms");
+    l.scenarios.retain(|s| s.name == "ride_horizontal");
+    let mut far = l.clone();
+    far.origin = glam::DVec2::splat(1e12);
+    let at_origin = evaluate_all(std::slice::from_ref(&l), &run);
+    let out = evaluate_all(std::slice::from_ref(&far), &run);
+    // One frame of the platform's 2 tiles/s at dt 1/60 is 1/30 tile; 1e-5: the trace's f32
+    // level coordinates (measured 0.03333330).
+    let drift = value(&at_origin, "ride_horizontal", "carry_drift");
+    assert!((drift - 1.0 / 30.0).abs() < 1e-5, "at the origin: {drift}");
+    let rows = &find(&at_origin, "ride_horizontal").trace.rows;
+    assert_eq!(rows[242].x, rows[243].x, "the stop, frames 242 and 243");
+    // Far out: no stop; what drift is left is the f64 spacing there (2^-13 = 1.2e-4 a
+    // coordinate; measured 6.6e-5), under 1e-4, issue 5's carry bound.
+    let far_drift = value(&out, "ride_horizontal", "carry_drift");
+    assert!(far_drift < 1e-4, "1e12 tiles out: {far_drift}");
+    let rows = &find(&out, "ride_horizontal").trace.rows;
+    assert!(rows.windows(2).skip(1).all(|w| w[0].x != w[1].x));
 }

@@ -244,6 +244,7 @@ impl Box2dBackend {
                     config.shape.label()
                 ),
                 level: level.name.clone(),
+                beyond_bound: false,
             });
         }
         params.validate()?;
@@ -259,6 +260,7 @@ impl Box2dBackend {
                         "this level's geometry, which Box2D refuses ({name}: {value})"
                     ),
                     level: level.name.clone(),
+                    beyond_bound: false,
                 },
                 e => e,
             })?,
@@ -561,6 +563,7 @@ impl Backend for Box2dBackend {
                     spec.size
                 ),
                 level: String::new(),
+                beyond_bound: false,
             });
         }
         self.characters.push(Character {

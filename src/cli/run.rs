@@ -421,6 +421,7 @@ fn execute<'a>(
                 backend,
                 feature,
                 level: named,
+                beyond_bound,
             })) => {
                 // A refusal of one character names no level: name the one it ran on.
                 let e = crate::backend::BackendError::Unsupported {
@@ -431,6 +432,7 @@ fn execute<'a>(
                     } else {
                         named
                     },
+                    beyond_bound,
                 };
                 return Ok(Outcome::Skipped(format!(
                     "{} {}: {e}",

@@ -104,17 +104,52 @@ struct IntGridValueDef {
     identifier: Option<String>,
 }
 
+/// Largest pixel coordinate or size read from a project (a level's `worldX`, `worldY`, `pxWid`,
+/// `pxHei`, a layer's grid size and offsets), from zero: 10^15, [`crate::limits::MAX_ORIGIN`]
+/// (a level placed farther is refused even at one pixel a cell). Sums of four such values stay
+/// far within an `i64` (the world's bounds add a level's corner, its size and a grid cell).
+const MAX_PIXELS: i64 = 1_000_000_000_000_000;
+
+/// A pixel coordinate or size within [`MAX_PIXELS`] of zero; beyond, an error that serde_json
+/// places at the value's line and column.
+fn pixels<'de, D: serde::Deserializer<'de>>(d: D) -> Result<i64, D::Error> {
+    let v = i64::deserialize(d)?;
+    if v.checked_abs().is_none_or(|a| a > MAX_PIXELS) {
+        return Err(serde::de::Error::custom(format!(
+            "a pixel coordinate or size of {v}; expected -10^15 to 10^15 pixels (platbench \
+             places a level at most 1e15 tiles from the world's origin)"
+        )));
+    }
+    Ok(v)
+}
+
+/// A layer's width or height in cells, within [`crate::limits::MAX_TILES`] (a layer wider
+/// than that is more cells than any level may have); beyond, an error serde_json places.
+fn cells<'de, D: serde::Deserializer<'de>>(d: D) -> Result<i64, D::Error> {
+    let v = i64::deserialize(d)?;
+    if v.checked_abs()
+        .is_none_or(|a| a as u64 > crate::limits::MAX_TILES)
+    {
+        return Err(serde::de::Error::custom(format!(
+            "a layer of {v} cells across; expected at most {} (the most tiles a level may \
+             have)",
+            crate::limits::MAX_TILES
+        )));
+    }
+    Ok(v)
+}
+
 #[derive(Deserialize)]
 struct LdLevel {
     #[serde(default)]
     identifier: String,
-    #[serde(rename = "worldX", default)]
+    #[serde(rename = "worldX", default, deserialize_with = "pixels")]
     world_x: i64,
-    #[serde(rename = "worldY", default)]
+    #[serde(rename = "worldY", default, deserialize_with = "pixels")]
     world_y: i64,
-    #[serde(rename = "pxWid", default)]
+    #[serde(rename = "pxWid", default, deserialize_with = "pixels")]
     px_wid: i64,
-    #[serde(rename = "pxHei", default)]
+    #[serde(rename = "pxHei", default, deserialize_with = "pixels")]
     px_hei: i64,
     #[serde(rename = "layerInstances", default)]
     layer_instances: Option<Vec<LayerInstance>>,
@@ -128,15 +163,15 @@ struct LayerInstance {
     identifier: String,
     #[serde(rename = "__type", default)]
     kind: String,
-    #[serde(rename = "__cWid", default)]
+    #[serde(rename = "__cWid", default, deserialize_with = "cells")]
     c_wid: i64,
-    #[serde(rename = "__cHei", default)]
+    #[serde(rename = "__cHei", default, deserialize_with = "cells")]
     c_hei: i64,
-    #[serde(rename = "__gridSize", default)]
+    #[serde(rename = "__gridSize", default, deserialize_with = "pixels")]
     grid_size: i64,
-    #[serde(rename = "__pxTotalOffsetX", default)]
+    #[serde(rename = "__pxTotalOffsetX", default, deserialize_with = "pixels")]
     px_offset_x: i64,
-    #[serde(rename = "__pxTotalOffsetY", default)]
+    #[serde(rename = "__pxTotalOffsetY", default, deserialize_with = "pixels")]
     px_offset_y: i64,
     #[serde(rename = "layerDefUid", default)]
     layer_def_uid: i64,
@@ -378,10 +413,22 @@ fn import(
     for &k in &picked {
         let l = &levels[k];
         let (ox, oy) = origin(l);
+        // Each term is within MAX_PIXELS (read so): the sums cannot overflow, checked anyway.
+        let far = |o: i64, size: i64| {
+            o.checked_add(size.max(0))
+                .and_then(|e| e.checked_add(grid - 1))
+                .map(|e| e.div_euclid(grid))
+                .ok_or_else(|| {
+                    perr(format!(
+                        "level {:?} reaches beyond an i64 of pixels ({o} + {size})",
+                        l.identifier
+                    ))
+                })
+        };
         x0 = x0.min(ox.div_euclid(grid));
         y0 = y0.min(oy.div_euclid(grid));
-        x1 = x1.max((ox + l.px_wid.max(0) + grid - 1).div_euclid(grid));
-        y1 = y1.max((oy + l.px_hei.max(0) + grid - 1).div_euclid(grid));
+        x1 = x1.max(far(ox, l.px_wid)?);
+        y1 = y1.max(far(oy, l.px_hei)?);
     }
     let (w, h) = ((x1 - x0).max(0) as u64, (y1 - y0).max(0) as u64);
     if w == 0 || h == 0 || w.saturating_mul(h) > crate::limits::MAX_TILES {

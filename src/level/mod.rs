@@ -360,6 +360,25 @@ impl Level {
         self.origin.as_vec2()
     }
 
+    /// How far the level reaches from the world's origin, in tiles: the largest distance on
+    /// either axis of its tile faces (its corner [`Level::origin`] plus 0 to its width and
+    /// height) and of the boxes its platforms sweep ([`Platform::reach`]), in f64.
+    pub fn reach(&self) -> f64 {
+        let size = DVec2::new(self.width as f64, self.height as f64);
+        let mut far = self
+            .origin
+            .abs()
+            .max((self.origin + size).abs())
+            .max_element();
+        for p in &self.platforms {
+            let (lo, hi) = p.reach();
+            far = far
+                .max((self.origin + lo).abs().max_element())
+                .max((self.origin + hi).abs().max_element());
+        }
+        far
+    }
+
     /// A copy of the level's geometry without its scenarios, for a backend to keep.
     pub fn geometry(&self) -> Level {
         Level {

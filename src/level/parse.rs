@@ -563,7 +563,10 @@ fn parse_platform(loc: &Locator, p: &Spanned<RawPlatform>) -> Result<Platform, L
 
 fn finite(loc: &Locator, span: &Range<usize>, what: &str, v: f64) -> Result<f32, LevelError> {
     if !v.is_finite() || v.abs() > f32::MAX as f64 {
-        return Err(loc.at(span, format!("{what} is {v}; expected a finite number")));
+        return Err(loc.at(
+            span,
+            format!("{what} is {}; expected a finite number", limits::show(v)),
+        ));
     }
     Ok(v as f32)
 }
@@ -571,7 +574,10 @@ fn finite(loc: &Locator, span: &Range<usize>, what: &str, v: f64) -> Result<f32,
 fn positive(loc: &Locator, span: &Range<usize>, what: &str, v: f64) -> Result<f32, LevelError> {
     let x = finite(loc, span, what, v)?;
     if x <= 0.0 {
-        return Err(loc.at(span, format!("{what} is {v}; expected a number > 0")));
+        return Err(loc.at(
+            span,
+            format!("{what} is {}; expected a number > 0", limits::show(v)),
+        ));
     }
     Ok(x)
 }
@@ -605,7 +611,11 @@ fn ranged_f64(
         };
         return Err(loc.at(
             span,
-            format!("{what} is {v}; expected {lo}{what} <= {} ({unit})", range.1),
+            format!(
+                "{what} is {}; expected {lo}{what} <= {} ({unit})",
+                limits::show(v),
+                range.1
+            ),
         ));
     }
     Ok(v)
@@ -960,6 +970,7 @@ inputs = [ { t = 0.0, right = true }, { t = 0.5, right = false } ]
             ("[2e15, 0.0]", "origin x"),
             ("[0.0, -1e16]", "origin y"),
             ("[nan, 0.0]", "origin x"),
+            ("[1e308, 0.0]", "origin x"),
         ] {
             let e = parse_level(&with(o), "o.toml").unwrap_err();
             assert_eq!(
@@ -975,5 +986,8 @@ inputs = [ { t = 0.0, right = true }, { t = 0.5, right = false } ]
                 "{e}"
             );
         }
+        // Past 1e16 in exponent form: 1e308 is not printed as its 309 digits.
+        let e = parse_level(&with("[1e308, 0.0]"), "o.toml").unwrap_err();
+        assert!(e.message.starts_with("origin x is 1e308; expected"), "{e}");
     }
 }

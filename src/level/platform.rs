@@ -85,6 +85,30 @@ impl Platform {
         p.as_vec2()
     }
 
+    /// The box the platform sweeps over its whole motion, in level tiles (lower left, upper
+    /// right), in f64: its waypoints' box, its sine's start plus and minus the amplitude, or
+    /// its circle's box, each grown by the platform's size.
+    pub fn reach(&self) -> (DVec2, DVec2) {
+        let start = self.start.as_dvec2();
+        let (lo, hi) = match &self.motion {
+            PlatformMotion::Waypoints { points, .. } => {
+                points.iter().fold((start, start), |(lo, hi), p| {
+                    (lo.min(p.as_dvec2()), hi.max(p.as_dvec2()))
+                })
+            }
+            PlatformMotion::Sine { amplitude, .. } => {
+                let a = amplitude.as_dvec2().abs();
+                (start - a, start + a)
+            }
+            PlatformMotion::Circle { radius, .. } => {
+                // start + r (cos a - 1, sin a): x in start.x - 2r..start.x, y within r.
+                let r = (*radius as f64).abs();
+                (start - DVec2::new(2.0 * r, r), start + DVec2::new(0.0, r))
+            }
+        };
+        (lo, hi + self.size.as_dvec2())
+    }
+
     /// The platform's box at time `t`.
     pub fn aabb(&self, t: f64) -> parry2d::bounding_volume::Aabb {
         let p = self.position(t);

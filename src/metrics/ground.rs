@@ -13,7 +13,7 @@ use std::collections::HashMap;
 
 use glam::Vec2;
 use parry2d::math::Pose;
-use parry2d::query::{cast_shapes, contact, ShapeCastOptions};
+use parry2d::query::{cast_shapes, contact, ShapeCastHit, ShapeCastOptions};
 use parry2d::shape::{Cuboid, SharedShape};
 
 use super::landing::FLICKER_SUPPORT_TOLERANCE;
@@ -59,6 +59,45 @@ fn slope_shape(s: &Slope) -> Option<SharedShape> {
             (!parts.is_empty()).then(|| SharedShape::compound(parts))
         }
     }
+}
+
+/// Casts `shape` at `pose` straight down onto `target` at `target_pose`, at most `max_toi`
+/// tiles: parry's time of impact, with the normal at the touch.
+///
+/// parry 0.31's cast between two support-map shapes, when its time of impact is under 1e-4,
+/// replaces the cast's normal with that of a contact query, and returns no hit when that query
+/// finds none: it finds none for two boxes face to face 1e-5 to 1e-4 apart (and for a capsule
+/// 1e-7 above a box), so a box hovering there over a floor or a platform read as having no
+/// ground within reach (a rider 4e-5 above a platform placed far out read as false_grounded).
+/// Such a miss is cast again without that replacement, which keeps the cast's own time of
+/// impact and normal; a cast that hits the first time is kept as it was.
+fn cast_down_onto(
+    pose: &Pose,
+    shape: &dyn parry2d::shape::Shape,
+    target_pose: &Pose,
+    target: &dyn parry2d::shape::Shape,
+    max_toi: f32,
+) -> Option<ShapeCastHit> {
+    let cast = |options| {
+        cast_shapes(
+            pose,
+            Vec2::NEG_Y,
+            shape,
+            target_pose,
+            Vec2::ZERO,
+            target,
+            options,
+        )
+        .ok()
+        .flatten()
+    };
+    let options = ShapeCastOptions::with_max_time_of_impact(max_toi);
+    cast(options).or_else(|| {
+        cast(ShapeCastOptions {
+            compute_impact_geometry_on_penetration: false,
+            ..options
+        })
+    })
 }
 
 impl<'a> Ground<'a> {
@@ -179,16 +218,7 @@ impl<'a> Ground<'a> {
                     continue;
                 }
                 let tile = Pose::from_translation(Vec2::new(i as f32, j as f32) + Vec2::splat(0.5));
-                let options = ShapeCastOptions::with_max_time_of_impact(band);
-                if let Ok(Some(hit)) = cast_shapes(
-                    &above,
-                    Vec2::NEG_Y,
-                    &*self.shape,
-                    &tile,
-                    Vec2::ZERO,
-                    &self.tile,
-                    options,
-                ) {
+                if let Some(hit) = cast_down_onto(&above, &*self.shape, &tile, &self.tile, band) {
                     worst = worst.max(band - hit.time_of_impact);
                 }
             }
@@ -258,15 +288,12 @@ impl<'a> Ground<'a> {
                 continue;
             }
             let half_extents = b.half_extents();
-            let options = ShapeCastOptions::with_max_time_of_impact(GROUND_SEARCH);
-            if let Ok(Some(hit)) = cast_shapes(
+            if let Some(hit) = cast_down_onto(
                 &pose,
-                Vec2::NEG_Y,
                 &*self.shape,
                 &Pose::from_translation(b.center()),
-                Vec2::ZERO,
                 &Cuboid::new(half_extents),
-                options,
+                GROUND_SEARCH,
             ) {
                 best = best.min(hit.time_of_impact);
             }
@@ -342,16 +369,9 @@ impl<'a> Ground<'a> {
                         },
                         _ => continue,
                     };
-                let options = ShapeCastOptions::with_max_time_of_impact(GROUND_SEARCH);
-                if let Ok(Some(hit)) = cast_shapes(
-                    &pose,
-                    Vec2::NEG_Y,
-                    &*self.shape,
-                    &tile_pose,
-                    Vec2::ZERO,
-                    tile_shape,
-                    options,
-                ) {
+                if let Some(hit) =
+                    cast_down_onto(&pose, &*self.shape, &tile_pose, tile_shape, GROUND_SEARCH)
+                {
                     if hit.time_of_impact < best.0 {
                         // Tiles are posed by translation only: the local normal is the world's.
                         best = (hit.time_of_impact, hit.normal2);
@@ -467,5 +487,34 @@ mod tests {
         let lift = 0.45 * (2f32.sqrt() - 1.0);
         assert!(ball.gap(Vec2::new(2.5, 1.5 + lift + 0.1)) - 0.1 < 1e-3);
         assert!(boxy.gap(Vec2::new(0.5, 5.0)).is_infinite());
+    }
+    #[test]
+    fn a_box_hovering_under_1e_4_over_a_platform_has_it_below() {
+        // The diagonal ride of platforms.toml at 1e12 tiles out, frame 8 of the f64 sweep, in
+        // level coordinates: the platform's box (placed from f64, rounded to f32) and the
+        // rider 4.5e-5 right of its middle and 4.4e-5 above its top (the f64 spacing there,
+        // 2^-13, rounds the rider's place). parry's cast found no hit for the box 1e-5 to
+        // 1e-4 above it there, so the gap read as infinite (nothing else within reach).
+        let level = parse_level(
+            "map = \"\"\"\n......\n######\n\"\"\"\n\
+             [[platform]]\nrect = [26.623735, 5.623735, 3.0, 0.5]\n\
+             sine = { amplitude = [0.0, 0.0], period = 1.0 }\n",
+            "p.toml",
+        )
+        .unwrap();
+        let size = Vec2::new(0.8, 0.9);
+        for shape in [
+            CharacterShape::Cuboid,
+            CharacterShape::Capsule,
+            CharacterShape::Ball,
+        ] {
+            let g = Ground::new(&level, shape, size);
+            for lift in [1e-5f32, 4.4e-5, 9e-5] {
+                let gap = g.gap_at(Vec2::new(28.12378, 6.123735 + lift), 0.0, true);
+                // The gap is the lift, to 1e-6: the f32 spacing at y = 6 is 4.8e-7, and the
+                // casts converge within it here (measured 1.2e-7 for the box).
+                assert!((gap - lift).abs() < 1e-6, "{shape:?} {lift}: {gap}");
+            }
+        }
     }
 }

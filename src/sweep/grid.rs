@@ -64,6 +64,7 @@ impl Grid {
                     origin.x, origin.y
                 ),
                 level: level.to_string(),
+                beyond_bound: true,
             });
         }
         Ok(Grid {

@@ -109,6 +109,17 @@ impl BackendSettings for SweepConfig {
         }
     }
 
+    /// Integer positions place a level only where every tile face and every platform's box is
+    /// exact in the broadphase's f32 boxes: within 2^24 tiles of the world's origin
+    /// ([`super::grid::MAX_GRID_EXTENT`]); past it an odd face rounds to its even neighbour (a
+    /// floor at 2^24 to 2^24 + 1 loses its height). The float and f64 modes: none.
+    fn max_reach(&self) -> Option<f64> {
+        match self.positions {
+            Positions::Integer { .. } => Some(super::grid::MAX_GRID_EXTENT),
+            _ => None,
+        }
+    }
+
     /// The float mode and the f64 mode are each other's build in the other precision.
     fn with_precision(&self, precision: Precision) -> Option<Arc<dyn BackendSettings>> {
         let positions = match (self.positions, precision) {
@@ -377,6 +388,27 @@ mod tests {
             assert_eq!(runs(&integer, &l), i, "integer at {o}");
             assert_eq!(runs(&double, &l), d, "f64 at {o}");
         }
+        // Integer positions bound the level's reach, not its origin alone: the 2 x 2 level's
+        // last faces at origin 2^24 - 2 are 2^24 (exact in f32), at 2^24 - 1 they are 2^24 + 1
+        // (rounded to 2^24); to the left its corner is the farthest face; a platform whose
+        // path reaches past 2^24 is refused with it.
+        let edge = super::super::grid::MAX_GRID_EXTENT;
+        assert!(runs(&integer, &level(edge - 2.0)));
+        assert!(!runs(&integer, &level(edge - 1.0)));
+        assert!(runs(&integer, &level(-edge)));
+        assert!(!runs(&integer, &level(-edge - 1.0)));
+        let mut platform = level(edge - 10.0);
+        platform.platforms.push(crate::level::Platform {
+            start: glam::Vec2::new(0.0, 0.0),
+            size: glam::Vec2::new(1.0, 0.5),
+            motion: crate::level::PlatformMotion::Waypoints {
+                points: vec![glam::Vec2::ZERO, glam::Vec2::new(9.5, 0.0)],
+                speed: 1.0,
+            },
+            one_way: false,
+        });
+        assert!(!runs(&integer, &platform), "a path to 2^24 + 0.5");
+        assert!(runs(&double, &platform));
         let e = origin_supported(&float, &level(-2e7))
             .unwrap_err()
             .to_string();
