@@ -90,27 +90,45 @@ pub fn dimensions() -> Vec<Dimension> {
     ]
 }
 
+/// The offsets of the combination grids for configurations in `precision`: where the
+/// configuration holds alone, up to its last one-dimension offset, so that a cell that breaks
+/// breaks for the combination. In f32 1e4, 1e5 and 1e6 tiles (spacing 1/1024, 1/128 and 1/16
+/// tile; 1e7 breaks alone). In f64 1e11, 1e12 and 1e13 (spacing 2^-16, 2^-13 and 2^-9 tile,
+/// about 1.5e-5, 1.2e-4 and 2.0e-3; 1e14 breaks alone): an f64 world's positions there are as
+/// coarse as an f32 world's at 1e3 to 1e5, so the same interactions (a step under a few
+/// spacings, an epsilon under one spacing) reach it there, and an f32 grid would show an f64
+/// configuration nothing (its spacing at 1e6 is 1.2e-10 tile).
+pub fn pair_offsets(precision: Precision) -> Vec<f64> {
+    match precision {
+        Precision::F32 => vec![1e4, 1e5, 1e6],
+        Precision::F64 => vec![1e11, 1e12, 1e13],
+    }
+}
+
 /// The pairs of dimensions whose failures interact, each on a small grid (the base case
-/// elsewhere): an epsilon below the f32 spacing far out, a step too small to move a position
-/// far out, a time step too coarse for a fast mover, a tiny character at speed, and a fast mover
-/// far out. The grids straddle the one-dimension edges measured alone.
-pub fn pairs() -> Vec<(Dimension, Dimension)> {
+/// elsewhere), for configurations in `precision`: an epsilon below the spacing far out, a step
+/// too small to move a position far out, a time step too coarse for a fast mover, a tiny
+/// character at speed, and a fast mover far out. The grids straddle the one-dimension edges
+/// measured alone; the offsets are the precision's own ([`pair_offsets`]).
+pub fn pairs(precision: Precision) -> Vec<(Dimension, Dimension)> {
     let dim = |name, values: Vec<f64>| Dimension {
         name,
         base: base_value(name),
         values,
     };
+    let offsets = || dim("offset", pair_offsets(precision));
+    let dts = match precision {
+        // 1e-3 s rather than the one-dimension 1e-4: its walking step (6e-3 tiles) is
+        // already under the f32 spacing at 1e5 tiles (1/128), at a tenth of the cost.
+        Precision::F32 => vec![1e-3, 1.0 / 240.0, 0.05],
+        // 1e-4 s as well: its walking step (6e-4 tiles) is 5 f64 spacings at 1e12 and under
+        // one at 1e13, where 1e-3 s (6e-3 tiles, 3.07 spacings) rounds to 3: the steps that
+        // f32 meets at 1e4 to 1e5. 0.05 s stays for the coarse side (a jump's steps).
+        Precision::F64 => vec![1e-4, 1e-3, 0.05],
+    };
     vec![
-        (
-            dim("offset", vec![1e4, 1e5, 1e6]),
-            dim("epsilon", vec![1e-7, 1e-5, 1e-3]),
-        ),
-        (
-            dim("offset", vec![1e4, 1e5, 1e6]),
-            // 1e-3 s rather than the one-dimension 1e-4: its walking step (6e-3 tiles) is
-            // already under the f32 spacing at 1e5 tiles (1/128), at a tenth of the cost.
-            dim("dt", vec![1e-3, 1.0 / 240.0, 0.05]),
-        ),
+        (offsets(), dim("epsilon", vec![1e-7, 1e-5, 1e-3])),
+        (offsets(), dim("dt", dts)),
         (
             dim("speed", vec![100.0, 1000.0]),
             dim("dt", vec![1.0 / 240.0, 0.05, 0.2]),
@@ -119,10 +137,7 @@ pub fn pairs() -> Vec<(Dimension, Dimension)> {
             dim("width", vec![0.01, 0.1, 10.0]),
             dim("speed", vec![100.0, 1000.0]),
         ),
-        (
-            dim("offset", vec![1e4, 1e5, 1e6]),
-            dim("speed", vec![10.0, 1000.0]),
-        ),
+        (offsets(), dim("speed", vec![10.0, 1000.0])),
     ]
 }
 
@@ -411,8 +426,9 @@ fn configured(run: &RunConfig, case: &Case, epsilon_varied: bool) -> Option<RunC
 }
 
 /// Every point of the matrix for `runs`, in the order their rows are written: each dimension
-/// alone, value by value, then each pair of [`pairs`] cell by cell; within a value or cell,
-/// `runs` in order. The epsilon is varied only on configurations that have one, and offsets past
+/// alone, value by value, then each pair of [`pairs`] cell by cell, the f32 configurations on
+/// their grid and then the f64 ones on theirs; within a value or cell, `runs` in order. The
+/// epsilon is varied only on configurations that have one, and offsets past
 /// [`F32_OFFSET_LIMIT`] only on f64 configurations.
 pub fn points(runs: &[RunConfig]) -> Vec<Point> {
     let mut out = Vec::new();
@@ -435,19 +451,25 @@ pub fn points(runs: &[RunConfig]) -> Vec<Point> {
             }
         }
     }
-    for (a, b) in pairs() {
-        for &va in &a.values {
-            for &vb in &b.values {
-                let case = BASE.with(a.name, va).with(b.name, vb);
-                let eps = a.name == "epsilon" || b.name == "epsilon";
-                for base in runs {
-                    if let Some(run) = configured(base, &case, eps) {
-                        out.push(Point {
-                            run,
-                            case,
-                            dimension: (a.name, va),
-                            dimension2: Some((b.name, vb)),
-                        });
+    // Pair by pair, each precision's grid in turn (f32 first), so that a pair's cells stay
+    // together whatever the precision.
+    let by_precision = [Precision::F32, Precision::F64].map(|p| (p, pairs(p)));
+    for k in 0..by_precision[0].1.len() {
+        for (precision, grids) in &by_precision {
+            let (a, b) = &grids[k];
+            for &va in &a.values {
+                for &vb in &b.values {
+                    let case = BASE.with(a.name, va).with(b.name, vb);
+                    let eps = a.name == "epsilon" || b.name == "epsilon";
+                    for base in runs.iter().filter(|r| r.backend.precision() == *precision) {
+                        if let Some(run) = configured(base, &case, eps) {
+                            out.push(Point {
+                                run,
+                                case,
+                                dimension: (a.name, va),
+                                dimension2: Some((b.name, vb)),
+                            });
+                        }
                     }
                 }
             }
@@ -1015,9 +1037,10 @@ pub struct WorldVerdict {
     /// Backend and configuration label.
     pub config: String,
     /// `Some(true)`: every invariant held at every measured offset up to the first one at or
-    /// past `size`; `Some(false)`: one broke at a measured offset within `size`; `None`: held
-    /// at every measured offset within `size`, broke at the next one past it, so the offsets
-    /// between were not measured.
+    /// past `size`, and in every combination cell with an offset within `size`; `Some(false)`:
+    /// one broke at a measured offset within `size`, or in such a combination cell; `None`:
+    /// held at every measured offset and cell within `size`, broke at the next offset past it,
+    /// so the offsets between were not measured.
     pub holds: Option<bool>,
     /// The verdict in words, naming the offsets and invariants (for one broken at offset 0, how
     /// far those that held there hold, [`reach`]).
@@ -1028,7 +1051,8 @@ pub struct WorldVerdict {
 }
 
 /// Which configurations hold in a world `size` tiles across: each configuration's `offset` rows
-/// (the base case elsewhere), and the combination cells within that offset that broke.
+/// (the base case elsewhere), and the combination cells within that offset that broke (any one
+/// of them is a break in that world).
 pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
     let f = crate::report::format_setting;
     let reaches = reach(rows);
@@ -1112,6 +1136,20 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
                 None => combinations.push((cell, vec![r.invariant.clone()])),
             }
         }
+        // A cell within the world that breaks is a break within it: the world's positions
+        // reach that offset, and the cell's other value (a dt, a speed, an epsilon) is one the
+        // matrix holds alone at the base case.
+        let (holds, text) = match (holds, combinations.len()) {
+            (Some(false), _) | (_, 0) => (holds, text),
+            (_, n) => (
+                Some(false),
+                format!(
+                    "{text}; but {n} combination cell{} within it break{}",
+                    if n == 1 { "" } else { "s" },
+                    if n == 1 { "s" } else { "" }
+                ),
+            ),
+        };
         out.push(WorldVerdict {
             config: v.config.clone(),
             holds,
@@ -1267,15 +1305,28 @@ mod tests {
             }])
             .collect();
         let w = |size| world_verdicts(&rows, size).remove(0);
-        assert_eq!(w(1e6).holds, Some(true));
-        assert_eq!(w(5e5).holds, Some(true));
+        // Without the combination cell: the offsets alone decide.
+        let alone: Vec<StressRow> = rows[..4].to_vec();
+        let a = |size| world_verdicts(&alone, size).remove(0).holds;
+        assert_eq!(a(1e6), Some(true));
+        assert_eq!(a(5e5), Some(true));
         // 5e6: 1e6 held, 1e7 broke; between them nothing was measured.
-        assert_eq!(w(5e6).holds, None);
-        assert_eq!(w(1e7).holds, Some(false));
+        assert_eq!(a(5e6), None);
+        assert_eq!(a(1e7), Some(false));
+        // The cell at offset 1e5 broke: every world that reaches 1e5 breaks, whatever its
+        // offsets alone say; a world within 1e4 does not reach it.
+        for size in [1e5, 5e5, 1e6, 5e6, 1e7] {
+            assert_eq!(w(size).holds, Some(false), "{size}");
+        }
+        assert_eq!(
+            w(1e6).text,
+            "holds at every offset measured up to 1e6; but 1 combination cell within it breaks"
+        );
         assert_eq!(
             w(1e6).combinations,
             vec!["offset x dt at (1e5, 0.001): jump_height"]
         );
+        assert_eq!(w(1e4).holds, Some(true));
         assert!(w(1e4).combinations.is_empty());
         // Broken at the origin (the carry): the invariants that held there are followed out.
         let rows: Vec<StressRow> = [0.0, 1e5, 1e14]
