@@ -90,14 +90,16 @@ pub fn dimensions() -> Vec<Dimension> {
     ]
 }
 
-/// The offsets of the combination grids for configurations in `precision`: where the
-/// configuration holds alone, up to its last one-dimension offset, so that a cell that breaks
-/// breaks for the combination. In f32 1e4, 1e5 and 1e6 tiles (spacing 1/1024, 1/128 and 1/16
-/// tile; 1e7 breaks alone). In f64 1e11, 1e12 and 1e13 (spacing 2^-16, 2^-13 and 2^-9 tile,
-/// about 1.5e-5, 1.2e-4 and 2.0e-3; 1e14 breaks alone): an f64 world's positions there are as
-/// coarse as an f32 world's at 1e3 to 1e5, so the same interactions (a step under a few
-/// spacings, an epsilon under one spacing) reach it there, and an f32 grid would show an f64
-/// configuration nothing (its spacing at 1e6 is 1.2e-10 tile).
+/// The offsets of the combination grids for configurations in `precision`: the three decades
+/// before the precision's one-dimension edge (where the sweep's positions still snap and rest),
+/// so that the grid shows what a finer step, a faster mover or a smaller epsilon adds there. In
+/// f32 1e4, 1e5 and 1e6 tiles (spacing 1/1024, 1/128 and 1/16 tile; 1e7 breaks every
+/// configuration alone; the walk's progress alone already leaves its band at 1e5 and 1e6, by
+/// the rounding of its 0.1-tile step). In f64 1e11, 1e12 and 1e13 (spacing 2^-16, 2^-13 and
+/// 2^-9 tile, about 1.5e-5, 1.2e-4 and 2.0e-3; each holds alone, 1e14 breaks): an f64 world's
+/// positions there are as coarse as an f32 world's at 1e3 to 1e5, so the same interactions (a
+/// step of a few spacings or under one, an epsilon under one spacing) reach it there, where an
+/// f32 grid would show an f64 configuration nothing (its spacing at 1e6 is 1.2e-10 tile).
 pub fn pair_offsets(precision: Precision) -> Vec<f64> {
     match precision {
         Precision::F32 => vec![1e4, 1e5, 1e6],
@@ -208,7 +210,8 @@ pub struct StressRow {
     /// The worst measured value over the probes (for `finite`, 0 or 1).
     pub measured: f64,
     /// The tolerance it was held to: an upper bound on `measured`, except for `progress`,
-    /// where it is the least fraction of the commanded distance to cover.
+    /// where it is how far the fraction of the commanded distance covered may be from 1, either
+    /// way ([`PROGRESS_BAND`]).
     pub tolerance: f64,
 }
 
@@ -231,8 +234,20 @@ pub const INVARIANTS: [&str; 9] = [
 /// covers 1.0 up to rounding; 1% is what rounding a walking step (0.1 tiles at 1/60 s) onto
 /// the f32 grid can cost where the spacing is a few thousandths of a tile, and the loss the
 /// report already calls progress lost (`progress_ratio < 0.99`). The Rapier walks at
-/// 1e5 tiles (91% to 96% per tile) are broken by it.
+/// 1e5 tiles (91% to 96% per tile) are broken by it. The most is [`PROGRESS_MAX`].
 pub const PROGRESS_MIN: f64 = 0.99;
+
+/// How far the fraction of the commanded distance a walk covers may be from 1, either way:
+/// `1 - PROGRESS_MIN`, 1%. Rounding a step to the nearest representable position lengthens it
+/// as readily as it shortens it (a 0.1-tile step is 1.6 spacings of 1/16 tile at 1e6 tiles and
+/// rounds up to 2: 125%), so the band is symmetric about 1 with the tolerance the short side
+/// already had: a walk that overshoots by more than 1% has not held either (it carries the
+/// character past where the game put it, a ledge or a door), and every configuration is held
+/// to the same band.
+pub const PROGRESS_BAND: f64 = 1.0 - PROGRESS_MIN;
+
+/// The largest fraction of the commanded distance a walk may cover: `1 + PROGRESS_BAND`, 101%.
+pub const PROGRESS_MAX: f64 = 1.0 + PROGRESS_BAND;
 
 /// How far a jump's apex may miss the requested height, in tiles: one pixel of a 16-pixel tile
 /// (the seed's slope tiles are drawn in 16ths), below which a player sees no difference and the
@@ -724,12 +739,15 @@ fn rows_of(point: &Point, o: &Outcome, tol_pen: f64, tol_rest: f64) -> Vec<Stres
     if let Some((drift, tol)) = o.carry {
         out.push(row("carry_no_drift", finite && drift <= tol, drift, tol));
     }
+    // Within the band either way: short (stuck, or steps rounded down) and long (steps rounded
+    // up) alike. 1 +/- PROGRESS_BAND rather than PROGRESS_MIN..PROGRESS_MAX so that the row's
+    // tolerance is the one bound both sides are held to.
     let progress = if o.progress.is_nan() { 0.0 } else { o.progress };
     out.push(row(
         "progress",
-        finite && progress >= PROGRESS_MIN,
+        finite && (progress - 1.0).abs() <= PROGRESS_BAND,
         progress,
-        PROGRESS_MIN,
+        PROGRESS_BAND,
     ));
     out.push(row("no_stuck", finite && o.stuck == 0.0, o.stuck, 0.0));
     let jump = nan_inf(o.jump);
@@ -1364,6 +1382,41 @@ mod tests {
         assert!(verdicts(&rows)[0]
             .text()
             .starts_with("breaks at the base case"));
+    }
+
+    #[test]
+    fn progress_breaks_on_both_sides_of_its_band() {
+        let point = Point {
+            run: crate::sweep::kind::run_default(),
+            case: BASE,
+            dimension: ("offset", 0.0),
+            dimension2: None,
+        };
+        let progress = |p: f64| {
+            let o = Outcome {
+                finite: true,
+                progress: p,
+                ..Default::default()
+            };
+            let rows = rows_of(&point, &o, 0.0, 0.0);
+            rows.into_iter()
+                .find(|r| r.invariant == "progress")
+                .unwrap()
+        };
+        // 1 +/- 1%: the f32 sweep's walk 1e6 tiles out (1.248, its 0.1-tile steps rounded up to
+        // 2/16) breaks as a stuck one does; a walk within 1% either way holds.
+        for (p, holds) in [
+            (1.0, true),
+            (PROGRESS_MIN, true),
+            (PROGRESS_MAX, true),
+            (0.98, false),
+            (1.0156, false),
+            (1.248, false),
+            (f64::NAN, false),
+        ] {
+            assert_eq!(progress(p).holds, holds, "{p}");
+        }
+        assert_eq!(progress(1.0).tolerance, PROGRESS_BAND);
     }
 
     #[test]
