@@ -90,27 +90,47 @@ pub fn dimensions() -> Vec<Dimension> {
     ]
 }
 
+/// The offsets of the combination grids for configurations in `precision`: the three decades
+/// before the precision's one-dimension edge (where the sweep's positions still snap and rest),
+/// so that the grid shows what a finer step, a faster mover or a smaller epsilon adds there. In
+/// f32 1e4, 1e5 and 1e6 tiles (spacing 1/1024, 1/128 and 1/16 tile; 1e7 breaks every
+/// configuration alone; the walk's progress alone already leaves its band at 1e5 and 1e6, by
+/// the rounding of its 0.1-tile step). In f64 1e11, 1e12 and 1e13 (spacing 2^-16, 2^-13 and
+/// 2^-9 tile, about 1.5e-5, 1.2e-4 and 2.0e-3; each holds alone, 1e14 breaks): an f64 world's
+/// positions there are as coarse as an f32 world's at 1e3 to 1e5, so the same interactions (a
+/// step of a few spacings or under one, an epsilon under one spacing) reach it there, where an
+/// f32 grid would show an f64 configuration nothing (its spacing at 1e6 is 1.2e-10 tile).
+pub fn pair_offsets(precision: Precision) -> Vec<f64> {
+    match precision {
+        Precision::F32 => vec![1e4, 1e5, 1e6],
+        Precision::F64 => vec![1e11, 1e12, 1e13],
+    }
+}
+
 /// The pairs of dimensions whose failures interact, each on a small grid (the base case
-/// elsewhere): an epsilon below the f32 spacing far out, a step too small to move a position
-/// far out, a time step too coarse for a fast mover, a tiny character at speed, and a fast mover
-/// far out. The grids straddle the one-dimension edges measured alone.
-pub fn pairs() -> Vec<(Dimension, Dimension)> {
+/// elsewhere), for configurations in `precision`: an epsilon below the spacing far out, a step
+/// too small to move a position far out, a time step too coarse for a fast mover, a tiny
+/// character at speed, and a fast mover far out. The grids straddle the one-dimension edges
+/// measured alone; the offsets are the precision's own ([`pair_offsets`]).
+pub fn pairs(precision: Precision) -> Vec<(Dimension, Dimension)> {
     let dim = |name, values: Vec<f64>| Dimension {
         name,
         base: base_value(name),
         values,
     };
+    let offsets = || dim("offset", pair_offsets(precision));
+    let dts = match precision {
+        // 1e-3 s rather than the one-dimension 1e-4: its walking step (6e-3 tiles) is
+        // already under the f32 spacing at 1e5 tiles (1/128), at a tenth of the cost.
+        Precision::F32 => vec![1e-3, 1.0 / 240.0, 0.05],
+        // 1e-4 s as well: its walking step (6e-4 tiles) is 5 f64 spacings at 1e12 and under
+        // one at 1e13, where 1e-3 s (6e-3 tiles, 3.07 spacings) rounds to 3: the steps that
+        // f32 meets at 1e4 to 1e5. 0.05 s stays for the coarse side (a jump's steps).
+        Precision::F64 => vec![1e-4, 1e-3, 0.05],
+    };
     vec![
-        (
-            dim("offset", vec![1e4, 1e5, 1e6]),
-            dim("epsilon", vec![1e-7, 1e-5, 1e-3]),
-        ),
-        (
-            dim("offset", vec![1e4, 1e5, 1e6]),
-            // 1e-3 s rather than the one-dimension 1e-4: its walking step (6e-3 tiles) is
-            // already under the f32 spacing at 1e5 tiles (1/128), at a tenth of the cost.
-            dim("dt", vec![1e-3, 1.0 / 240.0, 0.05]),
-        ),
+        (offsets(), dim("epsilon", vec![1e-7, 1e-5, 1e-3])),
+        (offsets(), dim("dt", dts)),
         (
             dim("speed", vec![100.0, 1000.0]),
             dim("dt", vec![1.0 / 240.0, 0.05, 0.2]),
@@ -119,10 +139,7 @@ pub fn pairs() -> Vec<(Dimension, Dimension)> {
             dim("width", vec![0.01, 0.1, 10.0]),
             dim("speed", vec![100.0, 1000.0]),
         ),
-        (
-            dim("offset", vec![1e4, 1e5, 1e6]),
-            dim("speed", vec![10.0, 1000.0]),
-        ),
+        (offsets(), dim("speed", vec![10.0, 1000.0])),
     ]
 }
 
@@ -193,7 +210,8 @@ pub struct StressRow {
     /// The worst measured value over the probes (for `finite`, 0 or 1).
     pub measured: f64,
     /// The tolerance it was held to: an upper bound on `measured`, except for `progress`,
-    /// where it is the least fraction of the commanded distance to cover.
+    /// where it is how far the fraction of the commanded distance covered may be from 1, either
+    /// way ([`PROGRESS_BAND`]).
     pub tolerance: f64,
 }
 
@@ -216,8 +234,20 @@ pub const INVARIANTS: [&str; 9] = [
 /// covers 1.0 up to rounding; 1% is what rounding a walking step (0.1 tiles at 1/60 s) onto
 /// the f32 grid can cost where the spacing is a few thousandths of a tile, and the loss the
 /// report already calls progress lost (`progress_ratio < 0.99`). The Rapier walks at
-/// 1e5 tiles (91% to 96% per tile) are broken by it.
+/// 1e5 tiles (91% to 96% per tile) are broken by it. The most is [`PROGRESS_MAX`].
 pub const PROGRESS_MIN: f64 = 0.99;
+
+/// How far the fraction of the commanded distance a walk covers may be from 1, either way:
+/// `1 - PROGRESS_MIN`, 1%. Rounding a step to the nearest representable position lengthens it
+/// as readily as it shortens it (a 0.1-tile step is 1.6 spacings of 1/16 tile at 1e6 tiles and
+/// rounds up to 2: 125%), so the band is symmetric about 1 with the tolerance the short side
+/// already had: a walk that overshoots by more than 1% has not held either (it carries the
+/// character past where the game put it, a ledge or a door), and every configuration is held
+/// to the same band.
+pub const PROGRESS_BAND: f64 = 1.0 - PROGRESS_MIN;
+
+/// The largest fraction of the commanded distance a walk may cover: `1 + PROGRESS_BAND`, 101%.
+pub const PROGRESS_MAX: f64 = 1.0 + PROGRESS_BAND;
 
 /// How far a jump's apex may miss the requested height, in tiles: one pixel of a 16-pixel tile
 /// (the seed's slope tiles are drawn in 16ths), below which a player sees no difference and the
@@ -411,8 +441,9 @@ fn configured(run: &RunConfig, case: &Case, epsilon_varied: bool) -> Option<RunC
 }
 
 /// Every point of the matrix for `runs`, in the order their rows are written: each dimension
-/// alone, value by value, then each pair of [`pairs`] cell by cell; within a value or cell,
-/// `runs` in order. The epsilon is varied only on configurations that have one, and offsets past
+/// alone, value by value, then each pair of [`pairs`] cell by cell, the f32 configurations on
+/// their grid and then the f64 ones on theirs; within a value or cell, `runs` in order. The
+/// epsilon is varied only on configurations that have one, and offsets past
 /// [`F32_OFFSET_LIMIT`] only on f64 configurations.
 pub fn points(runs: &[RunConfig]) -> Vec<Point> {
     let mut out = Vec::new();
@@ -435,19 +466,25 @@ pub fn points(runs: &[RunConfig]) -> Vec<Point> {
             }
         }
     }
-    for (a, b) in pairs() {
-        for &va in &a.values {
-            for &vb in &b.values {
-                let case = BASE.with(a.name, va).with(b.name, vb);
-                let eps = a.name == "epsilon" || b.name == "epsilon";
-                for base in runs {
-                    if let Some(run) = configured(base, &case, eps) {
-                        out.push(Point {
-                            run,
-                            case,
-                            dimension: (a.name, va),
-                            dimension2: Some((b.name, vb)),
-                        });
+    // Pair by pair, each precision's grid in turn (f32 first), so that a pair's cells stay
+    // together whatever the precision.
+    let by_precision = [Precision::F32, Precision::F64].map(|p| (p, pairs(p)));
+    for k in 0..by_precision[0].1.len() {
+        for (precision, grids) in &by_precision {
+            let (a, b) = &grids[k];
+            for &va in &a.values {
+                for &vb in &b.values {
+                    let case = BASE.with(a.name, va).with(b.name, vb);
+                    let eps = a.name == "epsilon" || b.name == "epsilon";
+                    for base in runs.iter().filter(|r| r.backend.precision() == *precision) {
+                        if let Some(run) = configured(base, &case, eps) {
+                            out.push(Point {
+                                run,
+                                case,
+                                dimension: (a.name, va),
+                                dimension2: Some((b.name, vb)),
+                            });
+                        }
                     }
                 }
             }
@@ -702,12 +739,15 @@ fn rows_of(point: &Point, o: &Outcome, tol_pen: f64, tol_rest: f64) -> Vec<Stres
     if let Some((drift, tol)) = o.carry {
         out.push(row("carry_no_drift", finite && drift <= tol, drift, tol));
     }
+    // Within the band either way: short (stuck, or steps rounded down) and long (steps rounded
+    // up) alike. 1 +/- PROGRESS_BAND rather than PROGRESS_MIN..PROGRESS_MAX so that the row's
+    // tolerance is the one bound both sides are held to.
     let progress = if o.progress.is_nan() { 0.0 } else { o.progress };
     out.push(row(
         "progress",
-        finite && progress >= PROGRESS_MIN,
+        finite && (progress - 1.0).abs() <= PROGRESS_BAND,
         progress,
-        PROGRESS_MIN,
+        PROGRESS_BAND,
     ));
     out.push(row("no_stuck", finite && o.stuck == 0.0, o.stuck, 0.0));
     let jump = nan_inf(o.jump);
@@ -1015,9 +1055,10 @@ pub struct WorldVerdict {
     /// Backend and configuration label.
     pub config: String,
     /// `Some(true)`: every invariant held at every measured offset up to the first one at or
-    /// past `size`; `Some(false)`: one broke at a measured offset within `size`; `None`: held
-    /// at every measured offset within `size`, broke at the next one past it, so the offsets
-    /// between were not measured.
+    /// past `size`, and in every combination cell with an offset within `size`; `Some(false)`:
+    /// one broke at a measured offset within `size`, or in such a combination cell; `None`:
+    /// held at every measured offset and cell within `size`, broke at the next offset past it,
+    /// so the offsets between were not measured.
     pub holds: Option<bool>,
     /// The verdict in words, naming the offsets and invariants (for one broken at offset 0, how
     /// far those that held there hold, [`reach`]).
@@ -1028,7 +1069,8 @@ pub struct WorldVerdict {
 }
 
 /// Which configurations hold in a world `size` tiles across: each configuration's `offset` rows
-/// (the base case elsewhere), and the combination cells within that offset that broke.
+/// (the base case elsewhere), and the combination cells within that offset that broke (any one
+/// of them is a break in that world).
 pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
     let f = crate::report::format_setting;
     let reaches = reach(rows);
@@ -1112,6 +1154,20 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
                 None => combinations.push((cell, vec![r.invariant.clone()])),
             }
         }
+        // A cell within the world that breaks is a break within it: the world's positions
+        // reach that offset, and the cell's other value (a dt, a speed, an epsilon) is one the
+        // matrix holds alone at the base case.
+        let (holds, text) = match (holds, combinations.len()) {
+            (Some(false), _) | (_, 0) => (holds, text),
+            (_, n) => (
+                Some(false),
+                format!(
+                    "{text}; but {n} combination cell{} within it break{}",
+                    if n == 1 { "" } else { "s" },
+                    if n == 1 { "s" } else { "" }
+                ),
+            ),
+        };
         out.push(WorldVerdict {
             config: v.config.clone(),
             holds,
@@ -1267,15 +1323,28 @@ mod tests {
             }])
             .collect();
         let w = |size| world_verdicts(&rows, size).remove(0);
-        assert_eq!(w(1e6).holds, Some(true));
-        assert_eq!(w(5e5).holds, Some(true));
+        // Without the combination cell: the offsets alone decide.
+        let alone: Vec<StressRow> = rows[..4].to_vec();
+        let a = |size| world_verdicts(&alone, size).remove(0).holds;
+        assert_eq!(a(1e6), Some(true));
+        assert_eq!(a(5e5), Some(true));
         // 5e6: 1e6 held, 1e7 broke; between them nothing was measured.
-        assert_eq!(w(5e6).holds, None);
-        assert_eq!(w(1e7).holds, Some(false));
+        assert_eq!(a(5e6), None);
+        assert_eq!(a(1e7), Some(false));
+        // The cell at offset 1e5 broke: every world that reaches 1e5 breaks, whatever its
+        // offsets alone say; a world within 1e4 does not reach it.
+        for size in [1e5, 5e5, 1e6, 5e6, 1e7] {
+            assert_eq!(w(size).holds, Some(false), "{size}");
+        }
+        assert_eq!(
+            w(1e6).text,
+            "holds at every offset measured up to 1e6; but 1 combination cell within it breaks"
+        );
         assert_eq!(
             w(1e6).combinations,
             vec!["offset x dt at (1e5, 0.001): jump_height"]
         );
+        assert_eq!(w(1e4).holds, Some(true));
         assert!(w(1e4).combinations.is_empty());
         // Broken at the origin (the carry): the invariants that held there are followed out.
         let rows: Vec<StressRow> = [0.0, 1e5, 1e14]
@@ -1313,6 +1382,41 @@ mod tests {
         assert!(verdicts(&rows)[0]
             .text()
             .starts_with("breaks at the base case"));
+    }
+
+    #[test]
+    fn progress_breaks_on_both_sides_of_its_band() {
+        let point = Point {
+            run: crate::sweep::kind::run_default(),
+            case: BASE,
+            dimension: ("offset", 0.0),
+            dimension2: None,
+        };
+        let progress = |p: f64| {
+            let o = Outcome {
+                finite: true,
+                progress: p,
+                ..Default::default()
+            };
+            let rows = rows_of(&point, &o, 0.0, 0.0);
+            rows.into_iter()
+                .find(|r| r.invariant == "progress")
+                .unwrap()
+        };
+        // 1 +/- 1%: the f32 sweep's walk 1e6 tiles out (1.248, its 0.1-tile steps rounded up to
+        // 2/16) breaks as a stuck one does; a walk within 1% either way holds.
+        for (p, holds) in [
+            (1.0, true),
+            (PROGRESS_MIN, true),
+            (PROGRESS_MAX, true),
+            (0.98, false),
+            (1.0156, false),
+            (1.248, false),
+            (f64::NAN, false),
+        ] {
+            assert_eq!(progress(p).holds, holds, "{p}");
+        }
+        assert_eq!(progress(1.0).tolerance, PROGRESS_BAND);
     }
 
     #[test]

@@ -207,9 +207,10 @@ enum Command {
     /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
     /// tunneling, stable rest, no grounded flicker, carry without drift, progress over seamed
     /// ground with no stuck step, a jump to its height) at the extremes, one dimension at a
-    /// time (offsets 0 to 1e7 tiles, dt 1e-4 to 0.2 s, speeds to 1000 tiles/s, widths 0.01 to
-    /// 10 tiles, the sweep's epsilon 1e-1 to 1e-9), then on small grids of pairs (offset x
-    /// epsilon, offset x dt, speed x dt, width x speed, offset x speed). Writes
+    /// time (offsets 0 to 1e7 tiles, and to 1e15 for f64 configurations; dt 1e-4 to 0.2 s,
+    /// speeds to 1000 tiles/s, widths 0.01 to 10 tiles, the sweep's epsilon 1e-1 to 1e-9),
+    /// then on small grids of pairs (offset x epsilon, offset x dt, speed x dt, width x speed,
+    /// offset x speed; offsets 1e4 to 1e6 in f32, 1e11 to 1e13 in f64). Writes
     /// DIR/stability.csv and prints each configuration's verdict per dimension and each pair's
     /// cells.
     Stress {
