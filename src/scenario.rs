@@ -385,11 +385,27 @@ fn drive(
     sink: &mut dyn FnMut(TraceRow),
 ) -> Result<Trace, BackendError> {
     check_dt(spec)?;
-    let id = backend.add_character(CharacterSpec {
-        spawn: spec.spawn,
-        size: spec.size,
-        velocity: spec.velocity,
-    })?;
+    let id = backend
+        .add_character(CharacterSpec {
+            spawn: spec.spawn,
+            size: spec.size,
+            velocity: spec.velocity,
+        })
+        .map_err(|e| match e {
+            // A refusal of one character names no level: name the one it ran on.
+            BackendError::Unsupported {
+                backend,
+                feature,
+                level: named,
+                beyond_bound,
+            } if named.is_empty() => BackendError::Unsupported {
+                backend,
+                feature,
+                level: level.name.clone(),
+                beyond_bound,
+            },
+            e => e,
+        })?;
     let script = input_script(spec);
     let initial = crate::backend::CharacterState {
         pos: spec.spawn,

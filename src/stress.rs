@@ -1157,7 +1157,26 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
         // A cell within the world that breaks is a break within it: the world's positions
         // reach that offset, and the cell's other value (a dt, a speed, an epsilon) is one the
         // matrix holds alone at the base case.
+        // Broken already (at the origin, say): the cells that break an invariant that held
+        // there are still said, so a configuration broken at 0 does not read sturdier than one
+        // that is not.
+        let at_origin: Vec<String> = reaches
+            .iter()
+            .find(|r| r.config == v.config)
+            .map_or_else(Vec::new, |r| r.at_origin.clone());
+        let more = combinations
+            .iter()
+            .filter(|(_, inv)| inv.iter().any(|i| !at_origin.contains(i)))
+            .count();
         let (holds, text) = match (holds, combinations.len()) {
+            (Some(false), _) if more > 0 => (
+                holds,
+                format!(
+                    "{text}; and {more} combination cell{} within it break{} more",
+                    if more == 1 { "" } else { "s" },
+                    if more == 1 { "s" } else { "" }
+                ),
+            ),
             (Some(false), _) | (_, 0) => (holds, text),
             (_, n) => (
                 Some(false),
@@ -1359,6 +1378,24 @@ mod tests {
         assert_eq!(
             world_verdicts(&rows, 1e5)[0].text,
             "breaks at offset 0 (carry_no_drift); those that held at 0 hold to 1e5, break at 1e14 (progress)"
+        );
+        // A cell within the world that breaks another invariant is said too (issue 22 second
+        // review: Rapier f64 read sturdier than the f64 sweep); one that breaks only the carry
+        // again is not news.
+        let mut more = rows.clone();
+        more.push(StressRow {
+            dimension2: "dt".into(),
+            value2: Some(1e-4),
+            ..at("offset", 1e5, "progress", false)
+        });
+        more.push(StressRow {
+            dimension2: "dt".into(),
+            value2: Some(1e-3),
+            ..at("offset", 1e5, "carry_no_drift", false)
+        });
+        assert_eq!(
+            world_verdicts(&more, 1e5)[0].text,
+            "breaks at offset 0 (carry_no_drift); those that held at 0 hold to 1e5, break at 1e14 (progress); and 1 combination cell within it breaks more"
         );
     }
 

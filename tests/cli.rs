@@ -467,3 +467,29 @@ fn help_describes_every_subcommand_under_its_own_name() {
         );
     }
 }
+
+/// A run in which every configuration refuses every scenario fails and says so, and writes no
+/// output directory (it used to succeed with an empty summary and an empty metrics.csv).
+#[test]
+fn a_run_that_measures_nothing_fails_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    // Box2D's mover refuses a capsule radius under 0.01 tiles (twice its linear slop).
+    let level = "name = \"thin\"\nmap = \"\"\"\n#....#\n######\n\"\"\"\n\n[[scenario]]\nname = \"s\"\nspawn = [2.5, 1.0]\nsize = [0.015, 0.9]\nduration = 0.5\n";
+    let file = dir.path().join("thin.toml");
+    std::fs::write(&file, level).unwrap();
+    let out_dir = dir.path().join("out");
+    let out = platbench()
+        .args(["run", "--backend", "box2d", "--out"])
+        .arg(&out_dir)
+        .arg(&file)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(stderr.contains("nothing was measured"), "{stderr}");
+    assert!(
+        stderr.contains("a bound it keeps by design (level thin)"),
+        "{stderr}"
+    );
+    assert!(!out_dir.exists());
+}

@@ -563,7 +563,7 @@ impl Backend for Box2dBackend {
                     spec.size
                 ),
                 level: String::new(),
-                beyond_bound: false,
+                beyond_bound: true,
             });
         }
         self.characters.push(Character {

@@ -417,23 +417,7 @@ fn execute<'a>(
             unreachable!("set just above")
         };
         let mut e = match evaluate_recorded(runner, spec, run, RowStore::default()) {
-            Err(RecordError::Backend(crate::backend::BackendError::Unsupported {
-                backend,
-                feature,
-                level: named,
-                beyond_bound,
-            })) => {
-                // A refusal of one character names no level: name the one it ran on.
-                let e = crate::backend::BackendError::Unsupported {
-                    backend,
-                    feature,
-                    level: if named.is_empty() {
-                        level.name.clone()
-                    } else {
-                        named
-                    },
-                    beyond_bound,
-                };
+            Err(RecordError::Backend(e @ crate::backend::BackendError::Unsupported { .. })) => {
                 return Ok(Outcome::Skipped(format!(
                     "{} {}: {e}",
                     run.backend.backend(),
@@ -488,21 +472,22 @@ fn execute<'a>(
     let mut notes = crate::registry::RunNotes::new(registry);
     let mut rows_seen = 0usize;
     let (mut done, mut written) = (0usize, 0usize);
-    // The last refusal said for each configuration: a refusal repeated scenario after scenario
-    // is said once, and nothing grows with the scenarios.
-    let mut said: Vec<Option<String>> = vec![None; configs.len()];
+    // Refusals on the current level, per configuration: the first is said, the others counted
+    // and said as a count when the level ends (nothing grows with the scenarios).
+    let mut refused: Vec<usize> = vec![0; configs.len()];
     let mut level_start = Instant::now();
     parallel::for_each_ordered(jobs, runs, init, work, |i, outcome| {
         let (li, si, ci) = item(i);
         let level = &levels[li];
         if si == 0 && ci == 0 {
             level_start = Instant::now();
+            refused.iter_mut().for_each(|n| *n = 0);
         }
         match outcome? {
             Outcome::Skipped(note) => {
-                if said[ci].as_ref() != Some(&note) {
+                refused[ci] += 1;
+                if refused[ci] == 1 {
                     eprintln!("  skipped {note}");
-                    said[ci] = Some(note);
                 }
             }
             Outcome::Ran(rows, wrote) => {
@@ -536,6 +521,17 @@ fn execute<'a>(
             if live {
                 eprint!("\r\x1b[K");
             }
+            let m = level.scenarios.len();
+            for (c, &n) in configs.iter().zip(&refused) {
+                if n > 1 && n < m {
+                    eprintln!(
+                        "  skipped {} {} on {n} of {m} scenarios of {} (the first said above)",
+                        c.backend.backend(),
+                        c.label,
+                        level.name
+                    );
+                }
+            }
             eprintln!(
                 "  [{done}/{total}] {} ({}) {:.2} s",
                 level.name,
@@ -545,6 +541,11 @@ fn execute<'a>(
         }
         Ok::<(), anyhow::Error>(())
     })?;
+    if done == 0 {
+        bail!(
+            "nothing was measured: every configuration refused every scenario (the skipped lines above say why); choose other configurations (--backend, --shape, --precision) or other levels"
+        );
+    }
     if let Some((mut w, path)) = csv {
         w.flush()
             .with_context(|| format!("cannot write {}", path.display()))?;
