@@ -182,6 +182,15 @@ pub fn origin_supported(settings: &dyn BackendSettings, level: &Level) -> Result
     Ok(())
 }
 
+/// How far from the world's origin a configuration in `precision` places a level by default, in
+/// tiles ([`BackendSettings::max_origin`]).
+pub fn max_origin_in(precision: Precision) -> f64 {
+    match precision {
+        Precision::F32 => crate::limits::MAX_F32_ORIGIN,
+        Precision::F64 => crate::limits::MAX_ORIGIN,
+    }
+}
+
 /// Whether `settings` runs `level`: it models the level's features
 /// ([`BackendSettings::supports`]) and holds the level's origin ([`origin_supported`]).
 pub fn runs(settings: &dyn BackendSettings, level: &Level) -> bool {
@@ -388,10 +397,7 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     /// f32 position moves in whole tiles), [`crate::limits::MAX_ORIGIN`] in f64 (every origin a
     /// level can have).
     fn max_origin(&self) -> f64 {
-        match self.precision() {
-            Precision::F32 => crate::limits::MAX_F32_ORIGIN,
-            Precision::F64 => crate::limits::MAX_ORIGIN,
-        }
+        max_origin_in(self.precision())
     }
     /// How far from the world's origin everything of a level placed by this configuration must
     /// lie, in tiles on each axis ([`Level::reach`]: its tile faces and its platforms' paths), if

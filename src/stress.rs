@@ -1168,24 +1168,14 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
             .iter()
             .filter(|(_, inv)| inv.iter().any(|i| !at_origin.contains(i)))
             .count();
+        let cells = |n: usize| {
+            let (noun, verb) = if n == 1 { ("", "s") } else { ("s", "") };
+            format!("{n} combination cell{noun} within it break{verb}")
+        };
         let (holds, text) = match (holds, combinations.len()) {
-            (Some(false), _) if more > 0 => (
-                holds,
-                format!(
-                    "{text}; and {more} combination cell{} within it break{} more",
-                    if more == 1 { "" } else { "s" },
-                    if more == 1 { "s" } else { "" }
-                ),
-            ),
+            (Some(false), _) if more > 0 => (holds, format!("{text}; and {} more", cells(more))),
             (Some(false), _) | (_, 0) => (holds, text),
-            (_, n) => (
-                Some(false),
-                format!(
-                    "{text}; but {n} combination cell{} within it break{}",
-                    if n == 1 { "" } else { "s" },
-                    if n == 1 { "s" } else { "" }
-                ),
-            ),
+            (_, n) => (Some(false), format!("{text}; but {}", cells(n))),
         };
         out.push(WorldVerdict {
             config: v.config.clone(),

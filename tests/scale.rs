@@ -252,6 +252,8 @@ fn a_spilled_run_measures_bit_for_bit_as_one_held_in_memory() {
             configs.push(c);
         }
     }
+    // The built-in set's sweep configurations (float, jump=continuous, integer) and one Rapier
+    // and one Box2D: five; at least two sweeps beside the two peers.
     assert!(configs.len() >= 4, "{} configurations", configs.len());
     let bits = |rows: &[platbench::metrics::MetricRow]| -> Vec<(String, u64, u64)> {
         rows.iter()

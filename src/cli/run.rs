@@ -246,16 +246,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
     // The runs that will write a trace: a configuration that does not model a level's
     // features skips that level (said once, below).
     let scenarios: usize = levels.iter().map(|l| l.scenarios.len()).sum();
-    let total: usize = levels
-        .iter()
-        .map(|l| {
-            l.scenarios.len()
-                * configs
-                    .iter()
-                    .filter(|c| crate::backend::runs(&*c.backend, l))
-                    .count()
-        })
-        .sum();
+    let total = modelled_runs(&levels, &configs);
     let skipped_runs = scenarios * configs.len() - total;
     // Timing measures one thread with nothing else running beside it.
     let jobs = if args.timing {
@@ -359,6 +350,21 @@ enum Outcome {
     Ran(Vec<MetricRow>, bool),
 }
 
+/// The (scenario, configuration) runs of `levels` that `configs` make: a configuration that
+/// does not run a level ([`crate::backend::runs`]: its features, its origin) makes none there.
+fn modelled_runs(levels: &[crate::level::Level], configs: &[RunConfig]) -> usize {
+    levels
+        .iter()
+        .map(|l| {
+            let modelled = configs
+                .iter()
+                .filter(|c| crate::backend::runs(&*c.backend, l))
+                .count();
+            l.scenarios.len() * modelled
+        })
+        .sum()
+}
+
 /// What [`execute`] returns: the rows the summary reads, the scenarios each configuration ran,
 /// the notes, the number of metric rows, the number of traces written.
 type Executed = (Vec<MetricRow>, Coverage, Vec<String>, usize, usize);
@@ -456,16 +462,7 @@ fn execute<'a>(
     };
     // Progress within a level, only for a person watching: a terminal's stderr.
     let live = std::io::stderr().is_terminal();
-    let total: usize = levels
-        .iter()
-        .map(|l| {
-            let modelled = configs
-                .iter()
-                .filter(|c| crate::backend::runs(&*c.backend, l))
-                .count();
-            l.scenarios.len() * modelled
-        })
-        .sum();
+    let total = modelled_runs(levels, configs);
     // Every row for --detail; else only those the summary needs (see SummaryRows).
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut kept = SummaryRows::default();

@@ -279,6 +279,10 @@ pub fn evaluate_recorded(
     run: &crate::scenario::RunConfig,
     mut store: RowStore,
 ) -> Result<Recorded, RecordError> {
+    // Row 0 and one per step; a time step out of range is refused before anything is reserved.
+    if crate::limits::check_timing(spec.duration as f64, spec.dt as f64).is_ok() {
+        store.reserve(crate::scenario::step_count(spec) + 1);
+    }
     let trace = runner.record(spec, run, &mut |r| store.push(r))?;
     let rows = store.finish()?;
     let metrics = with_context(runner.level(), spec, run, &trace, |ctx| {

@@ -156,13 +156,13 @@ impl Coverage {
         let mut seen: HashMap<(&str, &str), Vec<String>> = HashMap::new();
         let mut order: Vec<(&str, &str)> = Vec::new();
         for r in rows {
-            c.config(column(r));
+            let col = column(r);
+            c.config(&col);
             let key = (r.level.as_str(), r.scenario.as_str());
             let ran = seen.entry(key).or_insert_with(|| {
                 order.push(key);
                 Vec::new()
             });
-            let col = column(r);
             if !ran.contains(&col) {
                 ran.push(col);
             }
@@ -175,11 +175,11 @@ impl Coverage {
     }
 
     /// The index of configuration column `column`, added if new.
-    fn config(&mut self, column: String) -> usize {
-        match self.configs.iter().position(|(c, _)| *c == column) {
+    fn config(&mut self, column: &str) -> usize {
+        match self.configs.iter().position(|(c, _)| c == column) {
             Some(i) => i,
             None => {
-                self.configs.push((column, 0));
+                self.configs.push((column.to_string(), 0));
                 self.configs.len() - 1
             }
         }
@@ -189,7 +189,7 @@ impl Coverage {
     pub(crate) fn add_scenario(&mut self, columns: &[String]) -> usize {
         let mut set = Vec::new();
         for c in columns {
-            let ci = self.config(c.clone());
+            let ci = self.config(c);
             self.configs[ci].1 += 1;
             if set.len() <= ci {
                 set.resize(ci + 1, false);

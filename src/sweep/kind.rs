@@ -100,12 +100,11 @@ impl BackendSettings for SweepConfig {
 
     /// Integer positions hold to 2^24 tiles ([`super::grid::MAX_GRID_EXTENT`]: their tile faces
     /// are f32, exact that far, and their positions whole subpixels, which an f32 spacing over a
-    /// tile does not touch); the float and f64 modes by their precision.
+    /// tile does not touch); the float and f64 modes by their precision, as any backend.
     fn max_origin(&self) -> f64 {
         match self.positions {
             Positions::Integer { .. } => super::grid::MAX_GRID_EXTENT,
-            Positions::Float => crate::limits::MAX_F32_ORIGIN,
-            Positions::Double => crate::limits::MAX_ORIGIN,
+            Positions::Float | Positions::Double => crate::backend::max_origin_in(self.precision()),
         }
     }
 

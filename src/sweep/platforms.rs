@@ -134,13 +134,14 @@ impl Platforms {
                 .collect(),
             None => Vec::new(),
         };
-        let double_boxes = match double {
-            true => states
+        let double_boxes = if double {
+            states
                 .iter()
                 .enumerate()
                 .map(|(i, p)| (p.aabb_f64(0.0), kind(i, &p.spec)))
-                .collect(),
-            false => Vec::new(),
+                .collect()
+        } else {
+            Vec::new()
         };
         Platforms {
             states,

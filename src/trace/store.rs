@@ -55,6 +55,15 @@ impl RowStore {
         }
     }
 
+    /// Makes room for `n` more rows in memory, at most up to the limit (a run knows its frames
+    /// before it starts: no regrowing in its steps).
+    pub fn reserve(&mut self, n: usize) {
+        if self.file.is_none() {
+            let room = self.limit.saturating_sub(self.mem.len());
+            self.mem.reserve(n.min(room));
+        }
+    }
+
     /// Appends a row. An error writing the temporary file is kept and returned by
     /// [`RowStore::finish`], as a `BufWriter` keeps its own.
     pub fn push(&mut self, row: TraceRow) {
