@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec2;
-use platbench::backend::{Backend, CharacterSpec, SharedGeometry};
+use platbench::backend::{Backend, CharacterSpec};
 use platbench::level::{Level, Tile};
 use platbench::motion::Input;
 use platbench::registry::Registry;
@@ -33,10 +33,10 @@ fn level(tiles: usize) -> Level {
     Level::from_tiles("scaling", w, h, t)
 }
 
-/// The backend of `run` over `level`, built afresh.
-fn backend(run: &RunConfig, level: &Level) -> Box<dyn Backend> {
-    run.backend
-        .build(level, &run.params, &mut SharedGeometry::default())
+/// The backend of `run` over `level` with `characters` placed, built afresh.
+fn backend(run: &RunConfig, level: &Level, characters: &[CharacterSpec]) -> Box<dyn Backend> {
+    platbench::scenario::Runner::new(level)
+        .build(run, &run.params, characters)
         .expect("every registered backend models a level of solid tiles")
 }
 
@@ -77,16 +77,17 @@ fn bench_steps(
             let mut total = Duration::ZERO;
             let mut left = iters;
             while left > 0 {
-                let mut be = backend(run, level);
-                for k in 0..n {
-                    let x = 1.5 + (k as f32 * 0.37) % (level.width as f32 - 60.0);
-                    be.add_character(CharacterSpec {
-                        spawn: Vec2::new(x, 1.01),
+                let walkers: Vec<CharacterSpec> = (0..n)
+                    .map(|k| CharacterSpec {
+                        spawn: Vec2::new(
+                            1.5 + (k as f32 * 0.37) % (level.width as f32 - 60.0),
+                            1.01,
+                        ),
                         size: Vec2::new(0.8, 0.9),
                         velocity: Vec2::ZERO,
                     })
-                    .expect("valid character");
-                }
+                    .collect();
+                let mut be = backend(run, level, &walkers);
                 // Up to 300 steps (5 s) per build: the walkers stay on the floor.
                 let steps = left.min(300);
                 let start = Instant::now();

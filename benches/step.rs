@@ -12,32 +12,26 @@ use platbench::scenario::{effective_params, input_script, RunConfig};
 #[path = "../compare/builtin.rs"]
 mod builtin;
 
-/// A backend for `spec` on `run`, or why it cannot be built (a level feature the
-/// configuration does not model: none in the built-in set; a level of your own may have one).
+/// A backend for `spec` on `run` with its character placed, or why it cannot be built (a level
+/// feature the configuration does not model: none in the built-in set; a level of your own may
+/// have one).
 fn try_fresh(
     level: &Level,
     spec: &ScenarioSpec,
     run: &RunConfig,
 ) -> Result<Box<dyn Backend>, BackendError> {
     let params = effective_params(&run.params, spec);
-    run.backend.build(
-        level,
-        &params,
-        &mut platbench::backend::SharedGeometry::default(),
-    )
-}
-
-/// A backend for `spec` on `run` with its character added; only called for pairs
-/// [`try_fresh`] built.
-fn fresh(level: &Level, spec: &ScenarioSpec, run: &RunConfig) -> Box<dyn Backend> {
-    let mut b = try_fresh(level, spec, run).expect("built once already");
-    b.add_character(CharacterSpec {
+    let character = CharacterSpec {
         spawn: spec.spawn,
         size: spec.size,
         velocity: spec.velocity,
-    })
-    .expect("valid character");
-    b
+    };
+    platbench::scenario::Runner::new(level).build(run, &params, &[character])
+}
+
+/// A backend for `spec` on `run`; only called for pairs [`try_fresh`] built.
+fn fresh(level: &Level, spec: &ScenarioSpec, run: &RunConfig) -> Box<dyn Backend> {
+    try_fresh(level, spec, run).expect("built once already")
 }
 
 fn step_cost(c: &mut Criterion) {

@@ -37,9 +37,9 @@ use parry2d::query::{self, ShapeCastOptions};
 use parry2d::shape::SharedShape;
 
 use platbench::backend::{
-    require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
-    CharacterId, CharacterSpec, CharacterState, DeclaredContact, SharedGeometry,
+    BackendError, CharacterId, CharacterSpec, CharacterState, DeclaredContact,
 };
+use platbench::controller::{Controller, Setup};
 use platbench::level::{Features, Level};
 use platbench::motion::{Contacts, Input, MotionParams, MotionState};
 use platbench::scenario::RunConfig;
@@ -250,14 +250,14 @@ impl MoveAndSlide {
         moving_platforms: false,
     };
 
-    /// Builds the mover over `level` with colliders built for it; refuses moving platforms.
+    /// Builds the mover over `level` with colliders built for it (the harness has already
+    /// skipped a level with moving platforms).
     pub fn new(
         level: &Level,
         colliders: Rc<LevelColliders>,
         params: MotionParams,
         config: MoveAndSlideConfig,
     ) -> Result<Self, BackendError> {
-        require_supported(NAME, &level.name, level.features, Self::SUPPORTED)?;
         params.validate()?;
         config.validate()?;
         Ok(MoveAndSlide {
@@ -497,13 +497,9 @@ impl MoveAndSlide {
     }
 }
 
-impl Backend for MoveAndSlide {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-
-    fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
-        spec.validate()?;
+impl MoveAndSlide {
+    /// Places a character (the harness has checked its spawn, size and velocity).
+    fn add_character(&mut self, spec: CharacterSpec) {
         self.characters.push(Character {
             pos: spec.spawn + self.origin,
             size: spec.size,
@@ -513,20 +509,40 @@ impl Backend for MoveAndSlide {
             one_way_ground: None,
             drop_top: None,
         });
-        Ok(self.characters.len() - 1)
+    }
+}
+
+impl Controller for MoveAndSlideConfig {
+    type Mover = MoveAndSlide;
+    const NAME: &'static str = NAME;
+
+    fn features(&self) -> Features {
+        MoveAndSlide::SUPPORTED
     }
 
-    fn step(&mut self, inputs: &[Input], dt: f32) {
-        for id in 0..self.characters.len() {
+    fn build(&self, setup: Setup<'_>) -> Result<MoveAndSlide, BackendError> {
+        let level = setup.level;
+        let colliders = setup
+            .shared
+            .get_or_build(NAME, || LevelColliders::new(level));
+        let mut mover = MoveAndSlide::new(level, colliders, setup.params.clone(), self.clone())?;
+        for c in setup.characters {
+            mover.add_character(*c);
+        }
+        Ok(mover)
+    }
+
+    fn step(&self, m: &mut MoveAndSlide, inputs: &[Input], dt: f32) {
+        for id in 0..m.characters.len() {
             let input = inputs.get(id).copied().unwrap_or_default();
-            self.step_character(id, &input, dt);
+            m.step_character(id, &input, dt);
         }
     }
 
-    fn state(&self, id: CharacterId) -> CharacterState {
-        let c = &self.characters[id];
+    fn state(&self, m: &MoveAndSlide, id: CharacterId) -> CharacterState {
+        let c = &m.characters[id];
         CharacterState {
-            pos: c.pos - self.origin,
+            pos: c.pos - m.origin,
             vel: c.motion.vel,
             grounded: c.motion.grounded,
             ground_normal: c.ground_normal,
@@ -535,84 +551,14 @@ impl Backend for MoveAndSlide {
             crushed: false,
         }
     }
-}
 
-impl BackendSettings for MoveAndSlideConfig {
-    fn backend(&self) -> &'static str {
-        NAME
-    }
-
-    fn shape(&self) -> CharacterShape {
-        self.shape
-    }
-
-    fn supports(&self, level: &Level) -> bool {
-        require_supported(NAME, "", level.features, MoveAndSlide::SUPPORTED).is_ok()
-    }
-
-    /// The safe margin, kept to everything it touches.
-    fn declared_contact(&self, _size: Vec2, _max_climb_angle: f32) -> DeclaredContact {
-        DeclaredContact {
-            gap: self.safe_margin,
-            ..DeclaredContact::default()
-        }
-    }
-
-    /// It recovers from any overlap before moving, so it is held to its safe margin.
-    fn contact_tolerance(&self, _size: Vec2) -> f64 {
-        self.safe_margin as f64
-    }
-
-    fn build(
-        &self,
-        level: &Level,
-        params: &MotionParams,
-        shared: &mut SharedGeometry,
-    ) -> Result<Box<dyn Backend>, BackendError> {
-        // Refused before anything is built for a level it does not model.
-        require_supported(NAME, &level.name, level.features, MoveAndSlide::SUPPORTED)?;
-        let colliders = shared.get_or_build(NAME, || LevelColliders::new(level));
-        Ok(Box::new(MoveAndSlide::new(
-            level,
-            colliders,
-            params.clone(),
-            self.clone(),
-        )?))
-    }
-
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
-    }
-
-    fn same_as(&self, other: &dyn BackendSettings) -> bool {
-        same_settings(self, other)
-    }
-}
-
-/// The collide-and-slide mover as a kind of backend: what the harness needs to know of it.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct MoveAndSlideKind;
-
-impl BackendKind for MoveAndSlideKind {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-
-    fn description(&self) -> &'static str {
+    fn description() -> &'static str {
         "Godot-style collide-and-slide over parry2d shape casts (examples/move_and_slide.rs)"
-    }
-
-    fn shapes(&self) -> Vec<CharacterShape> {
-        vec![CharacterShape::Cuboid, CharacterShape::Capsule]
-    }
-
-    fn features(&self) -> Features {
-        MoveAndSlide::SUPPORTED
     }
 
     /// Godot's defaults with a box and with a capsule, the box with constant speed on floors,
     /// and the box with a floor snap of 4 px (0.25 tiles).
-    fn builtin_configs(&self) -> Vec<RunConfig> {
+    fn configs() -> Vec<RunConfig> {
         let configs = [
             MoveAndSlideConfig::default(),
             MoveAndSlideConfig {
@@ -636,18 +582,26 @@ impl BackendKind for MoveAndSlideKind {
             .collect()
     }
 
-    fn drawn(&self) -> Vec<(&'static str, &'static str)> {
+    fn drawn() -> Vec<(&'static str, &'static str)> {
         vec![("cuboid", "#6a1b9a")]
     }
 
-    fn colour(&self) -> &'static str {
-        "#6a1b9a"
+    fn shape(&self) -> CharacterShape {
+        self.shape
+    }
+
+    /// The safe margin, kept to everything it touches (and the stress holds it to it).
+    fn declared_contact(&self, _size: Vec2, _max_climb_angle: f32) -> DeclaredContact {
+        DeclaredContact {
+            gap: self.safe_margin,
+            ..DeclaredContact::default()
+        }
     }
 }
 
 /// The registry of the built-in backends with this one added.
 pub fn registry() -> platbench::registry::Registry {
-    platbench::registry::Registry::builtin().with(MoveAndSlideKind)
+    platbench::registry::Registry::builtin().with::<MoveAndSlideConfig>()
 }
 
 #[allow(dead_code)]

@@ -1,5 +1,6 @@
-//! The interface every controller implements ([`Backend`], [`BackendSettings`],
-//! [`BackendKind`]), and what a character exposes after a step.
+//! What a controller exchanges with the harness (a character's spec and state, its declared
+//! contact, its errors), and the type-erased views the harness drives every
+//! [`crate::controller::Controller`] through ([`Backend`], [`BackendSettings`], [`BackendKind`]).
 //!
 //! Both backends are driven identically: same level, same [`MotionParams`], same per-frame
 //! [`Input`] per character, same `dt`. A step moves every character (then, once levels have
@@ -123,13 +124,7 @@ pub fn require_supported(
     has: Features,
     supported: Features,
 ) -> Result<(), BackendError> {
-    let missing = Features {
-        slopes: has.slopes && !supported.slopes,
-        one_way: has.one_way && !supported.one_way,
-        ladders: has.ladders && !supported.ladders,
-        moving_platforms: has.moving_platforms && !supported.moving_platforms,
-    };
-    let names = missing.names();
+    let names = has.missing_from(supported).names();
     if names.is_empty() {
         Ok(())
     } else {
@@ -197,13 +192,11 @@ pub fn runs(settings: &dyn BackendSettings, level: &Level) -> bool {
     settings.supports(level) && origin_supported(settings, level).is_ok()
 }
 
-/// A character controller driving characters over one level.
+/// A controller built over one level with its characters placed: what the runner steps
+/// (implemented for every [`crate::controller::Controller`]).
 pub trait Backend {
     /// Short backend name, as in CSV files (`sweep`, `rapier`).
     fn name(&self) -> &'static str;
-    /// Adds a character and returns its id; refuses a non-finite spawn or velocity, or a size
-    /// that is not positive.
-    fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError>;
     /// Advances every character by `dt` seconds; `inputs[id]` is character `id`'s input.
     fn step(&mut self, inputs: &[Input], dt: f32);
     /// The state of character `id` after the last step.
@@ -349,15 +342,17 @@ impl SharedGeometry {
 
 /// One configuration of a backend: its settings, and what the harness needs to know of them
 /// to build it, skip the levels it does not model and score it fairly. A configuration is held
-/// as `Arc<dyn BackendSettings>` in [`crate::scenario::RunConfig`].
+/// as `Arc<dyn BackendSettings>` in [`crate::scenario::RunConfig`]. Implemented for every
+/// [`crate::controller::Controller`] (whose methods document these); implement that instead.
 pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     /// The backend's short name, as in CSV files (the name of its [`BackendKind`]).
     fn backend(&self) -> &'static str;
     /// The character's collision shape in this configuration.
     fn shape(&self) -> CharacterShape;
-    /// Whether this configuration models `level`. A level it does not model is refused by
-    /// [`BackendSettings::build`] (and skipped by the harness), so a run can count what it will
-    /// run beforehand.
+    /// The level features this configuration models.
+    fn features(&self) -> Features;
+    /// Whether this configuration models `level`. A level it does not model is skipped by the
+    /// harness before anything is built, so a run can count what it will run beforehand.
     fn supports(&self, level: &Level) -> bool;
     /// The contact this configuration declares it keeps, for a character of outer `size`
     /// (tiles) with climb limit `max_climb_angle` (radians): what its documentation promises,
@@ -366,60 +361,43 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     /// The contact declared for a run with motion `params` stepped by `dt` seconds (a substep
     /// where the run substeps): [`BackendSettings::declared_contact`], unless the promise
     /// depends on the motion (Box2D's pogo rests sunk by a sag set by gravity and the step).
-    fn declared_contact_in(&self, size: Vec2, params: &MotionParams, dt: f32) -> DeclaredContact {
-        let _ = dt;
-        self.declared_contact(size, params.max_climb_angle)
-    }
+    fn declared_contact_in(&self, size: Vec2, params: &MotionParams, dt: f32) -> DeclaredContact;
     /// The penetration `platbench stress` holds this configuration to for a character of outer
     /// `size` (tiles): its own contact tolerance.
     fn contact_tolerance(&self, size: Vec2) -> f64;
     /// The outer size of the box the configuration really moves for a character of requested
     /// `size` (tiles); the metrics measure that box. Default: `size`.
-    fn moved_size(&self, size: Vec2) -> Vec2 {
-        size
-    }
+    fn moved_size(&self, size: Vec2) -> Vec2;
     /// The overlap tolerance (tiles) this configuration has, if it has one that `--epsilon` and
     /// the stress's epsilon dimension may vary. Default: none.
-    fn epsilon(&self) -> Option<f32> {
-        None
-    }
+    fn epsilon(&self) -> Option<f32>;
     /// This configuration with its overlap tolerance set to `epsilon` (tiles), if it has one.
-    fn with_epsilon(&self, _epsilon: f32) -> Option<std::sync::Arc<dyn BackendSettings>> {
-        None
-    }
+    fn with_epsilon(&self, epsilon: f32) -> Option<std::sync::Arc<dyn BackendSettings>>;
     /// The precision this configuration keeps world positions in. Default: f32.
-    fn precision(&self) -> Precision {
-        Precision::F32
-    }
+    fn precision(&self) -> Precision;
     /// How far from the world's origin this configuration places a level, in tiles on each axis
     /// (a level farther out is refused, [`origin_supported`]). Default: by
     /// [`BackendSettings::precision`], [`crate::limits::MAX_F32_ORIGIN`] in f32 (beyond it an
     /// f32 position moves in whole tiles), [`crate::limits::MAX_ORIGIN`] in f64 (every origin a
     /// level can have).
-    fn max_origin(&self) -> f64 {
-        max_origin_in(self.precision())
-    }
+    fn max_origin(&self) -> f64;
     /// How far from the world's origin everything of a level placed by this configuration must
     /// lie, in tiles on each axis ([`Level::reach`]: its tile faces and its platforms' paths), if
     /// the configuration is exact only that far (a level reaching farther is refused,
     /// [`origin_supported`]). Default: none (the origin's bound, [`BackendSettings::max_origin`],
     /// is the only one).
-    fn max_reach(&self) -> Option<f64> {
-        None
-    }
+    fn max_reach(&self) -> Option<f64>;
     /// This configuration built in `precision`, if it offers that precision besides its own
     /// (`None` otherwise: a caller keeps the configuration itself for its own precision).
     /// Default: none.
-    fn with_precision(&self, precision: Precision) -> Option<std::sync::Arc<dyn BackendSettings>> {
-        let _ = precision;
-        None
-    }
-    /// Builds the backend over `level` with `params`, reusing geometry from `shared` where
-    /// another configuration already built it.
+    fn with_precision(&self, precision: Precision) -> Option<std::sync::Arc<dyn BackendSettings>>;
+    /// Builds the backend over `level` with `params` and `characters` placed, reusing geometry
+    /// from `shared` where another configuration already built it.
     fn build(
         &self,
         level: &Level,
         params: &MotionParams,
+        characters: &[CharacterSpec],
         shared: &mut SharedGeometry,
     ) -> Result<Box<dyn Backend>, BackendError>;
     /// The settings as `Any`, for a caller that knows the concrete type.
@@ -432,11 +410,6 @@ impl PartialEq for dyn BackendSettings {
     fn eq(&self, other: &Self) -> bool {
         self.same_as(other)
     }
-}
-
-/// [`BackendSettings::same_as`] for a settings type with `PartialEq`.
-pub fn same_settings<T: PartialEq + 'static>(this: &T, other: &dyn BackendSettings) -> bool {
-    other.as_any().downcast_ref::<T>() == Some(this)
 }
 
 /// Which of a kind's configurations the report's replay of a scenario shows by default (the
@@ -452,55 +425,28 @@ pub enum ShownByDefault {
 }
 
 /// A kind of backend: a controller the harness knows. One [`crate::registry::Registry`] lists
-/// the kinds; the CLI and every command iterate it and never name a backend.
+/// the kinds; the CLI and every command iterate it and never name a backend. Implemented for
+/// every [`crate::controller::Controller`] type (whose functions of the same names document
+/// these); register one with [`crate::registry::Registry::with`].
 pub trait BackendKind: Send + Sync {
     /// The backend's short name, as in CSV files and `--backend`.
     fn name(&self) -> &'static str;
     /// One line on what it is, for `--help` and the report.
-    fn description(&self) -> &'static str {
-        ""
-    }
+    fn description(&self) -> &'static str;
     /// The character shapes it offers (`--shape` picks among them when there is a choice).
     fn shapes(&self) -> Vec<CharacterShape>;
-    /// The level features it models; a level with others is skipped (a configuration may model
-    /// fewer, see [`BackendSettings::supports`]).
-    fn features(&self) -> Features;
     /// The configurations it adds to the built-in comparison, with their labels.
     fn builtin_configs(&self) -> Vec<crate::scenario::RunConfig>;
-    /// The configurations `platbench stress` checks (default: the first built-in one).
-    fn stress_configs(&self) -> Vec<crate::scenario::RunConfig> {
-        self.builtin_configs().into_iter().take(1).collect()
-    }
-    /// The settings `platbench sweep` measures (default: the built-in configurations, each at
-    /// its scenarios' own time step).
-    fn tradeoff_settings(&self) -> Vec<crate::tradeoff::Setting> {
-        self.builtin_configs()
-            .into_iter()
-            .map(|run| crate::tradeoff::Setting {
-                label: run.label.clone(),
-                run,
-                dt: None,
-            })
-            .collect()
-    }
-    /// Configurations with a colour of their own in the report's scenario replays: `(config
-    /// label, CSS colour)` (default: none; the others get palette colours). Which are shown
-    /// before the reader picks is [`BackendKind::shown_by_default`].
-    fn drawn(&self) -> Vec<(&'static str, &'static str)> {
-        Vec::new()
-    }
-    /// Which of its configurations a scenario's replay in the report shows before the reader
-    /// picks others (default: the best and the worst of them on that scenario).
-    fn shown_by_default(&self) -> ShownByDefault {
-        ShownByDefault::BestAndWorst
-    }
-    /// Its colour in charts (a CSS colour).
-    fn colour(&self) -> &'static str {
-        "#6a1b9a"
-    }
-    /// Explanations of this backend's rows that the metrics show, each only when the
-    /// measurements show the effect it explains (default: none).
-    fn notes(&self, _rows: &[crate::metrics::MetricRow]) -> Vec<String> {
-        Vec::new()
-    }
+    /// The configurations `platbench stress` checks.
+    fn stress_configs(&self) -> Vec<crate::scenario::RunConfig>;
+    /// The settings `platbench sweep` measures.
+    fn tradeoff_settings(&self) -> Vec<crate::tradeoff::Setting>;
+    /// Configurations with a colour of their own in the report's scenario replays.
+    fn drawn(&self) -> Vec<(&'static str, &'static str)>;
+    /// Which of its configurations a scenario's replay shows before the reader picks others.
+    fn shown_by_default(&self) -> ShownByDefault;
+    /// Its own colour in charts (a CSS colour), if it has one.
+    fn colour(&self) -> Option<&'static str>;
+    /// Explanations of this backend's rows that the metrics show.
+    fn notes(&self, rows: &[crate::metrics::MetricRow]) -> Vec<String>;
 }

@@ -38,7 +38,7 @@ pub const MAX_COORD: f64 = 1e7;
 /// origin is kept in f64, so anything up to this is placed exactly by an f64 configuration.
 pub const MAX_ORIGIN: f64 = 1e15;
 /// Largest distance of a level's origin from the world's origin, in tiles, at which an f32
-/// configuration runs it ([`crate::backend::BackendSettings::max_origin`]): beyond it an f32
+/// configuration runs it ([`crate::controller::Controller::max_origin`]): beyond it an f32
 /// position's spacing is over a tile (1 tile at 1e7, 8 at 1e8), every f32 configuration
 /// measured has broken (`platbench stress`), and Rapier's f32 casts take seconds a step. Such a
 /// level is skipped by f32 configurations and runs on f64 ones (`--precision f64`); the sweep's

@@ -1,16 +1,23 @@
 //! The backend kinds the CLI and every command iterate.
 //!
 //! [`Registry::builtin`] holds the controllers this crate ships; a user's crate adds its own
-//! with [`Registry::with`] and hands the registry to [`crate::cli::main_with`] (or runs the
-//! suite from code with [`crate::suite`]). Adding a backend to the crate is its module and one
-//! line in [`Registry::builtin`].
+//! [`crate::controller::Controller`] with [`Registry::with`] and hands the registry to
+//! [`crate::cli::main_with`] (or runs the suite from code with [`crate::suite`]). Adding a
+//! backend to the crate is its module and one line in [`Registry::builtin`].
 
 use std::sync::Arc;
 
 use crate::backend::{BackendKind, ShownByDefault};
+use crate::controller::{Controller, Kind};
 use crate::metrics::MetricRow;
 use crate::scenario::RunConfig;
 use crate::tradeoff::Setting;
+
+/// Colours for controllers without one of their own, told apart from the built-in ones (the
+/// sweep's blue, Rapier's green, Box2D's teal) and from each other.
+pub const PALETTE: [&str; 6] = [
+    "#6a1b9a", "#ad1457", "#5d4037", "#283593", "#9e9d24", "#37474f",
+];
 
 /// An ordered list of backend kinds. Commands run them in this order.
 #[derive(Clone, Default)]
@@ -30,17 +37,29 @@ impl Registry {
         Self::default()
     }
 
-    /// The controllers this crate ships: the sweep, then Rapier, then Box2D's mover.
+    /// The controllers this crate ships: the sweep, then Rapier, then Box2D's mover (each of the
+    /// last two when its Cargo feature, `rapier` or `box2d`, is on, as by default).
     pub fn builtin() -> Self {
-        Registry::new()
-            .with(crate::sweep::kind::SweepKind)
-            .with(crate::rapier::kind::RapierKind)
-            .with(crate::box2d::kind::Box2dKind)
+        let registry = Registry::new().with::<crate::sweep::SweepConfig>();
+        #[cfg(feature = "rapier")]
+        let registry = registry.with::<crate::rapier::RapierConfig>();
+        #[cfg(feature = "box2d")]
+        let registry = registry.with::<crate::box2d::Box2dConfig>();
+        registry
     }
 
-    /// This registry with `kind` added after the others.
-    pub fn with(mut self, kind: impl BackendKind + 'static) -> Self {
-        self.register(Arc::new(kind));
+    /// This registry with controller `C` added after the others (one of the same name is
+    /// replaced in place).
+    ///
+    /// ```
+    /// use platbench::registry::Registry;
+    /// use platbench::sweep::SweepConfig;
+    ///
+    /// let registry = Registry::new().with::<SweepConfig>();
+    /// assert_eq!(registry.names(), ["sweep"]);
+    /// ```
+    pub fn with<C: Controller>(mut self) -> Self {
+        self.register(Arc::new(Kind::<C>::new()));
         self
     }
 
@@ -143,9 +162,22 @@ impl Registry {
         out
     }
 
-    /// The chart colour of backend `name` (grey for a name no kind has).
+    /// The chart colour of backend `name`: its kind's own, else a colour of [`PALETTE`] that no
+    /// kind before it in this registry has (grey for a name no kind has).
     pub fn colour(&self, name: &str) -> &'static str {
-        self.get(name).map_or("#757575", |k| k.colour())
+        let mut taken: Vec<&'static str> = self.kinds.iter().filter_map(|k| k.colour()).collect();
+        for k in &self.kinds {
+            let own = k.colour().unwrap_or_else(|| {
+                let free = PALETTE.iter().find(|c| !taken.contains(c)).copied();
+                let c = free.unwrap_or(PALETTE[taken.len() % PALETTE.len()]);
+                taken.push(c);
+                c
+            });
+            if k.name() == name {
+                return own;
+            }
+        }
+        "#757575"
     }
 
     /// Every kind's notes on `rows`, then the notes about no one backend
@@ -254,6 +286,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(all(feature = "rapier", feature = "box2d"))]
     fn replays_show_the_listed_reference_and_each_other_kinds_best_and_worst() {
         // stuck_frames weighs 1 in the default score, min(1, |error| / 1 frame): below one frame
         // (fractions, for the test), more is worse; at one and above every value scores 1.

@@ -1,7 +1,9 @@
 //! The runner: a scenario (level + spawn + input script + duration + dt) run on one backend
 //! configuration, yielding a [`Trace`].
 
-use crate::backend::{Backend, BackendError, BackendSettings, CharacterSpec, SharedGeometry};
+use crate::backend::{
+    Backend, BackendError, BackendSettings, CharacterId, CharacterSpec, SharedGeometry,
+};
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::{Input, MotionParams};
 use crate::registry::Registry;
@@ -40,7 +42,7 @@ impl PartialEq for RunConfig {
 impl RunConfig {
     /// A configuration of `settings` labelled `label`, with the default motion parameters and
     /// one step per frame.
-    pub fn new(label: impl Into<String>, settings: impl BackendSettings) -> Self {
+    pub fn new(label: impl Into<String>, settings: impl crate::controller::Controller) -> Self {
         RunConfig {
             label: label.into(),
             backend: Arc::new(settings),
@@ -297,14 +299,52 @@ impl<'a> Runner<'a> {
         self.level
     }
 
-    /// Builds the backend of `run` with motion parameters `params`, reusing built geometry.
+    /// Builds the backend of `run` with motion parameters `params` and `characters` placed,
+    /// reusing built geometry. A level the configuration does not model (a feature it lacks, or
+    /// an origin beyond its bound) and a character that is not finite and sized are refused
+    /// here, before the backend sees them, whatever its own build would do.
     pub fn build(
         &mut self,
         run: &RunConfig,
         params: &MotionParams,
+        characters: &[CharacterSpec],
     ) -> Result<Box<dyn Backend>, BackendError> {
-        crate::backend::origin_supported(&*run.backend, self.level)?;
-        run.backend.build(self.level, params, &mut self.shared)
+        let settings = &*run.backend;
+        crate::backend::require_supported(
+            settings.backend(),
+            &self.level.name,
+            self.level.features,
+            settings.features(),
+        )?;
+        crate::backend::origin_supported(settings, self.level)?;
+        if !settings.supports(self.level) {
+            return Err(BackendError::Unsupported {
+                backend: settings.backend(),
+                feature: format!("this level in configuration {}", run.label),
+                level: self.level.name.clone(),
+                beyond_bound: false,
+            });
+        }
+        for c in characters {
+            c.validate()?;
+        }
+        settings
+            .build(self.level, params, characters, &mut self.shared)
+            .map_err(|e| match e {
+                // A refusal that names no level: name the one it was built for.
+                BackendError::Unsupported {
+                    backend,
+                    feature,
+                    level,
+                    beyond_bound,
+                } if level.is_empty() => BackendError::Unsupported {
+                    backend,
+                    feature,
+                    level: self.level.name.clone(),
+                    beyond_bound,
+                },
+                e => e,
+            })
     }
 
     /// Runs one scenario of the level on one configuration (see [`run_scenario`]).
@@ -326,8 +366,8 @@ impl<'a> Runner<'a> {
         sink: &mut dyn FnMut(TraceRow),
     ) -> Result<Trace, BackendError> {
         let params = effective_params(&run.params, spec);
-        let backend = self.build(run, &params)?;
-        drive(self.level, spec, run, backend, sink)
+        let backend = self.build(run, &params, &[character(spec)])?;
+        drive(&self.level.name, spec, run, backend, sink)
     }
 }
 
@@ -345,12 +385,7 @@ pub fn time_scenario(
     let script = input_script(spec);
     let mut best = f64::INFINITY;
     for _ in 0..repeats.max(1) {
-        let mut backend = runner.build(run, &params)?;
-        backend.add_character(CharacterSpec {
-            spawn: spec.spawn,
-            size: spec.size,
-            velocity: spec.velocity,
-        })?;
+        let mut backend = runner.build(run, &params, &[character(spec)])?;
         let mut input = [Input::default()];
         let start = std::time::Instant::now();
         for i in &script {
@@ -375,37 +410,26 @@ pub fn run_scenario(
     Runner::new(level).run(spec, run)
 }
 
-/// Steps `backend` through the scenario's script, handing each row to `sink` as it is made,
-/// and returns the trace's labels with no rows.
+/// The scenario's one character.
+fn character(spec: &ScenarioSpec) -> CharacterSpec {
+    CharacterSpec {
+        spawn: spec.spawn,
+        size: spec.size,
+        velocity: spec.velocity,
+    }
+}
+
+/// Steps `backend` (built with the scenario's character as character 0) through the scenario's
+/// script, handing each row to `sink` as it is made, and returns the trace's labels with no rows.
 fn drive(
-    level: &Level,
+    level: &str,
     spec: &ScenarioSpec,
     run: &RunConfig,
     mut backend: Box<dyn Backend>,
     sink: &mut dyn FnMut(TraceRow),
 ) -> Result<Trace, BackendError> {
     check_dt(spec)?;
-    let id = backend
-        .add_character(CharacterSpec {
-            spawn: spec.spawn,
-            size: spec.size,
-            velocity: spec.velocity,
-        })
-        .map_err(|e| match e {
-            // A refusal of one character names no level: name the one it ran on.
-            BackendError::Unsupported {
-                backend,
-                feature,
-                level: named,
-                beyond_bound,
-            } if named.is_empty() => BackendError::Unsupported {
-                backend,
-                feature,
-                level: level.name.clone(),
-                beyond_bound,
-            },
-            e => e,
-        })?;
+    let id: CharacterId = 0;
     let script = input_script(spec);
     let initial = crate::backend::CharacterState {
         pos: spec.spawn,
@@ -428,7 +452,7 @@ fn drive(
         ));
     }
     Ok(Trace {
-        level: level.name.clone(),
+        level: level.to_string(),
         scenario: spec.name.clone(),
         backend: backend.name().to_string(),
         config: run.label.clone(),

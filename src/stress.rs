@@ -446,10 +446,20 @@ fn configured(run: &RunConfig, case: &Case, epsilon_varied: bool) -> Option<RunC
 /// epsilon is varied only on configurations that have one, and offsets past
 /// [`F32_OFFSET_LIMIT`] only on f64 configurations.
 pub fn points(runs: &[RunConfig]) -> Vec<Point> {
+    points_with(runs, None)
+}
+
+/// [`points`] with every probe outside the dt dimension (and its pairs) stepped by `dt`
+/// seconds instead of [`BASE`]'s 1/60 s, when given.
+pub fn points_with(runs: &[RunConfig], dt: Option<f32>) -> Vec<Point> {
+    let base = Case {
+        dt: dt.unwrap_or(BASE.dt),
+        ..BASE
+    };
     let mut out = Vec::new();
     for d in dimensions() {
         for &v in &d.values {
-            let case = BASE.with(d.name, v);
+            let case = base.with(d.name, v);
             let far = d.name == "offset" && v > F32_OFFSET_LIMIT;
             for base in runs {
                 if far && base.backend.precision() == Precision::F32 {
@@ -474,7 +484,7 @@ pub fn points(runs: &[RunConfig]) -> Vec<Point> {
             let (a, b) = &grids[k];
             for &va in &a.values {
                 for &vb in &b.values {
-                    let case = BASE.with(a.name, va).with(b.name, vb);
+                    let case = base.with(a.name, va).with(b.name, vb);
                     let eps = a.name == "epsilon" || b.name == "epsilon";
                     for base in runs.iter().filter(|r| r.backend.precision() == *precision) {
                         if let Some(run) = configured(base, &case, eps) {
@@ -507,9 +517,20 @@ pub fn stress_matrix(
 pub fn stress_matrix_on(
     runs: &[RunConfig],
     jobs: usize,
+    progress: impl FnMut(&str),
+) -> Result<Vec<StressRow>, BackendError> {
+    stress_matrix_with(runs, None, jobs, progress)
+}
+
+/// [`stress_matrix_on`] with the base time step `dt` (seconds; [`BASE`]'s 1/60 s when `None`)
+/// for every probe outside the dt dimension ([`points_with`]).
+pub fn stress_matrix_with(
+    runs: &[RunConfig],
+    dt: Option<f32>,
+    jobs: usize,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<StressRow>, BackendError> {
-    let points = points(runs);
+    let points = points_with(runs, dt);
     let mut out = Vec::new();
     let mut last = String::new();
     crate::parallel::for_each_ordered(

@@ -39,7 +39,7 @@ impl Setting {
     /// at `dt` seconds (its own if `None`), the default motion parameters otherwise.
     pub fn new(
         label: &str,
-        settings: impl crate::backend::BackendSettings,
+        settings: impl crate::controller::Controller,
         substeps: u32,
         dt: Option<f32>,
     ) -> Self {
@@ -79,11 +79,11 @@ fn backends_in_order(rows: &[TradeoffRow]) -> Vec<String> {
 }
 
 /// The colour of backend `name` among `backends`: its kind's own colour
-/// ([`crate::backend::BackendKind::colour`], as the report's pictures draw it) for a built-in
+/// ([`crate::controller::Controller::colour`], as the report's pictures draw it) for a built-in
 /// kind, else the palette's by order.
 fn backend_colour(backends: &[String], name: &str) -> String {
-    if let Some(k) = Registry::builtin().get(name) {
-        return k.colour().to_string();
+    if let Some(c) = Registry::builtin().get(name).and_then(|k| k.colour()) {
+        return c.to_string();
     }
     let k = backends.iter().position(|b| b == name).unwrap_or(0);
     PALETTE[k % PALETTE.len()].to_string()
@@ -429,6 +429,7 @@ mod tests {
     /// Each built-in backend is drawn in its kind's own colour, the one the report's pictures
     /// use (before, the chart gave Box2D the palette's third colour, #6a1b9a, not its #00838f).
     #[test]
+    #[cfg(all(feature = "rapier", feature = "box2d"))]
     fn the_chart_draws_each_builtin_backend_in_its_own_colour() {
         let registry = Registry::builtin();
         let names: Vec<String> = registry

@@ -1,9 +1,17 @@
 //! The Box2D backend against what Box2D's own `Mover` sample shows
 //! (`samples/sample_character.cpp` at the revision boxdd 0.6 pins, 56edae79), and over every
 //! built-in level.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 use glam::Vec2;
-use platbench::backend::{Backend, CharacterSpec};
+use platbench::backend::CharacterSpec;
 use platbench::box2d::{Box2dBackend, Box2dConfig, ColliderBuilding};
 use platbench::level::parse_level;
 use platbench::motion::{Input, MotionParams};

@@ -2,6 +2,14 @@
 //! measure every controller's real shape against the real level surface, slopes included
 //! (issue 17, item 1): the sweep's box overhanging a ramp by design is measured as what it is,
 //! and feet moved below a slope's surface are seen.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 

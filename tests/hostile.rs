@@ -7,6 +7,14 @@
 //! 4. panics: input that panicked inside a dependency is an error;
 //! 5. silently accepted input is an error or a warning;
 //! 6. the small things (permissions, counts, ignored flags).
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 

@@ -1,11 +1,19 @@
 //! One-way platforms and ladders on both backends (issue 4), from traces and metrics of the
 //! built-in `oneway` and `ladders` levels.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 
 use common::{evaluate_all, level, rows, some_rows};
 use glam::Vec2;
-use platbench::backend::{Backend, CharacterSpec};
+use platbench::backend::CharacterSpec;
 use platbench::motion::{Input, MotionParams};
 use platbench::rapier::{CharacterShape, ColliderBuilding};
 use platbench::scenario::RunConfig;

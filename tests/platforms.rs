@@ -1,5 +1,13 @@
 //! Moving platforms on both backends (issue 5), from traces and metrics of the built-in
 //! `platforms` level.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 

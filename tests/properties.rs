@@ -2,6 +2,14 @@
 //! nothing non-finite, the sweep never enters a solid beyond its epsilon nor tunnels, the same
 //! inputs give the same bits, and the level parser never panics. Case counts are sized so the
 //! whole file runs in well under a minute in CI's dev profile.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 use glam::Vec2;
 use platbench::level::{parse_level, InputEvent, Level, ScenarioSpec, Tile};

@@ -1,6 +1,14 @@
 //! What Rapier's controller does on the built-in set, for every character shape and collider
 //! building, pinned against explicit bounds; and the side-by-side run of every scenario on every
 //! configuration.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 

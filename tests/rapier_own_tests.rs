@@ -3,9 +3,17 @@
 //! rebuilt in 2D through the Rapier backend: the same shapes, placement and desired
 //! translations, so their bounds apply. The 2D figures are in
 //! ../shared/reference/rapier-kcc-0.36.1.md ("Rapier's own ground-detection test scene").
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 use glam::Vec2;
-use platbench::backend::{Backend, CharacterSpec};
+use platbench::backend::CharacterSpec;
 use platbench::level::{Level, Tile};
 use platbench::motion::MotionParams;
 use platbench::rapier::{CharacterShape, ColliderBuilding, Length, RapierBackend, RapierConfig};

@@ -4,9 +4,17 @@
 //! 6 tiles/s for 10 s; each frame `vy -= g dt`, desired `(vx dt, vy dt)`, `move_shape`, add the
 //! translation, `vy = 0` when grounded. The level's `origin` places the floor where the
 //! reference placed it (centred on x = 0), because Rapier's results depend on world coordinates.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 use glam::Vec2;
-use platbench::backend::{Backend, CharacterSpec};
+use platbench::backend::CharacterSpec;
 use platbench::level::{Level, Tile};
 use platbench::motion::MotionParams;
 use platbench::rapier::{CharacterShape, ColliderBuilding, Length, RapierBackend, RapierConfig};

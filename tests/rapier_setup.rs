@@ -2,12 +2,20 @@
 //! rest, spawns start clear of the offset band, the grounded step's vertical move is a setting
 //! with the effects its documentation claims, the platform order is the better of the two
 //! measured, and `autostep` reaches the controller.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 
 use common::{builtin_levels, evaluate_all, level, rows, value};
 use glam::Vec2;
-use platbench::backend::{Backend, CharacterSpec};
+use platbench::backend::CharacterSpec;
 use platbench::level::{Level, Tile};
 use platbench::metrics::Evaluation;
 use platbench::motion::{Input, MotionParams};

@@ -3,6 +3,14 @@
 //! reaches (what `Slope::outline` produced before) puts a false step into a ramp: tile `d` of
 //! `slope_22_5` became (8,2)(9,2)(9,2.243) instead of (8.414,2)(9,2)(9,2.243), and every Rapier
 //! shape stuck on it.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 

@@ -14,6 +14,14 @@
 //! default controller (climb limit 45 degrees). Each step: `vy -= 30 dt`, desired
 //! `(±6 dt, vy dt)`, `move_shape`, `vy = 0` when grounded; 3 s at 60 Hz. If Rapier changes this
 //! behaviour, this test fails and the README's claim about it must change with it.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 use glam::Vec2;
 use rapier2d::control::KinematicCharacterController;

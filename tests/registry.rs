@@ -8,57 +8,66 @@ use std::rc::Rc;
 
 use glam::Vec2;
 
-use platbench::backend::{
-    require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
-    CharacterId, CharacterSpec, CharacterState, DeclaredContact, SharedGeometry,
-};
+use platbench::backend::{BackendError, CharacterId, CharacterState, DeclaredContact};
 use platbench::cli::{run_cli, Harness};
-use platbench::level::{Features, Level};
+use platbench::controller::{Controller, Setup};
+use platbench::level::Features;
 use platbench::motion::{Contacts, Input, MotionParams, MotionState};
 use platbench::registry::Registry;
 use platbench::scenario::RunConfig;
-use platbench::shape::CharacterShape;
 
-/// A toy controller: the shared motion, and a floor at the lowest solid top under the spawn
-/// column (nothing else collides).
-#[derive(Clone, Debug, PartialEq)]
-struct ToyConfig {
+/// A toy controller: the shared motion, and a floor at the highest solid top of the level
+/// (nothing else collides).
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Toy {
     /// Height the toy floats above its floor, in tiles.
     hover: f32,
 }
 
-struct Toy {
+struct ToyMover {
     floor: Rc<f32>,
     params: MotionParams,
-    hover: f32,
-    chars: Vec<(Vec2, Vec2, MotionState)>,
+    chars: Vec<(Vec2, MotionState)>,
 }
 
-impl Backend for Toy {
-    fn name(&self) -> &'static str {
-        "toy"
+impl Controller for Toy {
+    type Mover = ToyMover;
+    const NAME: &'static str = "toy";
+
+    fn features(&self) -> Features {
+        Features::NONE
     }
-    fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
-        spec.validate()?;
-        self.chars.push((
-            spec.spawn,
-            spec.size,
-            MotionState::with_velocity(spec.velocity),
-        ));
-        Ok(self.chars.len() - 1)
+
+    fn build(&self, setup: Setup<'_>) -> Result<ToyMover, BackendError> {
+        let level = setup.level;
+        let floor = setup.shared.get_or_build("toy:floor", || {
+            level
+                .solid_boxes()
+                .map(|b| b.maxs.y)
+                .fold(f32::MIN, f32::max)
+        });
+        Ok(ToyMover {
+            floor,
+            params: setup.params.clone(),
+            chars: setup
+                .characters
+                .iter()
+                .map(|c| (c.spawn, MotionState::with_velocity(c.velocity)))
+                .collect(),
+        })
     }
-    fn step(&mut self, inputs: &[Input], dt: f32) {
-        for (k, (pos, _, m)) in self.chars.iter_mut().enumerate() {
+
+    fn step(&self, m: &mut ToyMover, inputs: &[Input], dt: f32) {
+        for (k, (pos, motion)) in m.chars.iter_mut().enumerate() {
             let input = inputs.get(k).copied().unwrap_or_default();
-            let d = m.integrate(&self.params, &input, dt);
-            *pos += d;
-            let floor = *self.floor + self.hover;
+            *pos += motion.integrate(&m.params, &input, dt);
+            let floor = *m.floor + self.hover;
             let ground = pos.y <= floor;
             if ground {
                 pos.y = floor;
             }
-            m.apply_contacts(
-                &self.params,
+            motion.apply_contacts(
+                &m.params,
                 &input,
                 Contacts {
                     ground,
@@ -67,92 +76,34 @@ impl Backend for Toy {
             );
         }
     }
-    fn state(&self, id: CharacterId) -> CharacterState {
-        let (pos, _, m) = &self.chars[id];
+
+    fn state(&self, m: &ToyMover, id: CharacterId) -> CharacterState {
+        let (pos, motion) = &m.chars[id];
         CharacterState {
             pos: *pos,
-            vel: m.vel,
-            grounded: m.grounded,
-            ground_normal: if m.grounded { Vec2::Y } else { Vec2::ZERO },
+            vel: motion.vel,
+            grounded: motion.grounded,
+            ground_normal: if motion.grounded { Vec2::Y } else { Vec2::ZERO },
             ..Default::default()
         }
     }
-}
 
-const FEATURES: Features = Features {
-    slopes: false,
-    one_way: false,
-    ladders: false,
-    moving_platforms: false,
-};
+    fn configs() -> Vec<RunConfig> {
+        vec![
+            RunConfig::new("flush", Toy { hover: 0.0 }),
+            RunConfig::new("hover", Toy { hover: 0.01 }),
+        ]
+    }
 
-impl BackendSettings for ToyConfig {
-    fn backend(&self) -> &'static str {
-        "toy"
+    fn drawn() -> Vec<(&'static str, &'static str)> {
+        vec![("flush", "#000000")]
     }
-    fn shape(&self) -> CharacterShape {
-        CharacterShape::Cuboid
-    }
-    fn supports(&self, level: &Level) -> bool {
-        require_supported("toy", "", level.features, FEATURES).is_ok()
-    }
+
     fn declared_contact(&self, _size: Vec2, _max_climb_angle: f32) -> DeclaredContact {
         DeclaredContact {
             gap: self.hover,
             ..Default::default()
         }
-    }
-    fn contact_tolerance(&self, _size: Vec2) -> f64 {
-        0.0
-    }
-    fn build(
-        &self,
-        level: &Level,
-        params: &MotionParams,
-        shared: &mut SharedGeometry,
-    ) -> Result<Box<dyn Backend>, BackendError> {
-        require_supported("toy", &level.name, level.features, FEATURES)?;
-        let floor = shared.get_or_build("toy:floor", || {
-            level
-                .solid_boxes()
-                .map(|b| b.maxs.y)
-                .fold(f32::MIN, f32::max)
-        });
-        Ok(Box::new(Toy {
-            floor,
-            params: params.clone(),
-            hover: self.hover,
-            chars: Vec::new(),
-        }))
-    }
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
-    }
-    fn same_as(&self, other: &dyn BackendSettings) -> bool {
-        same_settings(self, other)
-    }
-}
-
-struct ToyKind;
-
-impl BackendKind for ToyKind {
-    fn name(&self) -> &'static str {
-        "toy"
-    }
-    fn shapes(&self) -> Vec<CharacterShape> {
-        vec![CharacterShape::Cuboid]
-    }
-    fn features(&self) -> Features {
-        FEATURES
-    }
-    fn builtin_configs(&self) -> Vec<RunConfig> {
-        vec![
-            RunConfig::new("flush", ToyConfig { hover: 0.0 }),
-            RunConfig::new("hover", ToyConfig { hover: 0.01 }),
-        ]
-    }
-    fn drawn(&self) -> Vec<(&'static str, &'static str)> {
-        vec![("flush", "#000000")]
     }
 }
 
@@ -174,7 +125,7 @@ fn a_toy_backend_runs_through_run_diff_and_report() {
     let level = dir.path().join("plain.toml");
     std::fs::write(&level, LEVEL).unwrap();
     let h = Harness {
-        registry: Registry::new().with(ToyKind),
+        registry: Registry::new().with::<Toy>(),
         baseline: dir.path().join("baseline"),
     };
     let (a, b, r) = (
@@ -223,7 +174,7 @@ fn a_toy_backend_runs_through_run_diff_and_report() {
 #[test]
 fn the_suite_runs_from_code_and_skips_what_a_backend_does_not_model() {
     let levels = platbench::suite::builtin_levels().unwrap();
-    let configs = Registry::new().with(ToyKind).builtin_configs();
+    let configs = Registry::new().with::<Toy>().builtin_configs();
     let run = platbench::suite::run_suite(&levels, &configs).unwrap();
     let modelled: usize = levels
         .iter()
@@ -237,6 +188,44 @@ fn the_suite_runs_from_code_and_skips_what_a_backend_does_not_model() {
 }
 
 #[test]
+fn the_harness_skips_a_level_a_controller_does_not_model_before_building_it() {
+    // The toy models solid tiles only (`Features::NONE`) and its build refuses nothing: the
+    // harness alone must keep it off the built-in levels with slopes, one-way platforms,
+    // ladders or moving platforms, and count only what ran.
+    let dir = tempfile::tempdir().unwrap();
+    let h = Harness {
+        registry: Registry::new().with::<Toy>(),
+        baseline: dir.path().join("baseline"),
+    };
+    let out = dir.path().join("out");
+    assert_eq!(cli(&h, &["run", "--out", path(&out)]), ExitCode::SUCCESS);
+    let levels = platbench::suite::builtin_levels().unwrap();
+    let plain: Vec<&platbench::level::Level> = levels
+        .iter()
+        .filter(|l| l.features == Features::NONE)
+        .collect();
+    let modelled: usize = plain.iter().map(|l| l.scenarios.len()).sum();
+    // Both sides non-empty, or the test proves nothing.
+    assert!(modelled > 0 && plain.len() < levels.len());
+    let traces = std::fs::read_dir(out.join("traces")).unwrap().count();
+    assert_eq!(
+        traces,
+        2 * modelled,
+        "one trace per configuration and modelled scenario"
+    );
+    let metrics = std::fs::read_to_string(out.join("metrics.csv")).unwrap();
+    for l in levels.iter().filter(|l| l.features != Features::NONE) {
+        assert!(
+            !metrics.contains(&format!("\n{},", l.name)),
+            "{} has {:?} and was run",
+            l.name,
+            l.features
+        );
+    }
+}
+
+#[test]
+#[cfg(all(feature = "rapier", feature = "box2d"))]
 fn the_builtin_registry_is_the_builtin_set() {
     let names = Registry::builtin().names();
     // `Registry::builtin`'s kinds, in its order.
@@ -256,6 +245,7 @@ fn the_builtin_registry_is_the_builtin_set() {
 }
 
 #[test]
+#[cfg(all(feature = "rapier", feature = "box2d"))]
 fn the_sweep_grid_is_the_committed_tradeoff_csv() {
     // compare/tradeoff/tradeoff.csv was written by `platbench sweep` before the registry: the
     // registry's grid has the same settings, in the same order, with the same backends.

@@ -1,7 +1,16 @@
 //! The report's replays in a real browser: headless Chromium (the Debian package `chromium`,
 //! which `.ci/run` installs) opens `report.html#selftest`; the inline script scrubs every replay,
 //! plays one, ticks the picker, and writes what it saw into `<pre id="selftest">`, which the
-//! test reads from the dumped DOM. A missing browser fails the test: it is never skipped.
+//! test reads from the dumped DOM. Without the browser the test says loudly that it skipped
+//! (`.ci/run` sets `PLATBENCH_REQUIRE_PROGRAMS=1`, which makes a missing browser a failure).
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 
@@ -10,29 +19,22 @@ use std::process::Command;
 
 use common::{assert_success, platbench};
 
-/// The Chromium binary: `PLATBENCH_CHROMIUM`, else `chromium` on the PATH.
-fn chromium() -> PathBuf {
-    if let Some(p) = std::env::var_os("PLATBENCH_CHROMIUM") {
-        return PathBuf::from(p);
-    }
-    let found = std::env::var_os("PATH").and_then(|paths| {
-        std::env::split_paths(&paths)
-            .map(|d| d.join("chromium"))
-            .find(|p| p.is_file())
-    });
-    found.unwrap_or_else(|| {
-        panic!(
-            "no `chromium` on the PATH: install the Debian package (`apt-get install -y chromium`; \
-             .ci/run does it) or set PLATBENCH_CHROMIUM; this test is not skipped without it"
-        )
-    })
+/// The Chromium binary: `PLATBENCH_CHROMIUM`, else `chromium` on the PATH; `None` (the test
+/// says loudly that it skipped) when neither is there, unless `PLATBENCH_REQUIRE_PROGRAMS=1`.
+fn chromium() -> Option<PathBuf> {
+    common::outside_program(
+        "tests/replay.rs (the report's replays in headless Chromium)",
+        "chromium",
+        "PLATBENCH_CHROMIUM",
+        "apt-get install -y chromium",
+    )
 }
 
 /// The page's DOM after its scripts ran with `budget_ms` of virtual time.
-fn dump_dom(page: &Path, fragment: &str, budget_ms: u32) -> String {
+fn dump_dom(chromium: &Path, page: &Path, fragment: &str, budget_ms: u32) -> String {
     let profile = tempfile::tempdir().unwrap();
     let url = format!("file://{}{fragment}", page.display());
-    let out = Command::new(chromium())
+    let out = Command::new(chromium)
         .args([
             "--headless",
             "--no-sandbox",
@@ -58,6 +60,9 @@ fn dump_dom(page: &Path, fragment: &str, budget_ms: u32) -> String {
 
 #[test]
 fn the_replays_play_scrub_and_pick_in_headless_chromium() {
+    let Some(chromium) = chromium() else {
+        return;
+    };
     let dir = tempfile::tempdir().unwrap();
     // Jumps: every scenario moves its characters; elevator: a moving platform.
     let out = platbench()
@@ -80,7 +85,7 @@ fn the_replays_play_scrub_and_pick_in_headless_chromium() {
     let replays = html.matches("<div class=\"replay\"").count();
     assert_eq!(replays, 8, "7 jumps and 1 elevator scenario");
     // 5 s of virtual time: the self-test plays for 0.5 s after scrubbing every replay.
-    let dom = dump_dom(&page, "#selftest", 5000);
+    let dom = dump_dom(&chromium, &page, "#selftest", 5000);
     let start = dom
         .find("<pre id=\"selftest\">")
         .unwrap_or_else(|| panic!("the self-test wrote no result"))

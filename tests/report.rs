@@ -1,5 +1,13 @@
 //! The HTML report as a reader gets it: self-contained, one replay per scenario, every
 //! backend's path in each.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 

@@ -2,12 +2,20 @@
 //! levels: slope_22_5, slope_26_6, slope_45 (hills walked up, over the crest and down into the
 //! valley), slope_63_4 (steeper than the 45-degree climb limit) and seed_tile (the seed's
 //! height-array tile).
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 mod common;
 
 use common::{evaluate_all, level, rows, some_rows};
 use glam::Vec2;
-use platbench::backend::{Backend, CharacterSpec};
+use platbench::backend::CharacterSpec;
 use platbench::level::Tile;
 use platbench::motion::{Input, MotionParams};
 use platbench::rapier::{CharacterShape, ColliderBuilding};

@@ -1,5 +1,13 @@
 //! The sweep's stability envelope, pinned at its edges (`platbench stress`): a change that
 //! shrinks it fails here.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 use platbench::stress::{stress_matrix, StressRow};
 

@@ -1,5 +1,13 @@
 //! The speed-versus-accuracy sweep on a small level: every setting measured, the error score in
 //! range, a Pareto front that is not empty and contains the cheapest setting.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 use platbench::level::parse_level;
 use platbench::metrics::score::Score;

@@ -1,8 +1,16 @@
 //! Library calls with non-finite or out-of-range inputs return an error naming the parameter,
 //! never a panic or a NaN trace.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
 
 use glam::Vec2;
-use platbench::backend::{Backend, BackendError, CharacterSpec};
+use platbench::backend::{BackendError, CharacterSpec};
 use platbench::level::{parse_level, Level, Tile};
 use platbench::motion::MotionParams;
 use platbench::rapier::{RapierBackend, RapierConfig};

@@ -5,31 +5,32 @@
 use glam::Vec2;
 
 use super::{Box2dBackend, Box2dConfig, CharacterShape, ColliderBuilding, PogoShape, LINEAR_SLOP};
-use crate::backend::{
-    require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
-    DeclaredContact, SharedGeometry,
-};
+use crate::backend::{BackendError, CharacterId, CharacterState, DeclaredContact};
+use crate::controller::{Controller, Setup};
 use crate::level::{Features, Level};
 use crate::metrics::MetricRow;
-use crate::motion::MotionParams;
+use crate::motion::{Input, MotionParams};
 use crate::scenario::RunConfig;
 use crate::tradeoff::Setting;
 
 /// The backend's name, as in CSV files.
 pub const NAME: &str = "box2d";
 
-impl BackendSettings for Box2dConfig {
-    fn backend(&self) -> &'static str {
-        NAME
-    }
+impl Controller for Box2dConfig {
+    type Mover = Box2dBackend;
+    const NAME: &'static str = NAME;
 
     fn shape(&self) -> CharacterShape {
         self.shape
     }
 
+    fn features(&self) -> Features {
+        Box2dBackend::SUPPORTED
+    }
+
+    /// Its features, with the sample's capsule (the only shape it offers).
     fn supports(&self, level: &Level) -> bool {
-        self.shape == CharacterShape::Capsule
-            && require_supported(NAME, "", level.features, Box2dBackend::SUPPORTED).is_ok()
+        self.shape == CharacterShape::Capsule && level.features.within(Box2dBackend::SUPPORTED)
     }
 
     /// The pogo at its rest length: the feet one linear slop off the ground (the pogo's cast
@@ -55,7 +56,7 @@ impl BackendSettings for Box2dConfig {
         }
     }
 
-    /// As [`BackendSettings::declared_contact`], with the pogo's sag: the sample feeds gravity
+    /// As [`Controller::declared_contact`], with the pogo's sag: the sample feeds gravity
     /// every step and the spring (`b2SpringDamper`, `pogo_hertz`, `pogo_damping_ratio`) rests
     /// where its push balances it, `g dt (2 zeta + omega dt) / omega` below the pogo's rest
     /// length (0.0338 tiles at 60 Hz; `tests/box2d.rs` derives it and finds the feet there, less
@@ -90,56 +91,32 @@ impl BackendSettings for Box2dConfig {
     }
 
     /// Builds the backend's own world (moving platforms mutate it, so it is not shared).
-    fn build(
-        &self,
-        level: &Level,
-        params: &MotionParams,
-        _shared: &mut SharedGeometry,
-    ) -> Result<Box<dyn Backend>, BackendError> {
-        Ok(Box::new(Box2dBackend::new(
-            level,
-            params.clone(),
-            self.clone(),
-        )?))
+    fn build(&self, setup: Setup<'_>) -> Result<Box2dBackend, BackendError> {
+        let mut b = Box2dBackend::new(setup.level, setup.params.clone(), self.clone())?;
+        for c in setup.characters {
+            b.add_character(*c)?;
+        }
+        Ok(b)
     }
 
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
+    fn step(&self, mover: &mut Box2dBackend, inputs: &[Input], dt: f32) {
+        mover.step(inputs, dt);
     }
 
-    fn same_as(&self, other: &dyn BackendSettings) -> bool {
-        same_settings(self, other)
-    }
-}
-
-/// Box2D with `config`, labelled by [`Box2dConfig::label`].
-pub fn run_with(config: Box2dConfig) -> RunConfig {
-    RunConfig::new(config.label(), config)
-}
-
-/// Box2D v3's character mover as a kind of backend.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Box2dKind;
-
-impl BackendKind for Box2dKind {
-    fn name(&self) -> &'static str {
-        NAME
+    fn state(&self, mover: &Box2dBackend, id: CharacterId) -> CharacterState {
+        mover.state(id)
     }
 
-    fn description(&self) -> &'static str {
+    fn description() -> &'static str {
         "Box2D v3's character mover (cast, collide, solve planes, clip velocity, pogo), driven as Box2D's Mover sample drives it"
     }
 
-    fn shapes(&self) -> Vec<CharacterShape> {
+    fn shapes() -> Vec<CharacterShape> {
         vec![CharacterShape::Capsule]
     }
 
-    fn features(&self) -> Features {
-        Box2dBackend::SUPPORTED
-    }
-
     /// The sample's capsule on one box per tile and on merged chain loops.
-    fn builtin_configs(&self) -> Vec<RunConfig> {
+    fn configs() -> Vec<RunConfig> {
         [ColliderBuilding::PerTile, ColliderBuilding::Merged]
             .into_iter()
             .map(|colliders| {
@@ -151,12 +128,12 @@ impl BackendKind for Box2dKind {
             .collect()
     }
 
-    fn stress_configs(&self) -> Vec<RunConfig> {
-        self.builtin_configs()
+    fn stress_configs() -> Vec<RunConfig> {
+        Self::configs()
     }
 
     /// dt, substeps, the loop's iterations and tolerance, the pogo spring, collider building.
-    fn tradeoff_settings(&self) -> Vec<Setting> {
+    fn tradeoff_settings() -> Vec<Setting> {
         let d = Box2dConfig::default;
         let mut g = Vec::new();
         for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
@@ -219,18 +196,18 @@ impl BackendKind for Box2dKind {
         g
     }
 
-    fn drawn(&self) -> Vec<(&'static str, &'static str)> {
+    fn drawn() -> Vec<(&'static str, &'static str)> {
         vec![
             ("per-tile capsule", "#00838f"),
             ("merged capsule", "#4dd0e1"),
         ]
     }
 
-    fn colour(&self) -> &'static str {
-        "#00838f"
+    fn colour() -> Option<&'static str> {
+        Some("#00838f")
     }
 
-    fn notes(&self, rows: &[MetricRow]) -> Vec<String> {
+    fn notes(rows: &[MetricRow]) -> Vec<String> {
         let b = |m: &'static str| {
             rows.iter()
                 .filter(move |r| r.backend == NAME && r.metric == m)
@@ -252,4 +229,9 @@ impl BackendKind for Box2dKind {
         }
         out
     }
+}
+
+/// Box2D with `config`, labelled by [`Box2dConfig::label`].
+pub fn run_with(config: Box2dConfig) -> RunConfig {
+    RunConfig::new(config.label(), config)
 }

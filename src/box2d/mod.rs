@@ -25,7 +25,7 @@ use boxdd::{
 };
 
 use crate::backend::{
-    invalid, require_supported, Backend, BackendError, CharacterId, CharacterSpec, CharacterState,
+    invalid, require_supported, BackendError, CharacterId, CharacterSpec, CharacterState,
 };
 use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
@@ -546,12 +546,10 @@ impl Box2dBackend {
     }
 }
 
-impl Backend for Box2dBackend {
-    fn name(&self) -> &'static str {
-        kind::NAME
-    }
-
-    fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
+impl Box2dBackend {
+    /// Adds a character and returns its id; refuses a non-finite spawn or velocity, or a size
+    /// that is not positive.
+    pub fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
         spec.validate()?;
         let (radius, c1, c2) = self.config.capsule(spec.size);
         // Box2D asserts a mover radius above twice its linear slop.
@@ -584,7 +582,8 @@ impl Backend for Box2dBackend {
     }
 
     /// Platforms first, as the sample steps its world (moving the elevator) before the mover.
-    fn step(&mut self, inputs: &[Input], dt: f32) {
+    /// Advances every character by `dt` seconds; `inputs[id]` is character `id`'s input.
+    pub fn step(&mut self, inputs: &[Input], dt: f32) {
         let t1 = (self.frame + 1) as f64 * dt as f64;
         if let Err(e) = self.world.step_platforms(t1, dt) {
             panic!("box2d platform step on validated geometry failed: {e}");
@@ -602,7 +601,8 @@ impl Backend for Box2dBackend {
         self.frame += 1;
     }
 
-    fn state(&self, id: CharacterId) -> CharacterState {
+    /// The state of character `id` after the last step, in level coordinates.
+    pub fn state(&self, id: CharacterId) -> CharacterState {
         let c = &self.characters[id];
         // A character Box2D could not move has no position to report.
         let (pos, vel) = match c.failed {

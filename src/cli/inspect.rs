@@ -21,26 +21,9 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
     let opts = args.import.options()?;
     let p = &args.map;
     let r = if has_ext(p, "ldtk") {
-        crate::level::ldtk::import_ldtk_with(p, &opts).map_err(|f| {
-            for w in &f.warnings {
-                eprintln!("warning: {w}");
-            }
-            anyhow::Error::new(f.error)
-        })?
+        import_ldtk(p, &opts)?
     } else {
-        let t = crate::level::import_tiled_map_with(p, &opts).map_err(|f| {
-            for w in &f.warnings {
-                eprintln!("warning: {w}");
-            }
-            anyhow::Error::new(f.error)
-        })?;
-        crate::level::import::MapImport {
-            level: t.level,
-            spawns: t.spawns,
-            spawn_sources: t.spawn_sources,
-            layers: t.layers,
-            warnings: t.warnings,
-        }
+        import_tiled(p, &opts)?
     };
     let l = &r.level;
     let mut text = format!(
@@ -112,4 +95,53 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
     }
     out(text.trim_end());
     Ok(())
+}
+
+#[cfg(feature = "ldtk")]
+fn import_ldtk(
+    p: &std::path::Path,
+    opts: &crate::level::ImportOptions,
+) -> Result<crate::level::MapImport> {
+    crate::level::ldtk::import_ldtk_with(p, opts).map_err(|f| {
+        for w in &f.warnings {
+            eprintln!("warning: {w}");
+        }
+        anyhow::Error::new(f.error)
+    })
+}
+
+#[cfg(not(feature = "ldtk"))]
+fn import_ldtk(
+    p: &std::path::Path,
+    _: &crate::level::ImportOptions,
+) -> Result<crate::level::MapImport> {
+    Err(super::missing_feature(p, "ldtk", "LDtk projects"))
+}
+
+#[cfg(feature = "tiled")]
+fn import_tiled(
+    p: &std::path::Path,
+    opts: &crate::level::ImportOptions,
+) -> Result<crate::level::MapImport> {
+    let t = crate::level::import_tiled_map_with(p, opts).map_err(|f| {
+        for w in &f.warnings {
+            eprintln!("warning: {w}");
+        }
+        anyhow::Error::new(f.error)
+    })?;
+    Ok(crate::level::MapImport {
+        level: t.level,
+        spawns: t.spawns,
+        spawn_sources: t.spawn_sources,
+        layers: t.layers,
+        warnings: t.warnings,
+    })
+}
+
+#[cfg(not(feature = "tiled"))]
+fn import_tiled(
+    p: &std::path::Path,
+    _: &crate::level::ImportOptions,
+) -> Result<crate::level::MapImport> {
+    Err(super::missing_feature(p, "tiled", "Tiled maps"))
 }

@@ -6,7 +6,7 @@
 //! use platbench::registry::Registry;
 //!
 //! fn main() -> std::process::ExitCode {
-//!     // Registry::builtin().with(MyKind) adds a controller of your own.
+//!     // Registry::builtin().with::<MyController>() adds a controller of your own.
 //!     platbench::cli::main_with(Registry::builtin())
 //! }
 //! ```
@@ -20,6 +20,7 @@ mod levels;
 mod output;
 mod report;
 mod run;
+mod select;
 mod stress;
 mod sweep;
 
@@ -61,6 +62,16 @@ impl Harness {
 /// Runs the `platbench` command line (from the process's arguments) over `registry`'s backend
 /// kinds, and returns the exit status: 0 on success, 1 when `diff` finds a regression, 2 on an
 /// error. The baseline is as [`Harness::new`] says.
+///
+/// ```no_run
+/// use platbench::registry::Registry;
+/// use platbench::sweep::SweepConfig;
+///
+/// fn main() -> std::process::ExitCode {
+///     // The sweep alone; `.with::<YourController>()` puts yours beside it.
+///     platbench::cli::main_with(Registry::new().with::<SweepConfig>())
+/// }
+/// ```
 pub fn main_with(registry: Registry) -> ExitCode {
     main_with_harness(Harness::new(registry))
 }
@@ -81,7 +92,9 @@ where
     let backends = |a: clap::Arg| a.value_parser(PossibleValuesParser::new(names.clone()));
     let command = Cli::command()
         .mut_subcommand("run", |c| c.mut_arg("backends", backends))
-        .mut_subcommand("report", |c| c.mut_arg("backends", backends));
+        .mut_subcommand("report", |c| c.mut_arg("backends", backends))
+        .mut_subcommand("stress", |c| c.mut_arg("backends", backends))
+        .mut_subcommand("sweep", |c| c.mut_arg("backends", backends));
     let cli = match command
         .try_get_matches_from(args)
         .and_then(|m| Cli::from_arg_matches(&m))
@@ -108,22 +121,15 @@ where
             out,
             force,
             world_size,
-            jobs,
-        }) => stress::stress(h, &out, force, world_size, jobs_or_cores(jobs)),
+            select,
+        }) => stress::stress(h, &out, force, world_size, &select),
         Some(Command::Sweep {
             out,
             force,
             levels,
             score,
-            jobs,
-        }) => sweep::sweep_settings(
-            h,
-            &out,
-            force,
-            &levels,
-            score.as_deref(),
-            jobs_or_cores(jobs),
-        ),
+            select,
+        }) => sweep::sweep_settings(h, &out, force, &levels, score.as_deref(), &select),
         Some(Command::Report(args)) => report::report(h, &args),
         Some(Command::Diff(args)) => return diff::diff(&args),
         Some(Command::Inspect(args)) => inspect::inspect(&args),
@@ -198,11 +204,8 @@ enum Command {
         /// design (Rapier's offset, the sweep's box overhanging a slope).
         #[arg(long)]
         score: Option<String>,
-        /// Threads the runs that give the metrics fan out over (the output is the same whatever
-        /// the number); default: the cores available. The timing always runs on one thread, with
-        /// nothing beside it.
-        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-        jobs: Option<u32>,
+        #[command(flatten)]
+        select: select::Selection,
     },
     /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
     /// tunneling, stable rest, no grounded flicker, carry without drift, progress over seamed
@@ -227,10 +230,8 @@ enum Command {
         /// within it.
         #[arg(long, value_name = "TILES", value_parser = parse_world_size)]
         world_size: Option<f64>,
-        /// Threads the cells of the matrix fan out over (the output is the same whatever the
-        /// number); default: the cores available.
-        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-        jobs: Option<u32>,
+        #[command(flatten)]
+        select: select::Selection,
     },
     /// Run level files (the built-in set when none is given) and write the "pick a backend"
     /// report: DIR/report.html (self-contained: inline pictures and one inline script, nothing fetched) and its
@@ -331,15 +332,39 @@ pub(crate) fn has_ext(p: &std::path::Path, ext: &str) -> bool {
     p.extension().is_some_and(|e| e.eq_ignore_ascii_case(ext))
 }
 
+/// The error for a map whose importer this build left out (its Cargo `feature` is off).
+#[allow(dead_code)]
+pub(crate) fn missing_feature(p: &std::path::Path, feature: &str, what: &str) -> anyhow::Error {
+    anyhow::anyhow!(
+        "{}: reading {what} needs platbench's `{feature}` Cargo feature, which this build leaves out (it is on by default: drop `default-features = false`, or add `features = [\"{feature}\"]`)",
+        p.display()
+    )
+}
+
 /// Loads a Tiled or LDtk map with the import overrides, printing its warnings — those gathered
 /// before a failure too.
+#[cfg_attr(not(all(feature = "tiled", feature = "ldtk")), allow(unused_variables))]
 pub(crate) fn load_map(p: &std::path::Path, opts: &crate::level::ImportOptions) -> Result<Level> {
     let result = if has_ext(p, "ldtk") {
-        crate::level::ldtk::load_ldtk_with(p, opts)
-            .map_err(|f| (anyhow::Error::new(f.error), f.warnings))
+        #[cfg(feature = "ldtk")]
+        let r = crate::level::ldtk::load_ldtk_with(p, opts)
+            .map_err(|f| (anyhow::Error::new(f.error), f.warnings));
+        #[cfg(not(feature = "ldtk"))]
+        let r = Err::<(Level, Vec<crate::level::ImportWarning>), _>((
+            missing_feature(p, "ldtk", "LDtk projects"),
+            Vec::<crate::level::ImportWarning>::new(),
+        ));
+        r
     } else {
-        crate::level::load_tiled_map_with(p, opts)
-            .map_err(|f| (anyhow::Error::new(f.error), f.warnings))
+        #[cfg(feature = "tiled")]
+        let r = crate::level::load_tiled_map_with(p, opts)
+            .map_err(|f| (anyhow::Error::new(f.error), f.warnings));
+        #[cfg(not(feature = "tiled"))]
+        let r = Err::<(Level, Vec<crate::level::ImportWarning>), _>((
+            missing_feature(p, "tiled", "Tiled maps"),
+            Vec::<crate::level::ImportWarning>::new(),
+        ));
+        r
     };
     match result {
         Ok((level, warnings)) => {

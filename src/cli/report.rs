@@ -5,7 +5,8 @@ use std::path::PathBuf;
 use anyhow::{bail, Result};
 use clap::Args;
 
-use super::run::{configs, evaluate_or_skip, RunArgs};
+use super::run::evaluate_or_skip;
+use super::select::Selection;
 use super::{load_levels_with, output, read_rows, Harness, ImportArgs};
 use crate::metrics::MetricRow;
 use crate::scenario::Runner;
@@ -24,13 +25,6 @@ pub(crate) struct ReportArgs {
     /// directory is refused. A baseline is never replaced but by `run --bless`.
     #[arg(long)]
     pub(crate) force: bool,
-    /// Backends to run (repeat or comma-separate); every registered backend by default.
-    #[arg(long = "backend", value_name = "BACKEND", value_delimiter = ',', value_parser = clap::builder::NonEmptyStringValueParser::new())]
-    pub(crate) backends: Vec<String>,
-    /// Character shapes to run, of the backends that offer several (Rapier's; repeat or
-    /// comma-separate); all of them by default.
-    #[arg(long = "shape", value_name = "SHAPE", value_delimiter = ',', value_parser = ["capsule", "cuboid", "ball", "round-cuboid"])]
-    pub(crate) shapes: Vec<String>,
     /// Include the speed-against-accuracy chart from this tradeoff.csv (written by
     /// `platbench sweep`).
     #[arg(long, value_name = "FILE")]
@@ -38,6 +32,8 @@ pub(crate) struct ReportArgs {
     /// Include the stability table from this stability.csv (written by `platbench stress`).
     #[arg(long, value_name = "FILE")]
     pub(crate) stability: Option<PathBuf>,
+    #[command(flatten)]
+    pub(crate) select: Selection,
     #[command(flatten)]
     pub(crate) import: ImportArgs,
 }
@@ -61,6 +57,20 @@ fn read_tradeoff(path: &std::path::Path) -> Result<Vec<crate::tradeoff::Tradeoff
     Ok(rows)
 }
 
+/// The runner of level `li` from `cache`, made anew when the cache holds another level's.
+fn runner_for<'c, 'a>(
+    cache: &'c mut Option<(usize, Runner<'a>)>,
+    levels: &'a [crate::level::Level],
+    li: usize,
+) -> &'c mut Runner<'a> {
+    if cache.as_ref().is_none_or(|(l, _)| *l != li) {
+        *cache = None;
+    }
+    &mut cache
+        .get_or_insert_with(|| (li, Runner::new(&levels[li])))
+        .1
+}
+
 pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
     use crate::report::html::{render_report, Extras, ReplayRun, ScenarioTraces};
     // The extra files first: a bad one fails before the long run.
@@ -69,47 +79,72 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
         tradeoff: args.tradeoff.as_deref().map(read_tradeoff).transpose()?,
         stability: args.stability.as_deref().map(read_rows).transpose()?,
     };
-    let levels = load_levels_with(&args.levels, &args.import)?;
-    let configs = configs(
-        h,
-        &RunArgs {
-            backends: args.backends.clone(),
-            shapes: args.shapes.clone(),
-            ..RunArgs::default()
-        },
-    )?;
+    let levels = args
+        .select
+        .levels(load_levels_with(&args.levels, &args.import)?)?;
+    let configs = args.select.builtin_configs(h)?;
     let mut metrics: Vec<MetricRow> = Vec::new();
     // Per scenario: each run's trace, shape, moved size and per-frame faults.
     type Run = (Trace, crate::shape::CharacterShape, glam::Vec2, Vec<u8>);
     let mut per_scenario: Vec<(usize, usize, Vec<Run>)> = Vec::new();
     let mut skipped: Vec<String> = Vec::new();
-    for (li, level) in levels.iter().enumerate() {
-        let mut runner = Runner::new(level);
-        for (si, spec) in level.scenarios.iter().enumerate() {
-            let mut runs = Vec::new();
-            for run in &configs {
-                let Some(e) = evaluate_or_skip(&mut runner, spec, run, &mut skipped)? else {
-                    continue;
-                };
-                metrics.extend(e.metrics);
-                let faults = crate::metrics::with_context(
-                    level,
-                    spec,
-                    run,
-                    &e.trace,
-                    crate::metrics::faults::frame_faults,
-                );
-                runs.push((
-                    e.trace,
-                    run.shape(),
-                    run.backend.moved_size(spec.size),
-                    faults,
-                ));
-            }
-            per_scenario.push((li, si, runs));
+    // Every (level, scenario), fanned out over --jobs threads; each thread keeps the runner of
+    // the level it is on (its built geometry), and the results are taken in order.
+    let items: Vec<(usize, usize)> = levels
+        .iter()
+        .enumerate()
+        .flat_map(|(li, l)| (0..l.scenarios.len()).map(move |si| (li, si)))
+        .collect();
+    type Done = (Vec<MetricRow>, Vec<Run>, Vec<String>);
+    let work = |cache: &mut Option<_>, i: usize| -> Result<Done> {
+        let (li, si) = items[i];
+        let level = &levels[li];
+        let runner = runner_for(cache, &levels, li);
+        let spec = &level.scenarios[si];
+        let (mut rows, mut runs, mut notes) = (Vec::new(), Vec::new(), Vec::new());
+        for run in &configs {
+            let Some(e) = evaluate_or_skip(runner, spec, run, &mut notes)? else {
+                continue;
+            };
+            rows.extend(e.metrics);
+            let faults = crate::metrics::with_context(
+                level,
+                spec,
+                run,
+                &e.trace,
+                crate::metrics::faults::frame_faults,
+            );
+            runs.push((
+                e.trace,
+                run.shape(),
+                run.backend.moved_size(spec.size),
+                faults,
+            ));
         }
-        eprintln!("  {}", level.name);
-    }
+        Ok((rows, runs, notes))
+    };
+    crate::parallel::for_each_ordered(
+        args.select.jobs(),
+        items.len(),
+        || None,
+        work,
+        |i, done: Result<Done>| -> Result<()> {
+            let (rows, runs, notes) = done?;
+            for note in notes {
+                if !skipped.contains(&note) {
+                    eprintln!("  skipped {note}");
+                    skipped.push(note);
+                }
+            }
+            metrics.extend(rows);
+            let (li, si) = items[i];
+            per_scenario.push((li, si, runs));
+            if si + 1 == levels[li].scenarios.len() {
+                eprintln!("  {}", levels[li].name);
+            }
+            Ok(())
+        },
+    )?;
     let scenarios: Vec<ScenarioTraces> = per_scenario
         .iter()
         .map(|(li, si, runs)| ScenarioTraces {

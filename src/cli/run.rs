@@ -8,8 +8,8 @@ use std::time::Instant;
 use anyhow::{bail, Context as _, Result};
 use clap::Args;
 
+use super::select::Selection;
 use super::{load_levels_with, out, output, Harness, ImportArgs};
-use crate::backend::Precision;
 use crate::metrics::{evaluate_recorded, evaluate_with, MetricRow, RecordError};
 use crate::parallel;
 use crate::report::summary_rows::SummaryRows;
@@ -40,11 +40,6 @@ pub(crate) struct RunArgs {
     /// ratio or tiles/s, one frame, one count), or is NaN. A run that errors stops the run.
     #[arg(long, value_enum, value_name = "WHICH", requires = "out")]
     pub(crate) traces: Option<Traces>,
-    /// Threads to run on: independent (scenario, configuration) runs fan out over them, and
-    /// the output is bit-identical whatever the number. Default: the cores available. --timing
-    /// runs on one thread whatever this says, so that nothing runs beside a timed step.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-    pub(crate) jobs: Option<u32>,
     /// Print every metric of every scenario, not only the per-metric summary (this holds every
     /// metric row in memory until the end; without it only the rows the summary needs are kept).
     #[arg(long)]
@@ -52,129 +47,22 @@ pub(crate) struct RunArgs {
     /// Replace the committed baseline (compare/baseline for platbench itself; the harness's
     /// baseline directory for a crate calling platbench::cli) with this run: the only way it is
     /// written. Runs the built-in set with every configuration.
-    #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing", "traces", "precisions"])]
+    #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing", "traces", "precisions", "scenarios"])]
     pub(crate) bless: bool,
-    /// Override every scenario's time step, in seconds.
-    #[arg(long, value_name = "SECONDS")]
-    pub(crate) dt: Option<f32>,
-    /// The overlap tolerance of the configurations that have one (the sweep's epsilon), in
-    /// tiles.
-    #[arg(long, value_name = "TILES")]
-    pub(crate) epsilon: Option<f32>,
     /// Also time each scenario on each configuration (in process, minimum of 5 repeats) and
-    /// add an ns_per_character_step row per scenario and configuration to metrics.csv.
+    /// add an ns_per_character_step row per scenario and configuration to metrics.csv. Runs
+    /// on one thread whatever --jobs says, so that nothing runs beside a timed step.
     #[arg(long)]
     pub(crate) timing: bool,
-    /// Backends to run (repeat or comma-separate); every registered backend by default.
-    #[arg(long = "backend", value_name = "BACKEND", value_delimiter = ',', value_parser = clap::builder::NonEmptyStringValueParser::new())]
-    pub(crate) backends: Vec<String>,
-    /// Character shapes to run, of the backends that offer several (Rapier's; repeat or
-    /// comma-separate); all of them by default.
-    #[arg(long = "shape", value_name = "SHAPE", value_delimiter = ',', value_parser = ["capsule", "cuboid", "ball", "round-cuboid"])]
-    pub(crate) shapes: Vec<String>,
-    /// Precisions to run each configuration in (repeat or comma-separate: f32, f64): each
-    /// configuration runs in every listed precision it has a build in (Rapier's: both, on
-    /// rapier2d and rapier2d-f64; labels of the f64 builds end in ` f64`); one with none of them
-    /// is left out, said on stderr. Default: f32, the built-in comparison. With --timing,
-    /// `--precision f32,f64` times the f64 builds beside the f32 ones in the same run.
-    #[arg(long = "precision", value_name = "PRECISION", value_delimiter = ',', value_parser = ["f32", "f64"])]
-    pub(crate) precisions: Vec<String>,
+    #[command(flatten)]
+    pub(crate) select: Selection,
     #[command(flatten)]
     pub(crate) import: ImportArgs,
 }
 
-pub(crate) fn configs(h: &Harness, args: &RunArgs) -> Result<Vec<RunConfig>> {
-    let registry = &h.registry;
-    let mut set = registry.builtin_configs();
-    if !args.backends.is_empty() {
-        set.retain(|c| args.backends.iter().any(|b| b == c.backend.backend()));
-    }
-    // `--shape` picks among the shapes of the backends that offer a choice.
-    let has_choice = |c: &RunConfig| {
-        registry
-            .get(c.backend.backend())
-            .is_some_and(|k| k.shapes().len() > 1)
-    };
-    if !args.shapes.is_empty() {
-        if !set.iter().any(has_choice) {
-            let offering: Vec<&str> = registry
-                .kinds()
-                .iter()
-                .filter(|k| k.shapes().len() > 1)
-                .map(|k| k.name())
-                .collect();
-            bail!(
-                "--shape {} picks the character shapes of a backend that offers several ({}), but none of them runs (--backend {}); drop --shape, or add --backend {}",
-                args.shapes.join(","),
-                offering.join(", "),
-                args.backends.join(","),
-                offering.join(",")
-            );
-        }
-        set.retain(|c| !has_choice(c) || args.shapes.contains(&c.shape().label()));
-    }
-    if let Some(eps) = args.epsilon {
-        if !crate::limits::within(eps as f64, (0.0, crate::limits::MAX_EPSILON)) {
-            bail!(
-                "--epsilon {eps}: expected tiles, 0 <= epsilon <= {}",
-                crate::limits::MAX_EPSILON
-            );
-        }
-        for c in &mut set {
-            if let Some(b) = c.backend.with_epsilon(eps) {
-                c.backend = b;
-            }
-        }
-    }
-    if !args.precisions.is_empty() {
-        let wanted: Vec<Precision> = args
-            .precisions
-            .iter()
-            .filter_map(|p| Precision::from_label(p))
-            .collect();
-        let mut out = Vec::new();
-        for c in set {
-            let own = c.backend.precision();
-            let mut any = false;
-            for &p in &wanted {
-                if p == own {
-                    out.push(c.clone());
-                    any = true;
-                } else if let Some(b) = c.backend.with_precision(p) {
-                    let label = match p {
-                        Precision::F64 => format!("{} f64", c.label),
-                        Precision::F32 => c.label.trim_end_matches(" f64").to_string(),
-                    };
-                    out.push(RunConfig {
-                        backend: b,
-                        label,
-                        ..c.clone()
-                    });
-                    any = true;
-                }
-            }
-            if !any {
-                eprintln!(
-                    "  left out {} {}: no build in {}",
-                    c.backend.backend(),
-                    c.label,
-                    args.precisions.join(", ")
-                );
-            }
-        }
-        set = out;
-        if set.is_empty() {
-            bail!(
-                "--precision {}: no configuration that runs has a build in it",
-                args.precisions.join(",")
-            );
-        }
-    }
-    Ok(set)
-}
-
 /// Runs one scenario on one configuration; a configuration that does not model something in the
-/// level is left out of that level, said once on stderr (never run on part of it).
+/// level is left out of that level, noted once in `skipped` (never run on part of it), for the
+/// caller to say.
 pub(crate) fn evaluate_or_skip(
     runner: &mut Runner,
     spec: &crate::level::ScenarioSpec,
@@ -186,7 +74,6 @@ pub(crate) fn evaluate_or_skip(
         Err(e @ crate::backend::BackendError::Unsupported { .. }) => {
             let note = format!("{} {}: {e}", run.backend.backend(), run.label);
             if !skipped.contains(&note) {
-                eprintln!("  skipped {note}");
                 skipped.push(note);
             }
             Ok(None)
@@ -215,46 +102,17 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
     if let Some(target) = &target {
         output::check_target(target, kind, args.force)?;
     }
-    if let Some(dt) = args.dt {
-        let (lo, hi) = crate::limits::DT_RANGE;
-        if !crate::limits::dt_in_range(dt as f64) {
-            bail!("--dt {dt}: expected a time step in seconds, {lo} <= dt <= {hi}");
-        }
-    }
-    let mut levels = load_levels_with(&args.levels, &args.import)?;
-    if let Some(dt) = args.dt {
-        // The frame caps hold for the step given here as for a step in the file.
-        for l in &mut levels {
-            let mut level_frames = 0u64;
-            for s in &mut l.scenarios {
-                s.dt = dt;
-                level_frames +=
-                    crate::limits::check_timing(s.duration as f64, dt as f64).map_err(|m| {
-                        anyhow::anyhow!("--dt {dt} on {} scenario {}: {m}", l.source, s.name)
-                    })?;
-            }
-            if level_frames > crate::limits::MAX_LEVEL_FRAMES {
-                bail!(
-                    "--dt {dt}: the scenarios of {} would run {level_frames} frames together; expected at most {}",
-                    l.source,
-                    crate::limits::MAX_LEVEL_FRAMES
-                );
-            }
-        }
-    }
-    let configs = configs(h, args)?;
+    let levels = args
+        .select
+        .levels(load_levels_with(&args.levels, &args.import)?)?;
+    let configs = args.select.builtin_configs(h)?;
     // The runs that will write a trace: a configuration that does not model a level's
     // features skips that level (said once, below).
     let scenarios: usize = levels.iter().map(|l| l.scenarios.len()).sum();
     let total = modelled_runs(&levels, &configs);
     let skipped_runs = scenarios * configs.len() - total;
     // Timing measures one thread with nothing else running beside it.
-    let jobs = if args.timing {
-        1
-    } else {
-        args.jobs
-            .map_or_else(parallel::default_jobs, |j| j as usize)
-    };
+    let jobs = if args.timing { 1 } else { args.select.jobs() };
     eprintln!(
         "platbench: {scenarios} scenarios on {} configurations ({total} runs{}) on {jobs} thread{}",
         configs.len(),

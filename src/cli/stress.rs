@@ -2,8 +2,9 @@
 
 use std::time::Instant;
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 
+use super::select::Selection;
 use super::{out, output, Harness};
 
 pub(crate) fn stress(
@@ -11,14 +12,27 @@ pub(crate) fn stress(
     out_dir: &std::path::Path,
     force: bool,
     world_size: Option<f64>,
-    jobs: usize,
+    select: &Selection,
 ) -> Result<()> {
     use crate::report::html::breaks_list;
-    use crate::stress::{stress_matrix_on, verdicts, world_verdicts};
-    let runs = h.registry.stress_configs();
+    use crate::stress::{stress_matrix_with, verdicts, world_verdicts};
+    if !select.scenarios.is_empty() {
+        bail!(
+            "--scenario {}: stress runs its own probe levels (a fast mover, a seam, a platform, a jump), not level files; drop --scenario",
+            select.scenarios.join(",")
+        );
+    }
+    let base = h.registry.stress_configs().into_iter().map(|c| (c, ()));
+    let runs: Vec<_> = select
+        .configs(h, base.collect(), |_| false)?
+        .into_iter()
+        .map(|(c, ())| c)
+        .collect();
     output::check_target(out_dir, output::Kind::Stress, force)?;
     let started = Instant::now();
-    let rows = stress_matrix_on(&runs, jobs, |what| eprintln!("  {what}"))?;
+    let rows = stress_matrix_with(&runs, select.dt()?, select.jobs(), |what| {
+        eprintln!("  {what}")
+    })?;
     eprintln!("ran in {:.1} s", started.elapsed().as_secs_f64());
     let table = |header: Vec<String>| {
         let mut t = comfy_table::Table::new();

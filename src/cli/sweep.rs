@@ -5,7 +5,9 @@ use std::time::Instant;
 
 use anyhow::Result;
 
+use super::select::Selection;
 use super::{load_levels, out, output, Harness};
+use crate::tradeoff::Setting;
 
 pub(crate) fn sweep_settings(
     h: &Harness,
@@ -13,7 +15,7 @@ pub(crate) fn sweep_settings(
     force: bool,
     level_files: &[PathBuf],
     score: Option<&str>,
-    jobs: usize,
+    select: &Selection,
 ) -> Result<()> {
     use crate::metrics::score::Score;
     use crate::tradeoff::{chart_svg_scope, run_tradeoff_on, scored_behaviours, ALL};
@@ -23,8 +25,9 @@ pub(crate) fn sweep_settings(
         None => Score::default(),
     };
     eprintln!("error score: {}", score.describe());
-    let levels = load_levels(level_files)?;
-    let settings = h.registry.tradeoff_settings();
+    let levels = select.levels(load_levels(level_files)?)?;
+    let settings = selected_settings(h, select)?;
+    let jobs = select.jobs();
     let started = Instant::now();
     let rows = run_tradeoff_on(&levels, &settings, &score, jobs, |done, total, label| {
         let width = 30;
@@ -84,4 +87,34 @@ pub(crate) fn sweep_settings(
         out_dir.display()
     );
     Ok(())
+}
+
+/// The registry's grid of settings cut and set by the selection options: `--dt` replaces the
+/// time step of every setting but those that set their own (labelled `dt=`), `--epsilon` the
+/// overlap tolerance of every setting but those that set their own (labelled `epsilon=`).
+fn selected_settings(h: &Harness, select: &Selection) -> Result<Vec<Setting>> {
+    let sets_own = |label: &str, what: &str| label.contains(&format!("{what}="));
+    let base = h
+        .registry
+        .tradeoff_settings()
+        .into_iter()
+        .map(|s| {
+            let own = (s.label, s.run.label.clone(), s.dt);
+            (s.run, own)
+        })
+        .collect();
+    let dt = select.dt()?;
+    let selected = select.configs(h, base, |run| sets_own(&run.label, "epsilon"))?;
+    Ok(selected
+        .into_iter()
+        .map(|(run, (label, run_label, own_dt))| Setting {
+            // A build in another precision is labelled as its run is (` f64`).
+            label: run.label.replacen(&run_label, &label, 1),
+            dt: match dt {
+                Some(dt) if !sets_own(&run.label, "dt") => Some(dt),
+                _ => own_dt,
+            },
+            run,
+        })
+        .collect())
 }

@@ -2,21 +2,24 @@
 //! the scenarios that run on it. It knows nothing of backends.
 //!
 //! Coordinates: tile `(i, j)` covers `[i, i+1] x [j, j+1]`; `j = 0` is the bottom row and y
-//! points up. The text format ([`parse`]) lists map rows top to bottom; Tiled maps
+//! points up. The text format (`parse`) lists map rows top to bottom; Tiled maps
 //! ([`tiled`]) are imported into the same model.
 
 pub mod import;
+#[cfg(feature = "ldtk")]
 pub mod ldtk;
 pub mod outlines;
 mod parse;
 mod platform;
 pub mod probes;
+#[cfg(feature = "tiled")]
 pub mod tiled;
 
 pub use import::{ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport};
 pub use parse::{parse_level, parse_scenarios, LevelError};
 pub use platform::{Platform, PlatformMotion};
 pub use probes::{probe_scenarios, ProbeConfig, SpawnPoint};
+#[cfg(feature = "tiled")]
 pub use tiled::{
     import_tiled_map, import_tiled_map_with, load_tiled_map, load_tiled_map_with, TiledError,
     TiledImport, TiledWarning,
@@ -188,6 +191,21 @@ impl Features {
         ladders: true,
         moving_platforms: true,
     };
+
+    /// Whether every feature set here is also set in `modelled`.
+    pub fn within(&self, modelled: Features) -> bool {
+        self.missing_from(modelled) == Features::NONE
+    }
+
+    /// The features set here and not in `modelled`.
+    pub fn missing_from(&self, modelled: Features) -> Features {
+        Features {
+            slopes: self.slopes && !modelled.slopes,
+            one_way: self.one_way && !modelled.one_way,
+            ladders: self.ladders && !modelled.ladders,
+            moving_platforms: self.moving_platforms && !modelled.moving_platforms,
+        }
+    }
 
     /// Names of the features that are set, for messages.
     pub fn names(&self) -> Vec<&'static str> {

@@ -3,8 +3,8 @@
 //! rectangles and ramps, moving platforms and spawn points, read the way games mark them (layer
 //! names, object names and classes, bool tile properties). The README's "Tiled maps" section is
 //! the user's side of the mapping; this module is its one implementation, split by concern:
-//! [`layers`] (which layer is what, and the tile layers), [`tiles`] (what one tile is),
-//! [`objects`] (spawns, collision objects, platforms), `normalize` (what the `tiled` crate
+//! `layers` (which layer is what, and the tile layers), `tiles` (what one tile is),
+//! `objects` (spawns, collision objects, platforms), `normalize` (what the `tiled` crate
 //! cannot read as Tiled writes it) and `scan` (what it would allocate without bound).
 //!
 //! Nothing here panics on a map's content: every construct platbench cannot represent is a

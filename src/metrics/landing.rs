@@ -212,11 +212,11 @@ pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: Frame
 }
 
 /// How much deeper than it declares the character of row `r` is inside the level's solid
-/// geometry, in tiles (see [`penetration_beyond_declared`]; 0 when it keeps its promise).
+/// geometry, in tiles (see `penetration_beyond_declared`; 0 when it keeps its promise).
 ///
 /// Tile by tile: each tile's overlap less what the declared stance allows with that very tile.
 /// A controller declaring the seed's centre-column stance (`slope_overhang > 0`) stands on the
-/// surface under its centre ([`stance_surface`]: a box sunk below it is measured against the
+/// surface under its centre (`stance_surface`: a box sunk below it is measured against the
 /// true surface, however deep), and is allowed the overlap it has there with slope
 /// tiles and with the solid tiles that continue the ground (tops at most `slope_overhang` above
 /// the stance), never with a tile beside its body: a box pushed into a wall is charged, as

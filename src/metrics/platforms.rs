@@ -14,7 +14,7 @@ fn placed(ctx: &Context, p: &crate::level::Platform, k: usize) -> parry2d::bound
 }
 
 /// Deepest overlap of row `r`'s shape (frame `k`) with a platform that is not one-way, where
-/// the configuration places it ([`placed`]), in tiles.
+/// the configuration places it (`placed`), in tiles.
 pub fn platform_depth(ctx: &Context, g: &Ground, r: &TraceRow, k: usize) -> f32 {
     ctx.level
         .platforms

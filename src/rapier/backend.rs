@@ -14,9 +14,7 @@ use super::{
     one_way_top, CharacterShape, GroundedMove, Length, PlatformCarry, PlatformOrder, Platforms,
     RapierConfig, StaticWorld, CLIMB_LIMIT_MARGIN, GROUND_PREDICTION, ONE_WAY_TOLERANCE,
 };
-use crate::backend::{
-    require_supported, Backend, BackendError, CharacterId, CharacterSpec, CharacterState,
-};
+use crate::backend::{require_supported, BackendError, CharacterId, CharacterSpec, CharacterState};
 use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
 use crate::shape::ShapeParams;
@@ -373,12 +371,10 @@ impl RapierBackend {
     }
 }
 
-impl Backend for RapierBackend {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-
-    fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
+impl RapierBackend {
+    /// Adds a character and returns its id; refuses a non-finite spawn or velocity, or a size
+    /// that is not positive.
+    pub fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
         spec.validate()?;
         let shape = build_shape(self.config.shape, spec.size);
         let pos = v(spec.spawn) + self.origin;
@@ -401,7 +397,8 @@ impl Backend for RapierBackend {
         Ok(self.characters.len() - 1)
     }
 
-    fn step(&mut self, inputs: &[Input], dt: f32) {
+    /// Advances every character by `dt` seconds; `inputs[id]` is character `id`'s input.
+    pub fn step(&mut self, inputs: &[Input], dt: f32) {
         let order = self.config.platform_order;
         if order == PlatformOrder::BeforeCharacters {
             self.step_platforms(dt);
@@ -416,7 +413,8 @@ impl Backend for RapierBackend {
         self.frame += 1;
     }
 
-    fn state(&self, id: CharacterId) -> CharacterState {
+    /// The state of character `id` after the last step, in level coordinates.
+    pub fn state(&self, id: CharacterId) -> CharacterState {
         let c = &self.characters[id];
         CharacterState {
             pos: back(c.pos - self.origin),

@@ -10,30 +10,35 @@ use super::{
     CharacterShape, ColliderBuilding, GroundedMove, Length, RapierBackend, RapierConfig,
     StaticWorld,
 };
-use crate::backend::{
-    require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
-    DeclaredContact, Precision, SharedGeometry,
-};
-use crate::level::{Features, Level};
+use crate::backend::{BackendError, CharacterId, CharacterState, DeclaredContact, Precision};
+use crate::controller::{Controller, Setup};
+use crate::level::Features;
 use crate::metrics::MetricRow;
-use crate::motion::MotionParams;
+use crate::motion::Input;
 use crate::scenario::RunConfig;
 use crate::tradeoff::Setting;
 
 /// The backend's name, as in CSV files.
 pub const NAME: &str = "rapier";
 
-impl BackendSettings for RapierConfig {
-    fn backend(&self) -> &'static str {
-        NAME
-    }
+/// Rapier built over a level in the configuration's precision: rapier2d (f32) or rapier2d-f64.
+pub enum RapierMover {
+    /// On rapier2d and parry2d.
+    F32(RapierBackend),
+    /// On rapier2d-f64 and parry2d-f64.
+    F64(super::double::RapierBackend),
+}
+
+impl Controller for RapierConfig {
+    type Mover = RapierMover;
+    const NAME: &'static str = NAME;
 
     fn shape(&self) -> CharacterShape {
         self.shape
     }
 
-    fn supports(&self, level: &Level) -> bool {
-        require_supported(NAME, "", level.features, RapierBackend::SUPPORTED).is_ok()
+    fn features(&self) -> Features {
+        RapierBackend::SUPPORTED
     }
 
     /// The gap of its `offset`.
@@ -57,32 +62,32 @@ impl BackendSettings for RapierConfig {
     }
 
     /// Every Rapier configuration has a build in both precisions.
-    fn with_precision(&self, precision: Precision) -> Option<std::sync::Arc<dyn BackendSettings>> {
-        Some(std::sync::Arc::new(RapierConfig {
+    fn with_precision(&self, precision: Precision) -> Option<RapierConfig> {
+        Some(RapierConfig {
             precision,
             ..self.clone()
-        }))
+        })
     }
 
     /// Builds over the level's colliders for `self.colliders` in `self.precision`, built once
     /// per level, collider building and precision whatever the character shape.
-    fn build(
-        &self,
-        level: &Level,
-        params: &MotionParams,
-        shared: &mut SharedGeometry,
-    ) -> Result<Box<dyn Backend>, BackendError> {
+    fn build(&self, setup: Setup<'_>) -> Result<RapierMover, BackendError> {
+        let Setup {
+            level,
+            params,
+            characters,
+            shared,
+        } = setup;
         let key = format!("{NAME}:{}", self.colliders.label());
         Ok(match self.precision {
             Precision::F32 => {
                 let world: Rc<StaticWorld> =
                     shared.get_or_build(&key, || StaticWorld::new(level, self.colliders));
-                Box::new(RapierBackend::with_world(
-                    level,
-                    world,
-                    params.clone(),
-                    self.clone(),
-                )?)
+                let mut r = RapierBackend::with_world(level, world, params.clone(), self.clone())?;
+                for c in characters {
+                    r.add_character(*c)?;
+                }
+                RapierMover::F32(r)
             }
             Precision::F64 => {
                 use super::double;
@@ -90,58 +95,36 @@ impl BackendSettings for RapierConfig {
                     .get_or_build(&format!("{key}:f64"), || {
                         double::StaticWorld::new(level, self.colliders)
                     });
-                Box::new(double::RapierBackend::with_world(
-                    level,
-                    world,
-                    params.clone(),
-                    self.clone(),
-                )?)
+                let mut r =
+                    double::RapierBackend::with_world(level, world, params.clone(), self.clone())?;
+                for c in characters {
+                    r.add_character(*c)?;
+                }
+                RapierMover::F64(r)
             }
         })
     }
 
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
+    fn step(&self, mover: &mut RapierMover, inputs: &[Input], dt: f32) {
+        match mover {
+            RapierMover::F32(r) => r.step(inputs, dt),
+            RapierMover::F64(r) => r.step(inputs, dt),
+        }
     }
 
-    fn same_as(&self, other: &dyn BackendSettings) -> bool {
-        same_settings(self, other)
-    }
-}
-
-/// Rapier with its default settings, the given collider building and character shape.
-pub fn run(colliders: ColliderBuilding, shape: CharacterShape) -> RunConfig {
-    run_with(RapierConfig {
-        colliders,
-        shape,
-        ..Default::default()
-    })
-}
-
-/// Rapier with `config`, labelled by [`RapierConfig::label`].
-pub fn run_with(config: RapierConfig) -> RunConfig {
-    RunConfig::new(config.label(), config)
-}
-
-/// rapier2d's kinematic character controller as a kind of backend.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct RapierKind;
-
-impl BackendKind for RapierKind {
-    fn name(&self) -> &'static str {
-        NAME
+    fn state(&self, mover: &RapierMover, id: CharacterId) -> CharacterState {
+        match mover {
+            RapierMover::F32(r) => r.state(id),
+            RapierMover::F64(r) => r.state(id),
+        }
     }
 
-    fn description(&self) -> &'static str {
+    fn description() -> &'static str {
         "rapier2d's KinematicCharacterController, set up as Rapier's docs and examples advise"
     }
 
-    fn shapes(&self) -> Vec<CharacterShape> {
+    fn shapes() -> Vec<CharacterShape> {
         CharacterShape::ALL.to_vec()
-    }
-
-    fn features(&self) -> Features {
-        RapierBackend::SUPPORTED
     }
 
     /// Rapier with every character shape its users pick, each on one collider per tile and on
@@ -152,7 +135,7 @@ impl BackendKind for RapierKind {
     /// to leave the fewest stuck frames for every shape. (Rapier's docs also advise a larger
     /// offset; the same command measured it to help no shape as much, and to leave the merged
     /// cuboid stuck.)
-    fn builtin_configs(&self) -> Vec<RunConfig> {
+    fn configs() -> Vec<RunConfig> {
         let mut set = Vec::new();
         for shape in CharacterShape::ALL {
             for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
@@ -174,7 +157,7 @@ impl BackendKind for RapierKind {
     /// grounded except on platforms): the set-up that walks, so that `progress` is measured on
     /// one that holds it at the base case; then that set-up again on rapier2d-f64, so that
     /// how far each precision holds is read off the same probes.
-    fn stress_configs(&self) -> Vec<RunConfig> {
+    fn stress_configs() -> Vec<RunConfig> {
         let advised = RapierConfig {
             grounded_move: GroundedMove::NoneExceptOnPlatforms,
             ..Default::default()
@@ -191,7 +174,7 @@ impl BackendKind for RapierKind {
     }
 
     /// dt, substeps, offset, snap distance, collider building and shape, grounded feed.
-    fn tradeoff_settings(&self) -> Vec<Setting> {
+    fn tradeoff_settings() -> Vec<Setting> {
         let r = RapierConfig::default;
         let mut g = Vec::new();
         for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
@@ -293,7 +276,7 @@ impl BackendKind for RapierKind {
         g
     }
 
-    fn drawn(&self) -> Vec<(&'static str, &'static str)> {
+    fn drawn() -> Vec<(&'static str, &'static str)> {
         vec![
             ("per-tile capsule", "#2e7d32"),
             ("merged capsule", "#9e9d24"),
@@ -302,11 +285,11 @@ impl BackendKind for RapierKind {
         ]
     }
 
-    fn colour(&self) -> &'static str {
-        "#2e7d32"
+    fn colour() -> Option<&'static str> {
+        Some("#2e7d32")
     }
 
-    fn notes(&self, rows: &[MetricRow]) -> Vec<String> {
+    fn notes(rows: &[MetricRow]) -> Vec<String> {
         fn rapier<'a>(rows: &'a [MetricRow], m: &'a str) -> impl Iterator<Item = &'a MetricRow> {
             rows.iter()
                 .filter(move |r| r.backend == NAME && r.metric == m)
@@ -347,4 +330,18 @@ impl BackendKind for RapierKind {
         }
         out
     }
+}
+
+/// Rapier with its default settings, the given collider building and character shape.
+pub fn run(colliders: ColliderBuilding, shape: CharacterShape) -> RunConfig {
+    run_with(RapierConfig {
+        colliders,
+        shape,
+        ..Default::default()
+    })
+}
+
+/// Rapier with `config`, labelled by [`RapierConfig::label`].
+pub fn run_with(config: RapierConfig) -> RunConfig {
+    RunConfig::new(config.label(), config)
 }

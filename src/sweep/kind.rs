@@ -3,18 +3,16 @@
 //! configurations and its `platbench sweep` grid), on the public API of [`SweepBackend`] and
 //! [`SweepConfig`] only.
 
-use std::sync::Arc;
-
 use glam::Vec2;
 
 use super::{Positions, SweepBackend, SweepConfig, DOUBLE_SUPPORTED, INTEGER_SUPPORTED};
 use crate::backend::{
-    require_supported, same_settings, Backend, BackendError, BackendKind, BackendSettings,
-    DeclaredContact, Precision, SharedGeometry, ShownByDefault,
+    BackendError, CharacterId, CharacterState, DeclaredContact, Precision, ShownByDefault,
 };
+use crate::controller::{Controller, Setup};
 use crate::level::{Features, Level};
 use crate::metrics::MetricRow;
-use crate::motion::{JumpMode, MotionParams};
+use crate::motion::{Input, JumpMode, MotionParams};
 use crate::scenario::RunConfig;
 use crate::shape::CharacterShape;
 use crate::tradeoff::Setting;
@@ -22,27 +20,31 @@ use crate::tradeoff::Setting;
 /// The backend's name, as in CSV files.
 pub const NAME: &str = "sweep";
 
-impl BackendSettings for SweepConfig {
-    fn backend(&self) -> &'static str {
-        NAME
-    }
+impl Controller for SweepConfig {
+    type Mover = SweepBackend;
+    const NAME: &'static str = NAME;
 
     fn shape(&self) -> CharacterShape {
         CharacterShape::Cuboid
     }
 
-    fn supports(&self, level: &Level) -> bool {
-        let supported = match self.positions {
+    /// The float mode models every feature; the f64 and integer modes fewer.
+    fn features(&self) -> Features {
+        match self.positions {
             Positions::Float => SweepBackend::SUPPORTED,
             Positions::Double => DOUBLE_SUPPORTED,
-            Positions::Integer { per_tile } => {
-                if super::grid::Grid::new(per_tile, level.origin_f32(), &level.name).is_err() {
-                    return false;
-                }
-                INTEGER_SUPPORTED
+            Positions::Integer { .. } => INTEGER_SUPPORTED,
+        }
+    }
+
+    /// Its features, and on integer positions a grid that holds the level's origin.
+    fn supports(&self, level: &Level) -> bool {
+        if let Positions::Integer { per_tile } = self.positions {
+            if super::grid::Grid::new(per_tile, level.origin_f32(), &level.name).is_err() {
+                return false;
             }
-        };
-        require_supported(NAME, "", level.features, supported).is_ok()
+        }
+        level.features.within(Controller::features(self))
     }
 
     fn declared_contact(&self, size: Vec2, max_climb_angle: f32) -> DeclaredContact {
@@ -120,118 +122,54 @@ impl BackendSettings for SweepConfig {
     }
 
     /// The float mode and the f64 mode are each other's build in the other precision.
-    fn with_precision(&self, precision: Precision) -> Option<Arc<dyn BackendSettings>> {
+    fn with_precision(&self, precision: Precision) -> Option<SweepConfig> {
         let positions = match (self.positions, precision) {
             (Positions::Float, Precision::F64) => Positions::Double,
             (Positions::Double, Precision::F32) => Positions::Float,
             _ => return None,
         };
-        Some(Arc::new(SweepConfig {
+        Some(SweepConfig {
             positions,
             ..self.clone()
-        }))
+        })
     }
 
     /// Sets the epsilon (integer positions ignore it).
-    fn with_epsilon(&self, epsilon: f32) -> Option<Arc<dyn BackendSettings>> {
-        Some(Arc::new(SweepConfig {
+    fn with_epsilon(&self, epsilon: f32) -> Option<SweepConfig> {
+        Some(SweepConfig {
             epsilon,
             ..self.clone()
-        }))
+        })
     }
 
-    fn build(
-        &self,
-        level: &Level,
-        params: &MotionParams,
-        _shared: &mut SharedGeometry,
-    ) -> Result<Box<dyn Backend>, BackendError> {
-        Ok(Box::new(SweepBackend::new(
-            level,
-            params.clone(),
-            self.clone(),
-        )?))
+    fn build(&self, setup: Setup<'_>) -> Result<SweepBackend, BackendError> {
+        let mut sweep = SweepBackend::new(setup.level, setup.params.clone(), self.clone())?;
+        for c in setup.characters {
+            sweep.add_character(*c)?;
+        }
+        Ok(sweep)
     }
 
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
+    fn step(&self, mover: &mut SweepBackend, inputs: &[Input], dt: f32) {
+        mover.step(inputs, dt);
     }
 
-    fn same_as(&self, other: &dyn BackendSettings) -> bool {
-        same_settings(self, other)
-    }
-}
-
-/// The default sweep configuration, labelled `default`.
-pub fn run_default() -> RunConfig {
-    RunConfig::new("default", SweepConfig::default())
-}
-
-/// The sweep on integer positions, `per_tile` subpixels per tile.
-pub fn run_integer(per_tile: u32) -> RunConfig {
-    RunConfig::new(
-        format!("positions=integer/{per_tile}"),
-        SweepConfig {
-            positions: Positions::Integer { per_tile },
-            ..Default::default()
-        },
-    )
-}
-
-/// The default sweep in f64 world coordinates ([`Positions::Double`]), labelled `default f64`.
-pub fn run_double() -> RunConfig {
-    RunConfig::new(
-        "default f64",
-        SweepConfig {
-            positions: Positions::Double,
-            ..Default::default()
-        },
-    )
-}
-
-/// The sweep-and-snap controller as a kind of backend.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct SweepKind;
-
-fn setting(
-    label: &str,
-    config: SweepConfig,
-    params: MotionParams,
-    substeps: u32,
-    dt: Option<f32>,
-) -> Setting {
-    Setting {
-        label: label.into(),
-        run: RunConfig {
-            params,
-            substeps,
-            ..RunConfig::new(label, config)
-        },
-        dt,
-    }
-}
-
-impl BackendKind for SweepKind {
-    fn name(&self) -> &'static str {
-        NAME
+    fn state(&self, mover: &SweepBackend, id: CharacterId) -> CharacterState {
+        mover.state(id)
     }
 
-    fn description(&self) -> &'static str {
+    fn description() -> &'static str {
         "sweep-and-snap kinematic controller (AABBs, x-then-y moves snapped flush)"
     }
 
-    fn shapes(&self) -> Vec<CharacterShape> {
+    fn shapes() -> Vec<CharacterShape> {
         vec![CharacterShape::Cuboid]
-    }
-
-    fn features(&self) -> Features {
-        SweepBackend::SUPPORTED
     }
 
     /// The default sweep; the sweep with the seed's continuous jump formula, so the two jump
     /// modes' apex errors stand side by side; and the sweep on integer positions (32 subpixels
     /// per tile; levels it does not model are skipped).
-    fn builtin_configs(&self) -> Vec<RunConfig> {
+    fn configs() -> Vec<RunConfig> {
         let continuous = RunConfig {
             label: "jump=continuous".into(),
             params: MotionParams {
@@ -243,12 +181,12 @@ impl BackendKind for SweepKind {
         vec![run_default(), continuous, run_integer(32)]
     }
 
-    fn stress_configs(&self) -> Vec<RunConfig> {
+    fn stress_configs() -> Vec<RunConfig> {
         vec![run_default(), run_integer(32), run_double()]
     }
 
     /// dt from 1/30 to 1/480 s, substeps, the epsilon, the jump mode and integer positions.
-    fn tradeoff_settings(&self) -> Vec<Setting> {
+    fn tradeoff_settings() -> Vec<Setting> {
         let p = MotionParams::default;
         let s = SweepConfig::default;
         let mut g = Vec::new();
@@ -304,20 +242,20 @@ impl BackendKind for SweepKind {
         g
     }
 
-    fn drawn(&self) -> Vec<(&'static str, &'static str)> {
+    fn drawn() -> Vec<(&'static str, &'static str)> {
         vec![("default", "#1565c0")]
     }
 
-    fn shown_by_default(&self) -> ShownByDefault {
+    fn shown_by_default() -> ShownByDefault {
         // The reference the report's replays watch every other controller against.
         ShownByDefault::Listed(vec!["default"])
     }
 
-    fn colour(&self) -> &'static str {
-        "#1565c0"
+    fn colour() -> Option<&'static str> {
+        Some("#1565c0")
     }
 
-    fn notes(&self, rows: &[MetricRow]) -> Vec<String> {
+    fn notes(rows: &[MetricRow]) -> Vec<String> {
         let mut out = Vec::new();
         if rows
             .iter()
@@ -343,6 +281,51 @@ impl BackendKind for SweepKind {
             out.push("sweep penetration_beyond_declared at a too-steep slope: the climb limit is tested on the centre column, so the box stops with its centre at the foot of the steep rise and its leading half inside it (0.4 sin(63.4 degrees) = 0.36 tiles deep on the 63.4-degree ramp, 0.07 beyond the 0.28 a walkable ramp gives); the seed's alternative, colliding the higher side like a solid box, is not modelled.".into());
         }
         out
+    }
+}
+
+/// The default sweep configuration, labelled `default`.
+pub fn run_default() -> RunConfig {
+    RunConfig::new("default", SweepConfig::default())
+}
+
+/// The sweep on integer positions, `per_tile` subpixels per tile.
+pub fn run_integer(per_tile: u32) -> RunConfig {
+    RunConfig::new(
+        format!("positions=integer/{per_tile}"),
+        SweepConfig {
+            positions: Positions::Integer { per_tile },
+            ..Default::default()
+        },
+    )
+}
+
+/// The default sweep in f64 world coordinates ([`Positions::Double`]), labelled `default f64`.
+pub fn run_double() -> RunConfig {
+    RunConfig::new(
+        "default f64",
+        SweepConfig {
+            positions: Positions::Double,
+            ..Default::default()
+        },
+    )
+}
+
+fn setting(
+    label: &str,
+    config: SweepConfig,
+    params: MotionParams,
+    substeps: u32,
+    dt: Option<f32>,
+) -> Setting {
+    Setting {
+        label: label.into(),
+        run: RunConfig {
+            params,
+            substeps,
+            ..RunConfig::new(label, config)
+        },
+        dt,
     }
 }
 

@@ -36,9 +36,7 @@ mod step;
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
-use crate::backend::{
-    require_supported, Backend, BackendError, CharacterId, CharacterSpec, CharacterState,
-};
+use crate::backend::{require_supported, BackendError, CharacterId, CharacterSpec, CharacterState};
 use crate::level::{Features, Level};
 use crate::motion::{Input, MotionParams, MotionState};
 use broadphase::{BoxKind, NearCache, StaticTiles};
@@ -288,12 +286,10 @@ fn step_all<S: Space>(
     }
 }
 
-impl Backend for SweepBackend {
-    fn name(&self) -> &'static str {
-        "sweep"
-    }
-
-    fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
+impl SweepBackend {
+    /// Adds a character and returns its id; refuses a non-finite spawn or velocity, or a size
+    /// that is not positive.
+    pub fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
         spec.validate()?;
         self.characters.push(Character {
             on_grid: self
@@ -312,7 +308,8 @@ impl Backend for SweepBackend {
         Ok(self.characters.len() - 1)
     }
 
-    fn step(&mut self, inputs: &[Input], dt: f32) {
+    /// Advances every character by `dt` seconds; `inputs[id]` is character `id`'s input.
+    pub fn step(&mut self, inputs: &[Input], dt: f32) {
         let w = World {
             tiles: &self.tiles,
             platform_boxes: &self.platforms.boxes,
@@ -370,7 +367,8 @@ impl Backend for SweepBackend {
         self.frame += 1;
     }
 
-    fn state(&self, id: CharacterId) -> CharacterState {
+    /// The state of character `id` after the last step, in level coordinates.
+    pub fn state(&self, id: CharacterId) -> CharacterState {
         let c = &self.characters[id];
         CharacterState {
             pos: match &self.grid {

@@ -15,7 +15,7 @@
 //! leaves its rider airborne, as it would in the world; or, Celeste's rule, with every move of
 //! the platform, so a rider stays on an elevator that turns from up to down.
 //!
-//! Written once over [`Space`]: in float the platforms follow their exact path and the moves
+//! Written once over `Space`: in float the platforms follow their exact path and the moves
 //! are f32 with the seed's epsilon; in f64 ([`super::Positions::Double`]) they follow the same
 //! path (its f32 level coordinates, the float mode's at the origin) placed at the level's origin
 //! in f64, and the moves are f64 with the same epsilon, so a platform far from the origin moves

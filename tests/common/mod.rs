@@ -75,3 +75,39 @@ pub fn value(evals: &[(String, Evaluation)], scenario: &str, metric: &str) -> f6
         .unwrap_or_else(|| panic!("{metric} on {scenario}"))
         .value
 }
+
+/// An outside program a test needs (`name` on the PATH, or the path in the variable `env`), or
+/// `None` after one loud line on stderr saying the test is skipped, why and how to install it.
+/// With `PLATBENCH_REQUIRE_PROGRAMS=1` (set by `.ci/run`, which installs every such program) a
+/// missing program fails the test instead, so CI never skips it.
+#[allow(dead_code)]
+pub fn outside_program(
+    test: &str,
+    name: &str,
+    env: &str,
+    install: &str,
+) -> Option<std::path::PathBuf> {
+    if let Some(p) = std::env::var_os(env) {
+        return Some(std::path::PathBuf::from(p));
+    }
+    let found = std::env::var_os("PATH").and_then(|paths| {
+        std::env::split_paths(&paths)
+            .map(|d| d.join(name))
+            .find(|p| p.is_file())
+    });
+    if found.is_none() {
+        let msg = format!(
+            "SKIPPED {test}: no `{name}` on the PATH (nor ${env}); install it with `{install}` \
+             to run this test (.ci/run does, and sets PLATBENCH_REQUIRE_PROGRAMS=1 so that it \
+             is never skipped there)"
+        );
+        if std::env::var("PLATBENCH_REQUIRE_PROGRAMS").is_ok_and(|v| v == "1") {
+            panic!("{msg}");
+        }
+        // Straight to the process's stderr: the test harness captures `eprintln!` of a test
+        // that passes, and this line must be seen.
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), "\n*** {msg}\n");
+    }
+    found
+}
