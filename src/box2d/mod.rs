@@ -37,6 +37,19 @@ pub use world::{b2, ColliderBuilding, LevelWorld, ShapeTag, ONE_WAY, PLATFORM, S
 /// prevent jitter").
 pub const LINEAR_SLOP: f32 = 0.005;
 
+/// The largest width or height of a level Box2D runs, in tiles (2^14). Its static shapes are
+/// kept in the level's own coordinates ([`LevelWorld`]), and Box2D's f32 shape casts run in
+/// those coordinates: within 2^14 tiles of the level's corner the f32 spacing is at most 2^-10
+/// tile, a fifth of the linear slop the pogo's cast stops short by; Box2D's `constants.h`: "Positions
+/// greater than about 16km will have precision problems in single precision" (one tile is one
+/// metre here). Farther out the cast can end at a distance of exactly 0, which Box2D asserts
+/// against (`b2ShapeCast`, distance.c line 668, `distanceOutput.distance > 0.0f`), killing the
+/// process unless its C code is built with `NDEBUG`: a pogo cast 6e4 tiles along a flat floor
+/// did (2e4 and 4e4 ran). A larger level is refused as `Unsupported`, a bound kept by design.
+/// The level's origin is not bounded by this: placing it moves the ground body, not the
+/// arithmetic.
+pub const MAX_LEVEL_EXTENT: u32 = 1 << 14;
+
 /// How far below a one-way platform's top the feet may be and still land on it, and how far
 /// from a ladder's top they may be and still stand on it (the shared ladder rules'
 /// `enter_within`), in tiles: the pogo holds the feet with a spring, which rests them below the
@@ -249,10 +262,23 @@ impl Box2dBackend {
         }
         params.validate()?;
         config.validate()?;
+        if level.width.max(level.height) > MAX_LEVEL_EXTENT {
+            return Err(BackendError::Unsupported {
+                backend: kind::NAME,
+                feature: format!(
+                    "a level of {} x {} tiles (Box2D's f32 shape casts run in the level's own \
+                     coordinates and keep its linear slop only within {MAX_LEVEL_EXTENT} tiles \
+                     of the level's corner; beyond, a cast can end at a distance of exactly 0, \
+                     where Box2D asserts and aborts the process)",
+                    level.width, level.height
+                ),
+                level: level.name.clone(),
+                beyond_bound: true,
+            });
+        }
         Ok(Box2dBackend {
-            // Box2D refuses some valid levels' geometry: far from the origin, f32 boxes it
-            // checks come out degenerate (at 1e6 tiles, `platbench stress`). What it refuses,
-            // it cannot model: Unsupported, naming what Box2D said.
+            // Should Box2D refuse a valid level's geometry (a polygon or chain it finds
+            // degenerate), it cannot model it: Unsupported, naming what Box2D said.
             world: LevelWorld::new(level, config.colliders).map_err(|e| match e {
                 BackendError::InvalidParameter { name, value, .. } => BackendError::Unsupported {
                     backend: kind::NAME,
@@ -537,10 +563,11 @@ impl Box2dBackend {
     }
 
     /// Why Box2D could not move character `id`, if it could not: boxdd refused a query's
-    /// output. Far from the origin an f32 shape cast can end at a distance of exactly 0 and
-    /// report a hit with no normal, where Box2D itself asserts (`b2ShapeCast` in distance.c);
-    /// the character then stops and its state is non-finite, so that no metric reads a
-    /// position Box2D did not compute.
+    /// output (a hit with no normal, say). The character then stops and its state is
+    /// non-finite, so that no metric reads a position Box2D did not compute. The one such
+    /// output seen, an f32 shape cast ending at a distance of exactly 0 far from the origin,
+    /// is kept from happening ([`MAX_LEVEL_EXTENT`], [`LevelWorld`]): Box2D asserts on it
+    /// (`b2ShapeCast` in distance.c), and a dependent's build compiles the assert in.
     pub fn failure(&self, id: CharacterId) -> Option<&str> {
         self.characters.get(id).and_then(|c| c.failed.as_deref())
     }

@@ -101,11 +101,23 @@ impl LevelWorld {
             "box2d world",
             foundation.create_world(foundation.world_def()),
         )?;
+        let origin = level.origin_f32();
+        // The static shapes live in the level's own coordinates on a ground body at the level's
+        // corner, as each moving platform's box lives on its own body: Box2D runs a query in
+        // the frame of the body it tests (`b2ShapeCastShape` after `b2ToRelativeTransform` in
+        // physics_world.c), so the arithmetic stays as fine as the level is small, wherever
+        // the level is placed. With the vertices in world coordinates on a body at the world's
+        // origin, a pogo cast 1e5 tiles out ran at an f32 spacing of 1/128 tile, coarser than
+        // the separation the cast stops at (the linear slop, 0.005): it ended at a distance of
+        // exactly 0 and Box2D's `B2_ASSERT( distanceOutput.distance > 0.0f && ... )`
+        // (distance.c line 668, `b2ShapeCast`) aborted the process.
         let ground = b2(
             "box2d ground body",
-            world.create_body(b2("box2d body", foundation.body_builder().build())?),
+            world.create_body(b2(
+                "box2d body",
+                foundation.body_builder().position(position(origin)).build(),
+            )?),
         )?;
-        let origin = level.origin_f32();
         let solid = b2(
             "box2d shape",
             ShapeDef::builder().filter(filter(SOLID)).build(),
@@ -117,7 +129,7 @@ impl LevelWorld {
                        def: &ShapeDef|
          -> Result<ShapeId, BackendError> {
             let half = r.half_extents();
-            let c = r.center() + origin;
+            let c = r.center();
             let poly = b2(
                 "box2d box",
                 Polygon::offset_box_polygon(
@@ -143,7 +155,7 @@ impl LevelWorld {
             }
             ColliderBuilding::Merged => {
                 for r in level.merged_solid_rects() {
-                    let (lo, hi) = (r.mins + origin, r.maxs + origin);
+                    let (lo, hi) = (r.mins, r.maxs);
                     let loop_points = [lo, Vec2::new(hi.x, lo.y), hi, Vec2::new(lo.x, hi.y)];
                     let def = b2(
                         "box2d chain",
@@ -162,7 +174,7 @@ impl LevelWorld {
             }
         }
         for points in slope_outlines(level, building) {
-            let pts = counter_clockwise(points.iter().map(|p| *p + origin).collect());
+            let pts = counter_clockwise(points);
             if pts.len() < 3 {
                 continue;
             }
