@@ -186,10 +186,14 @@ pub fn max_origin_in(precision: Precision) -> f64 {
     }
 }
 
-/// Whether `settings` runs `level`: it models the level's features
-/// ([`BackendSettings::supports`]) and holds the level's origin ([`origin_supported`]).
+/// Whether `settings` runs `level`: its features are among the configuration's
+/// ([`BackendSettings::features`]), the configuration takes it ([`BackendSettings::supports`])
+/// and holds its origin ([`origin_supported`]); the same checks, in the same order, as
+/// [`crate::scenario::Runner::build`] makes before building, so a run counts what will run.
 pub fn runs(settings: &dyn BackendSettings, level: &Level) -> bool {
-    settings.supports(level) && origin_supported(settings, level).is_ok()
+    level.features.within(settings.features())
+        && origin_supported(settings, level).is_ok()
+        && settings.supports(level)
 }
 
 /// A controller built over one level with its characters placed: what the runner steps

@@ -382,3 +382,43 @@ impl<C: Controller> BackendKind for Kind<C> {
         C::notes(rows)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::backend::runs;
+    use crate::level::parse_level;
+
+    /// Models solid tiles only, but says yes to every level.
+    #[derive(Clone, Debug, Default, PartialEq)]
+    struct Eager;
+
+    impl Controller for Eager {
+        type Mover = ();
+        const NAME: &'static str = "eager";
+        fn features(&self) -> Features {
+            Features::NONE
+        }
+        fn build(&self, _: Setup<'_>) -> Result<(), BackendError> {
+            Ok(())
+        }
+        fn step(&self, _: &mut (), _: &[Input], _: f32) {}
+        fn state(&self, _: &(), _: CharacterId) -> CharacterState {
+            CharacterState::default()
+        }
+        fn supports(&self, _: &Level) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn a_level_with_a_feature_it_does_not_model_is_not_counted_whatever_supports_says() {
+        let level =
+            |map: &str| parse_level(&format!("name = \"l\"\nmap = \"\"\"\n{map}\"\"\"\n"), "l");
+        let slope = level("../\n###\n").unwrap();
+        assert!(slope.features.slopes);
+        assert!(!runs(&Eager, &slope));
+        let flat = level("...\n###\n").unwrap();
+        assert!(runs(&Eager, &flat));
+    }
+}
