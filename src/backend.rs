@@ -187,13 +187,13 @@ pub fn max_origin_in(precision: Precision) -> f64 {
 }
 
 /// Whether `settings` runs `level`: its features are among the configuration's
-/// ([`BackendSettings::features`]), the configuration takes it ([`BackendSettings::supports`])
+/// ([`BackendSettings::features`]), the configuration takes it ([`BackendSettings::check_level`])
 /// and holds its origin ([`origin_supported`]); the same checks, in the same order, as
 /// [`crate::scenario::Runner::build`] makes before building, so a run counts what will run.
 pub fn runs(settings: &dyn BackendSettings, level: &Level) -> bool {
     level.features.within(settings.features())
         && origin_supported(settings, level).is_ok()
-        && settings.supports(level)
+        && settings.check_level(level).is_ok()
 }
 
 /// A controller built over one level with its characters placed: what the runner steps
@@ -355,9 +355,12 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     fn shape(&self) -> CharacterShape;
     /// The level features this configuration models.
     fn features(&self) -> Features;
-    /// Whether this configuration models `level`. A level it does not model is skipped by the
-    /// harness before anything is built, so a run can count what it will run beforehand.
+    /// Whether this configuration models `level` (its features, and
+    /// [`BackendSettings::check_level`]). A level it does not model is skipped by the harness
+    /// before anything is built, so a run can count what it will run beforehand.
     fn supports(&self, level: &Level) -> bool;
+    /// Why this configuration refuses `level` beyond its features, if it does.
+    fn check_level(&self, level: &Level) -> Result<(), BackendError>;
     /// The contact this configuration declares it keeps, for a character of outer `size`
     /// (tiles) with climb limit `max_climb_angle` (radians): what its documentation promises,
     /// so a metric can score it on keeping that promise.

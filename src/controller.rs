@@ -193,10 +193,12 @@ pub trait Controller:
     fn shape(&self) -> CharacterShape {
         CharacterShape::Cuboid
     }
-    /// Whether it models `level`. Default: the level's features are among
-    /// [`Controller::features`].
-    fn supports(&self, level: &Level) -> bool {
-        level.features.within(self.features())
+    /// Refuses a level its features allow but this configuration still cannot run (a bound it
+    /// keeps: a size, a grid that cannot hold the level), saying why; the harness asks before
+    /// building, so a run's counts leave the level out. Default: none refused.
+    fn check_level(&self, level: &Level) -> Result<(), BackendError> {
+        let _ = level;
+        Ok(())
     }
     /// The contact it promises to keep, for a character of outer `size` (tiles) with climb limit
     /// `max_climb_angle` (radians), so a metric scores it on keeping its own promise. Default:
@@ -280,7 +282,10 @@ impl<C: Controller> BackendSettings for C {
         Controller::features(self)
     }
     fn supports(&self, level: &Level) -> bool {
-        Controller::supports(self, level)
+        level.features.within(Controller::features(self)) && self.check_level(level).is_ok()
+    }
+    fn check_level(&self, level: &Level) -> Result<(), BackendError> {
+        Controller::check_level(self, level)
     }
     fn declared_contact(&self, size: Vec2, max_climb_angle: f32) -> DeclaredContact {
         Controller::declared_contact(self, size, max_climb_angle)
@@ -389,7 +394,7 @@ mod tests {
     use crate::backend::runs;
     use crate::level::parse_level;
 
-    /// Models solid tiles only, but says yes to every level.
+    /// Models solid tiles only, and refuses no level of its own accord.
     #[derive(Clone, Debug, Default, PartialEq)]
     struct Eager;
 
@@ -406,13 +411,10 @@ mod tests {
         fn state(&self, _: &(), _: CharacterId) -> CharacterState {
             CharacterState::default()
         }
-        fn supports(&self, _: &Level) -> bool {
-            true
-        }
     }
 
     #[test]
-    fn a_level_with_a_feature_it_does_not_model_is_not_counted_whatever_supports_says() {
+    fn a_level_with_a_feature_it_does_not_model_is_not_counted() {
         let level =
             |map: &str| parse_level(&format!("name = \"l\"\nmap = \"\"\"\n{map}\"\"\"\n"), "l");
         let slope = level("../\n###\n").unwrap();

@@ -300,9 +300,9 @@ impl<'a> Runner<'a> {
     }
 
     /// Builds the backend of `run` with motion parameters `params` and `characters` placed,
-    /// reusing built geometry. A level the configuration does not model (a feature it lacks, or
-    /// an origin beyond its bound) and a character that is not finite and sized are refused
-    /// here, before the backend sees them, whatever its own build would do.
+    /// reusing built geometry. A level the configuration does not model (a feature it lacks, an
+    /// origin beyond its bound, or what its `check_level` refuses) and a character that is not
+    /// finite and sized are refused here, before the backend builds, whatever its build would do.
     pub fn build(
         &mut self,
         run: &RunConfig,
@@ -317,19 +317,12 @@ impl<'a> Runner<'a> {
             settings.features(),
         )?;
         crate::backend::origin_supported(settings, self.level)?;
-        if !settings.supports(self.level) {
-            return Err(BackendError::Unsupported {
-                backend: settings.backend(),
-                feature: format!("this level in configuration {}", run.label),
-                level: self.level.name.clone(),
-                beyond_bound: false,
-            });
-        }
         for c in characters {
             c.validate()?;
         }
         settings
-            .build(self.level, params, characters, &mut self.shared)
+            .check_level(self.level)
+            .and_then(|()| settings.build(self.level, params, characters, &mut self.shared))
             .map_err(|e| match e {
                 // A refusal that names no level: name the one it was built for.
                 BackendError::Unsupported {

@@ -440,6 +440,21 @@ fn configured(run: &RunConfig, case: &Case, epsilon_varied: bool) -> Option<RunC
     })
 }
 
+/// Checks that every probe can run at the base time step `dt` (seconds): each probe's duration
+/// over `dt` is within the frame caps of [`crate::limits::check_timing`].
+pub fn check_base_dt(dt: f32) -> Result<(), String> {
+    let size = Vec2::new(BASE.width, BASE.width * 1.125);
+    for spec in probes(size, dt, BASE.speed) {
+        crate::limits::check_timing(spec.duration as f64, dt as f64).map_err(|m| {
+            format!(
+                "the stress's {} probe ({} s): {m}",
+                spec.name, spec.duration
+            )
+        })?;
+    }
+    Ok(())
+}
+
 /// Every point of the matrix for `runs`, in the order their rows are written: each dimension
 /// alone, value by value, then each pair of [`pairs`] cell by cell, the f32 configurations on
 /// their grid and then the f64 ones on theirs; within a value or cell, `runs` in order. The

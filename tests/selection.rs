@@ -108,3 +108,62 @@ fn a_selection_that_matches_nothing_is_an_error_naming_what_there_is() {
         );
     }
 }
+
+#[test]
+fn the_header_counts_only_what_runs_and_nothing_runs_twice() {
+    let dir = tempfile::tempdir().unwrap();
+    // A floor 2^14 + 1 tiles wide: Box2D refuses it as a bound (box2d::MAX_LEVEL_EXTENT) before
+    // building, so its two configurations' runs are not counted; the sweep's three run.
+    let width = (1 << 14) + 1;
+    let level = dir.path().join("wide.toml");
+    std::fs::write(
+        &level,
+        format!(
+            "name = \"wide\"\nmap = \"\"\"\n{}\n{}\n\"\"\"\n[[scenario]]\nname = \"stand\"\nspawn = [2.5, 1.0]\nduration = 0.5\n",
+            ".".repeat(width),
+            "#".repeat(width)
+        ),
+    )
+    .unwrap();
+    let out = platbench()
+        .args(["run", "--backend", "sweep,box2d"])
+        .arg(&level)
+        .output()
+        .unwrap();
+    assert_success(&out);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("1 scenarios on 5 configurations (3 runs, 2 skipped"),
+        "{err}"
+    );
+    // A precision listed twice runs each configuration once.
+    let out = platbench()
+        .args(["run", "--backend", "sweep", "--scenario", "jumps.jump_1"])
+        .args(["--precision", "f64,f64"])
+        .output()
+        .unwrap();
+    assert_success(&out);
+    let err = String::from_utf8_lossy(&out.stderr);
+    // The sweep's two float configurations have an f64 build; integer positions do not.
+    assert!(
+        err.contains("1 scenarios on 2 configurations (2 runs)"),
+        "{err}"
+    );
+    // A report or sweep that measures nothing (Box2D refuses the wide level) fails and
+    // writes nothing, as run does.
+    for cmd in ["report", "sweep"] {
+        let target = dir.path().join(cmd);
+        let out = platbench()
+            .args([cmd, "--backend", "box2d", "--out"])
+            .arg(&target)
+            .arg(&level)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{cmd}");
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains("nothing was measured"),
+            "{cmd}"
+        );
+        assert!(!target.exists(), "{cmd}");
+    }
+}

@@ -28,9 +28,21 @@ impl Controller for Box2dConfig {
         Box2dBackend::SUPPORTED
     }
 
-    /// Its features, with the sample's capsule (the only shape it offers).
-    fn supports(&self, level: &Level) -> bool {
-        self.shape == CharacterShape::Capsule && level.features.within(Box2dBackend::SUPPORTED)
+    /// The sample's capsule (the only shape it offers), on a level within
+    /// [`super::MAX_LEVEL_EXTENT`] tiles on a side.
+    fn check_level(&self, level: &Level) -> Result<(), BackendError> {
+        if self.shape != CharacterShape::Capsule {
+            return Err(BackendError::Unsupported {
+                backend: NAME,
+                feature: format!(
+                    "a {} character (the sample's mover is a capsule, the only shape it offers)",
+                    self.shape.label()
+                ),
+                level: level.name.clone(),
+                beyond_bound: false,
+            });
+        }
+        super::check_extent(level)
     }
 
     /// The pogo at its rest length: the feet one linear slop off the ground (the pogo's cast

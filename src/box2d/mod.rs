@@ -50,6 +50,25 @@ pub const LINEAR_SLOP: f32 = 0.005;
 /// arithmetic.
 pub const MAX_LEVEL_EXTENT: u32 = 1 << 14;
 
+/// Refuses a level wider or taller than [`MAX_LEVEL_EXTENT`] tiles, as a bound kept by design.
+pub fn check_extent(level: &Level) -> Result<(), BackendError> {
+    if level.width.max(level.height) > MAX_LEVEL_EXTENT {
+        return Err(BackendError::Unsupported {
+            backend: kind::NAME,
+            feature: format!(
+                "a level of {} x {} tiles (Box2D's f32 shape casts run in the level's own \
+                 coordinates and keep its linear slop only within {MAX_LEVEL_EXTENT} tiles \
+                 of the level's corner; beyond, a cast can end at a distance of exactly 0, \
+                 where Box2D asserts and aborts the process)",
+                level.width, level.height
+            ),
+            level: level.name.clone(),
+            beyond_bound: true,
+        });
+    }
+    Ok(())
+}
+
 /// How far below a one-way platform's top the feet may be and still land on it, and how far
 /// from a ladder's top they may be and still stand on it (the shared ladder rules'
 /// `enter_within`), in tiles: the pogo holds the feet with a spring, which rests them below the
@@ -262,20 +281,7 @@ impl Box2dBackend {
         }
         params.validate()?;
         config.validate()?;
-        if level.width.max(level.height) > MAX_LEVEL_EXTENT {
-            return Err(BackendError::Unsupported {
-                backend: kind::NAME,
-                feature: format!(
-                    "a level of {} x {} tiles (Box2D's f32 shape casts run in the level's own \
-                     coordinates and keep its linear slop only within {MAX_LEVEL_EXTENT} tiles \
-                     of the level's corner; beyond, a cast can end at a distance of exactly 0, \
-                     where Box2D asserts and aborts the process)",
-                    level.width, level.height
-                ),
-                level: level.name.clone(),
-                beyond_bound: true,
-            });
-        }
+        check_extent(level)?;
         Ok(Box2dBackend {
             // Should Box2D refuse a valid level's geometry (a polygon or chain it finds
             // degenerate), it cannot model it: Unsupported, naming what Box2D said.

@@ -89,6 +89,17 @@ where
     T: Into<std::ffi::OsString> + Clone,
 {
     let names = harness.registry.names();
+    if let Some(bad) = names.iter().find(|n| {
+        n.is_empty()
+            || !n
+                .chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_' || c == '-')
+    }) {
+        eprintln!(
+            "error: a registered controller is named {bad:?}; expected lower-case ASCII letters, digits, `_` and `-` (Controller::NAME names CSV rows, trace files and --backend values)"
+        );
+        return ExitCode::from(2);
+    }
     let backends = |a: clap::Arg| a.value_parser(PossibleValuesParser::new(names.clone()));
     let command = Cli::command()
         .mut_subcommand("run", |c| c.mut_arg("backends", backends))
@@ -387,6 +398,26 @@ pub(crate) fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
 }
 
 pub(crate) fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result<Vec<Level>> {
+    let maps = paths
+        .iter()
+        .any(|p| has_ext(p, "tmx") || has_ext(p, "ldtk"));
+    if let Some(name) = &import.level {
+        if !paths.iter().any(|p| has_ext(p, "ldtk")) {
+            eprintln!(
+                "warning: --level {name} picks one level of an LDtk project, and no .ldtk file is given, so it changes nothing; to run one level of the set, use --scenario {name}"
+            );
+        }
+    }
+    if !maps
+        && (!import.layers.is_empty()
+            || import.tile_layers.is_some()
+            || !import.spawns.is_empty()
+            || !import.intgrid.is_empty())
+    {
+        eprintln!(
+            "warning: --layer, --tile-layers, --spawn and --intgrid read Tiled (.tmx) and LDtk (.ldtk) maps, and no map file is given, so they change nothing"
+        );
+    }
     if paths.is_empty() {
         return builtin_levels().context("a built-in level is invalid");
     }

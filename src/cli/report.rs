@@ -145,6 +145,11 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
             Ok(())
         },
     )?;
+    if metrics.is_empty() {
+        bail!(
+            "nothing was measured: no selected configuration models a selected scenario (see the skips above); nothing written"
+        );
+    }
     let scenarios: Vec<ScenarioTraces> = per_scenario
         .iter()
         .map(|(li, si, runs)| ScenarioTraces {

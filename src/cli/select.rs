@@ -17,8 +17,8 @@ pub(crate) struct Selection {
     /// Backends to run (repeat or comma-separate); every registered backend by default.
     #[arg(long = "backend", value_name = "BACKEND", value_delimiter = ',', value_parser = clap::builder::NonEmptyStringValueParser::new())]
     pub(crate) backends: Vec<String>,
-    /// Character shapes to run, of the backends that offer several (Rapier's; repeat or
-    /// comma-separate); all of them by default.
+    /// Character shapes to run, of the backends that offer several (Rapier's, in a build with
+    /// its feature; repeat or comma-separate); all of them by default.
     #[arg(long = "shape", value_name = "SHAPE", value_delimiter = ',', value_parser = ["capsule", "cuboid", "ball", "round-cuboid"])]
     pub(crate) shapes: Vec<String>,
     /// Precisions to run each configuration in (repeat or comma-separate: f32, f64): each
@@ -172,6 +172,12 @@ impl Selection {
                     .filter(|k| k.shapes().len() > 1)
                     .map(|k| k.name())
                     .collect();
+                if offering.is_empty() {
+                    bail!(
+                        "--shape {}: no backend of this build offers a choice of character shape (Rapier's does: platbench's `rapier` feature); drop --shape",
+                        self.shapes.join(",")
+                    );
+                }
                 bail!(
                     "--shape {} picks the character shapes of a backend that offers several ({}), but none of them runs (--backend {}); drop --shape, or add --backend {}",
                     self.shapes.join(","),
@@ -183,6 +189,11 @@ impl Selection {
             set.retain(|(c, _)| !has_choice(c) || self.shapes.contains(&c.shape().label()));
         }
         if let Some(eps) = self.epsilon()? {
+            if !set.iter().any(|(c, _)| c.backend.epsilon().is_some()) {
+                eprintln!(
+                    "warning: --epsilon {eps}: none of the selected configurations has an overlap tolerance to set (the sweep's float modes do); it changes nothing"
+                );
+            }
             for (c, _) in &mut set {
                 if keeps_epsilon(c) {
                     continue;
@@ -207,30 +218,45 @@ impl Selection {
 
     /// Each configuration of `set` in every `--precision` it has a build in.
     fn in_precisions<T: Clone>(&self, set: Vec<(RunConfig, T)>) -> Result<Vec<(RunConfig, T)>> {
-        let wanted: Vec<Precision> = self
+        let mut wanted: Vec<Precision> = Vec::new();
+        for p in self
             .precisions
             .iter()
             .filter_map(|p| Precision::from_label(p))
-            .collect();
+        {
+            if !wanted.contains(&p) {
+                wanted.push(p);
+            }
+        }
         let mut out = Vec::new();
         for (c, t) in set {
             let own = c.backend.precision();
             let mut any = false;
+            // A build already in the set (the f64 configuration of a set that has its f32 one
+            // too, built back in f32) is not run twice.
+            let fresh = |out: &Vec<(RunConfig, T)>, label: &str| {
+                !out.iter()
+                    .any(|(o, _)| o.backend.backend() == c.backend.backend() && o.label == label)
+            };
             for &p in &wanted {
                 if p == own {
-                    out.push((c.clone(), t.clone()));
+                    if fresh(&out, &c.label) {
+                        out.push((c.clone(), t.clone()));
+                    }
                     any = true;
                 } else if let Some(b) = c.backend.with_precision(p) {
                     let label = match p {
                         Precision::F64 => format!("{} f64", c.label),
                         Precision::F32 => c.label.trim_end_matches(" f64").to_string(),
                     };
-                    let run = RunConfig {
-                        backend: b,
-                        label,
-                        ..c.clone()
-                    };
-                    out.push((run, t.clone()));
+                    if fresh(&out, &label) {
+                        let run = RunConfig {
+                            backend: b,
+                            label,
+                            ..c.clone()
+                        };
+                        out.push((run, t.clone()));
+                    }
                     any = true;
                 }
             }

@@ -29,6 +29,9 @@ pub(crate) fn stress(
         .map(|(c, ())| c)
         .collect();
     output::check_target(out_dir, output::Kind::Stress, force)?;
+    if let Some(dt) = select.dt()? {
+        crate::stress::check_base_dt(dt).map_err(|m| anyhow::anyhow!("--dt {dt}: {m}"))?;
+    }
     let started = Instant::now();
     let rows = stress_matrix_with(&runs, select.dt()?, select.jobs(), |what| {
         eprintln!("  {what}")

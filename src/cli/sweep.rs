@@ -24,10 +24,10 @@ pub(crate) fn sweep_settings(
         Some(s) => Score::parse(s)?,
         None => Score::default(),
     };
-    eprintln!("error score: {}", score.describe());
     let levels = select.levels(load_levels(level_files)?)?;
     let settings = selected_settings(h, select)?;
     let jobs = select.jobs();
+    eprintln!("error score: {}", score.describe());
     let started = Instant::now();
     let rows = run_tradeoff_on(&levels, &settings, &score, jobs, |done, total, label| {
         let width = 30;
@@ -52,6 +52,11 @@ pub(crate) fn sweep_settings(
     // A setting that ran fewer scenarios is measured over another set: said, and never on the
     // front.
     let most = rows.iter().map(|r| r.scenarios).max().unwrap_or(0);
+    if most == 0 {
+        anyhow::bail!(
+            "nothing was measured: no selected setting models a selected scenario (each skipped the levels whose features it does not model; see above); nothing written"
+        );
+    }
     for r in rows.iter().filter(|r| r.scope == ALL) {
         t.add_row(vec![
             r.backend.clone(),

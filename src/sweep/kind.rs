@@ -37,14 +37,12 @@ impl Controller for SweepConfig {
         }
     }
 
-    /// Its features, and on integer positions a grid that holds the level's origin.
-    fn supports(&self, level: &Level) -> bool {
+    /// On integer positions, a grid that holds the level's origin.
+    fn check_level(&self, level: &Level) -> Result<(), BackendError> {
         if let Positions::Integer { per_tile } = self.positions {
-            if super::grid::Grid::new(per_tile, level.origin_f32(), &level.name).is_err() {
-                return false;
-            }
+            super::grid::Grid::new(per_tile, level.origin_f32(), &level.name)?;
         }
-        level.features.within(Controller::features(self))
+        Ok(())
     }
 
     fn declared_contact(&self, size: Vec2, max_climb_angle: f32) -> DeclaredContact {

@@ -10,10 +10,10 @@
 //! nothing allocated.
 //!
 //! How a rider follows a descending platform is a setting ([`super::RiderFollow`]): by default
-//! only as far as it could fall from the platform's previous speed under gravity in one step, so
-//! a platform that drops away faster (starts or speeds up downward more sharply than gravity)
-//! leaves its rider airborne, as it would in the world; or, Celeste's rule, with every move of
-//! the platform, so a rider stays on an elevator that turns from up to down.
+//! Celeste's rule, with every move of the platform, so a rider stays on an elevator that turns
+//! from up to down; or only as far as it could fall from the platform's previous speed under
+//! gravity in one step, so a platform that drops away faster (starts or speeds up downward more
+//! sharply than gravity) leaves its rider airborne, as it would in the world.
 //!
 //! Written once over `Space`: in float the platforms follow their exact path and the moves
 //! are f32 with the seed's epsilon; in f64 ([`super::Positions::Double`]) they follow the same

@@ -1,10 +1,10 @@
-//! How the sweep stores positions: the one thing its two modes do differently.
+//! How the sweep stores positions: the one thing its three modes do differently.
 //!
 //! The seed's "Collision Resolution – A Problem" slide: "if you store positions with integers
 //! you're fine; for floating point positions, placing an object tangent to another involves a
 //! subtraction, introduces floating point error, [so] allow a fudge factor for overlap". The
-//! step ([`super::step`]) and every stage it calls are written once, over [`Space`]; the two
-//! implementations are the two storages:
+//! step ([`super::step`]) and every stage it calls are written once, over [`Space`]; the three
+//! implementations are the three storages:
 //!
 //! - [`FloatSpace`]: f32 feet in world tiles, moves snapped flush by [`super::resolve::move_axis`]
 //!   with the seed's epsilon fudge.
