@@ -195,10 +195,12 @@ impl Selection {
                 );
             }
             for (c, _) in &mut set {
-                if keeps_epsilon(c) {
+                if keeps_epsilon(c) || c.backend.epsilon().is_none_or(|own| own == eps) {
                     continue;
                 }
                 if let Some(b) = c.backend.with_epsilon(eps) {
+                    // The label stays: `run --epsilon` against a baseline compares like with
+                    // like (the analysis commands, stress and sweep, say it in theirs).
                     c.backend = b;
                 }
             }

@@ -29,8 +29,18 @@ pub(crate) fn stress(
         .map(|(c, ())| c)
         .collect();
     output::check_target(out_dir, output::Kind::Stress, force)?;
+    let mut runs = runs;
     if let Some(dt) = select.dt()? {
         crate::stress::check_base_dt(dt).map_err(|m| anyhow::anyhow!("--dt {dt}: {m}"))?;
+    }
+    // stability.csv's rows say when their base is not the default's.
+    for r in &mut runs {
+        if let Some(dt) = select.dt {
+            r.label = format!("{} dt={dt}", r.label);
+        }
+        if let (Some(eps), Some(_)) = (select.epsilon, r.backend.epsilon()) {
+            r.label = format!("{} epsilon={eps}", r.label);
+        }
     }
     let started = Instant::now();
     let rows = stress_matrix_with(&runs, select.dt()?, select.jobs(), |what| {

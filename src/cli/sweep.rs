@@ -112,14 +112,24 @@ fn selected_settings(h: &Harness, select: &Selection) -> Result<Vec<Setting>> {
     let selected = select.configs(h, base, |run| sets_own(&run.label, "epsilon"))?;
     Ok(selected
         .into_iter()
-        .map(|(run, (label, run_label, own_dt))| Setting {
-            // A build in another precision is labelled as its run is (` f64`).
-            label: run.label.replacen(&run_label, &label, 1),
-            dt: match dt {
-                Some(dt) if !sets_own(&run.label, "dt") => Some(dt),
+        .map(|(run, (label, run_label, own_dt))| {
+            // A build in another precision is labelled as its run is; an override is said.
+            let mut label = run.label.replacen(&run_label, &label, 1);
+            if let (Some(eps), Some(_), false) = (
+                select.epsilon,
+                run.backend.epsilon(),
+                sets_own(&run.label, "epsilon"),
+            ) {
+                label = format!("{label} epsilon={eps}");
+            }
+            let dt = match dt {
+                Some(dt) if !sets_own(&run.label, "dt") => {
+                    label = format!("{label} dt={dt}");
+                    Some(dt)
+                }
                 _ => own_dt,
-            },
-            run,
+            };
+            Setting { label, dt, run }
         })
         .collect())
 }
