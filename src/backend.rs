@@ -191,9 +191,25 @@ pub fn max_origin_in(precision: Precision) -> f64 {
 /// and holds its origin ([`origin_supported`]); the same checks, in the same order, as
 /// [`crate::scenario::Runner::build`] makes before building, so a run counts what will run.
 pub fn runs(settings: &dyn BackendSettings, level: &Level) -> bool {
+    // (A scenario's character is asked separately: [`runs_scenario`].)
     level.features.within(settings.features())
         && origin_supported(settings, level).is_ok()
         && settings.check_level(level).is_ok()
+}
+
+/// Whether `settings` runs scenario `spec` of `level`: [`runs`], and its character is one the
+/// configuration takes ([`BackendSettings::check_character`]).
+pub fn runs_scenario(
+    settings: &dyn BackendSettings,
+    level: &Level,
+    spec: &crate::level::ScenarioSpec,
+) -> bool {
+    let character = CharacterSpec {
+        spawn: spec.spawn,
+        size: spec.size,
+        velocity: spec.velocity,
+    };
+    runs(settings, level) && settings.check_character(&character).is_ok()
 }
 
 /// A controller built over one level with its characters placed: what the runner steps
@@ -361,6 +377,8 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     fn supports(&self, level: &Level) -> bool;
     /// Why this configuration refuses `level` beyond its features, if it does.
     fn check_level(&self, level: &Level) -> Result<(), BackendError>;
+    /// Why this configuration refuses `character`, if it does.
+    fn check_character(&self, character: &CharacterSpec) -> Result<(), BackendError>;
     /// The contact this configuration declares it keeps, for a character of outer `size`
     /// (tiles) with climb limit `max_climb_angle` (radians): what its documentation promises,
     /// so a metric can score it on keeping that promise.

@@ -200,6 +200,14 @@ pub trait Controller:
         let _ = level;
         Ok(())
     }
+    /// Refuses a character it cannot run (a size below what it models), saying why; the harness
+    /// asks before building, so a run's counts leave that scenario out. Default: none refused
+    /// (the harness itself refuses a non-finite spawn or velocity and a size that is not
+    /// positive).
+    fn check_character(&self, character: &CharacterSpec) -> Result<(), BackendError> {
+        let _ = character;
+        Ok(())
+    }
     /// The contact it promises to keep, for a character of outer `size` (tiles) with climb limit
     /// `max_climb_angle` (radians), so a metric scores it on keeping its own promise. Default:
     /// flush contact, no gap and no tolerance.
@@ -286,6 +294,9 @@ impl<C: Controller> BackendSettings for C {
     }
     fn check_level(&self, level: &Level) -> Result<(), BackendError> {
         Controller::check_level(self, level)
+    }
+    fn check_character(&self, character: &CharacterSpec) -> Result<(), BackendError> {
+        Controller::check_character(self, character)
     }
     fn declared_contact(&self, size: Vec2, max_climb_angle: f32) -> DeclaredContact {
         Controller::declared_contact(self, size, max_climb_angle)

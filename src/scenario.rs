@@ -322,6 +322,11 @@ impl<'a> Runner<'a> {
         }
         settings
             .check_level(self.level)
+            .and_then(|()| {
+                characters
+                    .iter()
+                    .try_for_each(|c| settings.check_character(c))
+            })
             .and_then(|()| settings.build(self.level, params, characters, &mut self.shared))
             .map_err(|e| match e {
                 // A refusal that names no level: name the one it was built for.

@@ -136,6 +136,26 @@ fn the_header_counts_only_what_runs_and_nothing_runs_twice() {
         err.contains("1 scenarios on 5 configurations (3 runs, 2 skipped"),
         "{err}"
     );
+    // A character Box2D refuses (a capsule radius under 0.01 tiles, box2d::check_radius) is
+    // not counted either: one scenario, the sweep's three runs.
+    let thin = dir.path().join("thin.toml");
+    std::fs::write(
+        &thin,
+        "name = \"thin\"\nmap = \"\"\"\n#....#\n######\n\"\"\"\n[[scenario]]\nname = \"s\"\nspawn = [2.5, 1.0]\nsize = [0.015, 0.9]\nduration = 0.5\n",
+    )
+    .unwrap();
+    let out = platbench()
+        .args(["run", "--backend", "sweep,box2d"])
+        .arg(&thin)
+        .output()
+        .unwrap();
+    assert_success(&out);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("1 scenarios on 5 configurations (3 runs, 2 skipped"),
+        "{err}"
+    );
+    assert!(err.contains("[3/3]"), "{err}");
     // A precision listed twice runs each configuration once.
     let out = platbench()
         .args(["run", "--backend", "sweep", "--scenario", "jumps.jump_1"])

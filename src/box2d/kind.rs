@@ -5,7 +5,7 @@
 use glam::Vec2;
 
 use super::{Box2dBackend, Box2dConfig, CharacterShape, ColliderBuilding, PogoShape, LINEAR_SLOP};
-use crate::backend::{BackendError, CharacterId, CharacterState, DeclaredContact};
+use crate::backend::{BackendError, CharacterId, CharacterSpec, CharacterState, DeclaredContact};
 use crate::controller::{Controller, Setup};
 use crate::level::{Features, Level};
 use crate::metrics::MetricRow;
@@ -43,6 +43,11 @@ impl Controller for Box2dConfig {
             });
         }
         super::check_extent(level)
+    }
+
+    /// A capsule radius over twice Box2D's linear slop ([`super::check_radius`]).
+    fn check_character(&self, character: &CharacterSpec) -> Result<(), BackendError> {
+        super::check_radius(self, character.size)
     }
 
     /// The pogo at its rest length: the feet one linear slop off the ground (the pogo's cast

@@ -50,6 +50,23 @@ pub const LINEAR_SLOP: f32 = 0.005;
 /// arithmetic.
 pub const MAX_LEVEL_EXTENT: u32 = 1 << 14;
 
+/// Refuses a character whose capsule radius is not over twice Box2D's linear slop, where Box2D
+/// asserts (a bound kept by design).
+pub fn check_radius(config: &Box2dConfig, size: Vec2) -> Result<(), BackendError> {
+    let (radius, _, _) = config.capsule(size);
+    if radius <= 2.0 * LINEAR_SLOP {
+        return Err(BackendError::Unsupported {
+            backend: kind::NAME,
+            feature: format!(
+                "a character of size {size} (Box2D's mover needs a capsule radius, half the width or half the height above the pogo leg, over 0.01 tiles, twice its linear slop)"
+            ),
+            level: String::new(),
+            beyond_bound: true,
+        });
+    }
+    Ok(())
+}
+
 /// Refuses a level wider or taller than [`MAX_LEVEL_EXTENT`] tiles, as a bound kept by design.
 pub fn check_extent(level: &Level) -> Result<(), BackendError> {
     if level.width.max(level.height) > MAX_LEVEL_EXTENT {
@@ -584,19 +601,8 @@ impl Box2dBackend {
     /// that is not positive.
     pub fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
         spec.validate()?;
+        check_radius(&self.config, spec.size)?;
         let (radius, c1, c2) = self.config.capsule(spec.size);
-        // Box2D asserts a mover radius above twice its linear slop.
-        if radius <= 2.0 * LINEAR_SLOP {
-            return Err(BackendError::Unsupported {
-                backend: kind::NAME,
-                feature: format!(
-                    "a character of size {} (Box2D's mover needs a capsule radius, half the width or half the height above the pogo leg, over 0.01 tiles, twice its linear slop)",
-                    spec.size
-                ),
-                level: String::new(),
-                beyond_bound: true,
-            });
-        }
         self.characters.push(Character {
             pos: spec.spawn + self.origin,
             size: spec.size,

@@ -213,12 +213,12 @@ enum Outcome {
 fn modelled_runs(levels: &[crate::level::Level], configs: &[RunConfig]) -> usize {
     levels
         .iter()
-        .map(|l| {
-            let modelled = configs
+        .flat_map(|l| l.scenarios.iter().map(move |s| (l, s)))
+        .map(|(l, s)| {
+            configs
                 .iter()
-                .filter(|c| crate::backend::runs(&*c.backend, l))
-                .count();
-            l.scenarios.len() * modelled
+                .filter(|c| crate::backend::runs_scenario(&*c.backend, l, s))
+                .count()
         })
         .sum()
 }
