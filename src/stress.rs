@@ -442,13 +442,14 @@ fn configured(run: &RunConfig, case: &Case, epsilon_varied: bool) -> Option<RunC
 
 /// Checks that every probe can run at the base time step `dt` (seconds): each probe's duration
 /// over `dt` is within the frame caps of [`crate::limits::check_timing`].
-pub fn check_base_dt(dt: f32) -> Result<(), String> {
+pub fn check_base_dt(dt: f32) -> Result<(), BackendError> {
     let size = Vec2::new(BASE.width, BASE.width * 1.125);
     for spec in probes(size, dt, BASE.speed) {
         crate::limits::check_timing(spec.duration as f64, dt as f64).map_err(|m| {
-            format!(
-                "the stress's {} probe ({} s): {m}",
-                spec.name, spec.duration
+            crate::backend::invalid(
+                "dt",
+                format!("the {} probe ({} s): {m}", spec.name, spec.duration),
+                "a base time step at which every stress probe runs within the frame caps",
             )
         })?;
     }

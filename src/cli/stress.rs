@@ -31,7 +31,7 @@ pub(crate) fn stress(
     output::check_target(out_dir, output::Kind::Stress, force)?;
     let mut runs = runs;
     if let Some(dt) = select.dt()? {
-        crate::stress::check_base_dt(dt).map_err(|m| anyhow::anyhow!("--dt {dt}: {m}"))?;
+        crate::stress::check_base_dt(dt).map_err(|e| anyhow::anyhow!("--dt {dt}: {e}"))?;
     }
     // stability.csv's rows say when their base is not the default's.
     for r in &mut runs {

@@ -96,14 +96,14 @@ pub fn outside_program(
             .find(|p| p.is_file())
     });
     if found.is_none() {
-        let msg = format!(
-            "SKIPPED {test}: no `{name}` on the PATH (nor ${env}); install it with `{install}` \
-             to run this test (.ci/run does, and sets PLATBENCH_REQUIRE_PROGRAMS=1 so that it \
-             is never skipped there)"
-        );
+        let why = format!("no `{name}` on the PATH (nor ${env}); install it with `{install}`");
         if std::env::var("PLATBENCH_REQUIRE_PROGRAMS").is_ok_and(|v| v == "1") {
-            panic!("{msg}");
+            panic!("{test} needs {name} (PLATBENCH_REQUIRE_PROGRAMS=1): {why}");
         }
+        let msg = format!(
+            "SKIPPED {test}: {why} to run this test (.ci/run does, and sets \
+             PLATBENCH_REQUIRE_PROGRAMS=1 so that it is never skipped there)"
+        );
         // Straight to the process's stderr: the test harness captures `eprintln!` of a test
         // that passes, and this line must be seen.
         use std::io::Write as _;
