@@ -1,0 +1,199 @@
+//! The library's layers point one way (ARCHITECTURE.md): every `crate::` path in a module of
+//! `src/` names a module of its own layer or a lower one, but for the known debts listed here,
+//! which may only shrink.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+/// Each top-level module's layer, as ARCHITECTURE.md's table gives it.
+const LAYERS: &[(&str, u32)] = &[
+    ("limits", 0),
+    ("level", 1),
+    ("builtin", 1),
+    ("motion", 2),
+    ("ladder", 2),
+    ("shape", 2),
+    ("backend", 3),
+    ("controller", 3),
+    ("sweep", 4),
+    ("rapier", 4),
+    ("box2d", 4),
+    ("scenario", 5),
+    ("trace", 5),
+    ("parallel", 5),
+    ("metrics", 6),
+    ("registry", 7),
+    ("stress", 8),
+    ("tradeoff", 8),
+    ("report", 9),
+    ("suite", 9),
+    ("cli", 10),
+];
+
+/// The imports that point up today (`from -> to`), to be removed by issue 32: the controller
+/// API names the runner's configuration, the trade-off's settings and the metric rows; the
+/// motion rules return the controllers' error; the runner reaches the registry; the registry
+/// calls the report's notes and the trade-off's score; the stress the report's wording.
+const KNOWN: &[&str] = &[
+    "backend -> metrics",
+    "backend -> scenario",
+    "backend -> tradeoff",
+    "box2d -> metrics",
+    "box2d -> scenario",
+    "box2d -> tradeoff",
+    "controller -> metrics",
+    "controller -> scenario",
+    "controller -> tradeoff",
+    "motion -> backend",
+    "rapier -> metrics",
+    "rapier -> scenario",
+    "rapier -> tradeoff",
+    "registry -> report",
+    "registry -> tradeoff",
+    "scenario -> registry",
+    "stress -> report",
+    "sweep -> metrics",
+    "sweep -> scenario",
+    "sweep -> tradeoff",
+];
+
+fn layer(module: &str) -> Option<u32> {
+    LAYERS.iter().find(|(m, _)| *m == module).map(|(_, l)| *l)
+}
+
+/// The top-level modules `text` names through `crate::` (comments left out).
+fn crate_refs(text: &str) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for line in text.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        let mut rest = code;
+        while let Some(i) = rest.find("crate::") {
+            rest = &rest[i + "crate::".len()..];
+            if let Some(group) = rest.strip_prefix('{') {
+                // `use crate::{a, b::c}` on one line.
+                let inner = group.split('}').next().unwrap_or("");
+                for part in inner.split(',') {
+                    let name: String = part
+                        .trim()
+                        .chars()
+                        .take_while(|c| c.is_alphanumeric() || *c == '_')
+                        .collect();
+                    if !name.is_empty() {
+                        out.insert(name);
+                    }
+                }
+            } else {
+                let name: String = rest
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                if !name.is_empty() {
+                    out.insert(name);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A multi-line `use crate::{` group: its top-level names.
+fn grouped_refs(text: &str) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    let mut rest = text;
+    while let Some(i) = rest.find("use crate::{") {
+        rest = &rest[i + "use crate::{".len()..];
+        let inner = rest.split('}').next().unwrap_or("");
+        for part in inner.split(',') {
+            let part = part
+                .lines()
+                .map(|l| l.split("//").next().unwrap_or(""))
+                .collect::<String>();
+            let name: String = part
+                .trim()
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            if !name.is_empty() {
+                out.insert(name);
+            }
+        }
+    }
+    out
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+#[test]
+fn imports_point_down_the_layers_but_for_the_known_debts() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut up: BTreeSet<String> = BTreeSet::new();
+    for f in &files {
+        let rel = f.strip_prefix(&src).unwrap();
+        let first = rel
+            .components()
+            .next()
+            .unwrap()
+            .as_os_str()
+            .to_string_lossy();
+        let own = first.trim_end_matches(".rs").to_string();
+        if own == "lib" {
+            continue;
+        }
+        let own_layer = layer(&own)
+            .unwrap_or_else(|| panic!("src/{own}: add it to ARCHITECTURE.md and LAYERS"));
+        let text = std::fs::read_to_string(f).unwrap();
+        let refs: BTreeSet<String> = crate_refs(&text)
+            .union(&grouped_refs(&text))
+            .cloned()
+            .collect();
+        for m in refs {
+            if let Some(l) = layer(&m) {
+                if m != own && l > own_layer {
+                    up.insert(format!("{own} -> {m}"));
+                }
+            }
+        }
+    }
+    let known: BTreeSet<String> = KNOWN.iter().map(|s| s.to_string()).collect();
+    let new: Vec<&String> = up.difference(&known).collect();
+    assert!(
+        new.is_empty(),
+        "imports that point up the layers (ARCHITECTURE.md): {new:?}"
+    );
+    let gone: Vec<&String> = known.difference(&up).collect();
+    assert!(
+        gone.is_empty(),
+        "known upward imports no longer there: remove them from KNOWN: {gone:?}"
+    );
+}
+
+#[test]
+fn the_check_sees_an_upward_import() {
+    // The reader finds each form of path the check relies on.
+    let text = "use crate::metrics::MetricRow;\nuse crate::{scenario::RunConfig, level::Level};\nfn f() { crate::tradeoff::x(); } // crate::report\n";
+    let refs = crate_refs(text);
+    for m in ["metrics", "scenario", "level", "tradeoff"] {
+        assert!(refs.contains(m), "{m}: {refs:?}");
+    }
+    assert!(!refs.contains("report"), "a comment is not an import");
+    let grouped =
+        grouped_refs("use crate::{\n    backend::X,\n    // crate::cli\n    motion::Y,\n};\n");
+    assert_eq!(
+        grouped,
+        ["backend", "motion"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
+    );
+}
