@@ -117,6 +117,16 @@ pub enum BackendError {
     },
 }
 
+impl From<crate::motion::InvalidParam> for BackendError {
+    fn from(e: crate::motion::InvalidParam) -> Self {
+        BackendError::InvalidParameter {
+            name: e.name,
+            value: e.value,
+            expected: e.expected,
+        }
+    }
+}
+
 /// Refuses a level whose features a backend does not support: never ignore part of a level.
 pub fn require_supported(
     backend: &'static str,

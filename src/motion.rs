@@ -87,14 +87,31 @@ impl Default for MotionParams {
     }
 }
 
+/// A motion parameter out of its range: its name, its value and what was expected (a
+/// controller's build reports it as [`crate::backend::BackendError::InvalidParameter`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("invalid parameter {name} = {value}: {expected}")]
+pub struct InvalidParam {
+    /// Parameter name.
+    pub name: &'static str,
+    /// Its value, printed.
+    pub value: String,
+    /// What was expected.
+    pub expected: &'static str,
+}
+
 impl MotionParams {
     /// Checks every parameter against its meaning: finite, not negative, within the ranges of
     /// [`crate::limits`] (gravity and run acceleration to 1e5 tiles/s², speeds to 1e4 tiles/s,
     /// the jump height to 1e4 tiles), frictions within 0..=1, the climb angle within 0..90
     /// degrees.
-    pub fn validate(&self) -> Result<(), crate::backend::BackendError> {
-        use crate::backend::invalid;
+    pub fn validate(&self) -> Result<(), InvalidParam> {
         use crate::limits::{MAX_ACCEL, MAX_JUMP_HEIGHT, MAX_SPEED};
+        let invalid = |name: &'static str, value: f32, expected: &'static str| InvalidParam {
+            name,
+            value: format!("{value:?}"),
+            expected,
+        };
         let non_negative = [
             (
                 "gravity",

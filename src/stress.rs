@@ -561,7 +561,7 @@ pub fn stress_matrix_with(
                 last = what;
             }
             out.extend(rows?);
-            Ok(())
+            Ok::<(), BackendError>(())
         },
     )?;
     Ok(out)

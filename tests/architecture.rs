@@ -32,7 +32,7 @@ const LAYERS: &[(&str, u32)] = &[
 
 /// The imports that point up today (`from -> to`), to be removed by issue 32: the controller
 /// API names the runner's configuration, the trade-off's settings and the metric rows; the
-/// motion rules return the controllers' error; the runner reaches the registry; the registry
+/// runner reaches the registry; the registry
 /// calls the report's notes and the trade-off's score; the stress the report's wording.
 const KNOWN: &[&str] = &[
     "backend -> metrics",
@@ -44,7 +44,6 @@ const KNOWN: &[&str] = &[
     "controller -> metrics",
     "controller -> scenario",
     "controller -> tradeoff",
-    "motion -> backend",
     "rapier -> metrics",
     "rapier -> scenario",
     "rapier -> tradeoff",
