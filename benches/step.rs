@@ -40,7 +40,7 @@ fn step_cost(c: &mut Criterion) {
         for spec in &level.scenarios {
             let script = input_script(spec);
             let mut group = c.benchmark_group(format!("step/{}.{}", level.name, spec.name));
-            for run in RunConfig::builtin_set() {
+            for run in platbench::registry::Registry::builtin().builtin_configs() {
                 let name = format!("{}/{}", run.backend.backend(), run.label);
                 // A pair the configuration does not model is skipped, and said so (as `run` does).
                 if let Err(e) = try_fresh(&level, spec, &run) {

@@ -6,7 +6,6 @@ use crate::backend::{
 };
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::{Input, MotionParams};
-use crate::registry::Registry;
 use std::sync::Arc;
 
 pub use crate::backend::DeclaredContact;
@@ -54,11 +53,6 @@ impl RunConfig {
     /// The character's collision shape in this configuration.
     pub fn shape(&self) -> CharacterShape {
         self.backend.shape()
-    }
-
-    /// The built-in comparison set: every configuration of [`Registry::builtin`], in order.
-    pub fn builtin_set() -> Vec<RunConfig> {
-        Registry::builtin().builtin_configs()
     }
 }
 

@@ -32,7 +32,7 @@ const LAYERS: &[(&str, u32)] = &[
 
 /// The imports that point up today (`from -> to`), to be removed by issue 32: the controller
 /// API names the runner's configuration, the trade-off's settings and the metric rows; the
-/// runner reaches the registry; the registry
+/// registry
 /// calls the report's notes and the trade-off's score; the stress the report's wording.
 const KNOWN: &[&str] = &[
     "backend -> metrics",
@@ -49,7 +49,6 @@ const KNOWN: &[&str] = &[
     "rapier -> tradeoff",
     "registry -> report",
     "registry -> tradeoff",
-    "scenario -> registry",
     "stress -> report",
     "sweep -> metrics",
     "sweep -> scenario",

@@ -234,7 +234,9 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
     // 2 collider buildings (`Box2dKind::builtin_configs`).
     assert_eq!(
         timing.len(),
-        platbench::scenario::RunConfig::builtin_set().len(),
+        platbench::registry::Registry::builtin()
+            .builtin_configs()
+            .len(),
         "{metrics}"
     );
     assert_eq!(timing.len(), 17);

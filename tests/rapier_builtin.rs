@@ -15,7 +15,6 @@ mod common;
 use common::{builtin_levels, evaluate_all, level, rows, some_rows};
 use platbench::metrics::Evaluation;
 use platbench::rapier::{CharacterShape, ColliderBuilding, RapierConfig};
-use platbench::scenario::RunConfig;
 use std::collections::BTreeSet;
 
 /// Rapier's default offset: 1% of the 0.9-tile character height.
@@ -42,10 +41,13 @@ fn every_scenario_has_the_same_metrics_on_every_configuration() {
     let levels = builtin_levels();
     let mut sets = Vec::new();
     // The sweep's integer mode runs only the levels it models: tests/integer.rs covers it.
-    let full = RunConfig::builtin_set().into_iter().filter(|r| {
-        !matches!(r.backend.as_any().downcast_ref::<platbench::sweep::SweepConfig>(), Some(c)
+    let full = platbench::registry::Registry::builtin()
+        .builtin_configs()
+        .into_iter()
+        .filter(|r| {
+            !matches!(r.backend.as_any().downcast_ref::<platbench::sweep::SweepConfig>(), Some(c)
             if c.positions != platbench::sweep::Positions::Float)
-    });
+        });
     for run in full {
         let evals = evaluate_all(&levels, &run);
         let set: BTreeSet<(String, &str)> = evals

@@ -70,7 +70,7 @@ fn every_configuration_comes_to_rest_on_the_45_degree_ramp() {
         }
     }
     assert_eq!(slope.scenarios.len(), 5);
-    let configs: Vec<RunConfig> = RunConfig::builtin_set()
+    let configs: Vec<RunConfig> = platbench::registry::Registry::builtin().builtin_configs()
         .into_iter()
         .filter(|r| !matches!(r.backend.as_any().downcast_ref::<SweepConfig>(), Some(c) if c.positions != platbench::sweep::Positions::Float))
         .collect();
@@ -294,7 +294,7 @@ fn autostep_reaches_the_controller() {
 fn every_builtin_level_runs_on_the_remedy_configurations() {
     // The built-in comparison has one "as Rapier's examples advise for a stuck character"
     // configuration per shape.
-    let remedies: Vec<RunConfig> = RunConfig::builtin_set()
+    let remedies: Vec<RunConfig> = platbench::registry::Registry::builtin().builtin_configs()
         .into_iter()
         .filter(|r| {
             matches!(r.backend.as_any().downcast_ref::<RapierConfig>(), Some(c) if c.grounded_move == GroundedMove::NoneExceptOnPlatforms)

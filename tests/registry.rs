@@ -231,7 +231,8 @@ fn the_builtin_registry_is_the_builtin_set() {
     // `Registry::builtin`'s kinds, in its order.
     assert_eq!(names, ["sweep", "rapier", "box2d"]);
     // The committed baseline's configurations, in its order.
-    let labels: Vec<String> = RunConfig::builtin_set()
+    let labels: Vec<String> = platbench::registry::Registry::builtin()
+        .builtin_configs()
         .iter()
         .map(|c| format!("{} {}", c.backend.backend(), c.label))
         .collect();

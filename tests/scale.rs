@@ -254,7 +254,7 @@ fn a_spilled_run_measures_bit_for_bit_as_one_held_in_memory() {
     use platbench::trace::RowStore;
 
     let mut configs: Vec<RunConfig> = Vec::new();
-    for c in RunConfig::builtin_set() {
+    for c in platbench::registry::Registry::builtin().builtin_configs() {
         let kind = c.backend.backend();
         if kind == "sweep" || !configs.iter().any(|k| k.backend.backend() == kind) {
             configs.push(c);

@@ -564,9 +564,8 @@ fn unsupported_maps_and_layers_are_errors() {
 #[test]
 fn the_showcase_runs_on_every_configuration_of_both_backends() {
     use platbench::metrics::evaluate;
-    use platbench::scenario::RunConfig;
     let (level, _) = load_tiled_map(&shipped("showcase.tmx")).unwrap();
-    let configs = RunConfig::builtin_set();
+    let configs = platbench::registry::Registry::builtin().builtin_configs();
     assert!(configs.iter().any(|c| c.backend.backend() == "sweep"));
     assert!(configs.iter().any(|c| c.backend.backend() == "rapier"));
     for run in &configs {
