@@ -21,12 +21,7 @@ fn try_fresh(
     run: &RunConfig,
 ) -> Result<Box<dyn Backend>, BackendError> {
     let params = effective_params(&run.params, spec);
-    let character = CharacterSpec {
-        spawn: spec.spawn,
-        size: spec.size,
-        velocity: spec.velocity,
-    };
-    platbench::scenario::Runner::new(level).build(run, &params, &[character])
+    platbench::scenario::Runner::new(level).build(run, &params, &[CharacterSpec::of(spec)])
 }
 
 /// A backend for `spec` on `run`; only called for pairs [`try_fresh`] built.

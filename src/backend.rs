@@ -28,6 +28,15 @@ pub struct CharacterSpec {
 }
 
 impl CharacterSpec {
+    /// The character of scenario `spec`: its spawn, size and initial velocity.
+    pub fn of(spec: &crate::level::ScenarioSpec) -> Self {
+        CharacterSpec {
+            spawn: spec.spawn,
+            size: spec.size,
+            velocity: spec.velocity,
+        }
+    }
+
     /// Checks that the spawn and velocity are finite and the size positive.
     pub fn validate(&self) -> Result<(), BackendError> {
         let finite = |v: Vec2| v.is_finite();
@@ -214,12 +223,7 @@ pub fn runs_scenario(
     level: &Level,
     spec: &crate::level::ScenarioSpec,
 ) -> bool {
-    let character = CharacterSpec {
-        spawn: spec.spawn,
-        size: spec.size,
-        velocity: spec.velocity,
-    };
-    runs(settings, level) && settings.check_character(&character).is_ok()
+    runs(settings, level) && settings.check_character(&CharacterSpec::of(spec)).is_ok()
 }
 
 /// A controller built over one level with its characters placed: what the runner steps

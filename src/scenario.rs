@@ -358,7 +358,7 @@ impl<'a> Runner<'a> {
         sink: &mut dyn FnMut(TraceRow),
     ) -> Result<Trace, BackendError> {
         let params = effective_params(&run.params, spec);
-        let backend = self.build(run, &params, &[character(spec)])?;
+        let backend = self.build(run, &params, &[CharacterSpec::of(spec)])?;
         drive(&self.level.name, spec, run, backend, sink)
     }
 }
@@ -377,7 +377,7 @@ pub fn time_scenario(
     let script = input_script(spec);
     let mut best = f64::INFINITY;
     for _ in 0..repeats.max(1) {
-        let mut backend = runner.build(run, &params, &[character(spec)])?;
+        let mut backend = runner.build(run, &params, &[CharacterSpec::of(spec)])?;
         let mut input = [Input::default()];
         let start = std::time::Instant::now();
         for i in &script {
@@ -400,15 +400,6 @@ pub fn run_scenario(
     run: &RunConfig,
 ) -> Result<Trace, BackendError> {
     Runner::new(level).run(spec, run)
-}
-
-/// The scenario's one character.
-fn character(spec: &ScenarioSpec) -> CharacterSpec {
-    CharacterSpec {
-        spawn: spec.spawn,
-        size: spec.size,
-        velocity: spec.velocity,
-    }
 }
 
 /// Steps `backend` (built with the scenario's character as character 0) through the scenario's

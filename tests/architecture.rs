@@ -59,6 +59,14 @@ fn layer(module: &str) -> Option<u32> {
     LAYERS.iter().find(|(m, _)| *m == module).map(|(_, l)| *l)
 }
 
+/// The identifier `s` starts with (after spaces).
+fn leading_name(s: &str) -> String {
+    s.trim()
+        .chars()
+        .take_while(|c| c.is_alphanumeric() || *c == '_')
+        .collect()
+}
+
 /// The top-level modules `text` names through `crate::` (comments left out).
 fn crate_refs(text: &str) -> BTreeSet<String> {
     let mut out = BTreeSet::new();
@@ -70,21 +78,9 @@ fn crate_refs(text: &str) -> BTreeSet<String> {
             if let Some(group) = rest.strip_prefix('{') {
                 // `use crate::{a, b::c}` on one line.
                 let inner = group.split('}').next().unwrap_or("");
-                for part in inner.split(',') {
-                    let name: String = part
-                        .trim()
-                        .chars()
-                        .take_while(|c| c.is_alphanumeric() || *c == '_')
-                        .collect();
-                    if !name.is_empty() {
-                        out.insert(name);
-                    }
-                }
+                out.extend(inner.split(',').map(leading_name).filter(|n| !n.is_empty()));
             } else {
-                let name: String = rest
-                    .chars()
-                    .take_while(|c| c.is_alphanumeric() || *c == '_')
-                    .collect();
+                let name = leading_name(rest);
                 if !name.is_empty() {
                     out.insert(name);
                 }
@@ -106,11 +102,7 @@ fn grouped_refs(text: &str) -> BTreeSet<String> {
                 .lines()
                 .map(|l| l.split("//").next().unwrap_or(""))
                 .collect::<String>();
-            let name: String = part
-                .trim()
-                .chars()
-                .take_while(|c| c.is_alphanumeric() || *c == '_')
-                .collect();
+            let name = leading_name(&part);
             if !name.is_empty() {
                 out.insert(name);
             }
