@@ -1,6 +1,6 @@
 //! What a controller exchanges with the harness (a character's spec and state, its declared
 //! contact, its errors), and the type-erased views the harness drives every
-//! [`crate::controller::Controller`] through ([`Backend`], [`BackendSettings`], [`BackendKind`]).
+//! [`crate::controller::Controller`] through ([`Backend`], [`BackendSettings`]; the registry lists [`crate::controller::BackendKind`]).
 //!
 //! Both backends are driven identically: same level, same [`MotionParams`], same per-frame
 //! [`Input`] per character, same `dt`. A step moves every character (then, once levels have
@@ -379,7 +379,7 @@ impl SharedGeometry {
 /// as `Arc<dyn BackendSettings>` in [`crate::scenario::RunConfig`]. Implemented for every
 /// [`crate::controller::Controller`] (whose methods document these); implement that instead.
 pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
-    /// The backend's short name, as in CSV files (the name of its [`BackendKind`]).
+    /// The backend's short name, as in CSV files (the name of its [`crate::controller::BackendKind`]).
     fn backend(&self) -> &'static str;
     /// The character's collision shape in this configuration.
     fn shape(&self) -> CharacterShape;
@@ -461,31 +461,4 @@ pub enum ShownByDefault {
     /// The kind's best and worst configuration on the scenario by the error score of its metrics
     /// ([`crate::tradeoff::error_score`]): the range a user of that kind can expect.
     BestAndWorst,
-}
-
-/// A kind of backend: a controller the harness knows. One [`crate::registry::Registry`] lists
-/// the kinds; the CLI and every command iterate it and never name a backend. Implemented for
-/// every [`crate::controller::Controller`] type (whose functions of the same names document
-/// these); register one with [`crate::registry::Registry::with`].
-pub trait BackendKind: Send + Sync {
-    /// The backend's short name, as in CSV files and `--backend`.
-    fn name(&self) -> &'static str;
-    /// One line on what it is, for `--help` and the report.
-    fn description(&self) -> &'static str;
-    /// The character shapes it offers (`--shape` picks among them when there is a choice).
-    fn shapes(&self) -> Vec<CharacterShape>;
-    /// The configurations it adds to the built-in comparison, with their labels.
-    fn builtin_configs(&self) -> Vec<crate::scenario::RunConfig>;
-    /// The configurations `platbench stress` checks.
-    fn stress_configs(&self) -> Vec<crate::scenario::RunConfig>;
-    /// The settings `platbench sweep` measures.
-    fn tradeoff_settings(&self) -> Vec<crate::tradeoff::Setting>;
-    /// Configurations with a colour of their own in the report's scenario replays.
-    fn drawn(&self) -> Vec<(&'static str, &'static str)>;
-    /// Which of its configurations a scenario's replay shows before the reader picks others.
-    fn shown_by_default(&self) -> ShownByDefault;
-    /// Its own colour in charts (a CSS colour), if it has one.
-    fn colour(&self) -> Option<&'static str>;
-    /// Explanations of this backend's rows that the metrics show.
-    fn notes(&self, rows: &[crate::metrics::MetricRow]) -> Vec<String>;
 }

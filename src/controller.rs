@@ -16,15 +16,14 @@ use std::marker::PhantomData;
 use glam::Vec2;
 
 use crate::backend::{
-    Backend, BackendError, BackendKind, BackendSettings, CharacterId, CharacterSpec,
-    CharacterState, DeclaredContact, Precision, SharedGeometry, ShownByDefault,
+    Backend, BackendError, BackendSettings, CharacterId, CharacterSpec, CharacterState,
+    DeclaredContact, Precision, SharedGeometry, ShownByDefault,
 };
+use crate::config::RunConfig;
+use crate::config::Setting;
 use crate::level::{Features, Level};
-use crate::metrics::MetricRow;
 use crate::motion::{Input, MotionParams};
-use crate::scenario::RunConfig;
 use crate::shape::CharacterShape;
-use crate::tradeoff::Setting;
 
 /// What a controller is built over: the level, the motion parameters of the run, the characters
 /// to place (already checked: finite spawns and velocities, positive sizes) and geometry shared
@@ -181,12 +180,6 @@ pub trait Controller:
     /// that no other controller has.
     fn colour() -> Option<&'static str> {
         None
-    }
-    /// Explanations of its rows that the metrics show, each only when the measurements show
-    /// the effect it explains. Default: none.
-    fn notes(rows: &[MetricRow]) -> Vec<String> {
-        let _ = rows;
-        Vec::new()
     }
 
     /// The character's collision shape. Default: a box ([`CharacterShape::Cuboid`]).
@@ -357,6 +350,31 @@ impl<C: Controller> BackendSettings for C {
     }
 }
 
+/// A kind of backend: a controller the harness knows. One [`crate::registry::Registry`] lists
+/// the kinds; the CLI and every command iterate it and never name a backend. Implemented for
+/// every [`Controller`] type (whose functions of the same names document
+/// these); register one with [`crate::registry::Registry::with`].
+pub trait BackendKind: Send + Sync {
+    /// The backend's short name, as in CSV files and `--backend`.
+    fn name(&self) -> &'static str;
+    /// One line on what it is, for `--help` and the report.
+    fn description(&self) -> &'static str;
+    /// The character shapes it offers (`--shape` picks among them when there is a choice).
+    fn shapes(&self) -> Vec<CharacterShape>;
+    /// The configurations it adds to the built-in comparison, with their labels.
+    fn builtin_configs(&self) -> Vec<RunConfig>;
+    /// The configurations `platbench stress` checks.
+    fn stress_configs(&self) -> Vec<RunConfig>;
+    /// The settings `platbench sweep` measures.
+    fn tradeoff_settings(&self) -> Vec<Setting>;
+    /// Configurations with a colour of their own in the report's scenario replays.
+    fn drawn(&self) -> Vec<(&'static str, &'static str)>;
+    /// Which of its configurations a scenario's replay shows before the reader picks others.
+    fn shown_by_default(&self) -> ShownByDefault;
+    /// Its own colour in charts (a CSS colour), if it has one.
+    fn colour(&self) -> Option<&'static str>;
+}
+
 /// The harness's view of a [`Controller`] type as a kind of backend (what the registry lists).
 pub(crate) struct Kind<C>(PhantomData<fn() -> C>);
 
@@ -393,9 +411,6 @@ impl<C: Controller> BackendKind for Kind<C> {
     }
     fn colour(&self) -> Option<&'static str> {
         C::colour()
-    }
-    fn notes(&self, rows: &[MetricRow]) -> Vec<String> {
-        C::notes(rows)
     }
 }
 

@@ -23,6 +23,7 @@ pub mod box2d;
 #[path = "../compare/builtin.rs"]
 pub mod builtin;
 pub mod cli;
+pub mod config;
 pub mod controller;
 pub mod ladder;
 pub mod level;

@@ -1,60 +1,13 @@
 //! The runner: a scenario (level + spawn + input script + duration + dt) run on one backend
 //! configuration, yielding a [`Trace`].
 
-use crate::backend::{
-    Backend, BackendError, BackendSettings, CharacterId, CharacterSpec, SharedGeometry,
-};
+use crate::backend::{Backend, BackendError, CharacterId, CharacterSpec, SharedGeometry};
+pub use crate::config::{BackendConfig, RunConfig};
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::{Input, MotionParams};
-use std::sync::Arc;
 
 pub use crate::backend::DeclaredContact;
-use crate::shape::CharacterShape;
 use crate::trace::{Trace, TraceRow};
-
-/// Which controller to run, with its settings: any backend's [`BackendSettings`].
-pub type BackendConfig = Arc<dyn BackendSettings>;
-
-/// One column of a comparison: a backend configuration and the motion parameters it runs with.
-#[derive(Clone, Debug)]
-pub struct RunConfig {
-    /// Label of this configuration in tables and CSV files (`config` column).
-    pub label: String,
-    /// The backend and its settings.
-    pub backend: BackendConfig,
-    /// Motion parameters (scenarios may override some of them).
-    pub params: MotionParams,
-    /// Steps the backend takes per frame, each of `dt / substeps` (1: one step per frame).
-    /// Traces keep one row per frame.
-    pub substeps: u32,
-}
-
-impl PartialEq for RunConfig {
-    fn eq(&self, other: &Self) -> bool {
-        self.label == other.label
-            && self.backend.same_as(other.backend.as_ref())
-            && self.params == other.params
-            && self.substeps == other.substeps
-    }
-}
-
-impl RunConfig {
-    /// A configuration of `settings` labelled `label`, with the default motion parameters and
-    /// one step per frame.
-    pub fn new(label: impl Into<String>, settings: impl crate::controller::Controller) -> Self {
-        RunConfig {
-            label: label.into(),
-            backend: Arc::new(settings),
-            params: MotionParams::default(),
-            substeps: 1,
-        }
-    }
-
-    /// The character's collision shape in this configuration.
-    pub fn shape(&self) -> CharacterShape {
-        self.backend.shape()
-    }
-}
 
 /// The run's motion parameters with the scenario's overrides applied.
 pub fn effective_params(base: &MotionParams, spec: &ScenarioSpec) -> MotionParams {

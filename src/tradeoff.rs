@@ -17,42 +17,12 @@ use svg::node::element::{Circle, Line, Polyline, Text, Title};
 use svg::Document;
 
 use crate::backend::BackendError;
+pub use crate::config::Setting;
 use crate::level::Level;
 use crate::metrics::score::Score;
 use crate::metrics::{evaluate_with, Behaviour, MetricRow};
 use crate::registry::Registry;
-use crate::scenario::{time_scenario, RunConfig, Runner};
-
-/// One setting of the grid: a configuration and, optionally, a time step for every scenario.
-#[derive(Clone, Debug)]
-pub struct Setting {
-    /// Label in `tradeoff.csv`.
-    pub label: String,
-    /// The configuration.
-    pub run: RunConfig,
-    /// The time step (seconds) every scenario runs with, if not its own.
-    pub dt: Option<f32>,
-}
-
-impl Setting {
-    /// A setting labelled `label`: `settings` with `substeps` steps per frame and every scenario
-    /// at `dt` seconds (its own if `None`), the default motion parameters otherwise.
-    pub fn new(
-        label: &str,
-        settings: impl crate::controller::Controller,
-        substeps: u32,
-        dt: Option<f32>,
-    ) -> Self {
-        Setting {
-            label: label.into(),
-            run: RunConfig {
-                substeps,
-                ..RunConfig::new(label, settings)
-            },
-            dt,
-        }
-    }
-}
+use crate::scenario::{time_scenario, Runner};
 
 /// The grid of [`Registry::builtin`]: each setting varies one thing from the defaults (for the
 /// sweep: dt from 1/30 to 1/480 s, substeps, epsilon, jump mode, integer positions; for

@@ -209,7 +209,7 @@ fn the_summary_of_the_kept_rows_is_the_summary_of_every_row_on_the_built_in_set(
     let levels = common::builtin_levels();
     let mut all = Vec::new();
     let mut kept = SummaryRows::default();
-    let mut notes = platbench::registry::RunNotes::new(&registry);
+    let mut notes = platbench::report::notes::RunNotes::new();
     let mut groups: Vec<Vec<bool>> = Vec::new();
     let mut runs = 0;
     for level in &levels {
@@ -238,7 +238,7 @@ fn the_summary_of_the_kept_rows_is_the_summary_of_every_row_on_the_built_in_set(
     assert!(kept.len() <= metrics * (1 + 3 * groups.len() * configs.len()));
     assert!(kept.len() < all.len() && runs > 0);
     assert_eq!(summary_table_in(&kept, &coverage), summary_table(&all));
-    assert_eq!(notes.notes(), registry.notes(&all));
+    assert_eq!(notes.notes(), platbench::report::notes::notes(&all));
     assert!(!notes.notes().is_empty());
 }
 

@@ -6,12 +6,11 @@ use glam::Vec2;
 
 use super::{Box2dBackend, Box2dConfig, CharacterShape, ColliderBuilding, PogoShape, LINEAR_SLOP};
 use crate::backend::{BackendError, CharacterId, CharacterSpec, CharacterState, DeclaredContact};
+use crate::config::RunConfig;
+use crate::config::Setting;
 use crate::controller::{Controller, Setup};
 use crate::level::{Features, Level};
-use crate::metrics::MetricRow;
 use crate::motion::{Input, MotionParams};
-use crate::scenario::RunConfig;
-use crate::tradeoff::Setting;
 
 /// The backend's name, as in CSV files.
 pub const NAME: &str = "box2d";
@@ -222,29 +221,6 @@ impl Controller for Box2dConfig {
 
     fn colour() -> Option<&'static str> {
         Some("#00838f")
-    }
-
-    fn notes(rows: &[MetricRow]) -> Vec<String> {
-        let b = |m: &'static str| {
-            rows.iter()
-                .filter(move |r| r.backend == NAME && r.metric == m)
-        };
-        let mut out = Vec::new();
-        if b("rest_gap").any(|r| r.value.abs() > 1e-3) {
-            out.push("box2d rest_gap: the sample's mover stands on a pogo spring (5 Hz, damping 0.8), not on a contact: fed gravity each step, the spring settles the feet where its push balances gravity, off the ground's top by the sag.".into());
-        }
-        if b("carry_airborne_frames").any(|r| r.value > 0.0)
-            || b("carry_drift").any(|r| r.value > 1e-3)
-        {
-            out.push("box2d riders: the sample carries no rider and Box2D documents no remedy (docs/character.md and the sample at 56edae79 never read the ground body's velocity); a platform moves the mover only through its collision planes (push limited to 0.1 tiles, the sample's elevator) and the pogo, so a horizontal platform slides out from under it.".into());
-        }
-        if b("false_grounded").any(|r| r.value > 0.0) {
-            out.push("box2d false_grounded: the sample's 5 Hz pogo spring follows moving ground at a steady lag (0.124 tiles above an elevator going down at 3 tiles/s), and the sample is on ground whenever the pogo's cast hits.".into());
-        }
-        if b("steep_blocked").any(|r| r.value == 0.0) {
-            out.push("box2d climbs slopes steeper than the limit: the sample's pogo stands on any surface it touches (it has no slope limit).".into());
-        }
-        out
     }
 }
 

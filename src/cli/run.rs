@@ -129,24 +129,16 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         args.traces.unwrap_or(Traces::All)
     };
     let started = Instant::now();
-    let reg = &h.registry;
     let (metrics, coverage, notes, rows, written) = match &target {
         Some(target) => {
             let mut result = None;
             output::write_output(target, kind, args.force, |dir| {
-                result = Some(execute(
-                    &levels,
-                    &configs,
-                    reg,
-                    args,
-                    jobs,
-                    Some((dir, traces)),
-                )?);
+                result = Some(execute(&levels, &configs, args, jobs, Some((dir, traces)))?);
                 Ok(())
             })?;
             result.unwrap_or_default()
         }
-        None => execute(&levels, &configs, reg, args, jobs, None)?,
+        None => execute(&levels, &configs, args, jobs, None)?,
     };
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
     let mut text = summary_table_in(&metrics, &coverage);
@@ -235,7 +227,6 @@ type Executed = (Vec<MetricRow>, Coverage, Vec<String>, usize, usize);
 fn execute<'a>(
     levels: &'a [crate::level::Level],
     configs: &[RunConfig],
-    registry: &crate::registry::Registry,
     args: &RunArgs,
     jobs: usize,
     dir: Option<(&std::path::Path, Traces)>,
@@ -324,7 +315,7 @@ fn execute<'a>(
     // Every row for --detail; else only those the summary needs (see SummaryRows).
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut kept = SummaryRows::default();
-    let mut notes = crate::registry::RunNotes::new(registry);
+    let mut notes = crate::report::notes::RunNotes::new();
     let mut rows_seen = 0usize;
     let (mut done, mut written) = (0usize, 0usize);
     // Refusals on the current level, per configuration: the first is said, the others counted
@@ -406,7 +397,10 @@ fn execute<'a>(
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
     let (coverage, notes) = if args.detail {
-        (Coverage::of(&metrics), registry.notes(&metrics))
+        (
+            Coverage::of(&metrics),
+            crate::report::notes::notes(&metrics),
+        )
     } else {
         let (rows, coverage) = kept.into_parts();
         metrics = rows;

@@ -11,12 +11,11 @@ use super::{
     StaticWorld,
 };
 use crate::backend::{BackendError, CharacterId, CharacterState, DeclaredContact, Precision};
+use crate::config::RunConfig;
+use crate::config::Setting;
 use crate::controller::{Controller, Setup};
 use crate::level::Features;
-use crate::metrics::MetricRow;
 use crate::motion::Input;
-use crate::scenario::RunConfig;
-use crate::tradeoff::Setting;
 
 /// The backend's name, as in CSV files.
 pub const NAME: &str = "rapier";
@@ -287,48 +286,6 @@ impl Controller for RapierConfig {
 
     fn colour() -> Option<&'static str> {
         Some("#2e7d32")
-    }
-
-    fn notes(rows: &[MetricRow]) -> Vec<String> {
-        fn rapier<'a>(rows: &'a [MetricRow], m: &'a str) -> impl Iterator<Item = &'a MetricRow> {
-            rows.iter()
-                .filter(move |r| r.backend == NAME && r.metric == m)
-        }
-        let rapier = |m| rapier(rows, m);
-        let mut out = Vec::new();
-        if rapier("rest_gap").any(|r| r.value > 1e-3) {
-            out.push("rapier rest_gap is about its `offset` (1% of the character height, 0.009 tiles): Rapier keeps this gap on purpose and its docs say it must not be zero.".into());
-        }
-        if rapier("land_frame_error").any(|r| r.value < 0.0) {
-            out.push("rapier lands early: it reports grounded while still within its ground prediction above the floor (its offset plus 0.05 tiles), then snaps down.".into());
-        }
-        if rapier("max_penetration").any(|r| r.value > 0.0 && r.config.starts_with("merged")) {
-            out.push("rapier sinks into merged floors: a shape cast at a glancing angle can miss the offset band and start inside the floor (rapier #613).".into());
-        }
-        if rapier("false_grounded").any(|r| r.value > 0.0) {
-            out.push("rapier false_grounded: rounded shapes sliding down a wall made of stacked tiles report grounded on the tile corners, which resets their fall.".into());
-        }
-        if rows.iter().any(|r| {
-            r.backend == NAME
-                && r.config.starts_with("merged cuboid")
-                && r.metric == "progress_ratio"
-                && r.value < 0.5
-        }) {
-            out.push("rapier shapes: on one long merged box a cuboid sticks (it misses the offset band at a glancing angle, starts inside the floor and every cast from there is blocked, rapier #613) while capsule, ball and round cuboid slide on; on per-tile floors every shape walks but catches on seams. A box character wants per-tile or short merged colliders; a rounded one can use merged floors, but not boxes thousands of tiles long, which rounded shapes sink into.".into());
-        }
-        if rapier("steep_blocked").any(|r| r.value == 0.0) {
-            out.push("rapier climbs a too-steep slope that rises to the left, on every collider building: its 2D climb test uses a signed angle that is negative for such slopes (the same slope rising to the right blocks).".into());
-        }
-        if rapier("carry_airborne_frames").any(|r| r.value > 0.0) {
-            out.push("rapier riders: the controller carries a rider by the velocity of the platform body it touches (the platforms move first, so it is this step's); on paths that turn (diagonal, circle) the rider loses the platform.".into());
-        }
-        if rapier("progress_ratio").any(|r| r.value < 0.99) {
-            out.push("rapier loses progress on flat ground when fed gravity on every grounded step: the shape catches on tile seams; fed no vertical move while grounded (grounded=none-but-platforms) it walks.".into());
-        }
-        if rapier("idle_drift").any(|r| r.value > 1e-3) {
-            out.push("rapier idle_drift: a standing Rapier character moves with no input: fed gravity every step, each cast hit adds the normal nudge (1e-4 tiles along the contact normal), which walks it down a slope at rest; and a wall sliding flush past its side pushes it away (moving_wall).".into());
-        }
-        out
     }
 }
 

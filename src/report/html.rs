@@ -371,7 +371,7 @@ pub fn render_report(
     }
     html.push_str("</ul><h2>By behaviour</h2>");
     md.push_str("\n## By behaviour\n");
-    let all_notes = registry.notes(rows);
+    let all_notes = super::notes::notes(rows);
     for b in Behaviour::ALL.into_iter().filter(|b| *b != Behaviour::Cost) {
         let title = b.title();
         let metrics: Vec<&str> = registry::of_behaviour(b).map(|d| d.name).collect();
@@ -417,7 +417,7 @@ pub fn render_report(
             .filter(|r| r.level == s.level.name && r.scenario == s.spec.name)
             .cloned()
             .collect();
-        let shown = registry.shown_by_default(&scenario_rows);
+        let shown = super::replay::shown_by_default(registry, &scenario_rows);
         let _ = write!(
             html,
             "<h3 id=\"{id}\">{id}</h3>{}",

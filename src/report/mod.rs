@@ -4,6 +4,7 @@
 
 pub mod diff;
 pub mod html;
+pub mod notes;
 pub mod replay;
 pub mod rules;
 pub mod summary_rows;
@@ -344,20 +345,6 @@ fn group_table(m: &WorstMatrix) -> String {
 /// Distance from ideal below which two configurations tie: f32 rounding of positions of a few
 /// tiles (ulp 2.4e-7 to 9.5e-7 for 2 to 8 tiles) accumulates to about this much.
 pub const TIE_TOLERANCE: f64 = 1e-6;
-
-/// Explanations of the differences the rows show that concern no one backend, each printed only
-/// when the measurements show the effect it explains (each backend's own notes come from its
-/// kind: [`crate::registry::Registry::notes`] gathers both).
-pub fn notes(rows: &[MetricRow]) -> Vec<String> {
-    let mut out = Vec::new();
-    if rows
-        .iter()
-        .any(|r| r.metric == "apex_error" && r.config.contains("jump=continuous"))
-    {
-        out.push("jump=continuous is the seed's v = sqrt(2 g h): exact for continuous motion, short by up to v*dt/2 under symplectic Euler; the default solves the impulse for the discrete apex.".into());
-    }
-    out
-}
 
 /// Every metric of every scenario, configurations side by side.
 pub fn detail_table(rows: &[MetricRow]) -> String {

@@ -9,10 +9,13 @@ use glam::Vec2;
 use svg::node::element::{Circle, Group, Polygon, Polyline, Rectangle, Title};
 use svg::Document;
 
+use crate::backend::ShownByDefault;
 use crate::level::{Level, ScenarioSpec, Tile};
-use crate::metrics::faults;
+use crate::metrics::{faults, MetricRow};
+use crate::registry::Registry;
 use crate::shape::CharacterShape;
 use crate::trace::{Trace, TraceRow};
+use crate::tradeoff::error_score;
 
 /// One configuration's run of a scenario, as the replay draws it.
 pub struct ReplayRun<'a> {
@@ -61,7 +64,7 @@ const MAX_TILES: f32 = 80.0;
 /// scenario up to 13 s long.
 pub const MAX_DRAWN_FRAMES: usize = 400;
 
-/// Colours for the configurations a kind gives none ([`crate::backend::BackendKind::drawn`]),
+/// Colours for the configurations a kind gives none ([`crate::controller::BackendKind::drawn`]),
 /// handed out in order.
 const PALETTE: [&str; 16] = [
     "#6a1b9a", "#00838f", "#ad1457", "#4e342e", "#283593", "#558b2f", "#ff8f00", "#37474f",
@@ -448,6 +451,52 @@ pub const SCRIPT: &str = include_str!("replay.js");
 /// The replay's style sheet.
 pub const STYLE: &str = ".replay .controls{margin:0.3em 0;font-size:13px}\n.replay .scrub{width:40%;vertical-align:middle}\n.replay .clock{font-family:monospace}\n.replay .picker{font-size:12px;margin:0.3em 0 1em}\n.replay .picker label{display:inline-block;margin-right:1em}\n.replay .picker i{display:inline-block;width:1.2em;height:0.8em;margin:0 0.3em}\n.replay .fault{color:#d50000;font-weight:bold}\n.replay g.body.bad{stroke:#d50000;stroke-width:3;fill:#d50000}\n";
 
+/// The configurations a scenario's replay in the report shows before the reader picks,
+/// from `rows`, that scenario's metric rows: per kind of `registry` in order, what its
+/// [`crate::controller::BackendKind::shown_by_default`] asks for among the configurations that ran it. Each
+/// entry is `(backend, config label)`.
+pub fn shown_by_default(registry: &Registry, rows: &[MetricRow]) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    for k in registry.kinds() {
+        let mut configs: Vec<&str> = Vec::new();
+        for r in rows.iter().filter(|r| r.backend == k.name()) {
+            if !configs.contains(&r.config.as_str()) {
+                configs.push(&r.config);
+            }
+        }
+        let picked: Vec<&str> = match k.shown_by_default() {
+            ShownByDefault::Listed(labels) => {
+                labels.into_iter().filter(|l| configs.contains(l)).collect()
+            }
+            ShownByDefault::BestAndWorst => {
+                let scored: Vec<(&str, f64)> = configs
+                    .iter()
+                    .map(|c| {
+                        let own: Vec<MetricRow> = rows
+                            .iter()
+                            .filter(|r| r.backend == k.name() && r.config == *c)
+                            .cloned()
+                            .collect();
+                        (*c, error_score(&own))
+                    })
+                    .collect();
+                // The first of equals is the best; the last of equals the worst.
+                let best = scored.iter().reduce(|a, b| if b.1 < a.1 { b } else { a });
+                let worst = scored.iter().reduce(|a, b| if b.1 >= a.1 { b } else { a });
+                let mut p: Vec<&str> = best.into_iter().chain(worst).map(|x| x.0).collect();
+                p.dedup();
+                p
+            }
+        };
+        out.extend(
+            picked
+                .into_iter()
+                .map(|c| (k.name().to_string(), c.to_string())),
+        );
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -480,5 +529,48 @@ mod tests {
                 assert_ne!(a.colour, b.colour, "{a:?} {b:?}");
             }
         }
+    }
+
+    #[cfg(all(feature = "rapier", feature = "box2d"))]
+    fn metric_row(backend: &str, config: &str, stuck: f64) -> MetricRow {
+        MetricRow {
+            level: "l".into(),
+            scenario: "s".into(),
+            backend: backend.into(),
+            config: config.into(),
+            metric: "stuck_frames",
+            value: stuck,
+            unit: "frames",
+            reference: 0.0,
+            error: stuck,
+        }
+    }
+
+    #[test]
+    #[cfg(all(feature = "rapier", feature = "box2d"))]
+    fn replays_show_the_listed_reference_and_each_other_kinds_best_and_worst() {
+        // stuck_frames weighs 1 in the default score, min(1, |error| / 1 frame): below one frame
+        // (fractions, for the test), more is worse; at one and above every value scores 1.
+        let rows = [
+            metric_row("sweep", "jump=continuous", 0.0),
+            metric_row("sweep", "default", 9.0),
+            metric_row("rapier", "a", 0.25),
+            metric_row("rapier", "b", 0.0),
+            metric_row("rapier", "c", 0.75),
+            metric_row("rapier", "d", 0.5),
+        ];
+        let shown = shown_by_default(&Registry::builtin(), &rows);
+        let pair = |b: &str, c: &str| (b.to_string(), c.to_string());
+        assert_eq!(
+            shown,
+            [
+                pair("sweep", "default"),
+                pair("rapier", "b"),
+                pair("rapier", "c")
+            ]
+        );
+        // One configuration is both its kind's best and worst: shown once.
+        let one = shown_by_default(&Registry::builtin(), &rows[2..3]);
+        assert_eq!(one, [pair("rapier", "a")]);
     }
 }

@@ -9,13 +9,12 @@ use super::{Positions, SweepBackend, SweepConfig, DOUBLE_SUPPORTED, INTEGER_SUPP
 use crate::backend::{
     BackendError, CharacterId, CharacterState, DeclaredContact, Precision, ShownByDefault,
 };
+use crate::config::RunConfig;
+use crate::config::Setting;
 use crate::controller::{Controller, Setup};
 use crate::level::{Features, Level};
-use crate::metrics::MetricRow;
 use crate::motion::{Input, JumpMode, MotionParams};
-use crate::scenario::RunConfig;
 use crate::shape::CharacterShape;
-use crate::tradeoff::Setting;
 
 /// The backend's name, as in CSV files.
 pub const NAME: &str = "sweep";
@@ -251,34 +250,6 @@ impl Controller for SweepConfig {
 
     fn colour() -> Option<&'static str> {
         Some("#1565c0")
-    }
-
-    fn notes(rows: &[MetricRow]) -> Vec<String> {
-        let mut out = Vec::new();
-        if rows
-            .iter()
-            .any(|r| r.backend == NAME && r.metric == "slope_overlap" && r.value > 1e-3)
-        {
-            out.push("sweep slope_overlap: the seed's centre-column rule stands the box on the surface under its centre, so the box overhangs a ramp by half its width times the gradient (0.4 sin(angle) along the ramp's normal: 0.28 tiles at 45 degrees); by design, and counted in max_penetration, rest_gap and slope_gap_max too, as any shape inside a slope is.".into());
-        }
-        // A walk toward a too-steep slope (steep_blocked measured) that ends inside it beyond
-        // the overhang a walkable ramp gives.
-        let steep_walk = |r: &MetricRow| {
-            rows.iter().any(|s| {
-                s.metric == "steep_blocked"
-                    && (&s.level, &s.scenario, &s.backend, &s.config)
-                        == (&r.level, &r.scenario, &r.backend, &r.config)
-            })
-        };
-        if rows.iter().any(|r| {
-            r.backend == NAME
-                && r.metric == "penetration_beyond_declared"
-                && r.value > 1e-3
-                && steep_walk(r)
-        }) {
-            out.push("sweep penetration_beyond_declared at a too-steep slope: the climb limit is tested on the centre column, so the box stops with its centre at the foot of the steep rise and its leading half inside it (0.4 sin(63.4 degrees) = 0.36 tiles deep on the 63.4-degree ramp, 0.07 beyond the 0.28 a walkable ramp gives); the seed's alternative, colliding the higher side like a solid box, is not modelled.".into());
-        }
-        out
     }
 }
 
