@@ -31,6 +31,7 @@ pub mod limits;
 pub mod metrics;
 pub mod motion;
 pub mod parallel;
+pub mod prelude;
 #[cfg(feature = "rapier")]
 pub mod rapier;
 pub mod registry;

@@ -29,6 +29,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("report", 9),
     ("suite", 9),
     ("cli", 10),
+    ("prelude", 11),
 ];
 
 /// The imports that point up today (`from -> to`), which may only shrink: the stress's

@@ -461,11 +461,11 @@ fn help_describes_every_subcommand_under_its_own_name() {
     // Each subcommand's line starts with its own description (a doc comment attached to the
     // wrong variant once put the stress text under `sweep` and left `stress` blank).
     for (cmd, starts) in [
-        ("run", "Run level files"),
+        ("run", "Run levels and print the comparison"),
         ("levels", "List the built-in levels"),
-        ("sweep", "Speed versus accuracy"),
-        ("stress", "Check the invariants"),
-        ("report", "Run level files"),
+        ("sweep", "Speed against accuracy"),
+        ("stress", "Stability at the extremes"),
+        ("report", "Run levels and write the report"),
         ("diff", "Compare a run directory"),
     ] {
         let line = help
@@ -478,6 +478,17 @@ fn help_describes_every_subcommand_under_its_own_name() {
                 .starts_with(starts),
             "{cmd}: {line}"
         );
+    }
+    // Help wraps to fit a 120-column terminal (clap's wrap_help at 100 columns).
+    for cmd in ["", "run", "sweep", "stress", "report", "diff", "inspect", "levels"] {
+        let mut c = platbench();
+        if !cmd.is_empty() {
+            c.arg(cmd);
+        }
+        let out = c.arg("--help").output().unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        let wide: Vec<&str> = text.lines().filter(|l| l.chars().count() > 120).collect();
+        assert!(wide.is_empty(), "`platbench {cmd} --help`: {wide:?}");
     }
 }
 

@@ -22,7 +22,7 @@ mod report;
 mod run;
 mod select;
 mod stress;
-mod sweep;
+mod tradeoff;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -134,13 +134,13 @@ where
             world_size,
             select,
         }) => stress::stress(h, &out, force, world_size, &select),
-        Some(Command::Sweep {
+        Some(Command::Tradeoff {
             out,
             force,
             levels,
             score,
             select,
-        }) => sweep::sweep_settings(h, &out, force, &levels, score.as_deref(), &select),
+        }) => tradeoff::tradeoff(h, &out, force, &levels, score.as_deref(), &select),
         Some(Command::Report(args)) => report::report(h, &args),
         Some(Command::Diff(args)) => return diff::diff(&args),
         Some(Command::Inspect(args)) => inspect::inspect(&args),
@@ -170,7 +170,8 @@ pub(crate) fn jobs_or_cores(jobs: Option<u32>) -> usize {
     version,
     about,
     long_about,
-    args_conflicts_with_subcommands = true
+    args_conflicts_with_subcommands = true,
+    term_width = 100
 )]
 struct Cli {
     #[command(subcommand)]
@@ -185,20 +186,21 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run level files (the built-in set when none is given), print the summary, and with --out
-    /// write traces and metrics.
+    /// Run levels and print the comparison; with --out write traces and metrics.
     ///
-    /// With --out DIR, writes DIR/traces/<level>.<scenario>.<backend>[.<config>].csv (one row
+    /// Runs level files (the built-in set when none is given). With --out DIR, writes DIR/traces/<level>.<scenario>.<backend>[.<config>].csv (one row
     /// per frame; --traces chooses which) and DIR/metrics.csv (one row per metric), replacing
     /// DIR as a whole once the run is complete. Without --out nothing is written.
     Run(run::RunArgs),
     /// List the built-in levels and their scenarios.
     Levels,
-    /// Speed versus accuracy: run the scenario set over a grid of settings (dt, substeps, the
-    /// sweep's epsilon and jump mode, Rapier's offset, snap distance, grounded feed, collider
+    /// Speed against accuracy: each controller's cost and error over a grid of settings.
+    ///
+    /// Runs the scenario set over a grid of settings (dt, substeps, the sweep's epsilon and jump mode, Rapier's offset, snap distance, grounded feed, collider
     /// building and shape) and write each setting's cost and error score to DIR/tradeoff.csv, with the
     /// Pareto front marked, and the chart DIR/tradeoff.svg.
-    Sweep {
+    #[command(name = "sweep")]
+    Tradeoff {
         /// Output directory for tradeoff.csv and tradeoff.svg (replaced as a whole; see
         /// --force).
         #[arg(long, default_value = "platbench-sweep")]
@@ -218,7 +220,9 @@ enum Command {
         #[command(flatten)]
         select: select::Selection,
     },
-    /// Check the invariants (finite, no penetration beyond the controller's own tolerance, no
+    /// Stability at the extremes: offsets, time steps, speeds, widths and their pairs.
+    ///
+    /// Checks the invariants (finite, no penetration beyond the controller's own tolerance, no
     /// tunneling, stable rest, no grounded flicker, carry without drift, progress over seamed
     /// ground with no stuck step, a jump to its height) at the extremes, one dimension at a
     /// time (offsets 0 to 1e7 tiles, and to 1e15 for f64 configurations; dt 1e-4 to 0.2 s,
@@ -244,12 +248,13 @@ enum Command {
         #[command(flatten)]
         select: select::Selection,
     },
-    /// Run level files (the built-in set when none is given) and write the "pick a backend"
+    /// Run levels and write the report (HTML and Markdown) for picking a controller.
+    ///
+    /// Runs level files (the built-in set when none is given) and writes the "pick a backend"
     /// report: DIR/report.html (self-contained: inline pictures and one inline script, nothing fetched) and its
     /// Markdown twin DIR/report.md.
     Report(report::ReportArgs),
-    /// Compare a run directory against a baseline: metrics beyond tolerance, first divergent
-    /// trace frames.
+    /// Compare a run directory against a baseline: worse metrics, first divergent trace frames.
     ///
     /// Exit status: 0 when nothing fails; 1 when a metric got worse beyond its tolerance, a
     /// metric or trace of the baseline is missing from the new run (unless --allow-missing),
@@ -257,7 +262,9 @@ enum Command {
     /// --allow-divergence); 2 on an error (a bad option, an unreadable or malformed file).
     /// A NaN where the other run has a number is a difference.
     Diff(diff::DiffArgs),
-    /// Show what a Tiled (.tmx) or LDtk (.ldtk) map was read as: each layer with the role it
+    /// Show what a Tiled or LDtk map was read as, layer by layer.
+    ///
+    /// Shows what a Tiled (.tmx) or LDtk (.ldtk) map was read as: each layer with the role it
     /// was given and why, the spawns, the moving platforms with their paths, the warnings, and
     /// the collision grid in the level format's characters (`#` solid, `=` one-way, `H`
     /// ladder, `/` `\` slopes, `.` empty).

@@ -1,4 +1,5 @@
-//! `platbench sweep`: cost against error over each backend's grid of settings.
+//! `platbench sweep`, the trade-off command: cost against error over each controller's grid of
+//! settings (the command keeps the name users know; the code calls it what it is).
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -9,7 +10,7 @@ use super::select::Selection;
 use super::{load_levels, out, output, Harness};
 use crate::tradeoff::Setting;
 
-pub(crate) fn sweep_settings(
+pub(crate) fn tradeoff(
     h: &Harness,
     out_dir: &std::path::Path,
     force: bool,
