@@ -1,8 +1,8 @@
 //! Rapier's own character-controller tests (`character_controller_ground_detection` and
 //! `character_controller_climb_test` in rapier2d 0.36.1's src/control/character_controller.rs),
 //! rebuilt in 2D through the Rapier backend: the same shapes, placement and desired
-//! translations, so their bounds apply. The 2D figures are in
-//! ../shared/reference/rapier-kcc-0.36.1.md ("Rapier's own ground-detection test scene").
+//! translations, so their bounds apply. The 2D figures, measured on rapier2d 0.36.1 alone, are
+//! in docs/rapier-reference.md ("Rapier's own ground-detection test scene, in 2D").
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(

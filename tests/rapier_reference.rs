@@ -1,4 +1,5 @@
-//! The figures of ../shared/reference/rapier-kcc-0.36.1.md ("Walking on flat ground"),
+//! The figures measured on rapier2d 0.36.1's controller alone (no platbench), which
+//! docs/rapier-reference.md records ("Walking on flat ground", "Corrections and additions"),
 //! reproduced with the Rapier backend on the same scenes and with the same procedure: a
 //! 0.8 x 0.9 character spawned 1% of its height above a floor whose top is y = 0, walked at
 //! 6 tiles/s for 10 s; each frame `vy -= g dt`, desired `(vx dt, vy dt)`, `move_shape`, add the
