@@ -1,7 +1,7 @@
 //! Rapier set-ups side by side over the built-in set: the documented remedies for a stuck
 //! character (a larger absolute offset, no vertical move while grounded, a larger normal nudge)
 //! and the platform order, on every shape and collider building. This is the command behind the
-//! README's choice of the "Rapier as its docs advise for a stuck character" configurations.
+//! docs/rapier.md's choice of the "Rapier as its docs advise for a stuck character" configurations.
 //!
 //! `cargo run --release --example rapier_setups [SHAPE ...]` prints one row per set-up:
 //! progress over the flat walks (median and worst), stuck frames (sum), the worst creep at

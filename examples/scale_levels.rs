@@ -1,4 +1,4 @@
-//! Writes the level files README's "Running at scale" measures the harness on, into the folder
+//! Writes the level files docs/scale.md ("Running at scale") measures the harness on, into the folder
 //! given (which must exist): `many.toml` (10,000 one-second walks), `long1000.toml`,
 //! `long10000.toml` and `long100000.toml` (one soak scenario of that many seconds), each on a
 //! 60 x 6 map of flat floor walled at both ends.

@@ -1,6 +1,6 @@
 //! The range of every number a user gives platbench, checked before any work is done: a
 //! value outside its range is an error that says what was found and what is expected, never a
-//! hang, a runaway allocation or a silently meaningless run. The README's "Input ranges" table
+//! hang, a runaway allocation or a silently meaningless run. The "Input ranges" table of docs/formats.md
 //! lists the same numbers.
 //!
 //! Why these numbers: they are generous multiples of what the stress matrix exercises (offsets

@@ -480,7 +480,9 @@ fn help_describes_every_subcommand_under_its_own_name() {
         );
     }
     // Help wraps to fit a 120-column terminal (clap's wrap_help at 100 columns).
-    for cmd in ["", "run", "sweep", "stress", "report", "diff", "inspect", "levels"] {
+    for cmd in [
+        "", "run", "sweep", "stress", "report", "diff", "inspect", "levels",
+    ] {
         let mut c = platbench();
         if !cmd.is_empty() {
             c.arg(cmd);

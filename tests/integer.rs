@@ -322,7 +322,7 @@ fn the_gravity_rule_leaves_the_rider_of_a_fast_drop_behind_on_the_grid_too() {
 #[test]
 fn the_metrics_measure_the_box_the_integer_mode_moves() {
     // 0.8 x 0.9 tiles at 32 per tile is 25.6 x 28.8 subpixels, rounded up to 26 x 29:
-    // 0.8125 x 0.90625 tiles (README, "The sweep on integer positions").
+    // 0.8125 x 0.90625 tiles (docs/sweep.md, "The sweep on integer positions").
     let run = platbench::sweep::kind::run_integer(PER_TILE);
     let moved = run.backend.moved_size(glam::Vec2::new(0.8, 0.9));
     assert_eq!(moved, glam::Vec2::new(0.8125, 0.90625));

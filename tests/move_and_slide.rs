@@ -71,7 +71,7 @@ fn the_example_runs_every_builtin_scenario_it_models_and_reports_them() {
     }
     let traces = std::fs::read_dir(out.join("traces")).unwrap().count();
     assert_eq!(traces, modelled * configs.len());
-    // A few of its figures, as the README quotes them: it keeps its margin at rest, never
+    // A few of its figures, as docs/move-and-slide.md quotes them: it keeps its margin at rest, never
     // tunnels, and its default (Godot's 1 px snap) loses a 45-degree ramp walked down at run
     // speed, which a 0.25-tile snap keeps.
     let value = |scenario: &str, config: &str, metric: &str| -> f64 {

@@ -311,7 +311,7 @@ fn the_sweep_in_f64_carries_as_the_float_mode_at_the_origin_and_1e12_tiles_out()
 
 #[test]
 fn rapier_f64_stops_its_rider_a_frame_at_the_turn_at_the_origin_and_not_1e12_tiles_out() {
-    // README (f64 worlds): Rapier's controller, not the harness. At the origin the capsule
+    // docs/stability.md (f64 worlds): Rapier's controller, not the harness. At the origin the capsule
     // rests exactly at the controller's offset above platform 0; just after the platform turns
     // (t = 4 s) a cast along the surface reads the contact normal tilted 2.5e-14 against the
     // move and applies nothing: the rider stays put a frame. 1e12 tiles out it reads (0, 1).

@@ -13,7 +13,7 @@
 //! convex polygon, on either side of a capsule (radius 0.4, half-height 0.05) with Rapier's
 //! default controller (climb limit 45 degrees). Each step: `vy -= 30 dt`, desired
 //! `(±6 dt, vy dt)`, `move_shape`, `vy = 0` when grounded; 3 s at 60 Hz. If Rapier changes this
-//! behaviour, this test fails and the README's claim about it must change with it.
+//! behaviour, this test fails and docs/rapier.md's claim about it must change with it.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(

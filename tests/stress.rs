@@ -303,7 +303,7 @@ fn broken(rows: &[StressRow]) -> Vec<(&str, f64)> {
 #[test]
 fn rapier_f64_holds_where_f32_breaks_and_breaks_where_its_own_spacing_swallows_a_step() {
     use platbench::backend::Precision::{F32, F64};
-    // Besides the carry (broken at the origin in both precisions: rapier #613, see README), the
+    // Besides the carry (broken at the origin in both precisions: rapier #613, see docs/stability.md), the
     // same set-up in f32 keeps every invariant at 1e4 tiles; at 1e5 it walks 1.0154 of its
     // distance (the 0.1-tile step rounds to 13/128: 13/12.8 = 1.0156), over the progress band
     // (1 +/- 1%), and keeps the rest; at 1e6, where the f32 spacing is 1/16 tile, the resting

@@ -1,5 +1,5 @@
 //! `platbench sweep` as a user runs it (issue 17, item 3): the error score is the user's
-//! (`--score`), the front is drawn per behaviour, and the README's claim about the front is read
+//! (`--score`), the front is drawn per behaviour, and docs/speed.md's claim about the front is read
 //! from the CSV the documented command wrote.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
@@ -87,7 +87,7 @@ fn a_bad_score_is_refused_with_its_reason() {
 #[test]
 fn every_setting_on_the_committed_front_is_a_sweep_setting() {
     // compare/tradeoff/tradeoff.csv is what `platbench sweep --out compare/tradeoff` wrote (one
-    // run on the built-in set, default score; README, "Speed versus accuracy"). The README
+    // run on the built-in set, default score; docs/speed.md, "Speed versus accuracy"). The page
     // says every setting on the front is a sweep setting, because each Rapier setting is
     // beaten on both cost and error by some sweep setting: check that claim on the numbers.
     let rows = read_rows(
@@ -95,7 +95,7 @@ fn every_setting_on_the_committed_front_is_a_sweep_setting() {
     );
     let all: Vec<&TradeoffRow> = rows.iter().filter(|r| r.scope == ALL).collect();
     assert_eq!(all.len(), grid().len(), "every setting of the grid");
-    // The README says the same of every Box2D setting.
+    // docs/speed.md says the same of every Box2D setting.
     let rapier: Vec<&&TradeoffRow> = all
         .iter()
         .filter(|r| r.backend == "rapier" || r.backend == "box2d")

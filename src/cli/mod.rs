@@ -271,7 +271,7 @@ enum Command {
     Inspect(inspect::InspectArgs),
 }
 
-/// Overrides of the map importers' defaults (README, "Tiled maps" and "LDtk maps").
+/// Overrides of the map importers' defaults (docs/formats.md, "Tiled maps" and "LDtk maps").
 #[derive(Args, Default, Clone)]
 #[command(allow_negative_numbers = true)]
 pub(crate) struct ImportArgs {

@@ -144,7 +144,7 @@ pub enum GroundedMove {
     /// Gravity every step: the shared motion's vertical velocity, reset to 0 when grounded, so
     /// each grounded step asks to move down by `g * dt²`. What a game that integrates its own
     /// gravity and hands the controller `v * dt` does (Rapier's docs leave the vertical move to
-    /// the user); the set-up `shared/reference/rapier-kcc-0.36.1.md` measured.
+    /// the user); the set-up docs/rapier-reference.md records.
     Gravity,
     /// No vertical move while grounded (a jump still rises): the official bevy_rapier character
     /// example (`bevy_rapier3d/examples/character_controller3.rs`) zeroes its vertical movement
