@@ -14,11 +14,7 @@
 //! platbench command takes it: `cargo run --release -- run --backend boxmover,sweep`.
 
 use glam::Vec2;
-use platbench::backend::{BackendError, CharacterId, CharacterState};
-use platbench::controller::{Controller, Setup};
-use platbench::level::Features;
-use platbench::motion::{Contacts, Input, MotionParams, MotionState};
-use platbench::registry::Registry;
+use platbench::prelude::*;
 
 /// The mover's settings: your own struct, with a `Default` (none here).
 #[derive(Clone, Debug, Default, PartialEq)]
