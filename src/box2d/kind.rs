@@ -75,7 +75,7 @@ impl Controller for Box2dConfig {
     /// As [`Controller::declared_contact`], with the pogo's sag: the sample feeds gravity
     /// every step and the spring (`b2SpringDamper`, `pogo_hertz`, `pogo_damping_ratio`) rests
     /// where its push balances it, `g dt (2 zeta + omega dt) / omega` below the pogo's rest
-    /// length (0.0338 tiles at 60 Hz; `tests/box2d.rs` derives it and finds the feet there, less
+    /// length (0.0338 tiles at 60 Hz; `tests/controllers/box2d.rs` derives it and finds the feet there, less
     /// the cast's linear slop). The feet stand that far down by design, so the metrics declare
     /// that stance and allow that sink into the ground under the feet (never into a wall or a
     /// ceiling), as Rapier's offset is declared.

@@ -1,0 +1,13 @@
+//! What controllers do on the levels, read from their traces: geometry, idling, integer positions, one-way platforms and ladders, moving platforms, slopes, the models' limits and the sweep on the built-in set.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod geometry;
+mod idle;
+mod integer;
+mod models;
+mod oneway_ladders;
+mod platforms;
+mod slopes;
+mod sweep_builtin;

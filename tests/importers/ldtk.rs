@@ -1,0 +1,214 @@
+//! LDtk projects (issue 20): IntGrid collision by value names, a separate platforms layer,
+//! external levels, a GridVania world as one level, a linear world's levels one at a time,
+//! spawns by entity name and pivot, the overrides, and `platbench inspect`.
+// These tests read the built-in comparison (every controller) or a map importer: they run
+// with the default features (`cargo test --no-default-features` leaves them out).
+#![cfg(all(
+    feature = "rapier",
+    feature = "box2d",
+    feature = "tiled",
+    feature = "ldtk"
+))]
+
+use crate::common;
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec2;
+use platbench::level::import::ascii_map;
+use platbench::level::ldtk::{import_ldtk_with, load_ldtk_with};
+use platbench::level::{ImportOptions, Tile};
+
+fn shipped(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/maps")
+        .join(name)
+}
+
+#[test]
+fn a_gridvania_world_is_one_level_in_world_coordinates() {
+    // tests/maps/world.ldtk (LDtk 1.5.3): Level_0 at world x 0, Level_1 at 64 px (4 cells of
+    // 16 px) in world/Level_1.ldtkl. Level_0's IntGrid: Wall (1) under it except a Water (3)
+    // cell, Platform (2) cells one-way, a Ladder (4); Level_1: a floor of walls and, in the
+    // separate IntGrid layer "Platforms", two one-way cells.
+    let r = import_ldtk_with(&shipped("world.ldtk"), &ImportOptions::default()).unwrap();
+    assert_eq!(ascii_map(&r.level).0, "........\n.==H.==.\n##.#####\n");
+    // PlayerSpawn: pivot (0.5, 1) at (8, 32) px, 16 x 16: feet at (8, 32) px.
+    let spawns: Vec<(&str, Vec2)> = r
+        .spawns
+        .iter()
+        .map(|s| (s.name.as_str(), s.position))
+        .collect();
+    assert_eq!(spawns, [("PlayerSpawn", Vec2::new(0.5, 1.0))]);
+    let text: Vec<String> = r.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(
+        text.iter().any(|w| w.contains("\"Water\": a hazard")),
+        "{text:#?}"
+    );
+    // One level picked with --level: Level_1 alone, 4 x 3, from its own corner.
+    let opts = ImportOptions {
+        level: Some("level_1".into()),
+        ..ImportOptions::default()
+    };
+    let r = import_ldtk_with(&shipped("world.ldtk"), &opts).unwrap();
+    assert_eq!(ascii_map(&r.level).0, "....\n.==.\n####\n");
+    // No spawn entity there: the fallback spawn, said aloud.
+    assert_eq!(r.spawns[0].name, "auto");
+    assert!(r
+        .warnings
+        .iter()
+        .any(|w| w.message.starts_with("no spawn point found")));
+}
+
+#[test]
+fn a_linear_world_imports_one_level_and_the_mapping_is_overridable() {
+    // tests/maps/linear_old.ldtk (LDtk 0.9.3, 8 px cells): level "Start" has Collider (1) and
+    // spikes (2) on its bottom row; "Second" a floor of two cells.
+    let (l, warnings) =
+        load_ldtk_with(&shipped("linear_old.ldtk"), &ImportOptions::default()).unwrap();
+    assert_eq!(ascii_map(&l).0, "...\n#.#\n");
+    assert!(
+        warnings.iter().any(|w| w.message.contains("--level")),
+        "{warnings:?}"
+    );
+    // Start_Point: pivot (0, 0) at (16, 0) px, 8 x 8: feet at (20, 8) px = (2.5, 1) tiles.
+    assert_eq!(l.scenarios[0].name, "Start_Point-drop");
+    assert_eq!(l.scenarios[0].spawn, Vec2::new(2.5, 1.0));
+    let opts = ImportOptions {
+        intgrid: vec![("spikes".into(), Tile::Solid)],
+        ..ImportOptions::default()
+    };
+    let r = import_ldtk_with(&shipped("linear_old.ldtk"), &opts).unwrap();
+    assert_eq!(ascii_map(&r.level).0, "...\n###\n");
+    let opts = ImportOptions {
+        level: Some("Second".into()),
+        ..ImportOptions::default()
+    };
+    let r = import_ldtk_with(&shipped("linear_old.ldtk"), &opts).unwrap();
+    assert_eq!(ascii_map(&r.level).0, "..\n##\n");
+    let opts = ImportOptions {
+        level: Some("Third".into()),
+        ..ImportOptions::default()
+    };
+    let e = import_ldtk_with(&shipped("linear_old.ldtk"), &opts)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("--level Third") && e.contains("Start, Second"),
+        "{e}"
+    );
+}
+
+#[test]
+fn broken_projects_are_errors_with_file_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("bad.ldtk");
+    std::fs::write(&p, "{\n  \"levels\": [ 1,\n").unwrap();
+    let e = import_ldtk_with(&p, &ImportOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("bad.ldtk:2:") && e.contains("not an LDtk project"),
+        "{e}"
+    );
+    // A world larger than the tile cap is refused before anything is allocated.
+    std::fs::write(
+        &p,
+        r#"{"worldLayout":"Free","levels":[{"identifier":"a","worldX":0,"worldY":0,"pxWid":16,"pxHei":16,"layerInstances":[{"__identifier":"g","__type":"IntGrid","__cWid":1,"__cHei":1,"__gridSize":16,"intGridCsv":[1]}]},{"identifier":"b","worldX":1600000000,"worldY":1600000000,"pxWid":16,"pxHei":16,"layerInstances":[]}]}"#,
+    )
+    .unwrap();
+    let e = import_ldtk_with(&p, &ImportOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("expected 1 to 16000000 cells"), "{e}");
+    // A level at worldX = i64::MAX: its right edge (worldX + pxWid + grid - 1) overflowed an
+    // i64 (wrapping in release); now refused where it stands, past 10^15 pixels.
+    std::fs::write(
+        &p,
+        "{\"worldLayout\":\"Free\",\"levels\":[\n{\"identifier\":\"a\",\"worldX\":0,\"worldY\":0,\"pxWid\":16,\"pxHei\":16,\"layerInstances\":[{\"__identifier\":\"g\",\"__type\":\"IntGrid\",\"__cWid\":1,\"__cHei\":1,\"__gridSize\":16,\"intGridCsv\":[1]}]},\n{\"identifier\":\"b\",\"worldX\":9223372036854775807,\"worldY\":0,\"pxWid\":16,\"pxHei\":16,\"layerInstances\":[]}]}",
+    )
+    .unwrap();
+    let e = import_ldtk_with(&p, &ImportOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("bad.ldtk:3:") && e.contains("size of 9223372036854775807; expected"),
+        "{e}"
+    );
+}
+
+#[test]
+fn inspect_prints_layers_spawns_and_the_grid() {
+    let out = common::platbench()
+        .arg("inspect")
+        .arg(shipped("object_collision.tmx"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for what in [
+        "\"Tile Layer 1\" (tiles): decoration",
+        "\"OneWay\" (objects): one_way",
+        "spawn5 at (1.5, 1)",
+        "...==....#\n.........#\n##########",
+    ] {
+        assert!(stdout.contains(what), "{what}:\n{stdout}");
+    }
+    let out = common::platbench()
+        .args(["inspect", "--level", "Level_1"])
+        .arg(shipped("world.ldtk"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("....\n.==.\n####"), "{stdout}");
+    // A run of an LDtk world on the sweep: the probes at its spawn.
+    let dir = tempfile::tempdir().unwrap();
+    let out = common::platbench()
+        .args(["run", "--backend", "sweep", "--out"])
+        .arg(dir.path().join("o"))
+        .arg(shipped("world.ldtk"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(dir
+        .path()
+        .join("o/traces/world.PlayerSpawn-drop.sweep.csv")
+        .exists());
+}
+
+#[test]
+fn a_side_file_without_scenarios_is_refused_as_for_a_tiled_map() {
+    // A copy of world.ldtk (and its external level) beside a side file with no [[scenario]]:
+    // refused, naming the side file, instead of a level with nothing to run.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(shipped("world.ldtk"), dir.path().join("world.ldtk")).unwrap();
+    std::fs::create_dir(dir.path().join("world")).unwrap();
+    std::fs::copy(
+        shipped("world/Level_1.ldtkl"),
+        dir.path().join("world/Level_1.ldtkl"),
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("world.toml"), "# no scenarios\n").unwrap();
+    let path = dir.path().join("world.ldtk");
+    let err = match load_ldtk_with(&path, &ImportOptions::default()) {
+        Ok(_) => panic!("a side file without scenarios was accepted"),
+        Err(e) => e.error.to_string(),
+    };
+    assert!(
+        err.contains("world.toml") && err.contains("no [[scenario]]"),
+        "{err}"
+    );
+    // Without the side file the same project runs the standard probes.
+    std::fs::remove_file(dir.path().join("world.toml")).unwrap();
+    let (level, _) =
+        load_ldtk_with(&path, &ImportOptions::default()).unwrap_or_else(|e| panic!("{}", e.error));
+    assert!(!level.scenarios.is_empty());
+}

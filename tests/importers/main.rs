@@ -1,0 +1,10 @@
+//! Maps as the games read them: the Tiled and LDtk importers, and the level format's validation with located errors.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod ldtk;
+mod tiled;
+mod tiled_errors;
+mod tiled_runs;
+mod validation;

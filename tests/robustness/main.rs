@@ -1,0 +1,8 @@
+//! Nothing crashes, hangs or is lost on hostile input, and properties that hold for any input.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod hostile;
+mod hostile_inputs;
+mod properties;
