@@ -33,7 +33,7 @@ const LAYERS: &[(&str, u32)] = &[
 /// The imports that point up today (`from -> to`), to be removed by issue 32: the controller
 /// API names the runner's configuration, the trade-off's settings and the metric rows; the
 /// registry
-/// calls the report's notes and the trade-off's score; the stress the report's wording.
+/// calls the report's notes and the trade-off's score.
 const KNOWN: &[&str] = &[
     "backend -> metrics",
     "backend -> scenario",
@@ -49,7 +49,6 @@ const KNOWN: &[&str] = &[
     "rapier -> tradeoff",
     "registry -> report",
     "registry -> tradeoff",
-    "stress -> report",
     "sweep -> metrics",
     "sweep -> scenario",
     "sweep -> tradeoff",
