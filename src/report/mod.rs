@@ -15,6 +15,9 @@ use std::collections::HashMap;
 
 use crate::metrics::{registry, MetricRow};
 
+// A setting value is written as the stress matrix writes it (its concern, one layer down).
+pub use crate::stress::format_setting;
+
 /// Formats a metric value compactly: integers as integers, small magnitudes in scientific form.
 pub fn format_value(v: f64) -> String {
     if v.is_nan() {
@@ -29,18 +32,6 @@ pub fn format_value(v: f64) -> String {
         format!("{v:.4}")
     } else {
         format!("{v:.2e}")
-    }
-}
-
-/// A setting's value, short: four significant digits at most, powers of ten for the very large
-/// and very small (1e6 tiles, 1e-9 epsilon, dt 0.0167).
-pub fn format_setting(v: f64) -> String {
-    if v != 0.0 && v.is_finite() && (v.abs() >= 1e4 || v.abs() < 1e-3) {
-        let rounded: f64 = format!("{v:.3e}").parse().unwrap_or(v);
-        format!("{rounded:e}")
-    } else {
-        let rounded: f64 = format!("{v:.4}").parse().unwrap_or(v);
-        format!("{rounded}")
     }
 }
 
@@ -382,19 +373,6 @@ pub fn detail_table(rows: &[MetricRow]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn settings_print_short() {
-        // The stress matrix's own values (src/stress.rs) as the report shows them.
-        let shown: Vec<String> = [0.0, 1e3, 1e6, 1e7, 1e-4, 1.0 / 240.0, 1.0 / 60.0, 0.2, 1e-9]
-            .iter()
-            .map(|&v| format_setting(v))
-            .collect();
-        assert_eq!(
-            shown,
-            ["0", "1000", "1e6", "1e7", "1e-4", "0.0042", "0.0167", "0.2", "1e-9"]
-        );
-    }
 
     fn row(config: &str, scenario: &str, value: f64) -> MetricRow {
         MetricRow {

@@ -214,7 +214,7 @@ fn rapier_progress_at(offset: f64) -> Vec<(String, f64, f64)> {
 
 #[test]
 fn rapier_merged_rounded_walkers_stall_1e5_tiles_out() {
-    // The finding on the probe's walk (60 tiles commanded, src/stress.rs): far from the
+    // The finding on the probe's walk (60 tiles commanded, src/stress/probes.rs): far from the
     // origin Rapier's merged capsule and ball stall, where at the origin they cover most of it.
     // Measured: merged capsule 85% at 0, 4.8% at 1e5 (551 stuck steps); merged ball 95% at 0,
     // 0.7% at 1e5 (594). The bounds (over 80% at 0, under 10% and over 100 stuck steps at 1e5)

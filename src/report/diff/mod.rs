@@ -1,0 +1,17 @@
+//! Regression compare of two run directories (DESIGN.md, "Regression compare"): every metric's
+//! change against its tolerance, and for every trace the first frame where a character's
+//! position differs by more than a position tolerance.
+//!
+//! Reading the two run directories and matching their rows and traces is [`diff_runs`]'s; the
+//! rules that judge each pair (tolerances, distance from ideal, divergence, what fails) are in
+//! `compare`; [`render()`] writes the result as tables, Markdown or CSV.
+
+mod compare;
+mod read;
+mod render;
+
+pub use compare::{
+    default_tolerance, Change, FailOn, MetricDiff, RunDiff, Tolerance, TraceChange, TraceDiff,
+};
+pub use read::{diff_runs, read_metrics, DiffError, MetricRecord};
+pub use render::{render, DiffFormat};

@@ -1,0 +1,192 @@
+//! Reading the two runs of a diff and matching them: `metrics.csv` rows by level, scenario,
+//! configuration and metric, traces by file name; each matched pair is judged by the rules of
+//! `compare`.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::trace::{Trace, TraceRow};
+
+use super::compare::{
+    classify, default_tolerance, first_divergence, Change, MetricDiff, RunDiff, Tolerance,
+    TraceChange, TraceDiff,
+};
+
+/// A row of `metrics.csv` as read back (owned strings).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+pub struct MetricRecord {
+    /// Level name.
+    pub level: String,
+    /// Scenario name.
+    pub scenario: String,
+    /// Backend name.
+    pub backend: String,
+    /// Configuration label.
+    pub config: String,
+    /// Metric name.
+    pub metric: String,
+    /// Measured value.
+    pub value: f64,
+    /// Unit.
+    pub unit: String,
+    /// Ideal value.
+    pub reference: f64,
+    /// `value - reference`.
+    pub error: f64,
+}
+
+impl MetricRecord {
+    fn key(&self) -> (String, String, String, String, String) {
+        (
+            self.level.clone(),
+            self.scenario.clone(),
+            self.backend.clone(),
+            self.config.clone(),
+            self.metric.clone(),
+        )
+    }
+}
+
+/// Why a run directory could not be compared.
+#[derive(Debug, thiserror::Error)]
+pub enum DiffError {
+    /// A file could not be read.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A CSV file is malformed.
+    #[error("{path}: {source}")]
+    Csv {
+        /// The file.
+        path: PathBuf,
+        /// The cause, with its line.
+        source: csv::Error,
+    },
+}
+
+/// Reads `DIR/metrics.csv`.
+pub fn read_metrics(dir: &Path) -> Result<Vec<MetricRecord>, DiffError> {
+    let path = dir.join("metrics.csv");
+    let file = std::fs::File::open(&path).map_err(|source| DiffError::Io {
+        path: path.clone(),
+        source,
+    })?;
+    csv::Reader::from_reader(file)
+        .deserialize()
+        .collect::<Result<_, _>>()
+        .map_err(|source| DiffError::Csv { path, source })
+}
+
+fn read_trace(path: &Path) -> Result<Vec<TraceRow>, DiffError> {
+    let file = std::fs::File::open(path).map_err(|source| DiffError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Trace::read_rows(file).map_err(|source| DiffError::Csv {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+fn trace_files(dir: &Path) -> Result<Vec<String>, DiffError> {
+    let tdir = dir.join("traces");
+    let entries = std::fs::read_dir(&tdir).map_err(|source| DiffError::Io {
+        path: tdir.clone(),
+        source,
+    })?;
+    let mut names: Vec<String> = entries
+        .filter_map(|e| e.ok())
+        .filter_map(|e| e.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".csv"))
+        .collect();
+    names.sort();
+    Ok(names)
+}
+
+/// Compares run `new` against baseline `base`. `tolerances` overrides the per-unit defaults by
+/// metric name; `position_tolerance` (tiles) decides where a trace diverges.
+pub fn diff_runs(
+    base: &Path,
+    new: &Path,
+    tolerances: &BTreeMap<String, Tolerance>,
+    position_tolerance: f32,
+) -> Result<RunDiff, DiffError> {
+    let b = read_metrics(base)?;
+    let n = read_metrics(new)?;
+    let new_by_key: BTreeMap<_, _> = n.iter().map(|r| (r.key(), r)).collect();
+    let base_keys: std::collections::BTreeSet<_> = b.iter().map(|r| r.key()).collect();
+    let mut out = RunDiff::default();
+    for br in &b {
+        let tol = tolerances.get(&br.metric).copied().unwrap_or_else(|| {
+            default_tolerance(
+                crate::metrics::registry::get(&br.metric).map_or(&br.unit, |d| d.unit),
+            )
+        });
+        let label = |r: &MetricRecord| {
+            (
+                format!("{}.{}", r.level, r.scenario),
+                format!("{} {}", r.backend, r.config),
+            )
+        };
+        let (scenario, config) = label(br);
+        out.compared += 1;
+        let change = match new_by_key.get(&br.key()) {
+            None => Change::Missing,
+            Some(nr) => classify(br.value, nr.value, br.reference, tol),
+        };
+        if change != Change::Same {
+            out.metrics.push(MetricDiff {
+                scenario,
+                config,
+                metric: br.metric.clone(),
+                base: Some(br.value),
+                new: new_by_key.get(&br.key()).map(|r| r.value),
+                change,
+            });
+        }
+    }
+    for nr in n.iter().filter(|r| !base_keys.contains(&r.key())) {
+        out.metrics.push(MetricDiff {
+            scenario: format!("{}.{}", nr.level, nr.scenario),
+            config: format!("{} {}", nr.backend, nr.config),
+            metric: nr.metric.clone(),
+            base: None,
+            new: Some(nr.value),
+            change: Change::Added,
+        });
+    }
+    let (bt, nt) = (trace_files(base)?, trace_files(new)?);
+    for name in bt.iter().chain(nt.iter().filter(|n| !bt.contains(n))) {
+        let (in_b, in_n) = (bt.contains(name), nt.contains(name));
+        if !(in_b && in_n) {
+            out.traces.push(TraceDiff {
+                file: name.clone(),
+                change: if in_b {
+                    TraceChange::Missing
+                } else {
+                    TraceChange::Added
+                },
+                frame: None,
+                base: None,
+                new: None,
+            });
+            continue;
+        }
+        out.traces_compared += 1;
+        let rb = read_trace(&base.join("traces").join(name))?;
+        let rn = read_trace(&new.join("traces").join(name))?;
+        if let Some(d) = first_divergence(&rb, &rn, position_tolerance) {
+            out.traces.push(TraceDiff {
+                file: name.clone(),
+                ..d
+            });
+        }
+    }
+    Ok(out)
+}

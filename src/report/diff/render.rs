@@ -1,0 +1,125 @@
+//! Rendering a diff: the counts line and the tables of changed metrics and traces (Markdown-style
+//! ASCII for a terminal, a CI log or a pull request), or the metric changes as CSV.
+
+use super::compare::{Change, MetricDiff, RunDiff, TraceChange};
+
+/// Output format of a diff.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DiffFormat {
+    /// Tables for a terminal or a CI log.
+    Text,
+    /// Markdown, for a pull request (the same tables, which are Markdown already).
+    Markdown,
+    /// CSV of the metric changes, for machines.
+    Csv,
+}
+
+fn fmt_opt(v: Option<f64>) -> String {
+    v.map_or("-".into(), crate::report::format_value)
+}
+
+fn fmt_pos(p: Option<(f32, f32)>) -> String {
+    p.map_or("-".into(), |(x, y)| format!("({x}, {y})"))
+}
+
+/// Renders a diff.
+pub fn render(d: &RunDiff, format: DiffFormat) -> String {
+    if format == DiffFormat::Csv {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        for m in &d.metrics {
+            let _ = w.serialize(m);
+        }
+        return w
+            .into_inner()
+            .ok()
+            .and_then(|b| String::from_utf8(b).ok())
+            .unwrap_or_default();
+    }
+    let mut out = String::new();
+    let worse = d
+        .metrics
+        .iter()
+        .filter(|m| m.change == Change::Worse)
+        .count();
+    let better = d
+        .metrics
+        .iter()
+        .filter(|m| m.change == Change::Better)
+        .count();
+    let missing = d
+        .metrics
+        .iter()
+        .filter(|m| m.change == Change::Missing)
+        .count();
+    let added = d
+        .metrics
+        .iter()
+        .filter(|m| m.change == Change::Added)
+        .count();
+    out.push_str(&format!(
+        "{} metrics compared: {worse} worse, {better} better, {missing} missing, {added} added; {} traces compared, {} diverge or differ in presence\n",
+        d.compared,
+        d.traces_compared,
+        d.traces.len()
+    ));
+    if !d.metrics.is_empty() {
+        let mut t = comfy_table::Table::new();
+        // Markdown-style ASCII reads the same in a terminal, a CI log and a pull request.
+        t.load_style(comfy_table::presets::ASCII_MARKDOWN);
+        t.set_header(vec![
+            "change",
+            "scenario",
+            "configuration",
+            "metric",
+            "base",
+            "new",
+        ]);
+        let mut rows: Vec<&MetricDiff> = d.metrics.iter().collect();
+        rows.sort_by_key(|m| {
+            (
+                m.change != Change::Worse && m.change != Change::Missing,
+                m.scenario.clone(),
+            )
+        });
+        for m in rows {
+            let change = format!("{:?}", m.change).to_lowercase();
+            t.add_row(vec![
+                change,
+                m.scenario.clone(),
+                m.config.clone(),
+                m.metric.clone(),
+                fmt_opt(m.base),
+                fmt_opt(m.new),
+            ]);
+        }
+        out.push('\n');
+        out.push_str(&t.to_string());
+        out.push('\n');
+    }
+    if !d.traces.is_empty() {
+        let mut t = comfy_table::Table::new();
+        t.load_style(comfy_table::presets::ASCII_MARKDOWN);
+        t.set_header(vec![
+            "trace",
+            "first divergent frame",
+            "base (x, y)",
+            "new (x, y)",
+        ]);
+        for tr in &d.traces {
+            t.add_row(vec![
+                tr.file.clone(),
+                match tr.change {
+                    TraceChange::Missing => "missing from the new run".into(),
+                    TraceChange::Added => "only in the new run".into(),
+                    _ => tr.frame.map_or("-".into(), |f| f.to_string()),
+                },
+                fmt_pos(tr.base),
+                fmt_pos(tr.new),
+            ]);
+        }
+        out.push('\n');
+        out.push_str(&t.to_string());
+        out.push('\n');
+    }
+    out
+}
