@@ -42,6 +42,7 @@ use platbench::backend::{
 use platbench::controller::{Controller, Setup};
 use platbench::level::{Features, Level};
 use platbench::motion::{Contacts, Input, MotionParams, MotionState};
+use platbench::oneway::OneWayCheck;
 use platbench::scenario::RunConfig;
 use platbench::shape::CharacterShape;
 
@@ -272,7 +273,13 @@ impl MoveAndSlide {
 
     /// Whether one-way obstacle `top` blocks character `c` in this step.
     fn one_way_blocks(c: &Character, feet_at_start: f32, top: f32) -> bool {
-        !c.motion.on_ladder && feet_at_start >= top - ONE_WAY_TOLERANCE && c.drop_top != Some(top)
+        OneWayCheck {
+            feet: feet_at_start,
+            tolerance: ONE_WAY_TOLERANCE,
+            passes_all: c.motion.on_ladder,
+            dropping_through: c.drop_top,
+        }
+        .blocks(top)
     }
 
     /// The first obstacle the character's shape at `pos` runs into when moved by `motion`, and

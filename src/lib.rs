@@ -30,6 +30,7 @@ pub mod level;
 pub mod limits;
 pub mod metrics;
 pub mod motion;
+pub mod oneway;
 pub mod parallel;
 pub mod prelude;
 #[cfg(feature = "rapier")]

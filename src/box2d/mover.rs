@@ -8,6 +8,7 @@ use boxdd::{clip_vector, solve_planes, CollisionPlane, Position, QueryFilter, Sh
 
 use crate::backend::CharacterId;
 use crate::motion::{Contacts, Input};
+use crate::oneway::OneWayCheck;
 
 use super::{Box2dBackend, PogoShape, ShapeTag, ONE_WAY, PLATFORM, SOLID};
 
@@ -58,15 +59,18 @@ impl Box2dBackend {
         drop_top: Option<f32>,
         ladder: bool,
     ) -> bool {
-        if ladder {
-            return false;
-        }
         let top = match (tag.one_way_top, tag.platform) {
             (Some(t), _) => t,
             (None, Some(i)) => self.world.platform_top(i as usize, self.time),
-            (None, None) => return true,
+            (None, None) => return !ladder,
         };
-        drop_top != Some(top) && feet >= top - ONE_WAY_TOLERANCE
+        OneWayCheck {
+            feet,
+            tolerance: ONE_WAY_TOLERANCE,
+            passes_all: ladder,
+            dropping_through: drop_top,
+        }
+        .blocks(top)
     }
 
     /// The pogo: a cast down from the capsule's lower centre over the rest length plus a

@@ -17,6 +17,7 @@ use super::{
 use crate::backend::{require_supported, BackendError, CharacterId, CharacterSpec, CharacterState};
 use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
+use crate::oneway::OneWayCheck;
 use crate::shape::ShapeParams;
 use engine::control::{CharacterAutostep, CharacterLength, KinematicCharacterController};
 use engine::parry::math::Pose;
@@ -212,17 +213,15 @@ impl RapierBackend {
         // One-way platforms, as Rapier users write them: a filter predicate that keeps a one-way
         // collider only for a character entirely above its top at the start of the move, and
         // never for one dropping through it.
-        let feet = c.pos.y;
-        let drop_top = c.drop_top;
-        let on_ladder = c.motion.on_ladder;
+        let one_way = OneWayCheck {
+            feet: c.pos.y,
+            tolerance: s(ONE_WAY_TOLERANCE),
+            passes_all: c.motion.on_ladder,
+            dropping_through: c.drop_top,
+        };
         let one_way_rule = move |_: engine::prelude::ColliderHandle,
                                  co: &engine::prelude::Collider| {
-            match one_way_top(co) {
-                None => true,
-                Some(top) => {
-                    !on_ladder && feet >= top - s(ONE_WAY_TOLERANCE) && drop_top != Some(top)
-                }
-            }
+            one_way_top(co).is_none_or(|top| one_way.blocks(top))
         };
         let queries = queries.with_filter(QueryFilter::default().predicate(&one_way_rule));
         let mut contacts = Contacts::default();

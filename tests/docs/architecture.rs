@@ -13,6 +13,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("motion", 2),
     ("ladder", 2),
     ("shape", 2),
+    ("oneway", 2),
     ("backend", 3),
     ("config", 3),
     ("controller", 3),
