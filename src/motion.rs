@@ -405,7 +405,8 @@ mod tests {
                 };
                 let apex = simulate_apex(&p, dt);
                 // Bound: f32 accumulation of up to ~300 increments near y ~ 6 tiles, each
-                // rounded to half an ulp (~2.4e-7), stays far below the 1e-4.
+                // rounded to half an ulp (~2.4e-7), stays far below the exact jump's 1e-4 bound on
+                // apex_error (tests/behaviour/sweep_builtin.rs).
                 assert!((apex - h).abs() < 1e-4, "dt {dt} h {h}: apex {apex}");
             }
         }

@@ -16,7 +16,7 @@
 //! and, as a [`Coverage`], how many scenarios each configuration ran and, for each kept row, its
 //! group. That is at most three rows per group, metric and configuration, and one scenario's
 //! rows waiting to be grouped, however many runs: memory does not grow with the number of
-//! scenarios (issue 24).
+//! scenarios.
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 

@@ -191,8 +191,8 @@ pub const INVARIANTS: [&str; 9] = [
 /// The commanded distance already includes the acceleration ramp, so an exact controller
 /// covers 1.0 up to rounding; 1% is what rounding a walking step (0.1 tiles at 1/60 s) onto
 /// the f32 grid can cost where the spacing is a few thousandths of a tile, and the loss the
-/// report already calls progress lost (`progress_ratio < 0.99`). The Rapier walks at
-/// 1e5 tiles (91% to 96% per tile) are broken by it. The most is [`PROGRESS_MAX`].
+/// report already calls progress lost (`progress_ratio < 0.99`). Rapier's walks at 1e5 tiles (91%
+/// to 96% per tile) are broken by it. The most is [`PROGRESS_MAX`].
 pub const PROGRESS_MIN: f64 = 0.99;
 
 /// How far the fraction of the commanded distance a walk covers may be from 1, either way:

@@ -51,8 +51,8 @@ pub(super) fn probe_level(offset: f64, with_platforms: bool) -> Level {
 }
 
 /// How long the walk probe holds "right", in seconds: 60 tiles at the run speed of 6 tiles/s,
-/// the walk in which the issue found Rapier stuck at 1e5 tiles (per tile its floor has a seam
-/// every tile, 60 of them).
+/// the walk on which Rapier was found stuck at 1e5 tiles (per tile its floor has a seam every tile,
+/// 60 of them).
 const WALK_TIME: f32 = 10.0;
 
 /// The probes: a drop onto the floor then rest, a walk along the floor, a standing jump, a fast

@@ -201,9 +201,8 @@ mod tests {
             world_verdicts(&rows, 1e5)[0].text,
             "breaks at offset 0 (carry_no_drift); those that held at 0 hold to 1e5, break at 1e14 (progress)"
         );
-        // A cell within the world that breaks another invariant is said too (issue 22 second
-        // review: Rapier f64 read sturdier than the f64 sweep); one that breaks only the carry
-        // again is not news.
+        // A cell within the world that breaks another invariant is said too (without it, Rapier f64
+        // read sturdier than the f64 sweep); one that breaks only the carry again is not news.
         let mut more = rows.clone();
         more.push(StressRow {
             dimension2: "dt".into(),

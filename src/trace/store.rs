@@ -1,6 +1,6 @@
 //! Trace rows held while a run is measured: in memory up to a limit, then spilled to an unlinked
 //! temporary file and read back a block at a time, so that measuring a run of any length takes
-//! memory bounded by the limit and two blocks, not by its frames (issue 24).
+//! memory bounded by the limit and two blocks, not by its frames.
 //!
 //! The metrics read rows through [`Frames`], a view that is the same whether the rows are a
 //! slice in memory or a spilled file; the values read back are bit for bit those written, so a

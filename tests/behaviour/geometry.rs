@@ -1,7 +1,7 @@
 //! The geometric metrics (`max_penetration`, `rest_gap`, `slope_gap_max`, `slope_overlap`)
 //! measure every controller's real shape against the real level surface, slopes included
-//! (issue 17, item 1): the sweep's box overhanging a ramp by design is measured as what it is,
-//! and feet moved below a slope's surface are seen.
+//! (nothing is left out for slopes, docs/metrics.md): the sweep's box overhanging a ramp by design
+//! is measured as what it is, and feet moved below a slope's surface are seen.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(
@@ -217,12 +217,13 @@ fn a_bounce_after_landing_is_charged() {
 
 #[test]
 fn feet_moved_below_a_one_way_top_are_seen() {
-    // Issue 17, item 1, for one-way tops: take a controller's own trace landing on the one-way
-    // platform (top at y = 4) and move its feet 0.2 tiles down on every grounded frame there.
-    // A one-way top resists only downward motion, so the depth is vertical: max_penetration
-    // must reach 0.2 and rest_gap fall by 0.2 (1e-3: f32 positions), and the promise metric must
-    // see the sinking beyond the declared overlap tolerance. The same frames untouched read
-    // nothing: passing up through the platform (jump_through_from_below) is inside it by right.
+    // The real geometry, for one-way tops (docs/metrics.md: the depth below a one-way top a shape
+    // stands on is an overlap): take a controller's own trace landing on the one-way platform (top
+    // at y = 4) and move its feet 0.2 tiles down on every grounded frame there. A one-way top
+    // resists only downward motion, so the depth is vertical: max_penetration must reach 0.2 and
+    // rest_gap fall by 0.2 (1e-3: f32 positions), and the promise metric must see the sinking
+    // beyond the declared overlap tolerance. The same frames untouched read nothing: passing up
+    // through the platform (jump_through_from_below) is inside it by right.
     let oneway = level("oneway");
     let size = glam::Vec2::new(0.8, 0.9);
     let sweep = platbench::sweep::kind::run_default();

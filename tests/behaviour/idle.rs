@@ -1,5 +1,5 @@
-//! `idle_drift` (issue 17, item 7): a standing character with no input, off ladders and riding
-//! nothing, stays put; a wall sliding flush past its side does not carry it.
+//! `idle_drift` (its reference: standing still): a standing character with no input, off ladders
+//! and riding nothing, stays put; a wall sliding flush past its side does not carry it.
 
 use crate::common;
 

@@ -1,6 +1,6 @@
-//! The sweep on integer positions (issue 12), asserted from the traces and metrics of the
-//! built-in set: exact rest, no penetration, no jitter, also far from the origin where the float
-//! mode breaks.
+//! The sweep on integer positions (`positions=integer/32`, docs/sweep.md), asserted from the traces
+//! and metrics of the built-in set: exact rest, no penetration, no jitter, also far from the origin
+//! where the float mode breaks.
 
 use crate::common;
 
@@ -29,7 +29,8 @@ fn rest_gap_penetration_and_jitter_are_exactly_zero_on_every_scenario_without_sl
     // very_long_floor: the nine built-in levels without slopes or moving platforms.
     assert_eq!(levels.len(), 9, "levels run");
     let evals = evaluate_all(&levels, &platbench::sweep::kind::run_integer(PER_TILE));
-    // Issue 12: exactly 0, no tolerance: the grid snaps flush in integers.
+    // Exactly 0, no tolerance (what integer positions promise, docs/sweep.md): the grid snaps flush
+    // in integers.
     for m in ["rest_gap", "max_penetration", "rest_jitter"] {
         let rs = rows(&evals, m);
         assert!(rs.len() >= 20, "{m} measured on {} scenarios", rs.len());
@@ -49,11 +50,11 @@ fn on_every_slope_scenario_rest_penetration_and_jitter_are_exactly_zero_against_
     // slopes (none of them has moving platforms).
     assert_eq!(levels.len(), 5, "slope levels run");
     let evals = evaluate_all(&levels, &platbench::sweep::kind::run_integer(PER_TILE));
-    // Issue 23: exactly 0, no tolerance, measured on the box the integer mode moves (26 x 29
-    // subpixels) against its declared stance: the seed's centre column on the surface rounded
-    // up to its subpixel (`level::round_height_up`), the box overhanging the ramp by half its
-    // width times the climb gradient. rest_gap and max_penetration themselves read that
-    // overhang (0.15 to 0.36 tiles, by design), so the declared forms are the ones held to 0.
+    // Exactly 0, no tolerance (integer positions on slopes, docs/sweep.md), measured on the box the
+    // integer mode moves (26 x 29 subpixels) against its declared stance: the seed's centre column
+    // on the surface rounded up to its subpixel (`level::round_height_up`), the box overhanging the
+    // ramp by half its width times the climb gradient. rest_gap and max_penetration themselves read
+    // that overhang (0.15 to 0.36 tiles, by design), so the declared forms are the ones held to 0.
     for m in [
         "rest_gap_declared",
         "penetration_beyond_declared",
@@ -65,9 +66,10 @@ fn on_every_slope_scenario_rest_penetration_and_jitter_are_exactly_zero_against_
         assert_eq!(rs.len(), 13, "{m} measured on {} scenarios", rs.len());
         for r in rs {
             if m == "penetration_beyond_declared" && r.scenario.starts_with("walk_into_steep") {
-                // Issue 17: at the foot of the too-steep 63.4-degree ramp the moved box (0.8125
-                // wide) stands with its leading half inside it, deeper than the design allows
-                // on a walkable ramp: 0.40625 (sin 63.4 - sin 45), less the allowance's 1e-4
+                // The declared overlap is capped at what a walkable ramp gives, and the metric
+                // hides nothing beyond it: at the foot of the too-steep 63.4-degree ramp the moved
+                // box (0.8125 wide) stands with its leading half inside it, deeper than the design
+                // allows on a walkable ramp: 0.40625 (sin 63.4 - sin 45), less the allowance's 1e-4
                 // slack (no epsilon on integer positions); 1e-5: f32.
                 let excess = 0.40625 * (2f64.atan().sin() - std::f64::consts::FRAC_PI_4.sin());
                 assert!(
@@ -163,9 +165,10 @@ fn the_exact_discrete_jump_reaches_its_height_to_the_subpixel() {
     let apex = rows(&evals, "apex_error");
     assert!(apex.len() >= 6, "apex measured on {} jumps", apex.len());
     for r in apex {
-        // Issue 12: the apex lands on the requested height to the subdivision (1/32 tile): the
-        // moves are the float moves rounded with the remainder carried, so the position is never
-        // more than a subpixel from the float jump, whose discrete apex is exact.
+        // Bound: one subpixel (1/32 tile), the grid's resolution. The apex lands on the requested
+        // height to the subdivision: the moves are the float moves rounded with the remainder
+        // carried, so the position is never more than a subpixel from the float jump, whose
+        // discrete apex is exact.
         assert!(
             r.value.abs() <= 1.0 / PER_TILE as f64,
             "{}: apex_error {}",
@@ -177,8 +180,8 @@ fn the_exact_discrete_jump_reaches_its_height_to_the_subpixel() {
 
 #[test]
 fn every_built_in_scenario_runs_none_skipped() {
-    // Issue 23: the integer mode models every feature the level format has, so it runs the whole
-    // built-in set (64 scenarios), moving platforms included.
+    // The integer mode models every feature the level format has, so it runs the whole built-in set
+    // (64 scenarios), moving platforms included.
     assert_eq!(INTEGER_SUPPORTED, platbench::level::Features::ALL);
     let levels = builtin_levels();
     let scenarios: usize = levels.iter().map(|l| l.scenarios.len()).sum();
@@ -208,11 +211,12 @@ fn riders_are_carried_in_whole_subpixels_with_no_drift_at_all() {
     // platforms: 8 scenarios name a platform to ride; elevator: 1.
     assert_eq!(drift.len(), 9, "rides measured");
     for r in drift {
-        // Issue 23: exactly 0, no tolerance. The platform moves by the difference of two
-        // positions rounded to the grid and the rider by the same whole subpixels, so its place
-        // on the platform (measured against the rounded platform the mode moves) never changes;
-        // one lost subpixel would read 1/32 tile. The fast drop (20 tiles/s from rest) and the
-        // turning elevator included: Celeste's rule moves the rider with every move.
+        // Exactly 0, no tolerance (the carry on integer positions, docs/sweep.md). The platform
+        // moves by the difference of two positions rounded to the grid and the rider by the same
+        // whole subpixels, so its place on the platform (measured against the rounded platform the
+        // mode moves) never changes; one lost subpixel would read 1/32 tile. The fast drop (20
+        // tiles/s from rest) and the turning elevator included: Celeste's rule moves the rider with
+        // every move.
         assert_eq!(r.value, 0.0, "{}: carry_drift {}", r.scenario, r.value);
     }
     for r in rows(&evals, "carry_airborne_frames") {
@@ -234,7 +238,7 @@ fn riders_are_carried_in_whole_subpixels_with_no_drift_at_all() {
 
 #[test]
 fn a_ten_second_ride_keeps_the_rider_exactly_in_place() {
-    // Issue 23's figure: 10 s of riding the turning elevator (3 tiles/s up, turning to 3 down at
+    // The 10 s ride docs/sweep.md quotes: the turning elevator (3 tiles/s up, turning to 3 down at
     // the top and back at the bottom, 4 turns) and the platforms level's sine elevator and
     // horizontal shuttle.
     let run = platbench::sweep::kind::run_integer(PER_TILE);

@@ -1,6 +1,6 @@
-//! A reference is a model's choice (issue 17, item 2): the slope speed against constant
-//! horizontal speed and against constant speed along the surface, both reported; the rest gap
-//! against touching and against the configuration's own declared contact.
+//! A reference is a model's choice: the slope speed against constant horizontal speed and against
+//! constant speed along the surface, both reported; the rest gap against touching and against the
+//! configuration's own declared contact.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(

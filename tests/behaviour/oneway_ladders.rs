@@ -1,5 +1,6 @@
-//! One-way platforms and ladders on both backends (issue 4), from traces and metrics of the
-//! built-in `oneway` and `ladders` levels.
+//! One-way platforms and ladders on both backends (the seed's one-way rule, ladders climbed at the
+//! configured speed, entered and left), from traces and metrics of the built-in `oneway` and
+//! `ladders` levels.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(
@@ -75,8 +76,9 @@ fn ladders_climb_at_the_configured_speed_and_are_entered_and_left() {
     for run in every_config() {
         let evals = evaluate_all(&[level("ladders")], &run);
         for r in some_rows(&evals, "ladder_speed_error") {
-            // Issue 4: climbing speed equals the configured speed within 1e-4 (sweep). The
-            // ladder motion is shared, so Rapier climbs at it too (f32 noise on y ~ 6 tiles).
+            // Required: the climbing speed is the configured ladder speed (`ladder_speed_error`'s
+            // reference), within 1e-4 (sweep). The ladder motion is shared, so Rapier climbs at it
+            // too (f32 noise on y ~ 6 tiles).
             assert!(
                 r.value.abs() <= 1e-4,
                 "{} {}: {}",

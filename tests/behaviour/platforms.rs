@@ -1,5 +1,5 @@
-//! Moving platforms on both backends (issue 5), from traces and metrics of the built-in
-//! `platforms` level.
+//! Moving platforms on both backends (riders carried, characters pushed, crushes reported), from
+//! traces and metrics of the built-in `platforms` level.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(
@@ -40,7 +40,8 @@ fn sweep_carries_riders_without_drift() {
         &platbench::sweep::kind::run_default(),
     );
     for name in FOLLOWABLE {
-        // Issue 5: carry_drift <= 1e-4 tiles, carry_airborne_frames = 0.
+        // The carry bound: carry_drift <= 1e-4 tiles, the float carry's rounding over a ride (the
+        // reference is a rigid carry); carry_airborne_frames = 0, on the platform throughout.
         let drift = value(&evals, name, "carry_drift");
         assert!(drift <= 1e-4, "{name}: carry_drift {drift}");
         assert_eq!(value(&evals, name, "carry_airborne_frames"), 0.0, "{name}");
@@ -78,7 +79,8 @@ fn sweep_pushes_without_overlap_and_reports_a_crush() {
     let eps = SweepConfig::default().epsilon as f64;
     for r in some_rows(&evals, "push_penetration") {
         if r.scenario != "crushed_against_a_wall" {
-            // Issue 5: push_penetration <= epsilon.
+            // A push leaves no overlap beyond the sweep's own tolerance: push_penetration <=
+            // epsilon.
             assert!(
                 r.value <= eps,
                 "{}: push_penetration {}",
@@ -153,11 +155,11 @@ fn with_rule(rule: RiderFollow) -> RunConfig {
 
 #[test]
 fn rider_follow_both_ways_on_every_platform_scenario() {
-    // Issue 23: both rules on every built-in platform scenario. Measured (this test's numbers):
-    // they agree everywhere except where a platform moves down faster than a rider can fall:
-    // the turning elevator (today's rule: 18 airborne frames and 0.12 tiles of drift in 6 s,
-    // the issue's figures; Celeste's: 0 and 4.8e-7) and the fast drop (33 frames and 5.5
-    // tiles; Celeste's: 0 and 1e-6). So Celeste's rule is the default.
+    // The rider-follow setting: both rules on every built-in platform scenario. Measured (this
+    // test's numbers, which docs/sweep.md quotes): they agree everywhere except where a platform
+    // moves down faster than a rider can fall: the turning elevator (today's rule: 18 airborne
+    // frames and 0.12 tiles of drift in 6 s; Celeste's: 0 and 4.8e-7) and the fast drop (33 frames
+    // and 5.5 tiles; Celeste's: 0 and 1e-6). So Celeste's rule is the default.
     assert_eq!(SweepConfig::default().rider_follow, RiderFollow::Solid);
     let levels = [level("platforms"), level("moving_wall"), level("elevator")];
     let gravity = evaluate_all(&levels, &with_rule(RiderFollow::Gravity));
@@ -172,13 +174,13 @@ fn rider_follow_both_ways_on_every_platform_scenario() {
                 // Celeste's rule never leaves a rider in the air on these rides.
                 assert_eq!(s.value, 0.0, "{}: {m} {}", s.scenario, s.value);
             } else {
-                // Within the float carry's rounding: 1e-4 tiles (issue 5's bound; measured
-                // at most 2.1e-5, on walk_on_platform).
+                // Within the float carry's rounding: 1e-4 tiles (the carry bound; measured at most
+                // 2.1e-5, on walk_on_platform).
                 assert!(s.value <= 1e-4, "{}: {m} {}", s.scenario, s.value);
             }
             if dropping_away.contains(&g.scenario.as_str()) {
-                // Today's rule leaves the rider behind there: the issue's 18 frames and 0.12
-                // tiles on the elevator, more on the 20 tiles/s drop.
+                // Today's rule leaves the rider behind there: 18 frames and 0.12 tiles on the
+                // elevator, more on the 20 tiles/s drop.
                 assert!(g.value > s.value, "{}: {m} {}", g.scenario, g.value);
             } else {
                 // Elsewhere the two rules move the rider identically.
@@ -227,7 +229,8 @@ fn a_rider_lifted_into_a_ceiling_is_crushed_on_the_move_that_squeezes_it() {
 #[test]
 fn the_sweep_in_f64_carries_as_the_float_mode_at_the_origin_and_1e12_tiles_out() {
     use platbench::sweep::kind::{run_default, run_double};
-    // Every built-in level with moving platforms (issue 22: the f64 mode models them).
+    // Every built-in level with moving platforms (the f64 mode models them: f64 world boxes on
+    // their path, docs/stability.md).
     let levels = [level("platforms"), level("moving_wall"), level("elevator")];
     let float = evaluate_all(&levels, &run_default());
     let double = evaluate_all(&levels, &run_double());
@@ -249,9 +252,9 @@ fn the_sweep_in_f64_carries_as_the_float_mode_at_the_origin_and_1e12_tiles_out()
         // At the origin both carry by the platform's own displacement; what drift they show is
         // rounding: the float mode's of its f32 world positions (measured up to 2.1e-5 tiles,
         // walk_on_platform), the f64 mode's only that of the trace's f32 level coordinates
-        // (measured up to 4.8e-7). Bounds: issue 5's 1e-4 on the difference (the float carry's
-        // own bound), and for f64 one f32 spacing at the levels' largest coordinate (under 64
-        // tiles: 2^-18).
+        // (measured up to 4.8e-7). Bounds: the carry bound, 1e-4, on the difference (the float
+        // carry's own bound), and for f64 one f32 spacing at the levels' largest coordinate (under
+        // 64 tiles: 2^-18).
         assert!(
             (f.value - d.value).abs() <= 1e-4,
             "{}: {} {}",
@@ -334,7 +337,8 @@ fn rapier_f64_stops_its_rider_a_frame_at_the_turn_at_the_origin_and_not_1e12_til
     let rows = &find(&at_origin, "ride_horizontal").trace.rows;
     assert_eq!(rows[242].x, rows[243].x, "the stop, frames 242 and 243");
     // Far out: no stop; what drift is left is the f64 spacing there (2^-13 = 1.2e-4 a
-    // coordinate; measured 6.6e-5), under 1e-4, issue 5's carry bound.
+    // coordinate; measured 6.6e-5), under 1e-4, the carry bound (the float carry's rounding over a
+    // ride).
     let far_drift = value(&out, "ride_horizontal", "carry_drift");
     assert!(far_drift < 1e-4, "1e12 tiles out: {far_drift}");
     let rows = &find(&out, "ride_horizontal").trace.rows;

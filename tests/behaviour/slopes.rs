@@ -1,7 +1,7 @@
-//! Slopes on both backends (issue 4), asserted from traces and metrics of the built-in slope
-//! levels: slope_22_5, slope_26_6, slope_45 (hills walked up, over the crest and down into the
-//! valley), slope_63_4 (steeper than the 45-degree climb limit) and seed_tile (the seed's
-//! height-array tile).
+//! Slopes on both backends (walkable ramps followed, too-steep ones blocked), asserted from traces
+//! and metrics of the built-in slope levels: slope_22_5, slope_26_6, slope_45 (hills walked up,
+//! over the crest and down into the valley), slope_63_4 (steeper than the 45-degree climb limit)
+//! and seed_tile (the seed's height-array tile).
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(
@@ -30,7 +30,8 @@ fn sweep_walks_every_walkable_slope_without_leaving_it() {
         let airborne = rows(&evals, "slope_airborne_frames");
         assert!(!airborne.is_empty(), "{name}: slope walks measured");
         for r in airborne {
-            // Issue 4: 0 airborne frames walking down (and up) a walkable slope.
+            // Required: a walkable slope is followed with 0 airborne frames, walking down and up
+            // (`slope_airborne_frames`' reference: grounded all the way).
             assert_eq!(r.value, 0.0, "{name}.{}: airborne {}", r.scenario, r.value);
         }
         // The seed's promise: the box stands on the surface under its centre and overhangs the
@@ -38,8 +39,8 @@ fn sweep_walks_every_walkable_slope_without_leaving_it() {
         // whose depth along a 45-degree ramp's normal is 0.4 sin 45 = 0.2828.
         let overhang = 0.4 * std::f64::consts::FRAC_PI_4.sin() + 1e-4;
         for r in some_rows(&evals, "slope_gap_max") {
-            // Issue 4: never above the surface by more than 1e-3 tiles; inside it only by the
-            // designed overhang.
+            // Required: touching the surface (`slope_gap_max`'s reference, gap 0), never above it
+            // by more than 1e-3 tiles; inside it only by the designed overhang.
             assert!(r.value <= 1e-3, "{name}.{}: gap {}", r.scenario, r.value);
             assert!(
                 r.value >= -overhang,
@@ -102,7 +103,8 @@ fn the_seed_height_array_tile_is_followed_within_a_sixteenth() {
     assert!(over.len() >= 5, "{} frames over the tile", over.len());
     for r in over {
         let surface = 1.0 + tile.height_at(r.x - 10.0);
-        // Issue 4: followed to within 1/16 tile.
+        // Required: the seed's tile is followed to within 1/16 tile, one step of its height array
+        // (sixteenths of a tile).
         assert!(
             (r.y - surface).abs() <= 1.0 / 16.0,
             "frame {}: feet {} surface {surface}",
@@ -127,7 +129,8 @@ fn a_slope_over_the_climb_limit_blocks_both_backends() {
             .into_iter()
             .find(|r| r.scenario == "walk_into_steep")
             .unwrap();
-        // Issue 4: the 63.4-degree slope (rising to the right) blocks the climb on both.
+        // Required: a slope over the 45-degree climb limit blocks the climb (`steep_blocked`'s
+        // reference); the 63.4-degree slope (rising to the right) does on both.
         assert_eq!(r.value, 1.0, "{}: steep_blocked", run.label);
     }
     // The same ramp rising to the left: the sweep blocks it too.

@@ -1,5 +1,6 @@
-//! The foundation issue's bounds for the sweep controller, asserted from the traces and
-//! metrics of the built-in set.
+//! The sweep controller's own bounds (a flush rest, no overlap beyond its epsilon, no jitter,
+//! flicker or tunneling, no progress lost on seams, the exact jump height), asserted from the
+//! traces and metrics of the built-in set.
 
 use crate::common;
 
@@ -30,8 +31,8 @@ fn landing_rest_and_stability_bounds_hold_on_every_scenario() {
             .map_or(0.0, |r| r.value)
     };
     for r in gaps {
-        // Issue 2: rest_gap <= 1e-4 tiles (or, resting on a ramp, inside it by exactly the
-        // designed overlap).
+        // The sweep's rest bound: it snaps flush, so rest_gap <= 1e-4 tiles (or, resting on a ramp,
+        // inside it by exactly the designed overlap).
         let on_ramp = (r.value + overlap(&r.level, &r.scenario)).abs() <= 1e-4;
         assert!(
             r.value.abs() <= 1e-4 || on_ramp,
@@ -42,8 +43,8 @@ fn landing_rest_and_stability_bounds_hold_on_every_scenario() {
         );
     }
     for r in some_rows(&evals, "max_penetration") {
-        // Issue 2: max_penetration <= the epsilon overlap tolerance (beyond the ramp's
-        // designed overhang on a slope).
+        // The sweep's overlap bound: max_penetration <= the epsilon overlap tolerance, its declared
+        // overlap (beyond the ramp's designed overhang on a slope).
         assert!(
             r.value <= overlap(&r.level, &r.scenario) + eps,
             "{}.{}: max_penetration {}",
@@ -62,8 +63,9 @@ fn landing_rest_and_stability_bounds_hold_on_every_scenario() {
         let rs = rows(&evals, m);
         assert!(!rs.is_empty());
         for r in rs {
-            // Issue 2: exactly 0 (no jitter, no flicker after landing, no tunneling); the sweep
-            // never calls itself grounded in the air and never stops on open ground.
+            // Exactly 0, each metric's reference (no jitter, no flicker after landing, no
+            // tunneling); the sweep never calls itself grounded in the air and never stops on open
+            // ground.
             assert_eq!(r.value, 0.0, "{}.{}: {m} {}", r.level, r.scenario, r.value);
         }
     }
@@ -107,7 +109,8 @@ fn walking_ten_seconds_over_seams_loses_nothing() {
             .into_iter()
             .find(|r| r.scenario == name)
             .unwrap_or_else(|| panic!("progress_ratio measured on {name}"));
-        // Issue 2: within 1e-4 of 1 over 10 s on the seamed floor.
+        // The sweep's progress bound: within 1e-4 of 1 over 10 s on the seamed floor (seams cost a
+        // swept box nothing).
         assert!(
             (r.value - 1.0).abs() <= 1e-4,
             "{name}: progress_ratio {}",
@@ -155,7 +158,9 @@ fn exact_discrete_jump_reaches_the_requested_height_and_continuous_undershoots()
     let ex = rows(&exact, "apex_error");
     assert_eq!(ex.len(), 7, "six standing jumps and one running jump");
     for r in &ex {
-        // Issue 2: apex_error <= 1e-4 tiles in exact-discrete mode.
+        // The exact jump's bound: apex_error <= 1e-4 tiles in exact-discrete mode (the take-off
+        // speed is solved so that the symplectic-Euler apex is the requested height,
+        // `motion::jump_speed`: only rounding is left).
         assert!(
             r.value.abs() <= 1e-4,
             "{}: apex_error {}",

@@ -319,9 +319,9 @@ fn precision_runs_each_configuration_in_every_listed_precision_it_has_a_build_in
 
 #[test]
 fn a_level_file_placed_1e12_tiles_out_runs_on_the_f64_configurations_and_skips_the_f32_ones() {
-    // Issue 22: a level file's origin is f64 (to 1e15 tiles), so 1e12 is placed exactly (as an
-    // f32 it would be 999,999,995,904). The f32 configurations refuse it (beyond 1e7 an f32
-    // position moves in whole tiles; limits::MAX_F32_ORIGIN) and say so; the f64 builds run it.
+    // A level file's origin is f64 (to 1e15 tiles), so 1e12 is placed exactly (as an f32 it would
+    // be 999,999,995,904). The f32 configurations refuse it (beyond 1e7 an f32 position moves in
+    // whole tiles; limits::MAX_F32_ORIGIN) and say so; the f64 builds run it.
     let dir = tempfile::tempdir().unwrap();
     let text = |origin: &str| {
         format!(

@@ -1,5 +1,5 @@
-//! The harness at scale (issue 24): which traces a run writes, and the same output on one thread
-//! as on several.
+//! The harness at scale (docs/scale.md): which traces a run writes, and the same output on one
+//! thread as on several.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(

@@ -151,9 +151,10 @@ fn the_sweep_carries_its_riders_at_the_base_case_far_inside_the_allowance() {
 #[test]
 fn the_integer_mode_keeps_every_invariant_up_to_1e7_tiles_and_carries_with_no_drift_at_all() {
     let rows = stress_matrix(&[platbench::sweep::kind::run_integer(32)], |_| {}).unwrap();
-    // Issue 12: offsets up to 1e7 tiles (3.2e8 subpixels: an i64 holds 2.9e17 tiles at 32 per
-    // tile; the bound is the broadphase's f32 tile boxes, exact to 2^24 = 1.7e7 tiles), where
-    // the float mode breaks (the test above). Every dimension at its extremes too.
+    // What integer positions promise (docs/stability.md): every invariant at offsets up to 1e7
+    // tiles (3.2e8 subpixels: an i64 holds 2.9e17 tiles at 32 per tile; the bound is the
+    // broadphase's f32 tile boxes, exact to 2^24 = 1.7e7 tiles), where the float mode breaks (the
+    // test above). Every dimension at its extremes too.
     for v in [0.0, 1e3, 1e4, 1e5, 1e6, 1e7] {
         assert!(holds(&rows, "offset", v, &[]), "offset {v}");
     }
@@ -166,17 +167,17 @@ fn the_integer_mode_keeps_every_invariant_up_to_1e7_tiles_and_carries_with_no_dr
             assert!(holds(&rows, dim, v, &[]), "{dim} {v}");
         }
     }
-    // Issue 23: the carry is measured at every value of every dimension (offset, dt, speed,
-    // width: 19 values), and its drift over the 10 s rides is exactly 0, not within a tolerance:
-    // the platforms move in whole subpixels along their path rounded to the grid, the rider is
-    // moved by the same whole subpixels, and the drift is read against that rounded platform
-    // (the one the mode moves), so any lost or extra subpixel would show as 1/32 tile.
+    // The carry on integer positions is measured at every value of every dimension (offset, dt,
+    // speed, width: 19 values), and its drift over the 10 s rides is exactly 0, not within a
+    // tolerance: the platforms move in whole subpixels along their path rounded to the grid, the
+    // rider is moved by the same whole subpixels, and the drift is read against that rounded
+    // platform (the one the mode moves), so any lost or extra subpixel would show as 1/32 tile.
     let carry: Vec<_> = rows
         .iter()
         .filter(|r| r.invariant == "carry_no_drift")
         .collect();
     // One carry row per value of each single dimension (19), and one per combination cell
-    // (issue 22) on top: every one exactly 0.
+    // (the pair grids) on top: every one exactly 0.
     let single = carry.iter().filter(|r| r.dimension2.is_empty()).count();
     assert_eq!(single, 6 + 5 + 3 + 5, "single-dimension carry rows");
     assert!(carry.len() > single, "combination cells carry rows");
@@ -190,8 +191,8 @@ fn the_integer_mode_keeps_every_invariant_up_to_1e7_tiles_and_carries_with_no_dr
     assert!(rows.iter().all(|r| r.dimension != "epsilon"));
 }
 
-/// The issue's walk: 60 tiles commanded over a seamed floor 1e5 tiles from the origin, on every
-/// Rapier shape and collider building; the progress row of each.
+/// The probe's walk (src/stress/probes.rs): 60 tiles commanded over a seamed floor 1e5 tiles from
+/// the origin, on every Rapier shape and collider building; the progress row of each.
 fn rapier_progress_at(offset: f64) -> Vec<(String, f64, f64)> {
     use platbench::rapier::{kind::run, CharacterShape, ColliderBuilding};
     use platbench::stress::{run_point, Point, BASE};
@@ -214,11 +215,11 @@ fn rapier_progress_at(offset: f64) -> Vec<(String, f64, f64)> {
 
 #[test]
 fn rapier_merged_rounded_walkers_stall_1e5_tiles_out() {
-    // The issue's finding on the probe's walk (60 tiles commanded, src/stress/probes.rs): far from the
-    // origin Rapier's merged capsule and ball stall, where at the origin they cover most of it.
-    // Measured: merged capsule 85% at 0, 4.8% at 1e5 (551 stuck steps); merged ball 95% at 0,
-    // 0.7% at 1e5 (594). The bounds (over 80% at 0, under 10% and over 100 stuck steps at 1e5)
-    // sit far from both, so only the stall itself can flip them.
+    // Found on the probe's walk (60 tiles commanded, src/stress/probes.rs): far from the origin
+    // Rapier's merged capsule and ball stall, where at the origin they cover most of it. Measured:
+    // merged capsule 85% at 0, 4.8% at 1e5 (551 stuck steps); merged ball 95% at 0, 0.7% at 1e5
+    // (594). The bounds (over 80% at 0, under 10% and over 100 stuck steps at 1e5) sit far from
+    // both, so only the stall itself can flip them.
     let at0 = rapier_progress_at(0.0);
     let at1e5 = rapier_progress_at(1e5);
     for label in ["merged capsule", "merged ball"] {
@@ -345,7 +346,7 @@ fn the_sweep_in_f64_holds_to_1e13_tiles_and_breaks_where_its_spacing_swallows_a_
     // The float sweep breaks at 1e7 (f32 spacing 1 tile; the first test above). In f64 the
     // same rules and epsilon keep every invariant at every offset to 1e13 (f64 spacing 1/512
     // there, under the 1e-3 epsilon) and at every other extreme of the matrix, the carry on
-    // both moving platforms included (issue 22: the f64 mode models them).
+    // both moving platforms included (the f64 mode models them).
     for v in [0.0, 1e5, 1e6, 1e7, 1e8, 1e10, 1e12, 1e13] {
         assert!(holds(&rows, "offset", v, &[]), "offset {v}");
     }
@@ -374,8 +375,8 @@ fn the_sweep_in_f64_holds_to_1e13_tiles_and_breaks_where_its_spacing_swallows_a_
     assert!(!p.holds && (p.measured - 0.9375).abs() < 0.005, "{p:?}");
     // Its combination grid is at its own scale (offsets 1e11 to 1e13): at 1e12 a 1e-4 s step
     // walks 1.0172 of its distance (the test below), so a world of 1e12 tiles does not hold,
-    // though every offset to 1e13 holds alone (issue 22 review: it used to read "yes"); every
-    // cell at 1e11 holds, so a world of 1e11 tiles does.
+    // though every offset to 1e13 holds alone (the verdict once read "yes" here); every cell at
+    // 1e11 holds, so a world of 1e11 tiles does.
     let world = |size| platbench::stress::world_verdicts(&rows, size).remove(0);
     let w = world(1e12);
     assert_eq!(w.holds, Some(false), "{w:?}");
@@ -446,13 +447,13 @@ fn each_f64_configuration_breaks_progress_in_its_own_combination_grid_at_1e12_an
     use platbench::backend::Precision::F64;
     use platbench::rapier::kind::run_with;
     use platbench::rapier::{GroundedMove, RapierConfig};
-    // Issue 22 review: the f64 configurations' combination grids are at their own scale (offsets
-    // 1e11 to 1e13, `stress::pair_offsets`), where both hold alone (the tests above: every
-    // invariant but Rapier's carry to 1e13). At 1e13 the f64 spacing is 2^-9 tile (2^43 <= 1e13
-    // < 2^44); with dt = 1e-3 s the walking step (6 tiles/s x 1e-3 = 6e-3 tiles) is 3.072
-    // spacings and rounds to 3: the walk covers 3/3.072 = 0.9766 of its distance, under
-    // PROGRESS_MIN (0.99), for both backends alike (measured 0.97668 for each; the tolerance
-    // 0.002 allows for the acceleration ramp's steps, which round differently).
+    // The f64 configurations' combination grids are at their own scale (offsets 1e11 to 1e13,
+    // `stress::pair_offsets`), where both hold alone (the tests above: every invariant but Rapier's
+    // carry to 1e13). At 1e13 the f64 spacing is 2^-9 tile (2^43 <= 1e13 < 2^44); with dt = 1e-3 s
+    // the walking step (6 tiles/s x 1e-3 = 6e-3 tiles) is 3.072 spacings and rounds to 3: the walk
+    // covers 3/3.072 = 0.9766 of its distance, under PROGRESS_MIN (0.99), for both backends alike
+    // (measured 0.97668 for each; the tolerance 0.002 allows for the acceleration ramp's steps,
+    // which round differently).
     let runs = [
         platbench::sweep::kind::run_double(),
         run_with(RapierConfig {

@@ -1,6 +1,6 @@
-//! `platbench sweep` as a user runs it (issue 17, item 3): the error score is the user's
-//! (`--score`), the front is drawn per behaviour, and docs/speed.md's claim about the front is read
-//! from the CSV the documented command wrote.
+//! `platbench sweep` as a user runs it: the error score is the user's (`--score`), the front is
+//! drawn per behaviour, and docs/speed.md's claim about the front is read from the CSV the
+//! documented command wrote.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(

@@ -383,9 +383,9 @@ fn the_sample_pogo_reports_ground_once_its_cast_reaches_a_radius_below_the_feet(
 /// The metrics score the segment pogo against the stance it is built for: on a ramp it stands
 /// on its uphill end (the test above), so `rest_gap_declared` measures from there
 /// (`DeclaredContact::stance_half_width`), sunk by the spring's sag under gravity
-/// (`DeclaredContact::stance_sink`, declared as the sample's design, issue 17 review): it reads
-/// the promise kept, 0 within the rest's own noise. Before the stance, the segment's rest read
-/// 0.035, 0.045 and 0.069 tiles too high; before the sag was declared, `-(sag - slop / cos)`
+/// (`DeclaredContact::stance_sink`, declared as the sample's design, as Rapier's offset is): it
+/// reads the promise kept, 0 within the rest's own noise. Before the stance, the segment's rest
+/// read 0.035, 0.045 and 0.069 tiles too high; before the sag was declared, `-(sag - slop / cos)`
 /// (-0.0288 flat, -0.0284, -0.0282 and -0.0267 on the three ramps).
 #[test]
 fn a_rest_on_a_ramp_is_scored_against_the_segment_pogos_stance() {

@@ -149,16 +149,16 @@ fn penetration_per_shape_and_collider_building() {
                 // still above the top, Rapier reports ground under it (normal up), the shared
                 // leave rule (grounded while climbing down) ends the climb, and it then sinks
                 // through the top reporting grounded, 0.449 below it when it last reads as
-                // standing on it (issue 17: one-way tops count for a shape standing on them, to
-                // half its height, 0.45). Measured on every ball row; pinned at that band.
+                // standing on it (the metrics count a one-way top as solid for a shape standing on
+                // it, to half its height, 0.45). Measured on every ball row; pinned at that band.
                 (_, CharacterShape::Ball, "ladders") => 0.45,
                 // One-tile colliders: no shape ever overlaps a tile or a line slope (measured 0
                 // everywhere).
                 (ColliderBuilding::PerTile, _, _) => 0.0,
                 // A cuboid pressed into the merged 63.4-degree polyline (too steep to climb)
                 // ends inside it: measured 0.043 (walk_into_steep), visible since slopes count
-                // as solid (issue 17); pinned with the rounded shapes' bound below so that a
-                // change is reviewed.
+                // as solid in the metrics' geometry; pinned with the rounded shapes' bound below so
+                // that a change is reviewed.
                 (ColliderBuilding::Merged, CharacterShape::Cuboid, "slope_63_4") => 0.05,
                 // A cuboid on merged boxes sinks by at most about one offset when a glancing
                 // cast misses the offset band (reference: 0.008 on one long box).

@@ -43,10 +43,10 @@ fn every_configuration_comes_to_rest_on_the_45_degree_ramp() {
     // speed uphill); and the same walks started on the plateau (x = 11.5 and 12.5, y = 5) and
     // stopped after 0.6 s on the way down a ramp (the last speed downhill, the case Rapier
     // reads as intent to walk). Each runs 2 s past its stop, so its last second is all rest.
-    // The bound: no configuration moves more than 0.01 tiles in it (Rapier's slope
-    // creep with no horizontal velocity is 0.006 tiles/s, the reference: each cast hit adds
-    // the normal nudge along the slope's normal and gravity brings the character back down
-    // vertically).
+    // The rest bound: no configuration moves more than 0.01 tiles in it, the size docs/scale.md
+    // calls clearly wrong for a length. Rapier's slope creep with no horizontal velocity is 0.006
+    // tiles/s, the reference: each cast hit adds the normal nudge along the slope's normal and
+    // gravity brings the character back down vertically.
     let base = level("slope_45");
     let mut slope = base.clone();
     slope.scenarios.clear();

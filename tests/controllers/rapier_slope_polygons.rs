@@ -18,8 +18,10 @@ use glam::{DVec2, Vec2};
 use platbench::level::{load_tiled_map, Level, Slope, Tile};
 use platbench::rapier::{ColliderBuilding, StaticWorld};
 
-/// The tolerance. Tile-local coordinates are computed here in f64 from the f32 world
-/// points; the levels' slope corners sit at whole or line-crossing coordinates below 100 tiles.
+/// How far a corner may sit off its tile's edges or slope line: 1e-6 tiles, far below the 0.17-tile
+/// false step the old hull put into a ramp. Tile-local coordinates are computed here in f64 from
+/// the f32 world points; the levels' slope corners sit at whole or line-crossing coordinates below
+/// 100 tiles.
 const TOL: f64 = 1e-6;
 
 /// Every level to check: the built-in set and the Tiled test maps.

@@ -1,6 +1,7 @@
 //! The README's and the book's (docs/) metric catalog, summary and figures, checked against the
-//! code, and their relative links checked against the repository (issue 17, item 10). Each check
-//! reads the file where its text lives: README.md is the front door, docs/*.md the chapters.
+//! code, and their relative links checked against the repository, so that no page states a figure
+//! the code no longer gives or links to a file that is gone. Each check reads the file where its
+//! text lives: README.md is the front door, docs/*.md the chapters.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(
@@ -44,9 +45,9 @@ fn the_readme_lists_every_metric_of_the_registry_with_its_unit() {
 
 #[test]
 fn integer_positions_are_compared_over_every_scenario() {
-    // docs/comparison.md, summary: no "(over N of 64)" on the integer row. Since issue 23 the integer mode
-    // models moving platforms too, so it runs all 64 scenarios of the built-in set, as the
-    // float mode does; a configuration skipped anywhere would be marked.
+    // docs/comparison.md, summary: no "(over N of 64)" on the integer row. The integer mode models
+    // moving platforms too (on the subpixel grid), so it runs all 64 scenarios of the built-in set,
+    // as the float mode does; a configuration skipped anywhere would be marked.
     let levels = builtin_levels();
     let total: usize = levels.iter().map(|l| l.scenarios.len()).sum();
     assert_eq!(total, 64);
@@ -150,8 +151,8 @@ fn the_readme_trade_figures_are_the_committed_sweep_run() {
     );
     assert!(text.contains(&figure), "docs/speed.md lacks {figure:?}");
     // "Per behaviour the fronts are the sweep's too": since integer positions run every
-    // scenario (issue 23), their exact apex (error 0) at 12 us beats the four Rapier settings
-    // that were on the jumping front beside the sweep before.
+    // scenario, moving platforms included, their exact apex (error 0) at 12 us beats the four
+    // Rapier settings that were on the jumping front beside the sweep before.
     for b in scored_behaviours() {
         let front: Vec<_> = rows
             .iter()

@@ -1,5 +1,5 @@
-//! LDtk projects (issue 20): IntGrid collision by value names, a separate platforms layer,
-//! external levels, a GridVania world as one level, a linear world's levels one at a time,
+//! LDtk projects (`.ldtk`, docs/formats.md): IntGrid collision by value names, a separate platforms
+//! layer, external levels, a GridVania world as one level, a linear world's levels one at a time,
 //! spawns by entity name and pivot, the overrides, and `platbench inspect`.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).

@@ -1,5 +1,5 @@
-//! Tiled maps (issue 9): each mapping rule, each unsupported construct's message, the probes,
-//! the side file, and the showcase map run end to end on both backends.
+//! Tiled maps (`.tmx`, docs/formats.md): each mapping rule, each unsupported construct's message,
+//! the probes, the side file, and the showcase map run end to end on both backends.
 // These tests read the built-in comparison (every controller) or a map importer: they run
 // with the default features (`cargo test --no-default-features` leaves them out).
 #![cfg(all(

@@ -87,13 +87,14 @@ fn the_showcase_runs_on_every_configuration_of_both_backends() {
                     assert!(last.is_grounded(), "not grounded on the one-way top");
                 }
                 "start-ride" => {
-                    // Issue 5's bound for the sweep on horizontal rides (tests/behaviour/platforms.rs).
+                    // The carry bound for the sweep on horizontal rides, 1e-4 tiles: the float
+                    // carry's rounding over a ride (tests/behaviour/platforms.rs).
                     assert!(metric("carry_drift") <= 1e-4, "{}", metric("carry_drift"));
                     assert_eq!(metric("carry_airborne_frames"), 0.0);
                     assert_eq!(last.platform, Some(0));
                 }
                 "start-drop" => {
-                    // Spawned on the floor: at rest on it, no gap (issue 2's bound, 1e-4
+                    // Spawned on the floor: at rest on it, no gap (the sweep's rest bound, 1e-4
                     // tiles, as in tests/behaviour/sweep_builtin.rs).
                     assert!(metric("rest_gap").abs() <= 1e-4, "{}", metric("rest_gap"));
                 }

@@ -275,9 +275,9 @@ fn report_refuses_a_damaged_tradeoff_file_naming_its_line() {
 #[test]
 fn the_header_counts_the_traces_written_and_stderr_stays_clean_off_a_terminal() {
     // The built-in set on the sweep's three configurations. Integer positions once skipped the
-    // levels with slopes or moving platforms, which the header once counted anyway; since issue
-    // 23 every configuration runs all 64 scenarios, so the header counts 192 runs, all written,
-    // and announces no skip.
+    // levels with slopes or moving platforms, which the header once counted anyway; since they
+    // model both, every configuration runs all 64 scenarios, so the header counts 192 runs, all
+    // written, and announces no skip.
     let dir = tempfile::tempdir().unwrap();
     let out_dir = dir.path().join("o");
     let out = platbench()
