@@ -86,31 +86,62 @@ pub fn frames(duration: f64, dt: f64) -> f64 {
     (duration / dt).round()
 }
 
+/// What is wrong with a scenario's timing ([`check_timing`]), for the caller to place (file and
+/// line, or a command-line flag).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TimingError {
+    /// The time step is outside [`DT_RANGE`].
+    #[error("dt is {dt}; expected a time step in seconds, {} <= dt <= {}", DT_RANGE.0, DT_RANGE.1)]
+    Dt {
+        /// The time step, seconds.
+        dt: f64,
+    },
+    /// The duration is not a positive number of seconds within [`MAX_DURATION`].
+    #[error("duration is {duration}; expected seconds, 0 < duration <= {MAX_DURATION}")]
+    Duration {
+        /// The duration, seconds.
+        duration: f64,
+    },
+    /// The duration is under half a step: nothing would run.
+    #[error("duration / dt = {duration} / {dt} rounds to 0 frames, so nothing would run; expected a duration of at least half a step")]
+    NoFrame {
+        /// The duration, seconds.
+        duration: f64,
+        /// The time step, seconds.
+        dt: f64,
+    },
+    /// More frames than [`MAX_FRAMES`].
+    #[error("duration / dt = {duration} / {dt} is {frames} frames; expected at most {MAX_FRAMES} (shorten the scenario or take a larger dt)")]
+    TooManyFrames {
+        /// The duration, seconds.
+        duration: f64,
+        /// The time step, seconds.
+        dt: f64,
+        /// The frames it would take.
+        frames: f64,
+    },
+}
+
 /// Checks a scenario's duration against its time step: the step within [`DT_RANGE`], the
-/// duration within [`MAX_DURATION`], and between 1 and [`MAX_FRAMES`] frames. Returns what is
-/// wrong, for the caller to place (file and line, or a command-line flag).
-pub fn check_timing(duration: f64, dt: f64) -> Result<u64, String> {
+/// duration within [`MAX_DURATION`], and between 1 and [`MAX_FRAMES`] frames. Returns the
+/// number of frames.
+pub fn check_timing(duration: f64, dt: f64) -> Result<u64, TimingError> {
     if !dt_in_range(dt) {
-        return Err(format!(
-            "dt is {dt}; expected a time step in seconds, {} <= dt <= {}",
-            DT_RANGE.0, DT_RANGE.1
-        ));
+        return Err(TimingError::Dt { dt });
     }
     if !(duration.is_finite() && duration > 0.0 && duration <= MAX_DURATION) {
-        return Err(format!(
-            "duration is {duration}; expected seconds, 0 < duration <= {MAX_DURATION}"
-        ));
+        return Err(TimingError::Duration { duration });
     }
     let n = frames(duration, dt);
     if n < 1.0 {
-        return Err(format!(
-            "duration / dt = {duration} / {dt} rounds to 0 frames, so nothing would run; expected a duration of at least half a step"
-        ));
+        return Err(TimingError::NoFrame { duration, dt });
     }
     if n > MAX_FRAMES as f64 {
-        return Err(format!(
-            "duration / dt = {duration} / {dt} is {n} frames; expected at most {MAX_FRAMES} (shorten the scenario or take a larger dt)"
-        ));
+        return Err(TimingError::TooManyFrames {
+            duration,
+            dt,
+            frames: n,
+        });
     }
     Ok(n as u64)
 }
@@ -157,10 +188,20 @@ mod tests {
     fn timing_is_checked_before_anything_runs() {
         assert_eq!(check_timing(1.0, 0.01), Ok(100));
         // dt = 1e30 used to run zero steps; 1e-9 bypassed the frame cap.
-        assert!(check_timing(1.0, 1e30).unwrap_err().contains("dt"));
-        assert!(check_timing(10.0, 1e-9).unwrap_err().contains("dt"));
-        assert!(check_timing(0.001, 0.1).unwrap_err().contains("0 frames"));
-        assert!(check_timing(1e5, 1e-3).unwrap_err().contains("at most"));
+        assert!(matches!(
+            check_timing(1.0, 1e30),
+            Err(TimingError::Dt { .. })
+        ));
+        assert!(matches!(
+            check_timing(10.0, 1e-9),
+            Err(TimingError::Dt { .. })
+        ));
+        let none = check_timing(0.001, 0.1).unwrap_err();
+        assert!(matches!(none, TimingError::NoFrame { .. }));
+        assert!(none.to_string().contains("0 frames"), "{none}");
+        let many = check_timing(1e5, 1e-3).unwrap_err();
+        assert!(matches!(many, TimingError::TooManyFrames { .. }));
+        assert!(many.to_string().contains("at most"), "{many}");
         assert!(check_timing(f64::NAN, 0.1).is_err());
         assert!(check_timing(0.1, f64::INFINITY).is_err());
     }

@@ -485,13 +485,20 @@ pub(crate) fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) 
     Ok(rows)
 }
 
+/// Why a `--world-size` value was refused.
+#[derive(Debug, thiserror::Error)]
+enum WorldSizeError {
+    #[error("{0} is not a world size: give a finite number of tiles, 0 or more")]
+    OutOfRange(f64),
+    #[error("{0:?} is not a number of tiles: {1}")]
+    NotANumber(String, std::num::ParseFloatError),
+}
+
 /// A world size for `stress --world-size`: a finite number of tiles, 0 or more.
-fn parse_world_size(s: &str) -> Result<f64, String> {
+fn parse_world_size(s: &str) -> Result<f64, WorldSizeError> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
-        Ok(v) => Err(format!(
-            "{v} is not a world size: give a finite number of tiles, 0 or more"
-        )),
-        Err(e) => Err(format!("{s:?} is not a number of tiles: {e}")),
+        Ok(v) => Err(WorldSizeError::OutOfRange(v)),
+        Err(e) => Err(WorldSizeError::NotANumber(s.to_string(), e)),
     }
 }

@@ -686,7 +686,8 @@ fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelE
         }
         None => DEFAULT_DT,
     };
-    limits::check_timing(duration as f64, dt as f64).map_err(|m| loc.at(&s.duration.span(), m))?;
+    limits::check_timing(duration as f64, dt as f64)
+        .map_err(|m| loc.at(&s.duration.span(), m.to_string()))?;
     let spawn = vec2(loc, &s.spawn, "spawn", false)?;
     let size = match &s.size {
         Some(v) => {

@@ -4,7 +4,6 @@
 
 use glam::Vec2;
 
-use crate::backend::BackendError;
 use crate::level::{InputEvent, Level, Platform, PlatformMotion, ScenarioSpec, Tile};
 
 use super::definition::BASE;
@@ -106,17 +105,29 @@ pub(super) fn probes(size: Vec2, dt: f32, speed: f32) -> Vec<ScenarioSpec> {
     ]
 }
 
+/// A base time step at which a stress probe cannot run ([`check_base_dt`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("the {probe} probe ({duration} s) cannot run at this base time step: {source}")]
+pub struct ProbeTimingError {
+    /// The probe's name.
+    pub probe: String,
+    /// Its duration, seconds.
+    pub duration: f32,
+    /// What is wrong with its timing.
+    pub source: crate::limits::TimingError,
+}
+
 /// Checks that every probe can run at the base time step `dt` (seconds): each probe's duration
 /// over `dt` is within the frame caps of [`crate::limits::check_timing`].
-pub fn check_base_dt(dt: f32) -> Result<(), BackendError> {
+pub fn check_base_dt(dt: f32) -> Result<(), ProbeTimingError> {
     let size = Vec2::new(BASE.width, BASE.width * 1.125);
     for spec in probes(size, dt, BASE.speed) {
-        crate::limits::check_timing(spec.duration as f64, dt as f64).map_err(|m| {
-            crate::backend::invalid(
-                "dt",
-                format!("the {} probe ({} s): {m}", spec.name, spec.duration),
-                "a base time step at which every stress probe runs within the frame caps",
-            )
+        crate::limits::check_timing(spec.duration as f64, dt as f64).map_err(|source| {
+            ProbeTimingError {
+                probe: spec.name.clone(),
+                duration: spec.duration,
+                source,
+            }
         })?;
     }
     Ok(())
