@@ -137,7 +137,7 @@ impl From<crate::motion::InvalidParam> for BackendError {
 }
 
 /// Refuses a level whose features a backend does not support: never ignore part of a level.
-pub fn require_supported(
+pub(crate) fn require_supported(
     backend: &'static str,
     level_name: &str,
     has: Features,
@@ -159,7 +159,10 @@ pub fn require_supported(
 /// Refuses a level placed farther from the world's origin than `settings` holds
 /// ([`BackendSettings::max_origin`]: an f32 configuration's positions there move in whole
 /// tiles or more, so nothing it does means anything; its f64 build places the level exactly).
-pub fn origin_supported(settings: &dyn BackendSettings, level: &Level) -> Result<(), BackendError> {
+pub fn origin_supported(
+    settings: &dyn BackendSettings,
+    level: &Level,
+) -> Result<(), BackendError> {
     let max = settings.max_origin();
     if level.origin.abs().max_element() > max {
         return Err(BackendError::Unsupported {
@@ -218,7 +221,7 @@ pub fn runs(settings: &dyn BackendSettings, level: &Level) -> bool {
 
 /// Whether `settings` runs scenario `spec` of `level`: [`runs`], and its character is one the
 /// configuration takes ([`BackendSettings::check_character`]).
-pub fn runs_scenario(
+pub(crate) fn runs_scenario(
     settings: &dyn BackendSettings,
     level: &Level,
     spec: &crate::level::ScenarioSpec,

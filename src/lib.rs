@@ -21,7 +21,7 @@ pub mod backend;
 #[cfg(feature = "box2d")]
 pub mod box2d;
 #[path = "../compare/builtin.rs"]
-pub mod builtin;
+pub(crate) mod builtin;
 pub mod cli;
 pub mod config;
 pub mod controller;

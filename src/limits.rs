@@ -17,13 +17,13 @@ use std::path::Path;
 /// Largest file read as a level, map, tileset or side file, in bytes (128 MiB): a 16-million
 /// tile map written as Tiled CSV takes about 80 MB. Reading stops here, so a device or pipe
 /// that never ends (`/dev/zero`) is refused after 128 MiB.
-pub const MAX_INPUT_BYTES: u64 = 128 * 1024 * 1024;
+pub(crate) const MAX_INPUT_BYTES: u64 = 128 * 1024 * 1024;
 /// Most tiles a level may have (width x height), TOML or Tiled alike.
-pub const MAX_TILES: u64 = 16_000_000;
+pub(crate) const MAX_TILES: u64 = 16_000_000;
 /// Most frames (duration / dt) one scenario may run.
 pub const MAX_FRAMES: u64 = 10_000_000;
 /// Most frames all the scenarios of one level may run together.
-pub const MAX_LEVEL_FRAMES: u64 = 50_000_000;
+pub(crate) const MAX_LEVEL_FRAMES: u64 = 50_000_000;
 /// Longest scenario, in seconds (about 28 hours of game time).
 pub const MAX_DURATION: f64 = 1e5;
 /// Smallest and largest time step, in seconds.
@@ -32,7 +32,7 @@ pub const DT_RANGE: (f64, f64) = (1e-6, 1.0);
 /// `expect_y` from zero, in tiles: these are level coordinates, which every backend keeps in f32,
 /// and beyond 1e7 an f32 position moves in whole tiles, where nothing a controller does means
 /// anything.
-pub const MAX_COORD: f64 = 1e7;
+pub(crate) const MAX_COORD: f64 = 1e7;
 /// Largest distance of a level's origin from the world's origin, in tiles, on each axis: the
 /// offsets `platbench stress` measures f64 configurations at (f64 spacing 1/8 tile there). The
 /// origin is kept in f64, so anything up to this is placed exactly by an f64 configuration.
@@ -46,22 +46,22 @@ pub const MAX_ORIGIN: f64 = 1e15;
 /// whole reach, origin plus size and platform paths, [`crate::level::Level::reach`]).
 pub const MAX_F32_ORIGIN: f64 = 1e7;
 /// Smallest and largest character width or height, in tiles.
-pub const SIZE_RANGE: (f64, f64) = (1e-3, 1e3);
+pub(crate) const SIZE_RANGE: (f64, f64) = (1e-3, 1e3);
 /// Largest speed (a run speed, an initial velocity component, a ladder or platform speed), in
 /// tiles/s.
-pub const MAX_SPEED: f64 = 1e4;
+pub(crate) const MAX_SPEED: f64 = 1e4;
 /// Largest acceleration (gravity, run acceleration), in tiles/s².
-pub const MAX_ACCEL: f64 = 1e5;
+pub(crate) const MAX_ACCEL: f64 = 1e5;
 /// Largest jump height, in tiles.
-pub const MAX_JUMP_HEIGHT: f64 = 1e4;
+pub(crate) const MAX_JUMP_HEIGHT: f64 = 1e4;
 /// Smallest platform period, in seconds (a period shorter than the smallest dt is noise).
-pub const MIN_PERIOD: f64 = 1e-6;
+pub(crate) const MIN_PERIOD: f64 = 1e-6;
 /// Largest sweep epsilon, in tiles: an overlap tolerance of a whole tile tolerates everything.
-pub const MAX_EPSILON: f64 = 1.0;
+pub(crate) const MAX_EPSILON: f64 = 1.0;
 
 /// Whether `dt` (seconds) is within [`DT_RANGE`], compared in f32 as the runner stores it (so
 /// `1e-6` read into an f32, a hair below 1e-6, is in).
-pub fn dt_in_range(dt: f64) -> bool {
+pub(crate) fn dt_in_range(dt: f64) -> bool {
     dt.is_finite() && (dt as f32) >= DT_RANGE.0 as f32 && (dt as f32) <= DT_RANGE.1 as f32
 }
 
@@ -148,7 +148,7 @@ pub fn check_timing(duration: f64, dt: f64) -> Result<u64, TimingError> {
 
 /// Reads a whole file of at most [`MAX_INPUT_BYTES`]; a larger one (or one that never ends) is
 /// an error that says the cap, read no further than the cap.
-pub fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
+pub(crate) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
     let file = std::fs::File::open(path)?;
     if file.metadata().is_ok_and(|m| m.is_dir()) {
         return Err(std::io::Error::new(
@@ -171,7 +171,7 @@ pub fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
 }
 
 /// [`read_capped`] as UTF-8 text.
-pub fn read_text_capped(path: &Path) -> std::io::Result<String> {
+pub(crate) fn read_text_capped(path: &Path) -> std::io::Result<String> {
     String::from_utf8(read_capped(path)?).map_err(|e| {
         std::io::Error::new(
             std::io::ErrorKind::InvalidData,

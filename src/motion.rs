@@ -337,7 +337,7 @@ pub fn jump_speed(p: &MotionParams, dt: f32) -> f32 {
 /// reached after `N = floor(v / (g dt))` steps and equals `N v dt - g dt² N(N+1)/2`. That is
 /// continuous and increasing in `v`, so for the `N` with `g dt² N(N-1)/2 <= h < g dt² N(N+1)/2`
 /// the speed is `v = (h + g dt² N(N+1)/2) / (N dt)`. Solved in f64, then rounded to f32.
-pub fn exact_discrete_jump_speed(g: f32, h: f32, dt: f32) -> f32 {
+pub(crate) fn exact_discrete_jump_speed(g: f32, h: f32, dt: f32) -> f32 {
     let (g, h, dt) = (g as f64, h as f64, dt as f64);
     if h <= 0.0 || g <= 0.0 || dt <= 0.0 {
         return 0.0;

@@ -319,7 +319,7 @@ impl<'a> Runner<'a> {
 /// Cost of one character-step of `spec` on `run`, in nanoseconds: the scenario's steps timed in
 /// process (building the backend and recording the trace are not timed), the minimum over
 /// `repeats` runs, which is the least disturbed by the rest of the machine.
-pub fn time_scenario(
+pub(crate) fn time_scenario(
     runner: &mut Runner,
     spec: &ScenarioSpec,
     run: &RunConfig,

@@ -213,7 +213,7 @@ pub fn run_tradeoff_on(
 /// Marks the rows no other row dominates (as cheap or cheaper and as accurate or more, and
 /// strictly better in one).
 /// Rows are compared only with rows of the same `scope`.
-pub fn mark_pareto(rows: &mut [TradeoffRow]) {
+pub(crate) fn mark_pareto(rows: &mut [TradeoffRow]) {
     // Only rows measured over the whole scenario set are compared.
     let full = rows.iter().map(|r| r.scenarios).max().unwrap_or(0);
     let points: Vec<Option<(f64, f64)>> = rows
@@ -239,7 +239,7 @@ pub fn chart_svg(rows: &[TradeoffRow]) -> String {
 
 /// Cost (log scale) against the error of one `scope` ([`ALL`] or a behaviour's key), one dot
 /// per setting, that scope's Pareto front joined.
-pub fn chart_svg_scope(rows: &[TradeoffRow], scope: &str) -> String {
+pub(crate) fn chart_svg_scope(rows: &[TradeoffRow], scope: &str) -> String {
     let rows: Vec<TradeoffRow> = rows.iter().filter(|r| r.scope == scope).cloned().collect();
     let rows = &rows[..];
     let (w, h, m) = (720.0f64, 420.0f64, 60.0f64);

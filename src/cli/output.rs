@@ -19,7 +19,7 @@ const OLD: &str = ".platbench-old-";
 
 /// Which command wrote a directory.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Kind {
+pub(crate) enum Kind {
     /// `platbench run --out`.
     Run,
     /// `platbench run --bless`: the committed baseline.
@@ -84,7 +84,7 @@ fn marker_of(dir: &Path) -> Option<Kind> {
 /// - a file is never replaced;
 /// - anything else (a user's directory, another command's output) only with `force`; the
 ///   filesystem root, the current directory and its ancestors never.
-pub fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
+pub(crate) fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
     let meta = match fs::symlink_metadata(dir) {
         Ok(m) => m,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
@@ -151,7 +151,7 @@ fn process_ended(pid: u32) -> bool {
 /// Removes the staging directories a dead platbench left in `parent`, and puts back an output
 /// it had moved aside and not replaced. Only entries whose names platbench gives, of a process
 /// that has ended, are touched. Says on stderr what it did.
-pub fn clean_stale(parent: &Path) {
+pub(crate) fn clean_stale(parent: &Path) {
     let Ok(entries) = fs::read_dir(parent) else {
         return;
     };
@@ -250,7 +250,7 @@ impl Drop for Staging {
 }
 
 /// Writes `text` to `path` (mode 0644 under the usual umask, as any file the user creates).
-pub fn write_file(path: &Path, text: &[u8]) -> Result<()> {
+pub(crate) fn write_file(path: &Path, text: &[u8]) -> Result<()> {
     let mut f =
         fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
     f.write_all(text)
@@ -261,7 +261,7 @@ pub fn write_file(path: &Path, text: &[u8]) -> Result<()> {
 /// Writes an output of `kind` into `dir` as a whole: checks `dir` again ([`check_target`]),
 /// cleans what an interrupted platbench left beside it, lets `fill` write the files into a
 /// staging directory (with the marker), then swaps the staging directory in.
-pub fn write_output(
+pub(crate) fn write_output(
     dir: &Path,
     kind: Kind,
     force: bool,

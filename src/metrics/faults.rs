@@ -13,23 +13,23 @@ use crate::trace::TraceRow;
 /// Inside the level's solid geometry deeper than the configuration declares
 /// (`penetration_beyond_declared` at this frame above [`INSIDE_TOLERANCE`]), or its box inside
 /// a moving platform that is not one-way by more than that (`push_penetration` at this frame).
-pub const INSIDE: u8 = 1;
+pub(crate) const INSIDE: u8 = 1;
 /// The step into this frame was stuck on open ground (as `stuck_frames` counts it).
-pub const STUCK: u8 = 2;
+pub(crate) const STUCK: u8 = 2;
 /// Airborne, not rising, with the ground within the flicker tolerance under the shape, having
 /// left the ground (or stayed in this state) since the frame before: the frames after a switch
 /// `grounded_flicker` counts, and a walker hopping down a slope. A fall arriving at the ground
 /// is not marked: its frame before was airborne and far.
-pub const AIRBORNE_NEAR_GROUND: u8 = 4;
+pub(crate) const AIRBORNE_NEAR_GROUND: u8 = 4;
 /// Reported grounded with no ground within the flicker tolerance (as `false_grounded` counts).
-pub const FALSE_GROUNDED: u8 = 8;
+pub(crate) const FALSE_GROUNDED: u8 = 8;
 /// A moving platform crushed it against the level this frame (the trace's `crushed` column), or
 /// its box is inside one by more than [`super::platforms::CRUSH_DEPTH`] (as `crush_count` reads
 /// it from the geometry, for a backend without a crush event).
-pub const CRUSHED: u8 = 16;
+pub(crate) const CRUSHED: u8 = 16;
 
 /// Every fault bit with the words the report shows for it.
-pub const NAMES: [(u8, &str); 5] = [
+pub(crate) const NAMES: [(u8, &str); 5] = [
     (INSIDE, "inside a solid"),
     (STUCK, "stuck"),
     (AIRBORNE_NEAR_GROUND, "airborne, ground near"),
@@ -40,10 +40,10 @@ pub const NAMES: [(u8, &str); 5] = [
 /// Overlap beyond the declared contact below which a frame is not marked inside, in tiles: a
 /// thousandth of a tile, the threshold the report's static pictures used for their red dots
 /// (0.02 px at their 22 px per tile, below what can be seen).
-pub const INSIDE_TOLERANCE: f32 = 1e-3;
+pub(crate) const INSIDE_TOLERANCE: f32 = 1e-3;
 
 /// The fault bits of each of the measured character's rows (the trace's first), in frame order.
-pub fn frame_faults(ctx: &Context) -> Vec<u8> {
+pub(crate) fn frame_faults(ctx: &Context) -> Vec<u8> {
     let id = ctx.trace.rows.first().map_or(0, |r| r.character);
     let rows: Vec<TraceRow> = ctx.trace.character(id).copied().collect();
     let g = Ground::new(ctx.level, ctx.shape, ctx.spec.size);

@@ -14,7 +14,7 @@ use parry2d::shape::SharedShape;
 /// How much two boxes must overlap across an axis to be side by side along it, in tiles: above
 /// f32 rounding of a flush contact, so a wall sliding flush past a character's side is beside
 /// it, not against it.
-pub const SIDE_OVERLAP: f32 = 1e-4;
+pub(crate) const SIDE_OVERLAP: f32 = 1e-4;
 
 /// Whether row `k` stands still of its own: no input on the step that produced it, grounded,
 /// not on a ladder, riding no platform (as the trace says, or standing on one: feet within

@@ -221,7 +221,7 @@ pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: Frame
 /// tiles and with the solid tiles that continue the ground (tops at most `slope_overhang` above
 /// the stance), never with a tile beside its body: a box pushed into a wall is charged, as
 /// any other controller's would be. A one-way top it stands sunk below is never allowed.
-pub fn beyond_declared(ctx: &Context, g: &Ground, r: &TraceRow) -> f32 {
+pub(crate) fn beyond_declared(ctx: &Context, g: &Ground, r: &TraceRow) -> f32 {
     let d = ctx.declared;
     let p = pos(r);
     let stance = (d.slope_overhang > 0.0)

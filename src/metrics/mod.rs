@@ -108,7 +108,7 @@ pub fn compute(ctx: &Context) -> Vec<MetricRow> {
 /// rows, wherever they are held (in memory or spilled, [`crate::trace::RowStore`]); `ctx.trace`
 /// gives only the labels. Memory: the level's and a few values per metric, whatever the run's
 /// length (nothing is kept per frame).
-pub fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
+pub(crate) fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
     let ground = Ground::new(ctx.level, ctx.shape, ctx.spec.size);
     let g = &ground;
     let mut out = Vec::new();
@@ -186,7 +186,7 @@ fn standing(r: &TraceRow) -> bool {
 }
 
 /// The `ns_per_character_step` row of a timed scenario (see [`crate::scenario::time_scenario`]).
-pub fn timing_row(
+pub(crate) fn timing_row(
     level: &Level,
     spec: &ScenarioSpec,
     run: &crate::scenario::RunConfig,
@@ -301,7 +301,7 @@ pub fn evaluate_recorded(
 /// Calls `f` with the context the metrics read for `trace`, a run of `spec` on `run`: the
 /// scenario's effective parameters, and the box the configuration really moves (integer
 /// positions round it up to whole subpixels) with the contact it declares for it.
-pub fn with_context<R>(
+pub(crate) fn with_context<R>(
     level: &Level,
     spec: &ScenarioSpec,
     run: &crate::scenario::RunConfig,

@@ -5,7 +5,7 @@ use crate::trace::Frames;
 
 /// How close to the expected height the feet must end for `oneway_result`, in tiles: above
 /// Rapier's offset, far below a tile.
-pub const EXPECT_TOLERANCE: f32 = 0.05;
+pub(crate) const EXPECT_TOLERANCE: f32 = 0.05;
 
 /// `oneway_result`: on a level with one-way platforms, 1 if the character ended where the
 /// scenario says the seed's rule puts it (`expect_y`: on the platform, or below it), else 0.

@@ -15,7 +15,7 @@ fn placed(ctx: &Context, p: &crate::level::Platform, k: usize) -> parry2d::bound
 
 /// Deepest overlap of row `r`'s shape (frame `k`) with a platform that is not one-way, where
 /// the configuration places it (`placed`), in tiles.
-pub fn platform_depth(ctx: &Context, g: &Ground, r: &TraceRow, k: usize) -> f32 {
+pub(crate) fn platform_depth(ctx: &Context, g: &Ground, r: &TraceRow, k: usize) -> f32 {
     ctx.level
         .platforms
         .iter()
@@ -26,7 +26,7 @@ pub fn platform_depth(ctx: &Context, g: &Ground, r: &TraceRow, k: usize) -> f32 
 
 /// How close above a platform's top the feet count as on it, for the carry metrics, in tiles:
 /// above Rapier's offset.
-pub const ON_PLATFORM: f32 = 0.05;
+pub(crate) const ON_PLATFORM: f32 = 0.05;
 
 /// The frames of the ride: from the first frame the character stands on the scenario's platform
 /// (grounded, feet within [`ON_PLATFORM`] of its top, overlapping it in x) with idle input and no

@@ -76,7 +76,7 @@ pub fn commanded_steps<I: IntoIterator<Item = impl Borrow<Input>>>(
 
 /// An iterator read forward by index: `get(k)` is its `k`-th item, for `k` never below the one
 /// asked last (a metric walking the frames forward reads the commanded steps as it goes).
-pub struct Cursor<I: Iterator> {
+pub(crate) struct Cursor<I: Iterator> {
     it: I,
     next: usize,
     last: Option<I::Item>,

@@ -136,7 +136,7 @@ impl MetricDef {
 }
 
 /// The "clearly wrong" size of an error in `unit` (see [`MetricDef::scale`]).
-pub fn unit_scale(unit: &str) -> f64 {
+pub(crate) fn unit_scale(unit: &str) -> f64 {
     match unit {
         "tiles" | "ratio" | "tiles/s" => 0.01,
         _ => 1.0,
@@ -455,15 +455,8 @@ pub fn unit(name: &str) -> &'static str {
 }
 
 /// The metrics of one behaviour, in catalog order.
-pub fn of_behaviour(b: Behaviour) -> impl Iterator<Item = &'static MetricDef> {
+pub(crate) fn of_behaviour(b: Behaviour) -> impl Iterator<Item = &'static MetricDef> {
     METRICS.iter().filter(move |d| d.behaviour == b)
-}
-
-/// The metrics of one summary table (see [`SUMMARY_GROUPS`]), in catalog order.
-pub fn of_summary_group(group: &str) -> impl Iterator<Item = &'static MetricDef> + '_ {
-    METRICS
-        .iter()
-        .filter(move |d| d.behaviour.summary_group() == group)
 }
 
 #[cfg(test)]

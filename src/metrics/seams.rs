@@ -11,7 +11,7 @@ use parry2d::bounding_volume::Aabb;
 
 /// How far above a floor a walker may spawn for `progress_ratio` to apply, in tiles: enough
 /// to let a controller settle at its own rest height, too little to matter to the distance.
-pub const PROGRESS_SPAWN_HEIGHT: f32 = 0.05;
+pub(crate) const PROGRESS_SPAWN_HEIGHT: f32 = 0.05;
 
 /// `progress_ratio`: distance walked over distance commanded, for a walk that starts on the
 /// ground with the whole commanded path flat, supported and free of obstacles.
@@ -63,7 +63,7 @@ pub fn progress_ratio(ctx: &Context, rows: Frames) -> Option<Measure> {
 pub const STUCK_FRACTION: f64 = 0.01;
 /// Height above the feet below which a solid ahead is the floor (or a seam in it), not an
 /// obstacle, for `stuck_frames`, in tiles: larger than Rapier's offset and a snapped step.
-pub const STUCK_FLOOR_BAND: f32 = 0.05;
+pub(crate) const STUCK_FLOOR_BAND: f32 = 0.05;
 
 /// `stuck_frames`: steps in which the character was commanded to move horizontally, was
 /// grounded, and moved less than [`STUCK_FRACTION`] of the commanded step, while nothing in the
@@ -79,7 +79,10 @@ pub fn stuck_frames(ctx: &Context, rows: Frames) -> Measure {
 
 /// Per step `k` (from row `k` to row `k + 1`), whether it was stuck as [`stuck_frames`] counts
 /// it; one entry per step the script and the rows both cover, computed as it is read.
-pub fn stuck_steps<'a>(ctx: &'a Context, rows: Frames<'a>) -> impl Iterator<Item = bool> + 'a {
+pub(crate) fn stuck_steps<'a>(
+    ctx: &'a Context,
+    rows: Frames<'a>,
+) -> impl Iterator<Item = bool> + 'a {
     let script = input_script(ctx.spec);
     let size = ctx.spec.size;
     let commanded = commanded_steps(ctx.params, script.clone(), ctx.spec.velocity.x, ctx.spec.dt);

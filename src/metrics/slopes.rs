@@ -129,7 +129,7 @@ pub(super) fn slope_gap_max(ctx: &Context, g: &Ground, on: &SlopeFrames) -> Opti
 /// How long after the last airborne frame a landing's grounded frames are left out of
 /// `slope_gap_declared`, in seconds: three frames at 60 Hz, the snap a controller that lands
 /// within its ground prediction takes to close the gap.
-pub const LANDING_SETTLE: f32 = 0.05;
+pub(crate) const LANDING_SETTLE: f32 = 0.05;
 
 /// `slope_gap_declared`: over the frames reported grounded over a walkable slope, the signed
 /// gap less the gap of the stance the configuration declares there (as `rest_gap_declared`

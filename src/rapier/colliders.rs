@@ -104,7 +104,7 @@ impl StaticWorld {
 pub const ONE_WAY: u128 = 1 << 64;
 
 /// The `user_data` of a one-way collider whose top is at world height `top`.
-pub fn one_way_tag(top: Real) -> u128 {
+pub(crate) fn one_way_tag(top: Real) -> u128 {
     ONE_WAY | top_bits(top)
 }
 

@@ -109,7 +109,7 @@ pub const CLIMB_LIMIT_MARGIN: f32 = 1e-2;
 
 /// How far beyond its offset Rapier's controller looks for ground, in tiles: its
 /// `predict_ground` adds this absolute 0.05 to the offset (rapier2d 0.36.1).
-pub const GROUND_PREDICTION: f32 = 0.05;
+pub(crate) const GROUND_PREDICTION: f32 = 0.05;
 
 /// How far below a one-way platform's top the feet may start a move and still land on it, in
 /// tiles: rounding only (Rapier keeps its offset above the top when standing on it).

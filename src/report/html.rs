@@ -68,7 +68,7 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
 /// "Which backend for which game": the statements of [`super::rules::RULES`], each evaluated
 /// for every configuration on its worst values, with the numbers; then what each setting that
 /// one configuration adds to another changes ([`super::rules::setting_effects`]).
-pub fn recommendations(rows: &[MetricRow]) -> Vec<String> {
+pub(crate) fn recommendations(rows: &[MetricRow]) -> Vec<String> {
     let mut out = super::rules::evaluate(super::rules::RULES, rows);
     out.extend(super::rules::setting_effects(rows));
     out
@@ -77,7 +77,7 @@ pub fn recommendations(rows: &[MetricRow]) -> Vec<String> {
 /// Results of the slower commands the report can include: `platbench sweep`'s `tradeoff.csv`
 /// and `platbench stress`'s `stability.csv`, read back from their files.
 #[derive(Clone, Debug, Default)]
-pub struct Extras {
+pub(crate) struct Extras {
     /// Rows of `tradeoff.csv`: drawn as the cost-against-error chart with the Pareto front listed.
     pub tradeoff: Option<Vec<TradeoffRow>>,
     /// Rows of `stability.csv`: summarised as each configuration's envelope per dimension.
@@ -85,7 +85,7 @@ pub struct Extras {
 }
 
 /// Setting values as a short comma-separated list ("-" when empty).
-pub fn value_list(v: &[f64]) -> String {
+pub(crate) fn value_list(v: &[f64]) -> String {
     if v.is_empty() {
         return "-".into();
     }
@@ -161,7 +161,7 @@ fn tradeoff_section(rows: &[TradeoffRow]) -> (String, String) {
 }
 
 /// What broke where, for a table cell: `carry_no_drift at 0, 1000; finite at 1e7`, or `-`.
-pub fn breaks_list(e: &Envelope) -> String {
+pub(crate) fn breaks_list(e: &Envelope) -> String {
     if e.breaks.is_empty() {
         return "-".into();
     }
@@ -191,7 +191,7 @@ fn invariant_colour(first: Option<&str>) -> &'static str {
 /// Each pair of dimensions' combination cells as a grid: per pair, a row per configuration and
 /// first value, a column per second value, each cell `ok` or the invariants that broke there
 /// (first broken first). Each grid is `(pair, header, rows)`.
-pub fn pair_grids(rows: &[StressRow]) -> Vec<(String, Vec<String>, Vec<Vec<String>>)> {
+pub(crate) fn pair_grids(rows: &[StressRow]) -> Vec<(String, Vec<String>, Vec<Vec<String>>)> {
     let cells = crate::stress::cells(rows);
     let mut out: Vec<(String, Vec<String>, Vec<Vec<String>>)> = Vec::new();
     let mut pairs: Vec<&str> = Vec::new();
@@ -235,7 +235,7 @@ pub fn pair_grids(rows: &[StressRow]) -> Vec<(String, Vec<String>, Vec<Vec<Strin
 }
 
 /// [`pair_grids`] as plain-text tables, for `platbench stress`.
-pub fn pair_tables(rows: &[StressRow]) -> Vec<String> {
+pub(crate) fn pair_tables(rows: &[StressRow]) -> Vec<String> {
     pair_grids(rows)
         .into_iter()
         .map(|(_, header, grid)| {
@@ -349,7 +349,7 @@ fn stability_section(rows: &[StressRow]) -> (String, String) {
 }
 
 /// Renders the report: (HTML, Markdown).
-pub fn render_report(
+pub(crate) fn render_report(
     registry: &crate::registry::Registry,
     rows: &[MetricRow],
     scenarios: &[ScenarioTraces],

@@ -19,7 +19,7 @@ use crate::metrics::{registry, MetricRow};
 pub use crate::stress::format_setting;
 
 /// Formats a metric value compactly: integers as integers, small magnitudes in scientific form.
-pub fn format_value(v: f64) -> String {
+pub(crate) fn format_value(v: f64) -> String {
     if v.is_nan() {
         "NaN".into()
     } else if v.is_infinite() {
@@ -97,7 +97,7 @@ pub fn summary_table_in(rows: &[MetricRow], coverage: &Coverage) -> String {
 
 /// The worst value of each metric for each configuration: what the summary and the report's
 /// tables show.
-pub struct WorstMatrix {
+pub(crate) struct WorstMatrix {
     /// Configuration labels (`backend config`), in first-seen order.
     pub configs: Vec<String>,
     /// Per configuration: how many scenarios it ran, and how many any configuration ran.
@@ -222,12 +222,12 @@ impl Coverage {
 
 /// Computes the worst-per-configuration matrix of the metrics `keep` selects. Scenario coverage
 /// is counted over all of `rows` (every metric), so pass the whole run.
-pub fn worst_matrix(rows: &[MetricRow], keep: impl Fn(&str) -> bool) -> WorstMatrix {
+pub(crate) fn worst_matrix(rows: &[MetricRow], keep: impl Fn(&str) -> bool) -> WorstMatrix {
     worst_matrix_in(rows, &Coverage::of(rows), keep)
 }
 
 /// [`worst_matrix`] with the scenarios each configuration ran given by `coverage`.
-pub fn worst_matrix_in(
+pub(crate) fn worst_matrix_in(
     rows: &[MetricRow],
     cov: &Coverage,
     keep: impl Fn(&str) -> bool,
@@ -335,10 +335,10 @@ fn group_table(m: &WorstMatrix) -> String {
 
 /// Distance from ideal below which two configurations tie: f32 rounding of positions of a few
 /// tiles (ulp 2.4e-7 to 9.5e-7 for 2 to 8 tiles) accumulates to about this much.
-pub const TIE_TOLERANCE: f64 = 1e-6;
+pub(crate) const TIE_TOLERANCE: f64 = 1e-6;
 
 /// Every metric of every scenario, configurations side by side.
-pub fn detail_table(rows: &[MetricRow]) -> String {
+pub(crate) fn detail_table(rows: &[MetricRow]) -> String {
     let mut columns: Vec<String> = Vec::new();
     let mut keys: Vec<(String, String, &'static str)> = Vec::new();
     for r in rows {

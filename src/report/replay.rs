@@ -62,7 +62,7 @@ const MAX_TILES: f32 = 80.0;
 /// stands for). 400 frames keep the built-in report under 10 MB with every configuration in it
 /// (`platbench report` prints the size) and play at 30 or more drawn frames per second of a
 /// scenario up to 13 s long.
-pub const MAX_DRAWN_FRAMES: usize = 400;
+pub(crate) const MAX_DRAWN_FRAMES: usize = 400;
 
 /// Colours for the configurations a kind gives none ([`crate::controller::BackendKind::drawn`]),
 /// handed out in order.
@@ -106,7 +106,7 @@ pub(crate) fn escape(s: &str) -> String {
 }
 
 /// The drawing stride of a run of `frames` frames: every frame up to [`MAX_DRAWN_FRAMES`].
-pub fn stride(frames: usize) -> usize {
+pub(crate) fn stride(frames: usize) -> usize {
     frames.div_ceil(MAX_DRAWN_FRAMES).max(1)
 }
 
@@ -124,7 +124,7 @@ fn drawn_frames(frames: usize, stride: usize) -> impl Iterator<Item = usize> {
 /// frames as red dots, airborne ones hollow), each character's shape and the platforms at frame
 /// 0, the controls, the picker, and the drawn frames as inline JSON for the script. `shown`
 /// lists the configurations visible before the reader picks.
-pub fn scenario_replay(
+pub(crate) fn scenario_replay(
     id: &str,
     s: &ScenarioTraces,
     styles: &[Style],
@@ -446,10 +446,10 @@ fn replay_json(
 /// playing advances the frame, the picker hides a character) and writes the result into
 /// `<pre id="selftest">`; with `#view=REPLAY_ID&frame=N` it shows only that replay at drawn frame
 /// N (for a screenshot).
-pub const SCRIPT: &str = include_str!("replay.js");
+pub(crate) const SCRIPT: &str = include_str!("replay.js");
 
 /// The replay's style sheet.
-pub const STYLE: &str = ".replay .controls{margin:0.3em 0;font-size:13px}\n.replay .scrub{width:40%;vertical-align:middle}\n.replay .clock{font-family:monospace}\n.replay .picker{font-size:12px;margin:0.3em 0 1em}\n.replay .picker label{display:inline-block;margin-right:1em}\n.replay .picker i{display:inline-block;width:1.2em;height:0.8em;margin:0 0.3em}\n.replay .fault{color:#d50000;font-weight:bold}\n.replay g.body.bad{stroke:#d50000;stroke-width:3;fill:#d50000}\n";
+pub(crate) const STYLE: &str = ".replay .controls{margin:0.3em 0;font-size:13px}\n.replay .scrub{width:40%;vertical-align:middle}\n.replay .clock{font-family:monospace}\n.replay .picker{font-size:12px;margin:0.3em 0 1em}\n.replay .picker label{display:inline-block;margin-right:1em}\n.replay .picker i{display:inline-block;width:1.2em;height:0.8em;margin:0 0.3em}\n.replay .fault{color:#d50000;font-weight:bold}\n.replay g.body.bad{stroke:#d50000;stroke-width:3;fill:#d50000}\n";
 
 /// The configurations a scenario's replay in the report shows before the reader picks,
 /// from `rows`, that scenario's metric rows: per kind of `registry` in order, what its

@@ -248,7 +248,7 @@ pub fn evaluate(rules: &[Rule], rows: &[MetricRow]) -> Vec<String> {
 /// closer to ideal (what it fixes) and further from it (what it costs). It reads only the
 /// labels, so it names no backend or setting itself: this is how the report says which remedy
 /// fixes which failure, and at what price.
-pub fn setting_effects(rows: &[MetricRow]) -> Vec<String> {
+pub(crate) fn setting_effects(rows: &[MetricRow]) -> Vec<String> {
     let keep = |name: &str| name != "ns_per_character_step";
     let labels = worst_matrix(rows, keep).configs;
     let ran = |c: &str| -> std::collections::BTreeSet<(&str, &str)> {

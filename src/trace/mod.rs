@@ -128,7 +128,7 @@ impl Trace {
 }
 
 /// Writes `rows` as a trace's CSV with a header (see [`Trace::write_csv`]).
-pub fn write_rows_csv<W: Write>(
+pub(crate) fn write_rows_csv<W: Write>(
     rows: impl IntoIterator<Item = TraceRow>,
     w: W,
 ) -> Result<(), csv::Error> {

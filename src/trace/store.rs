@@ -20,7 +20,7 @@ pub const SPILL_ROWS: usize = 1 << 16;
 
 /// Rows in one block read back from a spilled file: 4,096 rows, 192 KiB. Two blocks are kept,
 /// so a metric that reads a frame against an earlier anchor (the idle drift) does not re-read.
-pub const BLOCK_ROWS: usize = 4096;
+pub(crate) const BLOCK_ROWS: usize = 4096;
 
 /// Bytes of one row in a spilled file: ten 4-byte fields and four 1-byte flags.
 const ROW_BYTES: usize = 44;
