@@ -16,7 +16,7 @@ use crate::metrics::{evaluate_with, MetricRow};
 use crate::scenario::{RunConfig, Runner};
 use crate::trace::Trace;
 
-/// The built-in levels ([`crate::builtin::LEVELS`]), parsed.
+/// The built-in levels (the files of `compare/levels/`), parsed.
 pub fn builtin_levels() -> Result<Vec<Level>, LevelError> {
     crate::builtin::LEVELS
         .iter()
