@@ -9,16 +9,17 @@ use crate::backend::BackendSettings;
 use crate::motion::MotionParams;
 use crate::shape::CharacterShape;
 
-/// Which controller to run, with its settings: any backend's [`BackendSettings`].
-pub type BackendConfig = Arc<dyn BackendSettings>;
-
-/// One column of a comparison: a backend configuration and the motion parameters it runs with.
+/// A configuration: one column of a comparison, a controller's settings under a label with the
+/// motion parameters and steps per frame it runs with. The one name for a configuration; a
+/// controller's settings struct is the controller itself (`SweepConfig`, `RapierConfig`, yours),
+/// and a trade-off [`Setting`] is a configuration with a time step.
 #[derive(Clone, Debug)]
 pub struct RunConfig {
     /// Label of this configuration in tables and CSV files (`config` column).
     pub label: String,
-    /// The backend and its settings.
-    pub backend: BackendConfig,
+    /// The controller and its settings, through the harness's erased view of any
+    /// [`crate::controller::Controller`].
+    pub backend: Arc<dyn BackendSettings>,
     /// Motion parameters (scenarios may override some of them).
     pub params: MotionParams,
     /// Steps the backend takes per frame, each of `dt / substeps` (1: one step per frame).

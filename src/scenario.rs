@@ -2,7 +2,7 @@
 //! configuration, yielding a [`Trace`].
 
 use crate::backend::{Backend, BackendError, CharacterId, CharacterSpec, SharedGeometry};
-pub use crate::config::{BackendConfig, RunConfig};
+pub use crate::config::RunConfig;
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::{Input, MotionParams};
 
