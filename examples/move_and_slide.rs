@@ -20,13 +20,8 @@
 //! does something the docs do not say (its recovery iterations, its exact floor snapping), this
 //! mover does the simple thing and says so.
 //!
-//! Run the built-in comparison with it as extra rows:
-//!
-//! ```text
-//! cargo run --release --example move_and_slide                 # the summary table
-//! cargo run --release --example move_and_slide -- --out DIR    # and the CSV files
-//! cargo run --release --example move_and_slide -- report --out DIR
-//! ```
+//! `cargo run --release --example move_and_slide` runs the built-in comparison with it as extra
+//! rows; every platbench command takes it (`-- report --out DIR`; docs/move-and-slide.md).
 
 use std::rc::Rc;
 
@@ -36,21 +31,14 @@ use parry2d::math::Pose;
 use parry2d::query::{self, ShapeCastOptions};
 use parry2d::shape::SharedShape;
 
-use platbench::backend::{
-    BackendError, CharacterId, CharacterSpec, CharacterState, DeclaredContact,
-};
-use platbench::controller::{Controller, Setup};
-use platbench::level::{Features, Level};
-use platbench::motion::{Contacts, Input, MotionParams, MotionState};
+use platbench::level::outlines::{one_way_rects, ColliderBuilding};
 use platbench::oneway::OneWayCheck;
-use platbench::scenario::RunConfig;
-use platbench::shape::CharacterShape;
+use platbench::prelude::*;
 
 /// The backend's name, as in CSV files.
 pub const NAME: &str = "move_and_slide";
 
-/// How far below a one-way platform's top the feet may start and still stand on it, in tiles:
-/// the tolerance the built-in backends use for the same rule.
+/// How far below a one-way platform's top the feet may start and still stand on it, in tiles.
 pub const ONE_WAY_TOLERANCE: f32 = 1e-3;
 
 /// Godot's `FLOOR_ANGLE_THRESHOLD`-like slack on `floor_max_angle`, in radians, so that a
@@ -186,7 +174,8 @@ impl LevelColliders {
                 None,
             );
         }
-        for r in level.one_way_boxes() {
+        // The shared one-way boxes, one per tile.
+        for r in one_way_rects(level, ColliderBuilding::PerTile) {
             let half = r.half_extents();
             push(
                 SharedShape::cuboid(half.x, half.y),
@@ -194,14 +183,15 @@ impl LevelColliders {
                 Some(r.maxs.y + o.y),
             );
         }
+        // Each slope in its tile's frame (the outline the shared outlines place in the level).
         for (i, j, slope) in level.slopes() {
-            let corner = Vec2::new(i as f32, j as f32) + o;
             let pts: Vec<Vec2> = slope.outline();
             if pts.len() < 2 {
                 continue;
             }
             let shape = SharedShape::convex_hull(&pts).filter(|_| pts.len() <= 5);
             let shape = shape.unwrap_or_else(|| SharedShape::polyline(pts, None));
+            let corner = Vec2::new(i as f32, j as f32) + o;
             push(shape, Pose::from_translation(corner), None);
         }
         LevelColliders { obstacles }
@@ -301,10 +291,8 @@ impl MoveAndSlide {
             )
             .loosened(margin + 1e-3);
         let options = ShapeCastOptions {
-            max_time_of_impact: 1.0,
-            target_distance: 0.0,
             stop_at_penetration: false,
-            compute_impact_geometry_on_penetration: true,
+            ..ShapeCastOptions::with_max_time_of_impact(1.0)
         };
         let mut best: Option<Hit> = None;
         for o in &self.colliders.obstacles {
@@ -504,21 +492,6 @@ impl MoveAndSlide {
     }
 }
 
-impl MoveAndSlide {
-    /// Places a character (the harness has checked its spawn, size and velocity).
-    fn add_character(&mut self, spec: CharacterSpec) {
-        self.characters.push(Character {
-            pos: spec.spawn + self.origin,
-            size: spec.size,
-            shape: self.config.shape.build(spec.size),
-            motion: MotionState::with_velocity(spec.velocity),
-            ground_normal: Vec2::ZERO,
-            one_way_ground: None,
-            drop_top: None,
-        });
-    }
-}
-
 impl Controller for MoveAndSlideConfig {
     type Mover = MoveAndSlide;
     const NAME: &'static str = NAME;
@@ -533,9 +506,19 @@ impl Controller for MoveAndSlideConfig {
             .shared
             .get_or_build(NAME, || LevelColliders::new(level));
         let mut mover = MoveAndSlide::new(level, colliders, setup.params.clone(), self.clone())?;
-        for c in setup.characters {
-            mover.add_character(*c);
-        }
+        // The characters (the harness has checked their spawns, sizes and velocities).
+        let origin = mover.origin;
+        mover
+            .characters
+            .extend(setup.characters.iter().map(|spec| Character {
+                pos: spec.spawn + origin,
+                size: spec.size,
+                shape: self.shape.build(spec.size),
+                motion: MotionState::with_velocity(spec.velocity),
+                ground_normal: Vec2::ZERO,
+                one_way_ground: None,
+                drop_top: None,
+            }));
         Ok(mover)
     }
 

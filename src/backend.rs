@@ -159,10 +159,7 @@ pub(crate) fn require_supported(
 /// Refuses a level placed farther from the world's origin than `settings` holds
 /// ([`BackendSettings::max_origin`]: an f32 configuration's positions there move in whole
 /// tiles or more, so nothing it does means anything; its f64 build places the level exactly).
-pub fn origin_supported(
-    settings: &dyn BackendSettings,
-    level: &Level,
-) -> Result<(), BackendError> {
+pub fn origin_supported(settings: &dyn BackendSettings, level: &Level) -> Result<(), BackendError> {
     let max = settings.max_origin();
     if level.origin.abs().max_element() > max {
         return Err(BackendError::Unsupported {
