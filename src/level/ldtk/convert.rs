@@ -9,10 +9,12 @@ use glam::Vec2;
 
 use super::json::{LdLevel, Project};
 use super::{parse_json, read, LdtkError, HOW_TO_COLLIDE, HOW_TO_SPAWN};
+use crate::level::import::names::{
+    is_spawn_name, role_from_name, says, HAZARD_WORDS, LADDER_WORDS, ONE_WAY_WORDS,
+};
+use crate::level::import::spawns::{no_solids_warning, safe_name, settle_spawns};
 use crate::level::import::{
-    fallback_spawn_point, is_spawn_name, no_solids_warning, normalize, role_from_name, says,
-    ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport, HAZARD_WORDS, LADDER_WORDS,
-    ONE_WAY_WORDS,
+    normalize, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport,
 };
 use crate::level::probes::SpawnPoint;
 use crate::level::{character_box, valid_name, Level, Tile, DEFAULT_CHARACTER_SIZE};
@@ -353,16 +355,7 @@ pub(super) fn import(
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_default()
         };
-        let safe: String = base
-            .chars()
-            .map(|c| {
-                if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
-                    c
-                } else {
-                    '_'
-                }
-            })
-            .collect();
+        let safe = safe_name(&base);
         if valid_name(&safe) {
             safe
         } else {
@@ -427,26 +420,8 @@ pub(super) fn import(
     if let Some(wn) = no_solids_warning(&level, &file, HOW_TO_COLLIDE) {
         extra.push(wn);
     }
-    if !opts.spawns.is_empty() {
-        spawns = opts
-            .spawns
-            .iter()
-            .enumerate()
-            .map(|(k, p)| SpawnPoint {
-                name: format!("spawn{}", k + 1),
-                position: *p,
-            })
-            .collect();
-        sources = vec!["--spawn on the command line".into(); spawns.len()];
-    } else if spawns.is_empty() {
-        let (s, wn) = fallback_spawn_point(&level, &file, HOW_TO_SPAWN);
+    if let Some(wn) = settle_spawns(&level, &file, HOW_TO_SPAWN, opts, &mut spawns, &mut sources) {
         extra.push(wn);
-        if let Some(s) = s {
-            spawns.push(s);
-            sources.push(
-                "fallback: the lowest standable cell of the leftmost column that has one".into(),
-            );
-        }
     }
     Ok(MapImport {
         level,

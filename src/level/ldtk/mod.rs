@@ -5,7 +5,7 @@
 //! name says one-way (`platform`, `oneway`, ...), ladder, or hazard (`water`, `spikes`, `acid`,
 //! ...: not solid); a separate IntGrid layer named like platforms is one-way; `--intgrid` and
 //! `--layer` override. Spawns are entities named `Player`, `Spawn`, `SpawnPoint`, `PlayerSpawn`,
-//! `Start_Point` (see [`super::import::SPAWN_NAMES`]), feet at the bottom centre of the box
+//! `Start_Point` (the spawn names of `import::names`), feet at the bottom centre of the box
 //! their pivot places. A world in a GridVania or Free layout is one level in world
 //! coordinates; a linear world's first level is imported; `--level NAME` picks one. Tile units,
 //! y up, as for Tiled (LDtk is y-down pixels).

@@ -8,6 +8,7 @@ use std::path::Path;
 use tiled::PropertyValue;
 
 use super::{kind_of, layers, names, Grid, Importer, Reasoned, TiledError};
+use crate::level::import::spawns::safe_name;
 use crate::level::import::LayerRole;
 use crate::level::valid_name;
 
@@ -118,16 +119,7 @@ impl Importer<'_> {
                     .file_stem()
                     .map(|s| s.to_string_lossy().into_owned())
                     .unwrap_or_default();
-                let safe: String = stem
-                    .chars()
-                    .map(|c| {
-                        if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
-                            c
-                        } else {
-                            '_'
-                        }
-                    })
-                    .collect();
+                let safe = safe_name(&stem);
                 if safe.is_empty() {
                     "map".to_string()
                 } else {

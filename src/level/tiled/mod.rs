@@ -32,17 +32,15 @@ pub use read::import_tiled_map_with;
 
 pub(crate) use tiles::ramp;
 
-use super::import::{
-    fallback_spawn_point, no_solids_warning, ImportFailure, ImportOptions, ImportWarning,
-    LayerReport, LayerRole,
-};
+use super::import::spawns::{no_solids_warning, settle_spawns};
+use super::import::{ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole};
 use super::probes::{probe_scenarios, ProbeConfig, SpawnPoint};
 use super::{parse_scenarios, Level, LevelError};
 use super::{Slope, Tile};
 
 /// How far a collision-shape point may be from the tile edge or corner it stands for, in
 /// pixels: the editor snaps to whole pixels, so a hand-drawn ramp is exact to about one.
-pub const SHAPE_TOLERANCE_PX: f32 = 1.0;
+pub(crate) const SHAPE_TOLERANCE_PX: f32 = 1.0;
 
 /// A warning of the Tiled import (the shared [`ImportWarning`]).
 pub type TiledWarning = ImportWarning;
@@ -272,26 +270,15 @@ impl<'m> Importer<'m> {
         if let Some(w) = no_solids_warning(&level, &self.file, HOW_TO_COLLIDE) {
             self.warnings.push(w);
         }
-        if !self.opts.spawns.is_empty() {
-            spawns.clear();
-            sources.clear();
-            for (k, p) in self.opts.spawns.iter().enumerate() {
-                spawns.push(SpawnPoint {
-                    name: format!("spawn{}", k + 1),
-                    position: *p,
-                });
-                sources.push("--spawn on the command line".into());
-            }
-        } else if spawns.is_empty() {
-            let (s, w) = fallback_spawn_point(&level, &self.file, HOW_TO_SPAWN);
+        if let Some(w) = settle_spawns(
+            &level,
+            &self.file,
+            HOW_TO_SPAWN,
+            self.opts,
+            &mut spawns,
+            &mut sources,
+        ) {
             self.warnings.push(w);
-            if let Some(s) = s {
-                spawns.push(s);
-                sources.push(
-                    "fallback: the lowest standable cell of the leftmost column that has one"
-                        .into(),
-                );
-            }
         }
         let _ = map;
         Ok(TiledImport {
