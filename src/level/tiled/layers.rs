@@ -1,6 +1,6 @@
 //! Which layer is what, and the tile layers' cells. A layer's role comes from, in order: the
 //! command line (`--layer NAME=ROLE`), the layer's own property (`collision`: a bool, or a role
-//! name; a bool `one_way`), its name (see [`crate::level::import::role_from_name`]), its group's
+//! name; a bool `one_way`), its name (see [`crate::level::import::names::role_from_name`]), its group's
 //! role, and last the default for tile layers no rule marks: collision, unless an object layer
 //! holds collision shapes or another tile layer is named for collision (then decoration), or
 //! as the map property `tile_layers` or `--tile-layers` say.
@@ -13,7 +13,8 @@ use tiled::{LayerType, ObjectShape, PropertyValue, TileLayer};
 use super::objects::ObjectLayer;
 use super::tiles::{apply_flips, is_bool_mark, tile_kind};
 use super::{kind_of, names, Importer, TiledError};
-use crate::level::import::{is_spawn_name, role_from_name, LayerReport, LayerRole};
+use crate::level::import::names::{is_spawn_name, role_from_name};
+use crate::level::import::{LayerReport, LayerRole};
 use crate::level::Tile;
 
 /// A Tiled cell (column, row; y down).

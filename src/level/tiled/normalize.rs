@@ -4,10 +4,10 @@
 //! encoding (`<tile gid=".."/>` per cell) becomes CSV, and a JSON tileset (`.tsj`, `.json`)
 //! becomes its TSX twin. Each change is a note the import passes on as a warning.
 
-use quick_xml::events::{BytesStart, Event};
+use quick_xml::events::Event;
 use serde_json::Value;
 
-use super::scan::ScanError;
+use super::scan::{attr, line_of, ScanError};
 use crate::limits;
 
 /// The text the crate reads, and what was changed.
@@ -16,21 +16,6 @@ pub(super) struct Normalized {
     pub text: String,
     /// What was changed, one note each.
     pub notes: Vec<String>,
-}
-
-fn attr(e: &BytesStart, name: &str) -> Option<String> {
-    e.attributes()
-        .filter_map(|a| a.ok())
-        .find(|a| a.key.as_ref() == name.as_bytes())
-        .and_then(|a| a.unescape_value().ok().map(|v| v.into_owned()))
-}
-
-fn line_of(text: &str, pos: usize) -> usize {
-    text.as_bytes()[..pos.min(text.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
 }
 
 /// A tileset element being read: what a missing `tilecount` is computed from.

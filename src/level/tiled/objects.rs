@@ -9,7 +9,8 @@ use glam::Vec2;
 use tiled::{ObjectShape, PropertyValue};
 
 use super::{kind_of, names, ramp, shape_name, Importer, TiledError, SHAPE_TOLERANCE_PX};
-use crate::level::import::{is_spawn_name, LayerRole};
+use crate::level::import::names::is_spawn_name;
+use crate::level::import::LayerRole;
 use crate::level::probes::SpawnPoint;
 use crate::level::DEFAULT_CHARACTER_SIZE;
 use crate::level::{character_box, valid_name, Level, Platform, PlatformMotion, Slope, Tile};

@@ -19,7 +19,7 @@ pub(super) struct ScanError {
 }
 
 /// An attribute's value, unescaped.
-fn attr(e: &BytesStart, name: &str) -> Option<String> {
+pub(super) fn attr(e: &BytesStart, name: &str) -> Option<String> {
     e.attributes()
         .filter_map(|a| a.ok())
         .find(|a| a.key.as_ref() == name.as_bytes())

@@ -1,314 +1,25 @@
-//! Import of LDtk projects (`.ldtk`, levels inline or in external `.ldtkl` files; the JSON of
-//! LDtk 0.9.3 to 1.5.3, read with serde, every field the import does not need ignored).
-//!
-//! Collision comes from the IntGrid layers: every non-zero cell is solid unless its value's
-//! name says one-way (`platform`, `oneway`, ...), ladder, or hazard (`water`, `spikes`, `acid`,
-//! ...: not solid); a separate IntGrid layer named like platforms is one-way; `--intgrid` and
-//! `--layer` override. Spawns are entities named `Player`, `Spawn`, `SpawnPoint`, `PlayerSpawn`,
-//! `Start_Point` (see [`super::import::SPAWN_NAMES`]), feet at the bottom centre of the box
-//! their pivot places. A world in a GridVania or Free layout is one level in world
-//! coordinates; a linear world's first level is imported; `--level NAME` picks one. Tile units,
-//! y up, as for Tiled (LDtk is y-down pixels).
+//! An LDtk project made into a level: the levels picked (one, a whole GridVania or Free
+//! world, or a linear world's first), external levels read, the collision grid and the world's
+//! bounds, each IntGrid layer's cells by its role and its values' names, the entities that are
+//! spawns, and the spawn rules (`--spawn`, the fallback spawn).
 
 use std::path::Path;
 
 use glam::Vec2;
-use serde::Deserialize;
 
-use super::import::{
-    fallback_spawn_point, is_spawn_name, no_solids_warning, normalize, role_from_name, says,
-    ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport, HAZARD_WORDS,
-    LADDER_WORDS, ONE_WAY_WORDS,
+use super::json::{LdLevel, Project};
+use super::{parse_json, read, LdtkError, HOW_TO_COLLIDE, HOW_TO_SPAWN};
+use crate::level::import::names::{
+    is_spawn_name, role_from_name, says, HAZARD_WORDS, LADDER_WORDS, ONE_WAY_WORDS,
 };
-use super::probes::{probe_scenarios, ProbeConfig, SpawnPoint};
-use super::DEFAULT_CHARACTER_SIZE;
-use super::{character_box, parse_scenarios, valid_name, Level, LevelError, Tile};
+use crate::level::import::spawns::{no_solids_warning, safe_name, settle_spawns};
+use crate::level::import::{
+    normalize, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport,
+};
+use crate::level::probes::SpawnPoint;
+use crate::level::{character_box, valid_name, Level, Tile, DEFAULT_CHARACTER_SIZE};
 
-/// An LDtk project platbench cannot run as it is.
-#[derive(Debug, thiserror::Error)]
-pub enum LdtkError {
-    /// The file (project or external level) could not be read.
-    #[error("{file}: cannot read the LDtk file: {message}")]
-    Read {
-        /// The file.
-        file: String,
-        /// The system's message.
-        message: String,
-    },
-    /// The file is not the JSON of an LDtk project or level.
-    #[error("{file}:{line}:{column}: not an LDtk project: {message}")]
-    Json {
-        /// The file.
-        file: String,
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// The parser's message.
-        message: String,
-    },
-    /// Something in the project platbench cannot use, with what was expected.
-    #[error("{file}: {message}")]
-    Project {
-        /// The file.
-        file: String,
-        /// What was found and what was expected.
-        message: String,
-    },
-    /// The side file's scenarios are invalid (file, line and column inside).
-    #[error(transparent)]
-    SideFile(#[from] LevelError),
-}
-
-#[derive(Deserialize)]
-struct Project {
-    #[serde(rename = "worldLayout", default)]
-    world_layout: Option<String>,
-    #[serde(default)]
-    levels: Vec<LdLevel>,
-    #[serde(default)]
-    worlds: Vec<World>,
-    #[serde(default)]
-    defs: Defs,
-}
-
-#[derive(Deserialize)]
-struct World {
-    #[serde(default)]
-    identifier: String,
-    #[serde(rename = "worldLayout", default)]
-    world_layout: Option<String>,
-    #[serde(default)]
-    levels: Vec<LdLevel>,
-}
-
-#[derive(Deserialize, Default)]
-struct Defs {
-    #[serde(default)]
-    layers: Vec<LayerDef>,
-}
-
-#[derive(Deserialize)]
-struct LayerDef {
-    #[serde(default)]
-    uid: i64,
-    #[serde(rename = "intGridValues", default)]
-    int_grid_values: Vec<IntGridValueDef>,
-}
-
-#[derive(Deserialize)]
-struct IntGridValueDef {
-    #[serde(default)]
-    value: Option<i64>,
-    #[serde(default)]
-    identifier: Option<String>,
-}
-
-/// Largest pixel coordinate or size read from a project (a level's `worldX`, `worldY`, `pxWid`,
-/// `pxHei`, a layer's grid size and offsets), from zero: 10^15, [`crate::limits::MAX_ORIGIN`]
-/// (a level placed farther is refused even at one pixel a cell). Sums of four such values stay
-/// far within an `i64` (the world's bounds add a level's corner, its size and a grid cell).
-const MAX_PIXELS: i64 = 1_000_000_000_000_000;
-
-/// A pixel coordinate or size within [`MAX_PIXELS`] of zero; beyond, an error that serde_json
-/// places at the value's line and column.
-fn pixels<'de, D: serde::Deserializer<'de>>(d: D) -> Result<i64, D::Error> {
-    let v = i64::deserialize(d)?;
-    if v.checked_abs().is_none_or(|a| a > MAX_PIXELS) {
-        return Err(serde::de::Error::custom(format!(
-            "a pixel coordinate or size of {v}; expected -10^15 to 10^15 pixels (platbench \
-             places a level at most 1e15 tiles from the world's origin)"
-        )));
-    }
-    Ok(v)
-}
-
-/// A layer's width or height in cells, within [`crate::limits::MAX_TILES`] (a layer wider
-/// than that is more cells than any level may have); beyond, an error serde_json places.
-fn cells<'de, D: serde::Deserializer<'de>>(d: D) -> Result<i64, D::Error> {
-    let v = i64::deserialize(d)?;
-    if v.checked_abs()
-        .is_none_or(|a| a as u64 > crate::limits::MAX_TILES)
-    {
-        return Err(serde::de::Error::custom(format!(
-            "a layer of {v} cells across; expected at most {} (the most tiles a level may \
-             have)",
-            crate::limits::MAX_TILES
-        )));
-    }
-    Ok(v)
-}
-
-#[derive(Deserialize)]
-struct LdLevel {
-    #[serde(default)]
-    identifier: String,
-    #[serde(rename = "worldX", default, deserialize_with = "pixels")]
-    world_x: i64,
-    #[serde(rename = "worldY", default, deserialize_with = "pixels")]
-    world_y: i64,
-    #[serde(rename = "pxWid", default, deserialize_with = "pixels")]
-    px_wid: i64,
-    #[serde(rename = "pxHei", default, deserialize_with = "pixels")]
-    px_hei: i64,
-    #[serde(rename = "layerInstances", default)]
-    layer_instances: Option<Vec<LayerInstance>>,
-    #[serde(rename = "externalRelPath", default)]
-    external_rel_path: Option<String>,
-}
-
-#[derive(Deserialize)]
-struct LayerInstance {
-    #[serde(rename = "__identifier", default)]
-    identifier: String,
-    #[serde(rename = "__type", default)]
-    kind: String,
-    #[serde(rename = "__cWid", default, deserialize_with = "cells")]
-    c_wid: i64,
-    #[serde(rename = "__cHei", default, deserialize_with = "cells")]
-    c_hei: i64,
-    #[serde(rename = "__gridSize", default, deserialize_with = "pixels")]
-    grid_size: i64,
-    #[serde(rename = "__pxTotalOffsetX", default, deserialize_with = "pixels")]
-    px_offset_x: i64,
-    #[serde(rename = "__pxTotalOffsetY", default, deserialize_with = "pixels")]
-    px_offset_y: i64,
-    #[serde(rename = "layerDefUid", default)]
-    layer_def_uid: i64,
-    #[serde(rename = "intGridCsv", default)]
-    int_grid_csv: Option<Vec<i64>>,
-    /// LDtk before 0.7: the non-zero cells as (cell index, value index from 0).
-    #[serde(rename = "intGrid", default)]
-    int_grid: Option<Vec<OldCell>>,
-    #[serde(rename = "entityInstances", default)]
-    entity_instances: Vec<Entity>,
-}
-
-#[derive(Deserialize)]
-struct OldCell {
-    #[serde(rename = "coordId")]
-    coord_id: i64,
-    v: i64,
-}
-
-#[derive(Deserialize)]
-struct Entity {
-    #[serde(rename = "__identifier", default)]
-    identifier: String,
-    #[serde(rename = "__pivot", default)]
-    pivot: Vec<f64>,
-    #[serde(default)]
-    px: Vec<f64>,
-    #[serde(default)]
-    width: f64,
-    #[serde(default)]
-    height: f64,
-}
-
-const HOW_TO_SPAWN: &str =
-    "add an entity named Player, Spawn or PlayerSpawn in an Entities layer in LDtk";
-const HOW_TO_COLLIDE: &str =
-    "paint the walls in an IntGrid layer, or pass --intgrid VALUE=solid or --layer NAME=collision";
-
-fn parse_json<T: for<'de> Deserialize<'de>>(text: &str, file: &str) -> Result<T, LdtkError> {
-    serde_json::from_str(text).map_err(|e| LdtkError::Json {
-        file: file.into(),
-        line: e.line(),
-        column: e.column(),
-        message: e.to_string(),
-    })
-}
-
-/// Loads an LDtk project as a runnable level with the command line's overrides: its geometry,
-/// and the scenarios of the side file `MAP.toml` next to it, else the standard probes at each
-/// spawn. On failure the warnings gathered so far come with the error.
-pub fn load_ldtk_with(
-    path: &Path,
-    opts: &ImportOptions,
-) -> Result<(Level, Vec<ImportWarning>), ImportFailure<LdtkError>> {
-    let MapImport {
-        mut level,
-        spawns,
-        mut warnings,
-        ..
-    } = import_ldtk_with(path, opts)?;
-    let side = path.with_extension("toml");
-    if side.is_file() {
-        let fail = |error: LdtkError, warnings| ImportFailure { error, warnings };
-        let text = match crate::limits::read_text_capped(&side) {
-            Ok(t) => t,
-            Err(e) => {
-                return Err(fail(
-                    LdtkError::Read {
-                        file: side.display().to_string(),
-                        message: e.to_string(),
-                    },
-                    warnings,
-                ))
-            }
-        };
-        match parse_scenarios(&text, &side.display().to_string(), &level) {
-            Ok(s) => level.scenarios = s,
-            Err(e) => return Err(fail(e.into(), warnings)),
-        }
-        // As for a Tiled map: a side file that gives no scenario would leave nothing to run.
-        if level.scenarios.is_empty() {
-            return Err(fail(
-                LdtkError::Project {
-                    file: side.display().to_string(),
-                    message: "the side file gives no [[scenario]]; add at least one, or remove the file to run the standard probes at each spawn".into(),
-                },
-                warnings,
-            ));
-        }
-        warnings.retain(|w| !w.message.starts_with("no spawn point found"));
-        return Ok((level, warnings));
-    }
-    if spawns.is_empty() {
-        return Err(ImportFailure {
-            error: LdtkError::Project {
-                file: path.display().to_string(),
-                message: format!("no spawn entity and no cell to stand on, so nothing can run; {HOW_TO_SPAWN}, pass --spawn X,Y, or write {} with [[scenario]] entries", side.display()),
-            },
-            warnings,
-        });
-    }
-    let (scenarios, notes) = probe_scenarios(&level, &spawns, &ProbeConfig::default());
-    level.scenarios = scenarios;
-    let file = path.display().to_string();
-    warnings.extend(notes.into_iter().map(|(subject, message)| ImportWarning {
-        file: file.clone(),
-        subject,
-        message,
-    }));
-    Ok((level, warnings))
-}
-
-/// Reads an LDtk project's geometry and spawns (no scenarios) with the command line's
-/// overrides. On failure the warnings gathered so far come with the error.
-pub fn import_ldtk_with(
-    path: &Path,
-    opts: &ImportOptions,
-) -> Result<MapImport, ImportFailure<LdtkError>> {
-    let mut warnings = Vec::new();
-    match import(path, opts, &mut warnings) {
-        Ok(mut m) => {
-            warnings.append(&mut m.warnings);
-            m.warnings = warnings;
-            Ok(m)
-        }
-        Err(error) => Err(ImportFailure { error, warnings }),
-    }
-}
-
-fn read(path: &Path) -> Result<String, LdtkError> {
-    crate::limits::read_text_capped(path).map_err(|e| LdtkError::Read {
-        file: path.display().to_string(),
-        message: e.to_string(),
-    })
-}
-
-fn import(
+pub(super) fn import(
     path: &Path,
     opts: &ImportOptions,
     warnings: &mut Vec<ImportWarning>,
@@ -644,16 +355,7 @@ fn import(
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_default()
         };
-        let safe: String = base
-            .chars()
-            .map(|c| {
-                if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
-                    c
-                } else {
-                    '_'
-                }
-            })
-            .collect();
+        let safe = safe_name(&base);
         if valid_name(&safe) {
             safe
         } else {
@@ -718,26 +420,8 @@ fn import(
     if let Some(wn) = no_solids_warning(&level, &file, HOW_TO_COLLIDE) {
         extra.push(wn);
     }
-    if !opts.spawns.is_empty() {
-        spawns = opts
-            .spawns
-            .iter()
-            .enumerate()
-            .map(|(k, p)| SpawnPoint {
-                name: format!("spawn{}", k + 1),
-                position: *p,
-            })
-            .collect();
-        sources = vec!["--spawn on the command line".into(); spawns.len()];
-    } else if spawns.is_empty() {
-        let (s, wn) = fallback_spawn_point(&level, &file, HOW_TO_SPAWN);
+    if let Some(wn) = settle_spawns(&level, &file, HOW_TO_SPAWN, opts, &mut spawns, &mut sources) {
         extra.push(wn);
-        if let Some(s) = s {
-            spawns.push(s);
-            sources.push(
-                "fallback: the lowest standable cell of the leftmost column that has one".into(),
-            );
-        }
     }
     Ok(MapImport {
         level,

@@ -1,0 +1,233 @@
+//! What the map importers ([`super::tiled`], [`super::ldtk`]) share: the overrides a user
+//! gives on the command line ([`ImportOptions`]), the warnings and the per-layer report an
+//! import returns, the tile kinds a user writes, and the ASCII picture of an imported level
+//! (`platbench inspect`). Built with an importer: `names` (the naming conventions games use for
+//! collision, decoration and spawn layers and objects) and `spawns` (the spawn rules every
+//! import ends with: `--spawn`, the fallback spawn, a level's name made of the map's).
+
+use std::fmt;
+
+use glam::Vec2;
+
+use super::probes::SpawnPoint;
+use super::{Level, Slope, Tile};
+
+#[cfg(any(feature = "tiled", feature = "ldtk"))]
+pub(crate) mod names;
+#[cfg(any(feature = "tiled", feature = "ldtk"))]
+pub(crate) mod spawns;
+
+/// Something in a map that platbench does not use, or a rule it applied, said aloud rather than
+/// dropped in silence.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImportWarning {
+    /// The map (or tileset) file.
+    pub file: String,
+    /// What it is about: `tileset "NAME" tile ID`, `object ID "NAME"`, `layer "NAME"` or `map`.
+    pub subject: String,
+    /// What was found and what platbench does with it.
+    pub message: String,
+}
+
+impl fmt::Display for ImportWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}: {}", self.file, self.subject, self.message)
+    }
+}
+
+/// An import that failed, with the warnings gathered before it failed (a user sees what was
+/// read so far, not only the error).
+#[derive(Debug)]
+pub struct ImportFailure<E> {
+    /// Why the import stopped.
+    pub error: E,
+    /// The warnings raised before it stopped.
+    pub warnings: Vec<ImportWarning>,
+}
+
+impl<E: fmt::Display> fmt::Display for ImportFailure<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.error.fmt(f)
+    }
+}
+
+impl<E: std::error::Error + 'static> std::error::Error for ImportFailure<E> {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
+/// A map imported without its scenarios, whatever its format: the level, its spawn points,
+/// where each came from, each layer's role and why, and the warnings raised on the way.
+#[derive(Clone, Debug)]
+pub struct MapImport {
+    /// The level, with no scenarios yet.
+    pub level: Level,
+    /// The spawn points, in the order of the file (or the fallback spawn `auto`).
+    pub spawns: Vec<SpawnPoint>,
+    /// Where each spawn point came from, one per spawn.
+    pub spawn_sources: Vec<String>,
+    /// Each layer with the role it was given and why.
+    pub layers: Vec<LayerReport>,
+    /// Everything that was ignored or assumed.
+    pub warnings: Vec<ImportWarning>,
+}
+
+/// What a layer is read as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LayerRole {
+    /// Collision: tiles by their own meaning (properties, collision shape, default solid);
+    /// objects by their class (spawns, platforms), and rectangles as solids in an object layer.
+    Collision,
+    /// Every tile or rectangle of the layer is solid.
+    Solid,
+    /// Every tile or rectangle of the layer is a one-way platform.
+    OneWay,
+    /// Every tile or rectangle of the layer is a ladder.
+    Ladder,
+    /// Objects only: spawns and moving platforms by their class or name; other shapes are not
+    /// collision. The default of an object layer no name marks.
+    Objects,
+    /// Left out: drawn, but not collision.
+    Decoration,
+}
+
+impl LayerRole {
+    /// The role a user writes (`--layer NAME=ROLE`, a layer property `collision`), if `s` is
+    /// one: `collision`, `solid`, `one_way` (or `oneway`), `ladder`, `objects`, `decoration`
+    /// (or `none`); any case.
+    pub fn parse(s: &str) -> Option<LayerRole> {
+        Some(match normalize(s).as_str() {
+            "collision" | "tiles" => LayerRole::Collision,
+            "solid" => LayerRole::Solid,
+            "oneway" => LayerRole::OneWay,
+            "ladder" => LayerRole::Ladder,
+            "objects" => LayerRole::Objects,
+            "decoration" | "none" | "ignore" => LayerRole::Decoration,
+            _ => return None,
+        })
+    }
+
+    /// The name a user writes for this role.
+    pub fn name(&self) -> &'static str {
+        match self {
+            LayerRole::Collision => "collision",
+            LayerRole::Solid => "solid",
+            LayerRole::OneWay => "one_way",
+            LayerRole::Ladder => "ladder",
+            LayerRole::Objects => "objects",
+            LayerRole::Decoration => "decoration",
+        }
+    }
+
+    /// The tile every drawn cell of the layer becomes, for the roles that force one.
+    pub fn forced_tile(&self) -> Option<Tile> {
+        match self {
+            LayerRole::Solid => Some(Tile::Solid),
+            LayerRole::OneWay => Some(Tile::OneWay),
+            LayerRole::Ladder => Some(Tile::Ladder),
+            _ => None,
+        }
+    }
+}
+
+/// The role given to one layer of a map and why, for `platbench inspect`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LayerReport {
+    /// The layer's name (a group's children as `group/child`).
+    pub name: String,
+    /// What kind of layer it is in the editor: `tiles`, `objects`, `group`, `image`, `intgrid`,
+    /// `entities`.
+    pub kind: String,
+    /// What it was read as.
+    pub role: LayerRole,
+    /// Why: the rule, property or flag that decided.
+    pub why: String,
+}
+
+/// Overrides of the import's defaults, from the command line. Each default is documented in the
+/// README's "Tiled maps" and "LDtk maps" sections; the map's own properties override the
+/// defaults, and these override both.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ImportOptions {
+    /// Roles of layers by name (any case): `--layer NAME=ROLE`.
+    pub layer_roles: Vec<(String, LayerRole)>,
+    /// What tile layers that no name, property or flag marks are read as (`--tile-layers`):
+    /// by default collision, unless an object layer holds collision rectangles or a tile layer
+    /// is named for collision, when they are decoration.
+    pub tile_layers: Option<LayerRole>,
+    /// Spawn points to use instead of the map's (`--spawn X,Y`, in tiles, y up).
+    pub spawns: Vec<Vec2>,
+    /// LDtk: the tile an IntGrid value becomes, by its number or its name (`--intgrid V=KIND`).
+    pub intgrid: Vec<(String, Tile)>,
+    /// LDtk: the one level of a world to import (`--level NAME`); the whole world otherwise
+    /// (GridVania and Free layouts) or the first level (linear layouts).
+    pub level: Option<String>,
+}
+
+impl ImportOptions {
+    /// The role the command line gives the layer named `name`, if any.
+    pub fn role_of(&self, name: &str) -> Option<LayerRole> {
+        let n = normalize(name);
+        self.layer_roles
+            .iter()
+            .rev()
+            .find(|(k, _)| normalize(k) == n)
+            .map(|(_, r)| *r)
+    }
+}
+
+/// A tile kind as a user writes it (`solid`, `one_way`, `ladder`, `empty`), any case.
+pub fn parse_tile_kind(s: &str) -> Option<Tile> {
+    Some(match normalize(s).as_str() {
+        "solid" | "wall" => Tile::Solid,
+        "oneway" | "platform" => Tile::OneWay,
+        "ladder" => Tile::Ladder,
+        "empty" | "none" => Tile::Empty,
+        _ => return None,
+    })
+}
+
+/// Lower case with everything but letters and digits dropped: `Player-Spawn` → `playerspawn`.
+pub(crate) fn normalize(s: &str) -> String {
+    s.chars()
+        .filter(|c| c.is_alphanumeric())
+        .flat_map(char::to_lowercase)
+        .collect()
+}
+
+/// The level's tiles in the level format's characters, top row first (`#` solid, `.` empty, `=`
+/// one-way, `H` ladder, `/` and `\` 45-degree slopes, letters for other slopes), and the legend
+/// of the letters.
+pub fn ascii_map(level: &Level) -> (String, Vec<(char, Slope)>) {
+    let mut legend: Vec<(char, Slope)> = Vec::new();
+    let letters: Vec<char> = ('a'..='z').chain('A'..='G').chain('I'..='Z').collect();
+    let mut text = String::with_capacity(((level.width + 1) * level.height) as usize);
+    for j in (0..level.height as i64).rev() {
+        for i in 0..level.width as i64 {
+            let c = match level.tile(i, j) {
+                Tile::Empty => '.',
+                Tile::Solid => '#',
+                Tile::OneWay => '=',
+                Tile::Ladder => 'H',
+                Tile::Slope(s) => match s {
+                    Slope::Line { left, right } if left == 0.0 && right == 1.0 => '/',
+                    Slope::Line { left, right } if left == 1.0 && right == 0.0 => '\\',
+                    s => match legend.iter().find(|(_, l)| *l == s) {
+                        Some((c, _)) => *c,
+                        None => match letters.get(legend.len()) {
+                            Some(&c) => {
+                                legend.push((c, s));
+                                c
+                            }
+                            None => '?',
+                        },
+                    },
+                },
+            };
+            text.push(c);
+        }
+        text.push('\n');
+    }
+    (text, legend)
+}

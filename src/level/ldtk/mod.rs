@@ -1,0 +1,166 @@
+//! Import of LDtk projects (`.ldtk`, levels inline or in external `.ldtkl` files; the JSON of
+//! LDtk 0.9.3 to 1.5.3, read with serde, every field the import does not need ignored).
+//!
+//! Collision comes from the IntGrid layers: every non-zero cell is solid unless its value's
+//! name says one-way (`platform`, `oneway`, ...), ladder, or hazard (`water`, `spikes`, `acid`,
+//! ...: not solid); a separate IntGrid layer named like platforms is one-way; `--intgrid` and
+//! `--layer` override. Spawns are entities named `Player`, `Spawn`, `SpawnPoint`, `PlayerSpawn`,
+//! `Start_Point` (the spawn names of `import::names`), feet at the bottom centre of the box
+//! their pivot places. A world in a GridVania or Free layout is one level in world
+//! coordinates; a linear world's first level is imported; `--level NAME` picks one. Tile units,
+//! y up, as for Tiled (LDtk is y-down pixels).
+//!
+//! Split by concern: `json` (the JSON platbench reads, with the bounds on its numbers) and
+//! `convert` (the project made into a level: the levels picked, the grid, the IntGrid cells,
+//! the entities that are spawns). This file holds the entry points and the error.
+
+use std::path::Path;
+
+use serde::Deserialize;
+
+mod convert;
+mod json;
+
+use super::import::{ImportFailure, ImportOptions, ImportWarning, MapImport};
+use super::probes::{probe_scenarios, ProbeConfig};
+use super::{parse_scenarios, Level, LevelError};
+use convert::import;
+
+/// An LDtk project platbench cannot run as it is.
+#[derive(Debug, thiserror::Error)]
+pub enum LdtkError {
+    /// The file (project or external level) could not be read.
+    #[error("{file}: cannot read the LDtk file: {message}")]
+    Read {
+        /// The file.
+        file: String,
+        /// The system's message.
+        message: String,
+    },
+    /// The file is not the JSON of an LDtk project or level.
+    #[error("{file}:{line}:{column}: not an LDtk project: {message}")]
+    Json {
+        /// The file.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The parser's message.
+        message: String,
+    },
+    /// Something in the project platbench cannot use, with what was expected.
+    #[error("{file}: {message}")]
+    Project {
+        /// The file.
+        file: String,
+        /// What was found and what was expected.
+        message: String,
+    },
+    /// The side file's scenarios are invalid (file, line and column inside).
+    #[error(transparent)]
+    SideFile(#[from] LevelError),
+}
+
+const HOW_TO_SPAWN: &str =
+    "add an entity named Player, Spawn or PlayerSpawn in an Entities layer in LDtk";
+const HOW_TO_COLLIDE: &str =
+    "paint the walls in an IntGrid layer, or pass --intgrid VALUE=solid or --layer NAME=collision";
+
+fn parse_json<T: for<'de> Deserialize<'de>>(text: &str, file: &str) -> Result<T, LdtkError> {
+    serde_json::from_str(text).map_err(|e| LdtkError::Json {
+        file: file.into(),
+        line: e.line(),
+        column: e.column(),
+        message: e.to_string(),
+    })
+}
+
+/// Loads an LDtk project as a runnable level with the command line's overrides: its geometry,
+/// and the scenarios of the side file `MAP.toml` next to it, else the standard probes at each
+/// spawn. On failure the warnings gathered so far come with the error.
+pub fn load_ldtk_with(
+    path: &Path,
+    opts: &ImportOptions,
+) -> Result<(Level, Vec<ImportWarning>), ImportFailure<LdtkError>> {
+    let MapImport {
+        mut level,
+        spawns,
+        mut warnings,
+        ..
+    } = import_ldtk_with(path, opts)?;
+    let side = path.with_extension("toml");
+    if side.is_file() {
+        let fail = |error: LdtkError, warnings| ImportFailure { error, warnings };
+        let text = match crate::limits::read_text_capped(&side) {
+            Ok(t) => t,
+            Err(e) => {
+                return Err(fail(
+                    LdtkError::Read {
+                        file: side.display().to_string(),
+                        message: e.to_string(),
+                    },
+                    warnings,
+                ))
+            }
+        };
+        match parse_scenarios(&text, &side.display().to_string(), &level) {
+            Ok(s) => level.scenarios = s,
+            Err(e) => return Err(fail(e.into(), warnings)),
+        }
+        // As for a Tiled map: a side file that gives no scenario would leave nothing to run.
+        if level.scenarios.is_empty() {
+            return Err(fail(
+                LdtkError::Project {
+                    file: side.display().to_string(),
+                    message: "the side file gives no [[scenario]]; add at least one, or remove the file to run the standard probes at each spawn".into(),
+                },
+                warnings,
+            ));
+        }
+        warnings.retain(|w| !w.message.starts_with("no spawn point found"));
+        return Ok((level, warnings));
+    }
+    if spawns.is_empty() {
+        return Err(ImportFailure {
+            error: LdtkError::Project {
+                file: path.display().to_string(),
+                message: format!("no spawn entity and no cell to stand on, so nothing can run; {HOW_TO_SPAWN}, pass --spawn X,Y, or write {} with [[scenario]] entries", side.display()),
+            },
+            warnings,
+        });
+    }
+    let (scenarios, notes) = probe_scenarios(&level, &spawns, &ProbeConfig::default());
+    level.scenarios = scenarios;
+    let file = path.display().to_string();
+    warnings.extend(notes.into_iter().map(|(subject, message)| ImportWarning {
+        file: file.clone(),
+        subject,
+        message,
+    }));
+    Ok((level, warnings))
+}
+
+/// Reads an LDtk project's geometry and spawns (no scenarios) with the command line's
+/// overrides. On failure the warnings gathered so far come with the error.
+pub fn import_ldtk_with(
+    path: &Path,
+    opts: &ImportOptions,
+) -> Result<MapImport, ImportFailure<LdtkError>> {
+    let mut warnings = Vec::new();
+    match import(path, opts, &mut warnings) {
+        Ok(mut m) => {
+            warnings.append(&mut m.warnings);
+            m.warnings = warnings;
+            Ok(m)
+        }
+        Err(error) => Err(ImportFailure { error, warnings }),
+    }
+}
+
+fn read(path: &Path) -> Result<String, LdtkError> {
+    crate::limits::read_text_capped(path).map_err(|e| LdtkError::Read {
+        file: path.display().to_string(),
+        message: e.to_string(),
+    })
+}

@@ -1,0 +1,373 @@
+//! Import of maps made with the Tiled editor (`.tmx`; tilesets inline, in `.tsx` files or in
+//! JSON `.tsj` files): tile layers become the level's tiles, object layers give collision
+//! rectangles and ramps, moving platforms and spawn points, read the way games mark them (layer
+//! names, object names and classes, bool tile properties). The README's "Tiled maps" section is
+//! the user's side of the mapping; this module is its one implementation, split by concern:
+//! `error` (what cannot be imported), `read` (the map read through the `tiled` crate), `map`
+//! (the map's orientation, extent and properties), `layers` (which layer is what, and the tile
+//! layers), `tiles` (what one tile is), `objects` (spawns, collision objects, platforms),
+//! `normalize` (what the `tiled` crate cannot read as Tiled writes it) and `scan` (what it
+//! would allocate without bound). This file holds the entry points and the state of one import.
+//!
+//! Nothing here panics on a map's content: every construct platbench cannot represent is a
+//! [`TiledError`] or a [`TiledWarning`] that names the tile (tileset and local id, and a map
+//! cell where one is involved), the object (id and name) or the layer.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use tiled::{ObjectShape, PropertyValue};
+
+mod error;
+mod layers;
+mod map;
+mod normalize;
+mod objects;
+mod read;
+mod scan;
+mod tiles;
+
+pub use error::TiledError;
+pub use read::import_tiled_map_with;
+
+pub(crate) use tiles::ramp;
+
+use super::import::spawns::{no_solids_warning, settle_spawns};
+use super::import::{ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole};
+use super::probes::{probe_scenarios, ProbeConfig, SpawnPoint};
+use super::{parse_scenarios, Level, LevelError};
+use super::{Slope, Tile};
+
+/// How far a collision-shape point may be from the tile edge or corner it stands for, in
+/// pixels: the editor snaps to whole pixels, so a hand-drawn ramp is exact to about one.
+pub(crate) const SHAPE_TOLERANCE_PX: f32 = 1.0;
+
+/// A warning of the Tiled import (the shared [`ImportWarning`]).
+pub type TiledWarning = ImportWarning;
+
+/// The map property, tile properties and layer property names platbench reads.
+mod names {
+    /// Tile property: what the tile is (`solid`, `one_way`, `ladder`, `empty`); on a layer, a
+    /// bool or a role.
+    pub const COLLISION: &str = "collision";
+    /// Tile property: height of a line slope at the tile's left edge, in tiles.
+    pub const SLOPE_LEFT: &str = "slope_left";
+    /// Tile property: height of a line slope at the tile's right edge, in tiles.
+    pub const SLOPE_RIGHT: &str = "slope_right";
+    /// Tile property: 16 comma-separated heights in sixteenths of a tile.
+    pub const HEIGHTS: &str = "heights";
+    /// Object class (or type) of a moving platform (optional: a `path` property suffices).
+    pub const PLATFORM: &str = "platform";
+    /// Object property: the polyline a platform follows (an object reference).
+    pub const PATH: &str = "path";
+    /// Object property: a platform's speed along its path, in tiles/s.
+    pub const SPEED: &str = "speed";
+    /// Object property: whether a platform blocks from above only.
+    pub const ONE_WAY: &str = "one_way";
+    /// Map property: the level's name.
+    pub const NAME: &str = "name";
+    /// Map property: the level's description.
+    pub const DESCRIPTION: &str = "description";
+    /// Map property: the role of tile layers no name or property marks.
+    pub const TILE_LAYERS: &str = "tile_layers";
+}
+
+/// How to mark a spawn in Tiled, for the messages that need one.
+const HOW_TO_SPAWN: &str = "mark one with a point object named or of class \"spawn\" (or \"player\", \"start\") in an object layer";
+/// How to mark collision in Tiled, for the messages that need one.
+const HOW_TO_COLLIDE: &str = "name the collision layer (\"collision\", \"ground\", \"walls\", \"platforms\"), give it the property collision = true, or pass --layer NAME=collision";
+
+/// A map imported without its scenarios: the level (geometry and platforms), its spawn points,
+/// what each layer was read as, and the warnings raised on the way.
+#[derive(Clone, Debug)]
+pub struct TiledImport {
+    /// The level, with no scenarios yet.
+    pub level: Level,
+    /// The map's spawn points, in the order of the file (or the fallback spawn `auto`).
+    pub spawns: Vec<SpawnPoint>,
+    /// Where each spawn point came from (the object, the rule), one per spawn.
+    pub spawn_sources: Vec<String>,
+    /// Each layer with the role it was given and why, in the file's order.
+    pub layers: Vec<LayerReport>,
+    /// Everything that was ignored or assumed, each naming its tile, object or layer.
+    pub warnings: Vec<TiledWarning>,
+}
+
+/// Loads a Tiled map as a runnable level with the default rules; see [`load_tiled_map_with`].
+pub fn load_tiled_map(path: &Path) -> Result<(Level, Vec<TiledWarning>), TiledError> {
+    load_tiled_map_with(path, &ImportOptions::default()).map_err(|f| f.error)
+}
+
+/// Loads a Tiled map as a runnable level: its geometry, platforms and scenarios — those of the
+/// side file `MAP.toml` next to it when there is one, else the standard probes at each spawn
+/// point ([`super::probes`]). Returns the warnings too, for the caller to show; on failure, the
+/// warnings gathered so far come with the error.
+pub fn load_tiled_map_with(
+    path: &Path,
+    opts: &ImportOptions,
+) -> Result<(Level, Vec<TiledWarning>), ImportFailure<TiledError>> {
+    let TiledImport {
+        mut level,
+        spawns,
+        mut warnings,
+        ..
+    } = import_tiled_map_with(path, opts)?;
+    let fail = |error: TiledError, warnings: Vec<TiledWarning>| ImportFailure { error, warnings };
+    let side = path.with_extension("toml");
+    if side.is_file() {
+        let text = match crate::limits::read_text_capped(&side) {
+            Ok(t) => t,
+            Err(e) => {
+                return Err(fail(
+                    TiledError::SideFileRead {
+                        file: side.display().to_string(),
+                        message: e.to_string(),
+                    },
+                    warnings,
+                ))
+            }
+        };
+        level.scenarios = match parse_scenarios(&text, &side.display().to_string(), &level) {
+            Ok(s) => s,
+            Err(e) => return Err(fail(e.into(), warnings)),
+        };
+        if level.scenarios.is_empty() {
+            return Err(fail(
+                TiledError::NoScenarios {
+                    file: path.display().to_string(),
+                    side: side.display().to_string(),
+                },
+                warnings,
+            ));
+        }
+        // The fallback spawn's warning is moot when a side file gives the scenarios.
+        warnings.retain(|w| !w.message.starts_with("no spawn point found"));
+        if !spawns.is_empty() && spawns[0].name != "auto" {
+            warnings.push(TiledWarning {
+                file: path.display().to_string(),
+                subject: "map".into(),
+                message: format!(
+                    "the side file {} replaces the probes at its {} spawn point(s)",
+                    side.display(),
+                    spawns.len()
+                ),
+            });
+        }
+        return Ok((level, warnings));
+    }
+    if spawns.is_empty() {
+        return Err(fail(
+            TiledError::NoScenarios {
+                file: path.display().to_string(),
+                side: side.display().to_string(),
+            },
+            warnings,
+        ));
+    }
+    let (scenarios, probe_warnings) = probe_scenarios(&level, &spawns, &ProbeConfig::default());
+    level.scenarios = scenarios;
+    let file = path.display().to_string();
+    warnings.extend(
+        probe_warnings
+            .into_iter()
+            .map(|(subject, message)| TiledWarning {
+                file: file.clone(),
+                subject,
+                message,
+            }),
+    );
+    Ok((level, warnings))
+}
+
+/// Reads a Tiled map's geometry, platforms and spawn points (no scenarios) with the default
+/// rules; see [`import_tiled_map_with`].
+pub fn import_tiled_map(path: &Path) -> Result<TiledImport, TiledError> {
+    import_tiled_map_with(path, &ImportOptions::default()).map_err(|f| f.error)
+}
+
+/// A role and why it was given.
+type Reasoned = (LayerRole, String);
+
+/// A tile as the map uses it: tileset index, local id and flips.
+type TileKey = (usize, u32, bool, bool, bool);
+
+/// Where the level's cells lie in Tiled's cell coordinates: the map itself, or the part of an
+/// infinite map its chunks cover.
+#[derive(Clone, Copy, Debug)]
+struct Grid {
+    /// Tiled column of the level's column 0.
+    x0: i32,
+    /// Tiled row of the level's top row.
+    y0: i32,
+    /// Width in tiles.
+    w: u32,
+    /// Height in tiles.
+    h: u32,
+}
+
+/// The state of one import.
+struct Importer<'m> {
+    file: String,
+    map: &'m tiled::Map,
+    opts: &'m ImportOptions,
+    grid: Grid,
+    /// The level's cells so far (row 0 at the bottom), with what set each.
+    tiles: Vec<Option<(Tile, String)>>,
+    /// Each used tile's meaning, computed once.
+    kinds: HashMap<TileKey, Tile>,
+    /// Tiles already warned about, so a tile used many times warns once.
+    warned: Vec<(usize, u32)>,
+    /// Tilesets already noted (oversize art), by index.
+    noted_tilesets: Vec<usize>,
+    warnings: Vec<TiledWarning>,
+    /// Each layer's role and why, in file order.
+    reports: Vec<LayerReport>,
+    /// Object layers to read once the tiles are known.
+    objects: Vec<objects::ObjectLayer<'m>>,
+}
+
+impl<'m> Importer<'m> {
+    fn new(file: String, map: &'m tiled::Map, opts: &'m ImportOptions) -> Self {
+        Importer {
+            file,
+            map,
+            opts,
+            grid: Grid {
+                x0: 0,
+                y0: 0,
+                w: map.width,
+                h: map.height,
+            },
+            tiles: Vec::new(),
+            kinds: HashMap::new(),
+            warned: Vec::new(),
+            noted_tilesets: Vec::new(),
+            warnings: Vec::new(),
+            reports: Vec::new(),
+            objects: Vec::new(),
+        }
+    }
+
+    fn run(&mut self, path: &Path) -> Result<TiledImport, TiledError> {
+        let map = self.map;
+        self.check_map()?;
+        // The size is checked before the cells are allocated.
+        self.tiles = vec![None; (self.grid.w as usize) * (self.grid.h as usize)];
+        let (name, description, tile_default) = self.map_properties(path)?;
+        let entries = self.collect_layers()?;
+        self.read_layers(entries, tile_default)?;
+        self.collision_objects()?;
+        let tiles = self
+            .tiles
+            .iter()
+            .map(|t| t.as_ref().map_or(Tile::Empty, |(t, _)| *t))
+            .collect();
+        let mut level = Level::from_tiles(&name, self.grid.w, self.grid.h, tiles);
+        level.description = description;
+        level.source = self.file.clone();
+        let (mut spawns, mut sources) = self.objects(&mut level)?;
+        level.features.moving_platforms = !level.platforms.is_empty();
+        if let Some(w) = no_solids_warning(&level, &self.file, HOW_TO_COLLIDE) {
+            self.warnings.push(w);
+        }
+        if let Some(w) = settle_spawns(
+            &level,
+            &self.file,
+            HOW_TO_SPAWN,
+            self.opts,
+            &mut spawns,
+            &mut sources,
+        ) {
+            self.warnings.push(w);
+        }
+        let _ = map;
+        Ok(TiledImport {
+            level,
+            spawns,
+            spawn_sources: sources,
+            layers: std::mem::take(&mut self.reports),
+            warnings: std::mem::take(&mut self.warnings),
+        })
+    }
+
+    fn map_err(&self, message: String) -> TiledError {
+        TiledError::Map {
+            file: self.file.clone(),
+            message,
+        }
+    }
+
+    fn warn(&mut self, subject: String, message: String) {
+        self.warnings.push(TiledWarning {
+            file: self.file.clone(),
+            subject,
+            message,
+        });
+    }
+
+    /// Puts `tile` into level cell `k`, set by `by`: an empty tile gives way to any other, a
+    /// ladder and a one-way platform make a ladder (whose top is walkable like a one-way
+    /// platform); other differing kinds are the message of an error.
+    fn set_cell(&mut self, k: usize, tile: Tile, by: String) -> Result<(), String> {
+        match &self.tiles[k] {
+            None => self.tiles[k] = Some((tile, by)),
+            Some((prev, _)) if *prev == tile || tile == Tile::Empty => {}
+            Some((Tile::Empty, _)) => self.tiles[k] = Some((tile, by)),
+            Some((Tile::OneWay, _)) if tile == Tile::Ladder => self.tiles[k] = Some((tile, by)),
+            Some((Tile::Ladder, _)) if tile == Tile::OneWay => {}
+            Some((prev, prev_by)) => {
+                return Err(format!(
+                    "it is {} but the cell already holds {} from {prev_by}; expected one kind of tile per cell across the collision layers",
+                    tile_name(&tile),
+                    tile_name(prev)
+                ))
+            }
+        }
+        Ok(())
+    }
+}
+
+fn kind_of(v: &PropertyValue) -> &'static str {
+    match v {
+        PropertyValue::BoolValue(_) => "a bool",
+        PropertyValue::FloatValue(_) => "a float",
+        PropertyValue::IntValue(_) => "an int",
+        PropertyValue::ColorValue(_) => "a color",
+        PropertyValue::StringValue(_) => "a string",
+        PropertyValue::FileValue(_) => "a file",
+        PropertyValue::ObjectValue(_) => "an object reference",
+        PropertyValue::ListValue(_) => "a list",
+        PropertyValue::ClassValue { .. } => "a class value",
+    }
+}
+
+fn shape_name(s: &ObjectShape) -> &'static str {
+    match s {
+        ObjectShape::Rect { .. } => "a rectangle",
+        ObjectShape::Ellipse { .. } => "an ellipse",
+        ObjectShape::Capsule { .. } => "a capsule",
+        ObjectShape::Polyline { .. } => "a polyline",
+        ObjectShape::Polygon { .. } => "a polygon",
+        ObjectShape::Point(..) => "a point",
+        ObjectShape::Text { .. } => "a text",
+    }
+}
+
+fn tile_name(t: &Tile) -> String {
+    match t {
+        Tile::Empty => "empty".into(),
+        Tile::Solid => "solid".into(),
+        Tile::OneWay => "one-way".into(),
+        Tile::Ladder => "a ladder".into(),
+        Tile::Slope(Slope::Line { left, right }) => format!("a line slope ({left}, {right})"),
+        Tile::Slope(Slope::Heights(_)) => "a height-array slope".into(),
+    }
+}
+
+fn number(v: &PropertyValue) -> Option<f32> {
+    match v {
+        PropertyValue::FloatValue(f) => Some(*f),
+        PropertyValue::IntValue(i) => Some(*i as f32),
+        _ => None,
+    }
+}

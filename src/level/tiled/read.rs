@@ -1,0 +1,207 @@
+//! The map read through the `tiled` crate: within the input cap, made readable where Tiled is
+//! tolerant and the crate is not ([`super::normalize`]), looked at for what the crate would
+//! allocate without bound ([`super::scan`]), tilesets and templates through the same reader;
+//! and, when the crate fails, the file at fault named.
+
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+
+use super::{normalize, scan, Importer, TiledError, TiledImport, TiledWarning};
+use crate::level::import::{ImportFailure, ImportOptions};
+
+/// The file a map refers to, found as the `tiled` crate finds it: relative to the map's folder.
+fn sibling(map: &Path, source: &str) -> PathBuf {
+    map.parent()
+        .map_or_else(|| PathBuf::from(source), |d| d.join(source))
+}
+
+/// Reads a Tiled map's geometry, platforms and spawn points (no scenarios), with the command
+/// line's overrides. On failure the warnings gathered so far come with the error.
+pub fn import_tiled_map_with(
+    path: &Path,
+    opts: &ImportOptions,
+) -> Result<TiledImport, ImportFailure<TiledError>> {
+    let file = path.display().to_string();
+    let notes: Rc<RefCell<Vec<TiledWarning>>> = Rc::new(RefCell::new(Vec::new()));
+    let failed = |error: TiledError, notes: &Rc<RefCell<Vec<TiledWarning>>>| ImportFailure {
+        error,
+        warnings: notes.borrow().clone(),
+    };
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("tmj") || e.eq_ignore_ascii_case("json"))
+    {
+        return Err(failed(
+            TiledError::Map {
+                file,
+                message: "a JSON map (.tmj/.json): the tiled crate platbench reads maps with reads TMX only; save it as .tmx in Tiled (File > Save As, \"Tiled map files (*.tmx)\"); JSON tilesets (.tsj) are read".into(),
+            },
+            &notes,
+        ));
+    }
+    // Read once, within the input cap, made readable by the crate where Tiled is tolerant and
+    // the crate is not, and looked at for what the crate would allocate or index before it does.
+    let text = crate::limits::read_text_capped(path).map_err(|e| {
+        failed(
+            TiledError::Load {
+                file: file.clone(),
+                message: e.to_string(),
+            },
+            &notes,
+        )
+    })?;
+    let norm = normalize::normalize_xml(&text).map_err(|e| {
+        failed(
+            TiledError::Map {
+                file: format!("{file}:{}", e.line),
+                message: e.message,
+            },
+            &notes,
+        )
+    })?;
+    for n in norm.notes {
+        notes.borrow_mut().push(TiledWarning {
+            file: file.clone(),
+            subject: "map".into(),
+            message: n,
+        });
+    }
+    let text = norm.text;
+    let sources = scan::scan_map(&text).map_err(|e| {
+        failed(
+            TiledError::Map {
+                file: format!("{file}:{}", e.line),
+                message: e.message,
+            },
+            &notes,
+        )
+    })?;
+    let map_path = path.to_path_buf();
+    let bytes = text.clone().into_bytes();
+    // The map as read above; tilesets and templates through the same cap, made readable too.
+    // The failure of a file the crate reads names that file.
+    let reader_notes = notes.clone();
+    let reader = move |p: &Path| -> std::io::Result<std::io::Cursor<Vec<u8>>> {
+        if p == map_path {
+            return Ok(std::io::Cursor::new(bytes.clone()));
+        }
+        let shown = p.display().to_string();
+        let data = crate::limits::read_capped(p)?;
+        let ext = p
+            .extension()
+            .map(|e| e.to_string_lossy().to_lowercase())
+            .unwrap_or_default();
+        let bad = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
+        let text = String::from_utf8(data.clone());
+        let out = match (ext.as_str(), text) {
+            ("tsj" | "json", Ok(t)) => {
+                let n = normalize::json_tileset_to_tsx(&t).map_err(bad)?;
+                (n.text, n.notes)
+            }
+            ("tsx", Ok(t)) => {
+                let n = normalize::normalize_xml(&t)
+                    .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?;
+                (n.text, n.notes)
+            }
+            _ => return Ok(std::io::Cursor::new(data)),
+        };
+        for n in out.1 {
+            reader_notes.borrow_mut().push(TiledWarning {
+                file: shown.clone(),
+                subject: "tileset".into(),
+                message: n,
+            });
+        }
+        Ok(std::io::Cursor::new(out.0.into_bytes()))
+    };
+    let map = match tiled::Loader::with_reader(reader).load_tmx_map(path) {
+        Ok(m) => m,
+        Err(e) => {
+            let error = load_error(path, &text, &sources, e, &notes);
+            return Err(failed(error, &notes));
+        }
+    };
+    let mut im = Importer::new(file.clone(), &map, opts);
+    im.warnings = notes.borrow().clone();
+    match im.run(path) {
+        Ok(r) => Ok(r),
+        Err(error) => Err(ImportFailure {
+            error,
+            warnings: im.warnings,
+        }),
+    }
+}
+
+/// The crate's error with the file it was reading: an external tileset or template that fails
+/// on its own is named; otherwise the map, with the line of an XML syntax error.
+fn load_error(
+    path: &Path,
+    text: &str,
+    sources: &[String],
+    e: tiled::Error,
+    notes: &Rc<RefCell<Vec<TiledWarning>>>,
+) -> TiledError {
+    let file = path.display().to_string();
+    if let tiled::Error::ResourceLoadingError { path: p, err } = &e {
+        return TiledError::Load {
+            file: p.display().to_string(),
+            message: format!("cannot read it ({err}); the map {file} refers to it"),
+        };
+    }
+    // An external tileset that fails to load on its own is the file at fault.
+    for s in sources {
+        let p = sibling(path, s);
+        let reader = |q: &Path| -> std::io::Result<std::io::Cursor<Vec<u8>>> {
+            let data = crate::limits::read_capped(q)?;
+            let ext = q
+                .extension()
+                .map(|x| x.to_string_lossy().to_lowercase())
+                .unwrap_or_default();
+            let bad = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
+            let t = String::from_utf8(data).map_err(|e| bad(e.to_string()))?;
+            let t = match ext.as_str() {
+                "tsj" | "json" => normalize::json_tileset_to_tsx(&t).map_err(bad)?.text,
+                _ => {
+                    normalize::normalize_xml(&t)
+                        .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?
+                        .text
+                }
+            };
+            Ok(std::io::Cursor::new(t.into_bytes()))
+        };
+        if let Err(te) = tiled::Loader::with_reader(reader).load_tsx_tileset(&p) {
+            let message = match te {
+                tiled::Error::ResourceLoadingError { err, .. } => err.to_string(),
+                other => explain(&other),
+            };
+            return TiledError::Load {
+                file: p.display().to_string(),
+                message: format!("{message} (a tileset the map {file} uses)"),
+            };
+        }
+    }
+    let _ = notes;
+    let line = scan::xml_error_line(text)
+        .map(|l| format!(":{l}"))
+        .unwrap_or_default();
+    TiledError::Load {
+        file: format!("{file}{line}"),
+        message: explain(&e),
+    }
+}
+
+/// The crate's message, with what to do where platbench knows it.
+fn explain(e: &tiled::Error) -> String {
+    match e {
+        tiled::Error::InvalidEncodingFormat { encoding, compression } => format!(
+            "a tile layer's data is in {} encoding with {} compression, which the tiled crate does not read; save the map with CSV or Base64 (uncompressed, zlib or gzip) layer format",
+            encoding.as_deref().unwrap_or("XML (no)"),
+            compression.as_deref().unwrap_or("no")
+        ),
+        tiled::Error::MalformedAttributes(m) => {
+            format!("{m} (an attribute the tiled crate requires is missing or not a number)")
+        }
+        other => other.to_string(),
+    }
+}

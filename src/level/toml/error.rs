@@ -1,0 +1,44 @@
+//! A level file's errors: [`LevelError`], which names the file, line and column, and the
+//! locator that turns a byte offset in the file into them.
+
+use std::ops::Range;
+
+/// A level file that could not be read, with where and why.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{file}:{line}:{column}: {message}")]
+pub struct LevelError {
+    /// The file (or `builtin:NAME`).
+    pub file: String,
+    /// 1-based line.
+    pub line: usize,
+    /// 1-based column, in characters.
+    pub column: usize,
+    /// What was found and what was expected.
+    pub message: String,
+}
+
+/// Turns byte offsets into line and column.
+pub(super) struct Locator<'a> {
+    pub(super) file: &'a str,
+    pub(super) text: &'a str,
+}
+
+impl Locator<'_> {
+    pub(super) fn err(&self, offset: usize, message: impl Into<String>) -> LevelError {
+        let offset = offset.min(self.text.len());
+        let before = &self.text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |p| p + 1);
+        let column = before[line_start..].chars().count() + 1;
+        LevelError {
+            file: self.file.to_string(),
+            line,
+            column,
+            message: message.into(),
+        }
+    }
+
+    pub(super) fn at(&self, span: &Range<usize>, message: impl Into<String>) -> LevelError {
+        self.err(span.start, message)
+    }
+}
