@@ -31,7 +31,7 @@ use parry2d::math::Pose;
 use parry2d::query::{self, ShapeCastOptions};
 use parry2d::shape::SharedShape;
 
-use platbench::level::outlines::{one_way_rects, ColliderBuilding};
+use platbench::level::outlines::{one_way_rects, solid_rects, ColliderBuilding};
 use platbench::oneway::OneWayCheck;
 use platbench::prelude::*;
 
@@ -166,7 +166,7 @@ impl LevelColliders {
                 one_way_top,
             });
         };
-        for r in level.merged_solid_rects() {
+        for r in solid_rects(level, ColliderBuilding::Merged) {
             let half = r.half_extents();
             push(
                 SharedShape::cuboid(half.x, half.y),

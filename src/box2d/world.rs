@@ -13,7 +13,7 @@ use glam::Vec2;
 
 use crate::backend::BackendError;
 pub use crate::level::outlines::ColliderBuilding;
-use crate::level::outlines::{one_way_rects, slope_outlines};
+use crate::level::outlines::{one_way_rects, slope_outlines, solid_rects};
 use crate::level::{Level, Platform};
 
 /// Filter category of the level's solid shapes.
@@ -146,15 +146,12 @@ impl LevelWorld {
                 b2("box2d body", world.body(ground))?.create_polygon(def, &poly),
             )
         };
-        match building {
-            ColliderBuilding::PerTile => {
-                for r in level.solid_boxes() {
+        for r in solid_rects(level, building) {
+            match building {
+                ColliderBuilding::PerTile => {
                     add_box(&mut world, &r, &solid)?;
-                    static_shapes += 1;
                 }
-            }
-            ColliderBuilding::Merged => {
-                for r in level.merged_solid_rects() {
+                ColliderBuilding::Merged => {
                     let (lo, hi) = (r.mins, r.maxs);
                     let loop_points = [lo, Vec2::new(hi.x, lo.y), hi, Vec2::new(lo.x, hi.y)];
                     let def = b2(
@@ -169,9 +166,9 @@ impl LevelWorld {
                         "box2d chain",
                         b2("box2d body", world.body(ground))?.create_chain(&def),
                     )?;
-                    static_shapes += 1;
                 }
             }
+            static_shapes += 1;
         }
         for points in slope_outlines(level, building) {
             let pts = counter_clockwise(points);

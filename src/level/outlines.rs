@@ -1,5 +1,7 @@
-//! The level's outlines as the engines that take polygons get them (Rapier's colliders, Box2D's
-//! shapes): one-way boxes, and slope outlines per tile or merged into seamless ramps.
+//! The level's static geometry as every collider-building controller gets it (Rapier's
+//! colliders, Box2D's shapes, the move-and-slide example's parry2d shapes), written once: solid
+//! boxes per tile or merged, one-way boxes, and slope outlines per tile or merged into seamless
+//! ramps. Each controller turns these into its own shapes.
 
 use glam::Vec2;
 
@@ -30,12 +32,27 @@ impl ColliderBuilding {
     }
 }
 
-/// One-way tiles (and ladder tops) as boxes: one per tile, or merged along each row.
+/// Solid tiles as boxes: one per tile, or adjacent tiles merged into rectangles.
+pub fn solid_rects(
+    level: &Level,
+    building: ColliderBuilding,
+) -> Vec<parry2d::bounding_volume::Aabb> {
+    match building {
+        ColliderBuilding::PerTile => level.solid_boxes().collect(),
+        ColliderBuilding::Merged => level.merged_solid_rects(),
+    }
+}
+
+/// One-way tiles (and ladder tops) as boxes: one per tile, or merged along each row. None for a
+/// level without one-way tiles or ladders.
 pub fn one_way_rects(
     level: &Level,
     building: ColliderBuilding,
 ) -> Vec<parry2d::bounding_volume::Aabb> {
     let mut out: Vec<parry2d::bounding_volume::Aabb> = Vec::new();
+    if !(level.features.one_way || level.features.ladders) {
+        return out;
+    }
     for b in level.one_way_boxes() {
         match out.last_mut() {
             Some(last)

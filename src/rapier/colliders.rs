@@ -8,7 +8,7 @@ use engine::prelude::{
     RigidBodySet,
 };
 
-pub use crate::level::outlines::{one_way_rects, slope_outlines, ColliderBuilding};
+pub use crate::level::outlines::{one_way_rects, slope_outlines, solid_rects, ColliderBuilding};
 use crate::level::Level;
 
 /// The level's static colliders and the broad phase that holds them. Built once per level and
@@ -28,10 +28,7 @@ impl StaticWorld {
     /// them visible to queries (before it the broad phase is empty and a character falls
     /// through the floor). The level's corner is placed at `level.origin` in Rapier's world.
     pub fn new(level: &Level, building: ColliderBuilding) -> Self {
-        let rects = match building {
-            ColliderBuilding::PerTile => level.solid_boxes().collect::<Vec<_>>(),
-            ColliderBuilding::Merged => level.merged_solid_rects(),
-        };
+        let rects = solid_rects(level, building);
         let origin = level_origin(level);
         let mut colliders = ColliderSet::new();
         let mut handles: Vec<ColliderHandle> = rects
@@ -45,19 +42,17 @@ impl StaticWorld {
                 )
             })
             .collect();
-        if level.features.one_way || level.features.ladders {
-            for r in one_way_rects(level, building) {
-                let half = v(r.half_extents());
-                let top = v(r.maxs).y + origin.y;
-                handles.push(
-                    colliders.insert(
-                        ColliderBuilder::cuboid(half.x, half.y)
-                            .translation(v(r.center()) + origin)
-                            .user_data(one_way_tag(top))
-                            .build(),
-                    ),
-                );
-            }
+        for r in one_way_rects(level, building) {
+            let half = v(r.half_extents());
+            let top = v(r.maxs).y + origin.y;
+            handles.push(
+                colliders.insert(
+                    ColliderBuilder::cuboid(half.x, half.y)
+                        .translation(v(r.center()) + origin)
+                        .user_data(one_way_tag(top))
+                        .build(),
+                ),
+            );
         }
         for points in slope_outlines(level, building) {
             let pts: Vec<Vect> = points.iter().map(|p| v(*p) + origin).collect();

@@ -146,7 +146,7 @@ pub struct LayerReport {
 }
 
 /// Overrides of the import's defaults, from the command line. Each default is documented in the
-/// README's "Tiled maps" and "LDtk maps" sections; the map's own properties override the
+/// "Tiled maps" and "LDtk maps" sections of docs/formats.md; the map's own properties override the
 /// defaults, and these override both.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ImportOptions {

@@ -61,7 +61,7 @@ pub enum TiledError {
         message: String,
     },
     /// The map has no spawn point, no cell to stand on and no side file, so nothing can run.
-    #[error("{file}: the map has no spawn points, no cell a character can stand on, and no side file {side} with [[scenario]] entries, so nothing can run on it; mark a spawn with a point object named or of class \"spawn\" in an object layer (where the character's feet start), pass --spawn X,Y, or write {side} with [[scenario]] entries (README, \"Tiled maps\")")]
+    #[error("{file}: the map has no spawn points, no cell a character can stand on, and no side file {side} with [[scenario]] entries, so nothing can run on it; mark a spawn with a point object named or of class \"spawn\" in an object layer (where the character's feet start), pass --spawn X,Y, or write {side} with [[scenario]] entries (docs/formats.md, \"Tiled maps\")")]
     NoScenarios {
         /// The map file.
         file: String,

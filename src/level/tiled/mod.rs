@@ -1,7 +1,7 @@
 //! Import of maps made with the Tiled editor (`.tmx`; tilesets inline, in `.tsx` files or in
 //! JSON `.tsj` files): tile layers become the level's tiles, object layers give collision
 //! rectangles and ramps, moving platforms and spawn points, read the way games mark them (layer
-//! names, object names and classes, bool tile properties). The README's "Tiled maps" section is
+//! names, object names and classes, bool tile properties). docs/formats.md's "Tiled maps" section is
 //! the user's side of the mapping; this module is its one implementation, split by concern:
 //! `error` (what cannot be imported), `read` (the map read through the `tiled` crate), `map`
 //! (the map's orientation, extent and properties), `layers` (which layer is what, and the tile
