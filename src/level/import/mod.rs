@@ -178,7 +178,7 @@ impl ImportOptions {
 }
 
 /// A tile kind as a user writes it (`solid`, `one_way`, `ladder`, `empty`), any case.
-pub fn parse_tile_kind(s: &str) -> Option<Tile> {
+pub(crate) fn parse_tile_kind(s: &str) -> Option<Tile> {
     Some(match normalize(s).as_str() {
         "solid" | "wall" => Tile::Solid,
         "oneway" | "platform" => Tile::OneWay,
