@@ -4,7 +4,7 @@
 
 use glam::Vec2;
 
-use super::{Box2dBackend, Box2dConfig, CharacterShape, ColliderBuilding, PogoShape, LINEAR_SLOP};
+use super::{Box2dBackend, Box2dConfig, CharacterShape, PogoShape, LINEAR_SLOP};
 use crate::backend::{BackendError, CharacterId, CharacterSpec, CharacterState, DeclaredContact};
 use crate::config::RunConfig;
 use crate::config::Setting;
@@ -131,85 +131,16 @@ impl Controller for Box2dConfig {
         vec![CharacterShape::Capsule]
     }
 
-    /// The sample's capsule on one box per tile and on merged chain loops.
     fn configs() -> Vec<RunConfig> {
-        [ColliderBuilding::PerTile, ColliderBuilding::Merged]
-            .into_iter()
-            .map(|colliders| {
-                run_with(Box2dConfig {
-                    colliders,
-                    ..Default::default()
-                })
-            })
-            .collect()
+        super::presets::configs()
     }
 
     fn stress_configs() -> Vec<RunConfig> {
-        Self::configs()
+        super::presets::stress_configs()
     }
 
-    /// dt, substeps, the loop's iterations and tolerance, the pogo spring, collider building.
     fn tradeoff_settings() -> Vec<Setting> {
-        let d = Box2dConfig::default;
-        let mut g = Vec::new();
-        for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
-            g.push(Setting::new(
-                &format!("per-tile capsule dt=1/{hz}"),
-                d(),
-                1,
-                Some(1.0 / hz),
-            ));
-        }
-        for k in [2, 4] {
-            g.push(Setting::new(
-                &format!("per-tile capsule substeps={k}"),
-                d(),
-                k,
-                Some(1.0 / 60.0),
-            ));
-        }
-        for n in [1u32, 10] {
-            let c = Box2dConfig {
-                max_iterations: n,
-                ..d()
-            };
-            g.push(Setting::new(
-                &format!("per-tile capsule iterations={n}"),
-                c,
-                1,
-                Some(1.0 / 60.0),
-            ));
-        }
-        for tol in [0.001f32, 0.05] {
-            let c = Box2dConfig {
-                tolerance: tol,
-                ..d()
-            };
-            g.push(Setting::new(
-                &format!("per-tile capsule tolerance={tol}"),
-                c,
-                1,
-                Some(1.0 / 60.0),
-            ));
-        }
-        for hz in [10.0f32, 20.0] {
-            let c = Box2dConfig {
-                pogo_hertz: hz,
-                ..d()
-            };
-            g.push(Setting::new(
-                &format!("per-tile capsule pogo={hz}Hz"),
-                c,
-                1,
-                Some(1.0 / 60.0),
-            ));
-        }
-        let c = Box2dConfig {
-            colliders: ColliderBuilding::Merged,
-            ..d()
-        };
-        g.push(Setting::new("merged capsule", c, 1, Some(1.0 / 60.0)));
-        g
+        super::presets::tradeoff_settings()
     }
 
     fn drawn() -> Vec<(&'static str, &'static str)> {

@@ -22,6 +22,7 @@ mod bounds;
 mod config;
 pub mod kind;
 mod mover;
+mod presets;
 pub mod world;
 
 use glam::Vec2;

@@ -25,6 +25,7 @@ pub mod colliders;
 pub mod double;
 pub mod kind;
 pub mod platforms;
+mod presets;
 
 pub use crate::backend::Precision;
 use crate::motion::MotionParams;

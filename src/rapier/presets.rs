@@ -1,0 +1,157 @@
+//! Rapier's presets, as data beside the controller: the configurations of the built-in
+//! comparison, the ones `platbench stress` checks, and the grid `platbench sweep` measures.
+
+use super::kind::{run, run_with};
+use super::{CharacterShape, ColliderBuilding, GroundedMove, Length, RapierConfig};
+use crate::backend::Precision;
+use crate::config::RunConfig;
+use crate::config::Setting;
+
+/// Rapier with every character shape its users pick, each on one collider per tile and on
+/// merged colliders; and per shape, Rapier as its docs and examples advise for a character
+/// that gets stuck: no vertical move while grounded except on a moving platform
+/// ([`GroundedMove::NoneExceptOnPlatforms`], the feed of the official bevy_rapier
+/// character example), on per-tile colliders, which `examples/rapier_setups.rs` measured
+/// to leave the fewest stuck frames for every shape. (Rapier's docs also advise a larger
+/// offset; the same command measured it to help no shape as much, and to leave the merged
+/// cuboid stuck.)
+pub(crate) fn configs() -> Vec<RunConfig> {
+    let mut set = Vec::new();
+    for shape in CharacterShape::ALL {
+        for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
+            set.push(run(building, shape));
+        }
+    }
+    for shape in CharacterShape::ALL {
+        set.push(run_with(RapierConfig {
+            shape,
+            grounded_move: GroundedMove::NoneExceptOnPlatforms,
+            ..Default::default()
+        }));
+    }
+    set
+}
+
+/// The capsule on per-tile and merged colliders, and on per-tile colliders fed as Rapier's
+/// docs and examples advise for a character that gets stuck (no vertical move while
+/// grounded except on platforms): the set-up that walks, so that `progress` is measured on
+/// one that holds it at the base case; then that set-up again on rapier2d-f64, so that
+/// how far each precision holds is read off the same probes.
+pub(crate) fn stress_configs() -> Vec<RunConfig> {
+    let advised = RapierConfig {
+        grounded_move: GroundedMove::NoneExceptOnPlatforms,
+        ..Default::default()
+    };
+    vec![
+        run(ColliderBuilding::PerTile, CharacterShape::Capsule),
+        run(ColliderBuilding::Merged, CharacterShape::Capsule),
+        run_with(advised.clone()),
+        run_with(RapierConfig {
+            precision: Precision::F64,
+            ..advised
+        }),
+    ]
+}
+
+/// dt, substeps, offset, snap distance, collider building and shape, grounded feed.
+pub(crate) fn tradeoff_settings() -> Vec<Setting> {
+    let r = RapierConfig::default;
+    let mut g = Vec::new();
+    for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
+        g.push(Setting::new(
+            &format!("per-tile capsule dt=1/{hz}"),
+            r(),
+            1,
+            Some(1.0 / hz),
+        ));
+    }
+    for k in [2, 4] {
+        g.push(Setting::new(
+            &format!("per-tile capsule substeps={k}"),
+            r(),
+            k,
+            Some(1.0 / 60.0),
+        ));
+    }
+    for off in [0.005f32, 0.02] {
+        let c = RapierConfig {
+            offset: Length::Relative(off),
+            ..r()
+        };
+        g.push(Setting::new(
+            &format!("per-tile capsule offset={off}h"),
+            c,
+            1,
+            Some(1.0 / 60.0),
+        ));
+    }
+    for (name, snap) in [("none", None), ("0.4h", Some(Length::Relative(0.4)))] {
+        let c = RapierConfig {
+            snap_to_ground: snap,
+            ..r()
+        };
+        g.push(Setting::new(
+            &format!("per-tile capsule snap={name}"),
+            c,
+            1,
+            Some(1.0 / 60.0),
+        ));
+    }
+    for (name, colliders, shape) in [
+        (
+            "merged capsule",
+            ColliderBuilding::Merged,
+            CharacterShape::Capsule,
+        ),
+        (
+            "per-tile cuboid",
+            ColliderBuilding::PerTile,
+            CharacterShape::Cuboid,
+        ),
+        (
+            "merged cuboid",
+            ColliderBuilding::Merged,
+            CharacterShape::Cuboid,
+        ),
+    ] {
+        let c = RapierConfig {
+            colliders,
+            shape,
+            ..r()
+        };
+        g.push(Setting::new(name, c, 1, Some(1.0 / 60.0)));
+    }
+    // How a grounded step is fed (`GroundedMove`): the bevy_rapier example's feed, the variant
+    // that keeps the controller's platform carry, and Rapier's 2D testbed's constant push at
+    // the walking speed.
+    for grounded_move in [
+        GroundedMove::None,
+        GroundedMove::NoneExceptOnPlatforms,
+        GroundedMove::Constant(6.0),
+    ] {
+        let name = grounded_move.label();
+        let c = RapierConfig {
+            grounded_move,
+            ..r()
+        };
+        g.push(Setting::new(
+            &format!("per-tile capsule grounded={name}"),
+            c,
+            1,
+            Some(1.0 / 60.0),
+        ));
+    }
+    for (name, offset) in [("0.02", 0.02f32), ("0.05", 0.05)] {
+        let c = RapierConfig {
+            offset: Length::Absolute(offset),
+            ..r()
+        };
+        g.push(Setting::new(
+            &format!("per-tile capsule offset={name}"),
+            c,
+            1,
+            Some(1.0 / 60.0),
+        ));
+    }
+    g
+}
