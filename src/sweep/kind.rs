@@ -13,7 +13,7 @@ use crate::config::RunConfig;
 use crate::config::Setting;
 use crate::controller::{Controller, Setup};
 use crate::level::{Features, Level};
-use crate::motion::{Input, JumpMode, MotionParams};
+use crate::motion::Input;
 use crate::shape::CharacterShape;
 
 /// The backend's name, as in CSV files.
@@ -163,80 +163,16 @@ impl Controller for SweepConfig {
         vec![CharacterShape::Cuboid]
     }
 
-    /// The default sweep; the sweep with the seed's continuous jump formula, so the two jump
-    /// modes' apex errors stand side by side; and the sweep on integer positions (32 subpixels
-    /// per tile; levels it does not model are skipped).
     fn configs() -> Vec<RunConfig> {
-        let continuous = RunConfig {
-            label: "jump=continuous".into(),
-            params: MotionParams {
-                jump_mode: JumpMode::Continuous,
-                ..Default::default()
-            },
-            ..run_default()
-        };
-        vec![run_default(), continuous, run_integer(32)]
+        super::presets::configs()
     }
 
     fn stress_configs() -> Vec<RunConfig> {
-        vec![run_default(), run_integer(32), run_double()]
+        super::presets::stress_configs()
     }
 
-    /// dt from 1/30 to 1/480 s, substeps, the epsilon, the jump mode and integer positions.
     fn tradeoff_settings() -> Vec<Setting> {
-        let p = MotionParams::default;
-        let s = SweepConfig::default;
-        let mut g = Vec::new();
-        for hz in [30.0f32, 60.0, 120.0, 240.0, 480.0] {
-            g.push(setting(&format!("dt=1/{hz}"), s(), p(), 1, Some(1.0 / hz)));
-        }
-        for k in [2, 4] {
-            g.push(setting(
-                &format!("substeps={k}"),
-                s(),
-                p(),
-                k,
-                Some(1.0 / 60.0),
-            ));
-        }
-        for eps in [1e-2f32, 1e-4, 1e-6] {
-            let c = SweepConfig {
-                epsilon: eps,
-                ..s()
-            };
-            g.push(setting(
-                &format!("epsilon={eps}"),
-                c,
-                p(),
-                1,
-                Some(1.0 / 60.0),
-            ));
-        }
-        let continuous = MotionParams {
-            jump_mode: JumpMode::Continuous,
-            ..p()
-        };
-        g.push(setting(
-            "jump=continuous",
-            s(),
-            continuous,
-            1,
-            Some(1.0 / 60.0),
-        ));
-        for per_tile in [16, 32] {
-            let c = SweepConfig {
-                positions: Positions::Integer { per_tile },
-                ..s()
-            };
-            g.push(setting(
-                &format!("positions=integer/{per_tile}"),
-                c,
-                p(),
-                1,
-                Some(1.0 / 60.0),
-            ));
-        }
-        g
+        super::presets::tradeoff_settings()
     }
 
     fn drawn() -> Vec<(&'static str, &'static str)> {
@@ -278,24 +214,6 @@ pub fn run_double() -> RunConfig {
             ..Default::default()
         },
     )
-}
-
-fn setting(
-    label: &str,
-    config: SweepConfig,
-    params: MotionParams,
-    substeps: u32,
-    dt: Option<f32>,
-) -> Setting {
-    Setting {
-        label: label.into(),
-        run: RunConfig {
-            params,
-            substeps,
-            ..RunConfig::new(label, config)
-        },
-        dt,
-    }
 }
 
 #[cfg(test)]

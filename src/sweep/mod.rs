@@ -28,6 +28,7 @@ pub mod kind;
 mod ladders;
 mod oneway;
 pub mod platforms;
+mod presets;
 pub mod resolve;
 pub mod slopes;
 mod space;
