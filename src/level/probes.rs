@@ -116,9 +116,27 @@ pub fn probe_scenarios(
     (out, notes)
 }
 
+/// Why a spawn gets no ride probe ([`ride`]); the import's note carries its text.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub(crate) enum RideError {
+    /// The level has no moving platform to ride.
+    #[error("the map has no moving platform")]
+    NoPlatform,
+    /// The spawn on top of the nearest platform is inside a solid tile.
+    #[error("on top of platform {platform} the character would stand inside the solid tile at ({x}, {y})")]
+    InsideSolid {
+        /// The platform's index in the level.
+        platform: usize,
+        /// The solid tile's left edge, tiles.
+        x: f32,
+        /// The solid tile's bottom edge, tiles.
+        y: f32,
+    },
+}
+
 /// The platform nearest to `at` (by the distance to its box at t = 0), the spawn on the middle
 /// of its top, and the ride's length.
-fn ride(level: &Level, at: Vec2, cfg: &ProbeConfig) -> Result<(u32, Vec2, f32), String> {
+fn ride(level: &Level, at: Vec2, cfg: &ProbeConfig) -> Result<(u32, Vec2, f32), RideError> {
     let (index, p) = level
         .platforms
         .iter()
@@ -130,16 +148,17 @@ fn ride(level: &Level, at: Vec2, cfg: &ProbeConfig) -> Result<(u32, Vec2, f32), 
             };
             d(a).total_cmp(&d(b))
         })
-        .ok_or("the map has no moving platform")?;
+        .ok_or(RideError::NoPlatform)?;
     let spawn = p.start + Vec2::new(p.size.x * 0.5, p.size.y);
     if let Some(t) = level
         .solids_overlapping(&character_box(spawn, DEFAULT_CHARACTER_SIZE))
         .next()
     {
-        return Err(format!(
-            "on top of platform {index} the character would stand inside the solid tile at ({}, {})",
-            t.mins.x, t.mins.y
-        ));
+        return Err(RideError::InsideSolid {
+            platform: index,
+            x: t.mins.x,
+            y: t.mins.y,
+        });
     }
     let round_trip = match &p.motion {
         PlatformMotion::Waypoints { points, speed } => {

@@ -1,7 +1,11 @@
 //! What a Tiled map that cannot be imported is: [`TiledError`], naming the file, and the
-//! layer, tile (tileset, local id, cell) or object at fault.
+//! layer, tile (tileset, local id, cell) or object at fault; and the reasons the importer's
+//! parts give, whose text a [`TiledError`]'s message carries: `TileKindError` (with
+//! `HeightsError` and `ShapeError`), `FlipError`, `CellError` and `JsonTilesetError`.
 
-use super::LevelError;
+use glam::Vec2;
+
+use super::{tile_name, LevelError, Tile, SHAPE_TOLERANCE_PX};
 
 /// A Tiled map that platbench cannot run as it is, with what was found and what was expected.
 #[derive(Debug, thiserror::Error)]
@@ -86,4 +90,208 @@ fn cell_text(cell: &Option<(u32, u32)>) -> String {
         Some((i, j)) => format!(" (at cell i = {i}, j = {j})"),
         None => String::new(),
     }
+}
+
+/// Why a tileset tile's properties, class or collision shape say nothing platbench can
+/// represent (`tiles::tile_kind`); a [`TiledError::Tile`] carries its text.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub(crate) enum TileKindError {
+    /// Two bool properties make the tile two different kinds.
+    #[error("property {first:?} makes it {} and property {second:?} makes it {}; expected one", tile_name(.first_tile), tile_name(.second_tile))]
+    ConflictingBools {
+        /// The property read first (in name order).
+        first: String,
+        /// What it makes the tile.
+        first_tile: Tile,
+        /// The property that disagrees.
+        second: String,
+        /// What that one makes the tile.
+        second_tile: Tile,
+    },
+    /// The `collision` property is neither a string nor a bool.
+    #[error("property \"collision\" is {kind}; expected a string (solid, one_way, ladder or empty) or a bool")]
+    CollisionType {
+        /// The property's type, with its article ("an int").
+        kind: &'static str,
+    },
+    /// `slope_left` or `slope_right` is not a number.
+    #[error("property {key:?} is {kind}; expected a float (height in tiles)")]
+    SlopeType {
+        /// The property's name.
+        key: String,
+        /// The property's type, with its article.
+        kind: &'static str,
+    },
+    /// `slope_left` or `slope_right` is not a finite height within 16 tiles.
+    #[error("property {key:?} = {value}; expected a height between -16 and 16 tiles")]
+    SlopeRange {
+        /// The property's name.
+        key: String,
+        /// Its value, tiles.
+        value: f32,
+    },
+    /// The `heights` property is not a string.
+    #[error(
+        "property \"heights\" is {kind}; expected a string of 16 comma-separated integers 0..16"
+    )]
+    HeightsType {
+        /// The property's type, with its article.
+        kind: &'static str,
+    },
+    /// The `heights` string is not 16 sixteenths.
+    #[error(transparent)]
+    Heights(#[from] HeightsError),
+    /// One of `slope_left` and `slope_right` without the other.
+    #[error("it has only one of slope_left and slope_right; expected both (a line slope)")]
+    HalfLineSlope,
+    /// Both a height array and a line slope.
+    #[error("it has both a height array (heights) and a line slope (slope_left/slope_right); expected one")]
+    TwoSlopes,
+    /// The `collision` string names no tile kind.
+    #[error("collision = {value:?}; expected solid, one_way, ladder or empty")]
+    CollisionValue {
+        /// The property's value.
+        value: String,
+    },
+    /// A `collision` string and slope properties.
+    #[error("it has collision = {collision:?} and slope properties; expected one of them (a slope needs no collision property)")]
+    CollisionAndSlope {
+        /// The `collision` property's value.
+        collision: String,
+    },
+    /// A `collision` string and a bool property that make the tile two different kinds.
+    #[error("it has collision = {collision:?} and property {key:?} that makes it {}; expected one", tile_name(.tile))]
+    CollisionAndBool {
+        /// The `collision` property's value.
+        collision: String,
+        /// The bool property's name.
+        key: String,
+        /// What the bool property makes the tile.
+        tile: Tile,
+    },
+    /// The single collision object is not a full-tile rectangle or a ramp.
+    #[error(transparent)]
+    Shape(#[from] ShapeError),
+    /// More than one collision object.
+    #[error("its collision shape has {count} objects; expected one: a rectangle covering the tile (solid) or a ramp polygon (slope)")]
+    ManyShapes {
+        /// How many objects the collision shape has.
+        count: usize,
+    },
+}
+
+/// Why a tile's `heights` property is not 16 sixteenths of a tile (`tiles::parse_heights`).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub(crate) enum HeightsError {
+    /// Not 16 entries.
+    #[error("heights = {text:?} has {count} entries; {HEIGHTS_EXPECTED}")]
+    Count {
+        /// The property's value.
+        text: String,
+        /// How many comma-separated entries it has.
+        count: usize,
+    },
+    /// An entry that is not an integer 0..=16.
+    #[error("heights = {text:?}: entry {entry} is {value:?}; {HEIGHTS_EXPECTED}")]
+    Entry {
+        /// The property's value.
+        text: String,
+        /// The entry's 1-based position.
+        entry: usize,
+        /// The entry, trimmed.
+        value: String,
+    },
+}
+
+/// What a `heights` property must be.
+const HEIGHTS_EXPECTED: &str =
+    "expected 16 comma-separated integers 0..16 (sixteenths of a tile, left to right)";
+
+/// Why a tile's single collision object is neither a full-tile rectangle nor a ramp polygon
+/// (`tiles::shape_kind`). Positions and sizes are the tile's pixels, y down.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub(crate) enum ShapeError {
+    /// The object is rotated.
+    #[error("its collision shape is rotated by {degrees} degrees; expected no rotation")]
+    Rotated {
+        /// The rotation, degrees.
+        degrees: f32,
+    },
+    /// A rectangle that does not cover the tile.
+    #[error("its collision shape is a rectangle at ({x}, {y}) of {width} x {height} pixels, which does not cover the {tile_width} x {tile_height} tile; expected a full-tile rectangle (solid) or a ramp polygon (slope)")]
+    PartialRect {
+        /// The rectangle's left edge.
+        x: f32,
+        /// The rectangle's top edge.
+        y: f32,
+        /// The rectangle's width.
+        width: f32,
+        /// The rectangle's height.
+        height: f32,
+        /// The tile's width.
+        tile_width: f32,
+        /// The tile's height.
+        tile_height: f32,
+    },
+    /// A polygon that is not a ramp.
+    #[error("its collision shape is a polygon {} that is not a ramp; expected the tile's bottom edge, its two sides and one straight top line from the left side to the right side (within {SHAPE_TOLERANCE_PX} pixel)", points_text(.points))]
+    NotRamp {
+        /// The polygon's points.
+        points: Vec<Vec2>,
+    },
+    /// An ellipse, polyline, point or other shape.
+    #[error("its collision shape is {shape}; expected a full-tile rectangle (solid) or a ramp polygon (slope)")]
+    Unsupported {
+        /// The shape, with its article ("an ellipse").
+        shape: &'static str,
+    },
+}
+
+fn points_text(pts: &[Vec2]) -> String {
+    let p: Vec<String> = pts.iter().map(|p| format!("({}, {})", p.x, p.y)).collect();
+    format!("[{}]", p.join(", "))
+}
+
+/// Why a flipped tile has no meaning platbench can represent (`tiles::apply_flips`).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub(crate) enum FlipError {
+    /// A slope flipped vertically or diagonally: a ceiling or wall slope.
+    #[error("it is a slope drawn flipped vertically or rotated, which makes a ceiling or wall slope; expected it unflipped or flipped horizontally (the mirrored ramp)")]
+    SlopeTurned,
+}
+
+/// Two collision layers or objects that put different kinds of tile into one cell (the
+/// importer's `set_cell`).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub(crate) enum CellError {
+    /// The cell already holds another kind of tile.
+    #[error("it is {} but the cell already holds {} from {held_by}; expected one kind of tile per cell across the collision layers", tile_name(.tile), tile_name(.held))]
+    Conflict {
+        /// The tile being put into the cell.
+        tile: Tile,
+        /// The tile the cell holds.
+        held: Tile,
+        /// What put it there (tileset, tile and layer, or object).
+        held_by: String,
+    },
+}
+
+/// Why a JSON tileset (`.tsj`) cannot be read as the TSX the `tiled` crate reads
+/// (`normalize::json_tileset_to_tsx`).
+#[derive(Debug, thiserror::Error)]
+pub(crate) enum JsonTilesetError {
+    /// Not JSON: the parser's error, with its line and column.
+    #[error("line {}, column {}: not a JSON tileset: {}", .0.line(), .0.column(), .0)]
+    Syntax(#[source] serde_json::Error),
+    /// JSON, but not an object at the top.
+    #[error("not a JSON tileset: expected an object at the top")]
+    NotObject,
+    /// More tiles than platbench reads.
+    #[error("it has {count} tiles; expected at most {max}")]
+    TooManyTiles {
+        /// The tileset's tile count (declared or computed).
+        count: u64,
+        /// The most tiles platbench reads ([`crate::limits::MAX_TILES`]).
+        max: u64,
+    },
 }

@@ -398,13 +398,13 @@ impl<'m> Importer<'m> {
                     lt.get_tileset().name,
                     lt.id()
                 );
-                if let Err(message) = self.set_cell(k, tile, this) {
+                if let Err(e) = self.set_cell(k, tile, this) {
                     return Err(TiledError::Tile {
                         file: self.file.clone(),
                         tileset: lt.get_tileset().name.clone(),
                         tile: lt.id(),
                         cell: Some((i, j)),
-                        message,
+                        message: e.to_string(),
                     });
                 }
             }
@@ -484,7 +484,7 @@ impl<'m> Importer<'m> {
         let (base, notes) = match &data {
             None => (None, Vec::new()),
             Some(d) => tile_kind(&d.properties, &d.user_type, d.collision.as_ref(), tw, th)
-                .map_err(&err)?,
+                .map_err(|e| err(e.to_string()))?,
         };
         let base = base.unwrap_or(if marks { Tile::Empty } else { Tile::Solid });
         let subject = format!("tileset {:?} tile {id}", ts.name);
@@ -494,6 +494,6 @@ impl<'m> Importer<'m> {
                 self.warn(subject.clone(), n);
             }
         }
-        apply_flips(base, lt.flip_h, lt.flip_v, lt.flip_d).map_err(err)
+        apply_flips(base, lt.flip_h, lt.flip_v, lt.flip_d).map_err(|e| err(e.to_string()))
     }
 }

@@ -27,6 +27,7 @@ mod read;
 mod scan;
 mod tiles;
 
+use error::CellError;
 pub use error::TiledError;
 pub use read::import_tiled_map_with;
 
@@ -307,8 +308,8 @@ impl<'m> Importer<'m> {
 
     /// Puts `tile` into level cell `k`, set by `by`: an empty tile gives way to any other, a
     /// ladder and a one-way platform make a ladder (whose top is walkable like a one-way
-    /// platform); other differing kinds are the message of an error.
-    fn set_cell(&mut self, k: usize, tile: Tile, by: String) -> Result<(), String> {
+    /// platform); other differing kinds are an error.
+    fn set_cell(&mut self, k: usize, tile: Tile, by: String) -> Result<(), CellError> {
         match &self.tiles[k] {
             None => self.tiles[k] = Some((tile, by)),
             Some((prev, _)) if *prev == tile || tile == Tile::Empty => {}
@@ -316,11 +317,11 @@ impl<'m> Importer<'m> {
             Some((Tile::OneWay, _)) if tile == Tile::Ladder => self.tiles[k] = Some((tile, by)),
             Some((Tile::Ladder, _)) if tile == Tile::OneWay => {}
             Some((prev, prev_by)) => {
-                return Err(format!(
-                    "it is {} but the cell already holds {} from {prev_by}; expected one kind of tile per cell across the collision layers",
-                    tile_name(&tile),
-                    tile_name(prev)
-                ))
+                return Err(CellError::Conflict {
+                    tile,
+                    held: *prev,
+                    held_by: prev_by.clone(),
+                })
             }
         }
         Ok(())

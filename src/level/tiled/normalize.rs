@@ -7,6 +7,7 @@
 use quick_xml::events::Event;
 use serde_json::Value;
 
+use super::error::JsonTilesetError;
 use super::scan::{attr, line_of, ScanError};
 use crate::limits;
 
@@ -326,16 +327,10 @@ fn object_xml(o: &Value) -> String {
 
 /// A JSON tileset (Tiled's `.tsj`, or `.json` from older versions) as the TSX the crate reads.
 /// `Err` says what is wrong, with the line and column of a JSON syntax error.
-pub(super) fn json_tileset_to_tsx(text: &str) -> Result<Normalized, String> {
-    let v: Value = serde_json::from_str(text).map_err(|e| {
-        format!(
-            "line {}, column {}: not a JSON tileset: {e}",
-            e.line(),
-            e.column()
-        )
-    })?;
+pub(super) fn json_tileset_to_tsx(text: &str) -> Result<Normalized, JsonTilesetError> {
+    let v: Value = serde_json::from_str(text).map_err(JsonTilesetError::Syntax)?;
     if !v.is_object() {
-        return Err("not a JSON tileset: expected an object at the top".into());
+        return Err(JsonTilesetError::NotObject);
     }
     let mut notes = vec!["a JSON tileset; read through its TSX equivalent".to_string()];
     let n = |k: &str| num_attr(&v, k).map(|x| x.max(0.0) as u64);
@@ -382,10 +377,10 @@ pub(super) fn json_tileset_to_tsx(text: &str) -> Result<Normalized, String> {
         }
     };
     if count > limits::MAX_TILES {
-        return Err(format!(
-            "it has {count} tiles; expected at most {}",
-            limits::MAX_TILES
-        ));
+        return Err(JsonTilesetError::TooManyTiles {
+            count,
+            max: limits::MAX_TILES,
+        });
     }
     let mut out = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<tileset name=\"{}\" tilewidth=\"{tw}\" tileheight=\"{th}\" tilecount=\"{count}\" spacing=\"{}\" margin=\"{}\"",

@@ -96,7 +96,7 @@ pub fn import_tiled_map_with(
         let text = String::from_utf8(data.clone());
         let out = match (ext.as_str(), text) {
             ("tsj" | "json", Ok(t)) => {
-                let n = normalize::json_tileset_to_tsx(&t).map_err(bad)?;
+                let n = normalize::json_tileset_to_tsx(&t).map_err(|e| bad(e.to_string()))?;
                 (n.text, n.notes)
             }
             ("tsx", Ok(t)) => {
@@ -161,7 +161,11 @@ fn load_error(
             let bad = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
             let t = String::from_utf8(data).map_err(|e| bad(e.to_string()))?;
             let t = match ext.as_str() {
-                "tsj" | "json" => normalize::json_tileset_to_tsx(&t).map_err(bad)?.text,
+                "tsj" | "json" => {
+                    normalize::json_tileset_to_tsx(&t)
+                        .map_err(|e| bad(e.to_string()))?
+                        .text
+                }
                 _ => {
                     normalize::normalize_xml(&t)
                         .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?

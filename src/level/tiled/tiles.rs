@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use glam::Vec2;
 use tiled::{ObjectShape, PropertyValue};
 
+use super::error::{FlipError, HeightsError, ShapeError, TileKindError};
 use super::{kind_of, names, number, shape_name, SHAPE_TOLERANCE_PX};
 use crate::level::import::parse_tile_kind;
 use crate::level::{Slope, Tile};
@@ -42,15 +43,15 @@ pub(crate) fn is_bool_mark(key: &str, value: &PropertyValue) -> bool {
 /// `empty`), else its collision shape; `None` when it says nothing (the caller's default then
 /// holds: solid, or empty in a tileset that marks its solid tiles with a bool property).
 /// Properties take precedence over a collision shape, which is then not read (a warning says
-/// so). Returns the tile and the warnings about it; `Err` is the message for an unsupported
-/// tile. `tw` x `th` is the tile's own size in pixels (its image's, in an image collection).
+/// so). Returns the tile and the warnings about it; `Err` says why the tile is unsupported.
+/// `tw` x `th` is the tile's own size in pixels (its image's, in an image collection).
 pub(crate) fn tile_kind(
     props: &tiled::Properties,
     class: &str,
     shape: Option<&tiled::ObjectLayerData>,
     tw: f32,
     th: f32,
-) -> Result<(Option<Tile>, Vec<String>), String> {
+) -> Result<(Option<Tile>, Vec<String>), TileKindError> {
     let mut notes = Vec::new();
     let mut collision = None;
     let mut marked: Option<(String, Tile)> = None;
@@ -80,11 +81,12 @@ pub(crate) fn tile_kind(
                     (Some((_, Tile::Empty)), Some(t)) => marked = Some((key.clone(), t)),
                     (Some(_), Some(Tile::Empty)) => {}
                     (Some((k0, t0)), Some(t)) if *t0 != t => {
-                        return Err(format!(
-                            "property {k0:?} makes it {} and property {key:?} makes it {}; expected one",
-                            super::tile_name(t0),
-                            super::tile_name(&t)
-                        ))
+                        return Err(TileKindError::ConflictingBools {
+                            first: k0.clone(),
+                            first_tile: *t0,
+                            second: key.clone(),
+                            second_tile: t,
+                        })
                     }
                     _ => {}
                 }
@@ -94,14 +96,18 @@ pub(crate) fn tile_kind(
         match key.as_str() {
             names::COLLISION => match value {
                 PropertyValue::StringValue(s) => collision = Some(s.clone()),
-                other => return Err(format!("property \"collision\" is {}; expected a string (solid, one_way, ladder or empty) or a bool", kind_of(other))),
+                other => return Err(TileKindError::CollisionType { kind: kind_of(other) }),
             },
             names::SLOPE_LEFT | names::SLOPE_RIGHT => {
-                let v = number(value).ok_or_else(|| {
-                    format!("property {key:?} is {}; expected a float (height in tiles)", kind_of(value))
+                let v = number(value).ok_or_else(|| TileKindError::SlopeType {
+                    key: key.clone(),
+                    kind: kind_of(value),
                 })?;
                 if !(v.is_finite() && v.abs() <= 16.0) {
-                    return Err(format!("property {key:?} = {v}; expected a height between -16 and 16 tiles"));
+                    return Err(TileKindError::SlopeRange {
+                        key: key.clone(),
+                        value: v,
+                    });
                 }
                 if key == names::SLOPE_LEFT {
                     left = Some(v);
@@ -111,7 +117,7 @@ pub(crate) fn tile_kind(
             }
             names::HEIGHTS => match value {
                 PropertyValue::StringValue(s) => heights = Some(parse_heights(s)?),
-                other => return Err(format!("property \"heights\" is {}; expected a string of 16 comma-separated integers 0..16", kind_of(other))),
+                other => return Err(TileKindError::HeightsType { kind: kind_of(other) }),
             },
             _ => notes.push(format!(
                 "property {key:?} is not one platbench reads (it reads collision, slope_left, slope_right, heights, and the bools collidable, isSolid, solid, collides, blocked, one_way, ladder); ignored"
@@ -122,33 +128,33 @@ pub(crate) fn tile_kind(
         (None, None, None) => None,
         (Some(l), Some(r), None) => Some(Slope::Line { left: l, right: r }),
         (None, None, Some(h)) => Some(Slope::Heights(h)),
-        (Some(_), None, None) | (None, Some(_), None) => {
-            return Err("it has only one of slope_left and slope_right; expected both (a line slope)".into())
-        }
-        _ => return Err("it has both a height array (heights) and a line slope (slope_left/slope_right); expected one".into()),
+        (Some(_), None, None) | (None, Some(_), None) => return Err(TileKindError::HalfLineSlope),
+        _ => return Err(TileKindError::TwoSlopes),
     };
     let from_string = match collision.as_deref() {
         None => None,
         Some(c) => match parse_tile_kind(c) {
             Some(t) => Some(t),
             None => {
-                return Err(format!(
-                    "collision = {c:?}; expected solid, one_way, ladder or empty"
-                ))
+                return Err(TileKindError::CollisionValue {
+                    value: c.to_string(),
+                })
             }
         },
     };
     let from_props = match (from_string, slope, &marked) {
         (Some(_), Some(_), _) => {
-            return Err(format!("it has collision = {:?} and slope properties; expected one of them (a slope needs no collision property)", collision.unwrap_or_default()))
+            return Err(TileKindError::CollisionAndSlope {
+                collision: collision.unwrap_or_default(),
+            })
         }
         (None, Some(s), _) => Some(Tile::Slope(s)),
         (Some(t), None, Some((k, m))) if t != *m => {
-            return Err(format!(
-                "it has collision = {:?} and property {k:?} that makes it {}; expected one",
-                collision.unwrap_or_default(),
-                super::tile_name(m)
-            ))
+            return Err(TileKindError::CollisionAndBool {
+                collision: collision.unwrap_or_default(),
+                key: k.clone(),
+                tile: *m,
+            })
         }
         (Some(t), None, _) => Some(t),
         (None, None, Some((_, m))) => Some(*m),
@@ -169,35 +175,29 @@ pub(crate) fn tile_kind(
     let t = match objects {
         [] => None,
         [o] => Some(shape_kind(o, tw, th)?),
-        many => {
-            return Err(format!(
-                "its collision shape has {} objects; expected one: a rectangle covering the tile (solid) or a ramp polygon (slope)",
-                many.len()
-            ))
-        }
+        many => return Err(TileKindError::ManyShapes { count: many.len() }),
     };
     Ok((t, notes))
 }
 
-fn parse_heights(s: &str) -> Result<[u8; 16], String> {
-    let expected =
-        "expected 16 comma-separated integers 0..16 (sixteenths of a tile, left to right)";
+fn parse_heights(s: &str) -> Result<[u8; 16], HeightsError> {
     let vals: Vec<&str> = s.split(',').map(str::trim).collect();
     if vals.len() != 16 {
-        return Err(format!(
-            "heights = {s:?} has {} entries; {expected}",
-            vals.len()
-        ));
+        return Err(HeightsError::Count {
+            text: s.to_string(),
+            count: vals.len(),
+        });
     }
     let mut out = [0u8; 16];
     for (k, v) in vals.iter().enumerate() {
         match v.parse::<u8>() {
             Ok(h) if h <= 16 => out[k] = h,
             _ => {
-                return Err(format!(
-                    "heights = {s:?}: entry {} is {v:?}; {expected}",
-                    k + 1
-                ))
+                return Err(HeightsError::Entry {
+                    text: s.to_string(),
+                    entry: k + 1,
+                    value: v.to_string(),
+                })
             }
         }
     }
@@ -206,12 +206,11 @@ fn parse_heights(s: &str) -> Result<[u8; 16], String> {
 
 /// The meaning of a tile's single collision object: a rectangle over the whole tile is solid,
 /// a ramp polygon is a line slope.
-fn shape_kind(o: &tiled::ObjectData, tw: f32, th: f32) -> Result<Tile, String> {
+fn shape_kind(o: &tiled::ObjectData, tw: f32, th: f32) -> Result<Tile, ShapeError> {
     if o.rotation != 0.0 {
-        return Err(format!(
-            "its collision shape is rotated by {} degrees; expected no rotation",
-            o.rotation
-        ));
+        return Err(ShapeError::Rotated {
+            degrees: o.rotation,
+        });
     }
     let (tol_x, tol_y) = (SHAPE_TOLERANCE_PX, SHAPE_TOLERANCE_PX);
     match &o.shape {
@@ -223,10 +222,14 @@ fn shape_kind(o: &tiled::ObjectData, tw: f32, th: f32) -> Result<Tile, String> {
             if full {
                 Ok(Tile::Solid)
             } else {
-                Err(format!(
-                    "its collision shape is a rectangle at ({}, {}) of {} x {} pixels, which does not cover the {tw} x {th} tile; expected a full-tile rectangle (solid) or a ramp polygon (slope)",
-                    o.x, o.y, width, height
-                ))
+                Err(ShapeError::PartialRect {
+                    x: o.x,
+                    y: o.y,
+                    width: *width,
+                    height: *height,
+                    tile_width: tw,
+                    tile_height: th,
+                })
             }
         }
         ObjectShape::Polygon { points } => {
@@ -234,23 +237,15 @@ fn shape_kind(o: &tiled::ObjectData, tw: f32, th: f32) -> Result<Tile, String> {
                 .iter()
                 .map(|&(x, y)| Vec2::new(o.x + x, o.y + y))
                 .collect();
-            ramp(&pts, tw, th).map(Tile::Slope).ok_or_else(|| {
-                format!(
-                    "its collision shape is a polygon {} that is not a ramp; expected the tile's bottom edge, its two sides and one straight top line from the left side to the right side (within {SHAPE_TOLERANCE_PX} pixel)",
-                    points_text(&pts)
-                )
-            })
+            match ramp(&pts, tw, th) {
+                Some(s) => Ok(Tile::Slope(s)),
+                None => Err(ShapeError::NotRamp { points: pts }),
+            }
         }
-        other => Err(format!(
-            "its collision shape is {}; expected a full-tile rectangle (solid) or a ramp polygon (slope)",
-            shape_name(other)
-        )),
+        other => Err(ShapeError::Unsupported {
+            shape: shape_name(other),
+        }),
     }
-}
-
-fn points_text(pts: &[Vec2]) -> String {
-    let p: Vec<String> = pts.iter().map(|p| format!("({}, {})", p.x, p.y)).collect();
-    format!("[{}]", p.join(", "))
 }
 
 /// Recognises a ramp: a polygon (tile pixels, y down) whose corners, once points on a straight
@@ -333,14 +328,12 @@ pub(crate) fn ramp(pts: &[Vec2], tw: f32, th: f32) -> Option<Slope> {
 /// slope upside down or sideways (vertical, diagonal) are not representable; solids, ladders,
 /// empty and one-way tiles keep their meaning under any flip (a one-way cell blocks from above
 /// however its art is turned).
-pub(crate) fn apply_flips(t: Tile, h: bool, v: bool, d: bool) -> Result<Tile, String> {
+pub(crate) fn apply_flips(t: Tile, h: bool, v: bool, d: bool) -> Result<Tile, FlipError> {
     match t {
         // A one-way tile blocks from above whichever way its art is drawn: games read the
         // cell's property, not the picture.
         Tile::Empty | Tile::Solid | Tile::Ladder | Tile::OneWay => Ok(t),
-        Tile::Slope(_) if v || d => Err(
-            "it is a slope drawn flipped vertically or rotated, which makes a ceiling or wall slope; expected it unflipped or flipped horizontally (the mirrored ramp)".into(),
-        ),
+        Tile::Slope(_) if v || d => Err(FlipError::SlopeTurned),
         Tile::Slope(s) if h => Ok(Tile::Slope(match s {
             Slope::Line { left, right } => Slope::Line {
                 left: right,
@@ -466,8 +459,14 @@ mod tests {
                 right: 0.0
             }))
         );
-        assert!(apply_flips(up, false, true, false).is_err());
-        assert!(apply_flips(up, false, false, true).is_err());
+        assert_eq!(
+            apply_flips(up, false, true, false),
+            Err(FlipError::SlopeTurned)
+        );
+        assert_eq!(
+            apply_flips(up, false, false, true),
+            Err(FlipError::SlopeTurned)
+        );
         let mut h = [0u8; 16];
         h[0] = 16;
         let mut r = [0u8; 16];
@@ -494,9 +493,13 @@ mod tests {
             parse_heights("0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,16").map(|h| h[15]),
             Ok(16)
         );
-        assert!(parse_heights("1,2").unwrap_err().contains("has 2 entries"));
+        assert_eq!(
+            parse_heights("1,2").unwrap_err().to_string(),
+            "heights = \"1,2\" has 2 entries; expected 16 comma-separated integers 0..16 (sixteenths of a tile, left to right)"
+        );
         assert!(parse_heights("0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,17")
             .unwrap_err()
-            .contains("entry 16"));
+            .to_string()
+            .contains("entry 16 is \"17\""));
     }
 }
