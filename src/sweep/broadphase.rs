@@ -10,7 +10,7 @@ use crate::level::Level;
 
 /// What a box in the broadphase is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BoxKind {
+pub(crate) enum BoxKind {
     /// A solid tile.
     Solid,
     /// A solid tile carrying a slope: part of a ramp's mass, which the x sweep skips.
@@ -39,7 +39,7 @@ const NEAR_MARGIN: f32 = 1.0;
 /// touching an area inside it are among them, found by the same inclusive test and in the same
 /// (depth-first) order.
 #[derive(Clone, Debug)]
-pub struct NearCache {
+pub(crate) struct NearCache {
     region: Aabb,
     items: Vec<(Aabb, BoxKind)>,
 }
@@ -57,27 +57,34 @@ impl Default for NearCache {
 
 impl NearCache {
     /// The static boxes touching `area` (inclusive), with their kind, in the BVH's order.
-    pub fn query<'a>(
+    #[inline]
+    pub(crate) fn query<'a>(
         &'a mut self,
         tiles: &StaticTiles,
-        area: &'a Aabb,
+        area: Aabb,
     ) -> impl Iterator<Item = (&'a Aabb, BoxKind)> + 'a {
-        if !self.region.contains(area) {
-            self.region = area.loosened(NEAR_MARGIN);
-            self.items.clear();
-            let region = self.region;
-            self.items
-                .extend(tiles.query(&region).map(|(b, k)| (*b, k)));
+        if !self.region.contains(&area) {
+            self.refill(tiles, &area);
         }
         self.items
             .iter()
-            .filter(move |(b, _)| b.intersects(area))
+            .filter(move |(b, _)| b.intersects(&area))
             .map(|(b, k)| (b, *k))
+    }
+
+    /// Keeps the boxes touching `area` loosened by [`NEAR_MARGIN`] (the rare path of a query).
+    #[cold]
+    fn refill(&mut self, tiles: &StaticTiles, area: &Aabb) {
+        self.region = area.loosened(NEAR_MARGIN);
+        self.items.clear();
+        let region = self.region;
+        self.items
+            .extend(tiles.query(&region).map(|(b, k)| (*b, k)));
     }
 }
 
 /// Static boxes (solid tiles, and one-way tiles when the level has them) and a BVH over them.
-pub struct StaticTiles {
+pub(crate) struct StaticTiles {
     boxes: Vec<Aabb>,
     kinds: Vec<BoxKind>,
     bvh: Bvh,
@@ -86,7 +93,7 @@ pub struct StaticTiles {
 impl StaticTiles {
     /// Collects the level's solid tiles (one box per tile, placed at the level's origin in the
     /// world) and builds the BVH.
-    pub fn new(level: &Level) -> Self {
+    pub(crate) fn new(level: &Level) -> Self {
         let mut boxes = Vec::new();
         let mut kinds = Vec::new();
         for b in level.solid_boxes() {
@@ -110,20 +117,19 @@ impl StaticTiles {
 
     /// Boxes whose AABB intersects `area` (inclusive of touching; the caller filters), with
     /// their kind.
-    pub fn query<'a>(&'a self, area: &'a Aabb) -> impl Iterator<Item = (&'a Aabb, BoxKind)> + 'a {
+    pub(crate) fn query<'a>(
+        &'a self,
+        area: &'a Aabb,
+    ) -> impl Iterator<Item = (&'a Aabb, BoxKind)> + 'a {
         self.bvh
             .intersect_aabb(area)
             .map(move |leaf| (&self.boxes[leaf as usize], self.kinds[leaf as usize]))
     }
 
-    /// Number of solid boxes.
-    pub fn len(&self) -> usize {
+    /// Number of static boxes.
+    #[cfg(test)]
+    fn len(&self) -> usize {
         self.boxes.len()
-    }
-
-    /// Whether the level has no solid tile.
-    pub fn is_empty(&self) -> bool {
-        self.boxes.is_empty()
     }
 }
 
@@ -165,7 +171,7 @@ mod tests {
             let area = Aabb::new(Vec2::new(x, 0.9), Vec2::new(x + 0.8, 2.05));
             let before = near.region;
             let cached: Vec<(Aabb, BoxKind)> =
-                near.query(&tiles, &area).map(|(b, k)| (*b, k)).collect();
+                near.query(&tiles, area).map(|(b, k)| (*b, k)).collect();
             refills += (near.region != before) as usize;
             let direct: Vec<(Aabb, BoxKind)> = tiles.query(&area).map(|(b, k)| (*b, k)).collect();
             assert_eq!(cached, direct, "at x = {x}");

@@ -9,17 +9,28 @@
 
 use glam::Vec2;
 
+use super::space::Space;
 use super::{Character, World};
 use crate::motion::{Contacts, Input};
 
 /// Step 2: applies input, the jump impulse and the force accumulator to the velocity, and
 /// returns the displacement the character wants this step, `v * dt` (tiles).
-pub(super) fn forces_and_velocity(w: &World, c: &mut Character, input: &Input, dt: f32) -> Vec2 {
+pub(super) fn forces_and_velocity<S: Space>(
+    w: &World<S>,
+    c: &mut Character<S::Coord>,
+    input: &Input,
+    dt: f32,
+) -> Vec2 {
     c.motion.integrate(w.params, input, dt)
 }
 
 /// Applies what the moves ran into: zero velocity on a blocked axis, friction on the other,
 /// and the grounded state.
-pub(super) fn apply_contacts(w: &World, c: &mut Character, input: &Input, contacts: Contacts) {
+pub(super) fn apply_contacts<S: Space>(
+    w: &World<S>,
+    c: &mut Character<S::Coord>,
+    input: &Input,
+    contacts: Contacts,
+) {
     c.motion.apply_contacts(w.params, input, contacts);
 }

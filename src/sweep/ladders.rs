@@ -15,28 +15,27 @@ use crate::motion::Input;
 /// Step 1: enters the ladder state if the input and position allow it, clamping x to the
 /// ladder's centre. Runs only on levels with ladders.
 pub(super) fn enter<S: Space>(
-    s: &S,
-    w: &World,
+    w: &World<S>,
     stats: &mut SweepStats,
-    c: &mut Character,
+    c: &mut Character<S::Coord>,
     input: &Input,
 ) {
     if !w.level.features.ladders {
         return;
     }
     stats.ladder_steps += 1;
-    let (origin, size) = (s.origin(), c.size);
-    s.with_feet(c, |feet, motion| {
+    let (origin, size, motion) = (w.frame.origin, c.size, &mut c.motion);
+    w.space.with_feet(&mut c.body, |feet| {
         crate::ladder::enter(w.level, origin, motion, feet, size, input)
     });
 }
 
 /// The last step: leaves the ladder state when the character is past the ladder's top, off
 /// it, or on the ground while climbing down.
-pub(super) fn leave<S: Space>(s: &S, w: &World, c: &mut Character, input: &Input) {
+pub(super) fn leave<S: Space>(w: &World<S>, c: &mut Character<S::Coord>, input: &Input) {
     if !w.level.features.ladders {
         return;
     }
-    let feet = s.feet(c);
-    crate::ladder::leave(w.level, s.origin(), &mut c.motion, feet, c.size, input);
+    let feet = w.feet(c);
+    crate::ladder::leave(w.level, w.frame.origin, &mut c.motion, feet, c.size, input);
 }

@@ -7,42 +7,44 @@
 //! 2. forces and integration, symplectic Euler with a force accumulator (`integrate.rs`, the
 //!    shared [`crate::motion`]);
 //! 3. the x move, swept and snapped flush to the closest obstacle found through the parry2d
-//!    broadphase ([`resolve`], [`broadphase`]), one-way boxes skipped (`oneway.rs`);
-//! 4. the climb limit ([`slopes`]);
+//!    broadphase (`resolve.rs`, `broadphase.rs`), one-way boxes skipped (`oneway.rs`);
+//! 4. the climb limit (`slopes.rs`);
 //! 5. the y move, one-way boxes blocking only a fall from entirely above (`oneway.rs`);
-//! 6. ground on slopes, the seed's centre column ([`slopes`]);
+//! 6. ground on slopes, the seed's centre column (`slopes.rs`);
 //! 7. contacts: the blocked axis loses its velocity and the other gets friction
 //!    (`integrate.rs`);
 //! 8. ladder leave (`ladders.rs`);
 //!
 //! then, once every character has stepped, the moving platforms move and carry or push them
-//! ([`platforms`]). The step is generic over how positions are stored (`space.rs`): f32 with the
-//! seed's epsilon, f64 with the same epsilon ([`Positions::Double`]), or whole subpixels
-//! ([`grid`]). A level without slopes, one-way platforms,
-//! ladders or platforms runs none of their code ([`SweepStats`] counts it).
+//! (`platforms.rs`). The step, its stages and the one sweep-and-snap are generic over how
+//! positions are stored (`space.rs`): f32 with the seed's epsilon, f64 with the same epsilon
+//! ([`Positions::Double`]), or whole subpixels ([`grid`]); the mode is chosen once, when the
+//! backend is built. A level without slopes, one-way platforms, ladders or platforms runs none
+//! of their code ([`SweepStats`] counts it).
 
-pub mod broadphase;
+mod broadphase;
 pub mod grid;
 mod integrate;
 pub mod kind;
 mod ladders;
 mod oneway;
-pub mod platforms;
+mod platforms;
 mod presets;
-pub mod resolve;
-pub mod slopes;
+mod resolve;
+mod slopes;
 mod space;
 mod step;
 
 use glam::Vec2;
-use parry2d::bounding_volume::Aabb;
 
 use crate::backend::{require_supported, BackendError, CharacterId, CharacterSpec, CharacterState};
 use crate::level::{Features, Level};
 use crate::motion::{Input, MotionParams, MotionState};
 use broadphase::{BoxKind, NearCache, StaticTiles};
-use grid::{Grid, GridBox, GridPos};
-use space::{DoubleSpace, FloatSpace, GridSpace, Space};
+use grid::Grid;
+use platforms::Platforms;
+use resolve::Obstacles;
+use space::{Body, DoubleSpace, FloatSpace, Frame, GridSpace, Rect, Space};
 
 /// How the sweep stores positions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,15 +55,15 @@ pub enum Positions {
     /// flush in exact integer arithmetic ([`grid`]). Slopes use the float mode's centre-column
     /// rules with every surface height rounded up to a whole subpixel
     /// ([`crate::level::round_height_up`]); moving platforms move in whole subpixels along
-    /// their path rounded to the grid, and carry, push and crush in integers ([`platforms`]).
+    /// their path rounded to the grid, and carry, push and crush in integers.
     Integer {
         /// Subpixels per tile (16 and 32 are what pixel-art platformers use).
         per_tile: u32,
     },
     /// f64 world coordinates with the seed's epsilon tolerance: the float mode's rules, every
-    /// move swept and snapped in f64 ([`resolve::move_axis_f64`]), for levels far from the
-    /// world's origin. Moving platforms follow their path in level coordinates placed at the
-    /// origin in f64, and carry, push and crush by f64 displacements ([`platforms`]).
+    /// move swept and snapped in f64, for levels far from the world's origin. Moving platforms
+    /// follow their path in level coordinates placed at the origin in f64, and carry, push and
+    /// crush by f64 displacements.
     Double,
 }
 
@@ -88,8 +90,8 @@ pub struct SweepConfig {
     /// drop in steps (the seed's tile drops 2/16 of a tile between two columns), so following
     /// them at run speed needs a little more than the walkable gradient. Default: 1/8 tile.
     pub snap_down: f32,
-    /// How positions are stored: f32 tiles with the epsilon tolerance (default), or whole
-    /// subpixels, where `epsilon` and `snap_down` play no part.
+    /// How positions are stored: f32 tiles with the epsilon tolerance (default), f64 tiles with
+    /// the same tolerance, or whole subpixels, where `epsilon` plays no part.
     pub positions: Positions,
     /// How a rider follows the moving platform it stands on when the platform moves down
     /// (default [`RiderFollow::Solid`], Celeste's rule: measured on every built-in platform
@@ -124,25 +126,22 @@ impl Default for SweepConfig {
     }
 }
 
-struct Character {
-    /// Feet position in world coordinates, in float mode (in integer mode, `on_grid` is the
-    /// position and this stays at the spawn).
-    pos: Vec2,
+/// One character, its position stored in the coordinate `C` of the backend's mode.
+struct Character<C> {
+    /// Its box (in the mode's coordinate: the feet in float, the corner on the grid).
+    body: Body<C>,
     /// The moving platform it stands on (the seed's rider list, kept on the rider's side: a
     /// platform's riders are the characters whose `riding` names it).
     riding: Option<u32>,
     /// Whether a platform pushed it into the level this step.
     crushed: bool,
+    /// Its size as asked, in tiles (the ladder rules' box; the moved box is `body`'s).
     size: Vec2,
     motion: MotionState,
     /// The normal of the ground it stands on (zero in the air), for the trace.
     ground_normal: Vec2,
     /// The static boxes around it, kept between steps.
     near: NearCache,
-    /// Its box on the subpixel grid, in integer mode (unused otherwise).
-    on_grid: GridPos,
-    /// Feet position in world coordinates, in f64 mode (unused otherwise).
-    pos64: glam::DVec2,
 }
 
 /// How often each feature's code ran: evidence that a step costs only what the level contains.
@@ -158,26 +157,37 @@ pub struct SweepStats {
     pub platform_moves: u64,
 }
 
-/// The sweep backend over one level.
+/// The sweep backend over one level, in the position mode its configuration chose.
 pub struct SweepBackend {
+    mode: Mode,
+}
+
+/// The backend in each position mode, chosen once when it is built.
+enum Mode {
+    Float(Sweep<FloatSpace>),
+    Double(Sweep<DoubleSpace>),
+    Integer(Sweep<GridSpace>),
+}
+
+/// The backend in one position mode `S`.
+struct Sweep<S: Space> {
+    space: S,
+    /// `space`'s frame and tolerances.
+    frame: Frame<S::Coord>,
     tiles: StaticTiles,
     /// Moving platforms and their boxes at the current frame (empty on levels without them).
-    platforms: platforms::Platforms,
+    platforms: Platforms<S::Coord>,
     /// Steps taken, for the platforms' time.
-    frame: u64,
+    steps: u64,
     /// `tan(max_climb_angle)`: the steepest walkable rise per unit of horizontal move.
     climb_gradient: f32,
     /// The level's grid, for the per-column feature rules (slopes).
     level: Level,
     stats: SweepStats,
-    /// The level's corner in the world, tiles (the float mode places the level at it rounded
-    /// to f32, the f64 mode at it exactly).
-    origin: glam::DVec2,
     params: MotionParams,
-    config: SweepConfig,
-    /// The subpixel grid, in integer mode.
-    grid: Option<Grid>,
-    characters: Vec<Character>,
+    /// [`SweepConfig::snap_down`], tiles.
+    snap_down: f32,
+    characters: Vec<Character<S::Coord>>,
 }
 
 impl SweepBackend {
@@ -217,52 +227,87 @@ impl SweepBackend {
                 expected: "a finite number >= 0 (tiles)",
             });
         }
-        // The f64 mode keeps the static boxes in the level's own coordinates (exact in f32) and
-        // places them at the origin in f64.
-        let tiles = if config.positions == Positions::Double {
-            let mut local = level.geometry();
-            local.origin = glam::DVec2::ZERO;
-            StaticTiles::new(&local)
-        } else {
-            StaticTiles::new(level)
-        };
-        Ok(SweepBackend {
-            tiles,
-            platforms: platforms::Platforms::new(
+        let eps = config.epsilon;
+        let mode = match grid {
+            Some(grid) => Mode::Integer(Sweep::new(
+                GridSpace { grid },
+                StaticTiles::new(level),
                 level,
-                grid.as_ref(),
-                config.positions == Positions::Double,
-                config.rider_follow,
-                params.gravity,
-            ),
-            frame: 0,
-            climb_gradient: params.max_climb_angle.tan(),
-            level: level.geometry(),
-            stats: SweepStats::default(),
-            origin: level.origin,
-            params,
-            config,
-            grid,
-            characters: Vec::new(),
-        })
+                params,
+                &config,
+            )),
+            None if config.positions == Positions::Double => {
+                // The f64 mode keeps the static boxes in the level's own coordinates (exact in
+                // f32) and places them at the origin in f64.
+                let mut local = level.geometry();
+                local.origin = glam::DVec2::ZERO;
+                let origin = level.origin;
+                let space = DoubleSpace { eps, origin };
+                let tiles = StaticTiles::new(&local);
+                Mode::Double(Sweep::new(space, tiles, level, params, &config))
+            }
+            None => {
+                let space = FloatSpace {
+                    eps,
+                    origin: level.origin_f32(),
+                };
+                let tiles = StaticTiles::new(level);
+                Mode::Float(Sweep::new(space, tiles, level, params, &config))
+            }
+        };
+        Ok(SweepBackend { mode })
     }
 
     /// How often each feature's code has run.
     pub fn stats(&self) -> SweepStats {
-        self.stats
+        match &self.mode {
+            Mode::Float(s) => s.stats,
+            Mode::Double(s) => s.stats,
+            Mode::Integer(s) => s.stats,
+        }
+    }
+
+    /// Adds a character and returns its id; refuses a non-finite spawn or velocity, or a size
+    /// that is not positive.
+    pub fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
+        spec.validate()?;
+        Ok(match &mut self.mode {
+            Mode::Float(s) => s.add_character(&spec),
+            Mode::Double(s) => s.add_character(&spec),
+            Mode::Integer(s) => s.add_character(&spec),
+        })
+    }
+
+    /// Advances every character by `dt` seconds; `inputs[id]` is character `id`'s input.
+    #[inline]
+    pub fn step(&mut self, inputs: &[Input], dt: f32) {
+        match &mut self.mode {
+            Mode::Float(s) => s.step(inputs, dt),
+            Mode::Double(s) => s.step(inputs, dt),
+            Mode::Integer(s) => s.step(inputs, dt),
+        }
+    }
+
+    /// The state of character `id` after the last step, in level coordinates.
+    #[inline]
+    pub fn state(&self, id: CharacterId) -> CharacterState {
+        match &self.mode {
+            Mode::Float(s) => s.state(id),
+            Mode::Double(s) => s.state(id),
+            Mode::Integer(s) => s.state(id),
+        }
     }
 }
 
-/// What a character's step reads of the backend: the level and its static and moving boxes,
-/// the motion and the settings the stages use.
-struct World<'a> {
+/// What a character's step reads of the backend: the level and its static and moving boxes in
+/// the mode's space, the motion and the settings the stages use.
+struct World<'a, S: Space> {
+    space: &'a S,
+    /// `space`'s frame and tolerances.
+    frame: Frame<S::Coord>,
     tiles: &'a StaticTiles,
-    /// Moving platforms' boxes at the current frame (float mode).
-    platform_boxes: &'a [(Aabb, BoxKind)],
-    /// Moving platforms' boxes at the current frame on the subpixel grid (integer mode).
-    platform_grid: &'a [(GridBox, BoxKind)],
-    /// Moving platforms' boxes at the current frame in f64 world tiles (f64 mode).
-    platform_double: &'a [(space::Rect<f64>, BoxKind)],
+    /// Moving platforms' boxes at the current frame.
+    platforms: &'a [(Rect<S::Coord>, BoxKind)],
     level: &'a Level,
     params: &'a MotionParams,
     /// `tan(max_climb_angle)`.
@@ -271,34 +316,49 @@ struct World<'a> {
     snap_down: f32,
 }
 
-/// Steps every character in order (the platforms move after, in [`SweepBackend::step`]).
-fn step_all<S: Space>(
-    s: &S,
-    w: &World,
-    stats: &mut SweepStats,
-    characters: &mut [Character],
-    inputs: &[Input],
-    dt: f32,
-) {
-    for (id, c) in characters.iter_mut().enumerate() {
-        let input = inputs.get(id).copied().unwrap_or_default();
-        c.crushed = false;
-        step::step(s, w, stats, c, &input, dt);
+impl<'a, S: Space> World<'a, S> {
+    /// What a character's move runs into: the level and the moving platforms.
+    fn obstacles(&self) -> Obstacles<'a, S> {
+        Obstacles {
+            space: self.space,
+            tiles: self.tiles,
+            moving: self.platforms,
+            eps: self.frame.eps_coord,
+        }
+    }
+
+    /// `c`'s feet in the frame, tiles.
+    fn feet(&self, c: &Character<S::Coord>) -> Vec2 {
+        self.space.feet(&c.body)
     }
 }
 
-impl SweepBackend {
-    /// Adds a character and returns its id; refuses a non-finite spawn or velocity, or a size
-    /// that is not positive.
-    pub fn add_character(&mut self, spec: CharacterSpec) -> Result<CharacterId, BackendError> {
-        spec.validate()?;
+impl<S: Space> Sweep<S> {
+    fn new(
+        space: S,
+        tiles: StaticTiles,
+        level: &Level,
+        params: MotionParams,
+        config: &SweepConfig,
+    ) -> Self {
+        Sweep {
+            frame: space.frame(),
+            platforms: Platforms::new(level, &space, config.rider_follow, params.gravity),
+            space,
+            tiles,
+            steps: 0,
+            climb_gradient: params.max_climb_angle.tan(),
+            level: level.geometry(),
+            stats: SweepStats::default(),
+            params,
+            snap_down: config.snap_down,
+            characters: Vec::new(),
+        }
+    }
+
+    fn add_character(&mut self, spec: &CharacterSpec) -> CharacterId {
         self.characters.push(Character {
-            on_grid: self
-                .grid
-                .map(|g| GridPos::spawn(&g, spec.spawn, spec.size))
-                .unwrap_or_default(),
-            pos: spec.spawn + self.origin.as_vec2(),
-            pos64: spec.spawn.as_dvec2() + self.origin,
+            body: self.space.spawn(spec.spawn, spec.size),
             size: spec.size,
             motion: MotionState::with_velocity(spec.velocity),
             ground_normal: Vec2::ZERO,
@@ -306,79 +366,39 @@ impl SweepBackend {
             crushed: false,
             near: NearCache::default(),
         });
-        Ok(self.characters.len() - 1)
+        self.characters.len() - 1
     }
 
-    /// Advances every character by `dt` seconds; `inputs[id]` is character `id`'s input.
-    pub fn step(&mut self, inputs: &[Input], dt: f32) {
+    fn step(&mut self, inputs: &[Input], dt: f32) {
         let w = World {
+            space: &self.space,
+            frame: self.frame,
             tiles: &self.tiles,
-            platform_boxes: &self.platforms.boxes,
-            platform_grid: &self.platforms.grid_boxes,
-            platform_double: &self.platforms.double_boxes,
+            platforms: &self.platforms.boxes,
             level: &self.level,
             params: &self.params,
             climb_gradient: self.climb_gradient,
-            snap_down: self.config.snap_down,
+            snap_down: self.snap_down,
         };
-        let (stats, characters) = (&mut self.stats, &mut self.characters);
-        match self.grid {
-            Some(grid) => step_all(&GridSpace { grid }, &w, stats, characters, inputs, dt),
-            None if self.config.positions == Positions::Double => {
-                let s = DoubleSpace {
-                    eps: self.config.epsilon,
-                    origin: self.origin,
-                };
-                step_all(&s, &w, stats, characters, inputs, dt)
-            }
-            None => {
-                let s = FloatSpace {
-                    eps: self.config.epsilon,
-                    origin: self.origin.as_vec2(),
-                };
-                step_all(&s, &w, stats, characters, inputs, dt)
-            }
+        for (id, c) in self.characters.iter_mut().enumerate() {
+            let input = inputs.get(id).copied().unwrap_or_default();
+            c.crushed = false;
+            step::step(&w, &mut self.stats, c, &input, dt);
         }
         // The seed's order: platforms move after every character has moved.
         if !self.platforms.states.is_empty() {
             self.stats.platform_moves += self.platforms.states.len() as u64;
-            let t1 = (self.frame + 1) as f64 * dt as f64;
-            let (tiles, characters) = (&self.tiles, &mut self.characters);
-            match self.grid {
-                Some(grid) => {
-                    let s = GridSpace { grid };
-                    self.platforms.step(&s, tiles, characters, t1, dt)
-                }
-                None if self.config.positions == Positions::Double => {
-                    let s = DoubleSpace {
-                        eps: self.config.epsilon,
-                        origin: self.origin,
-                    };
-                    self.platforms.step(&s, tiles, characters, t1, dt)
-                }
-                None => {
-                    let s = FloatSpace {
-                        eps: self.config.epsilon,
-                        origin: self.origin.as_vec2(),
-                    };
-                    self.platforms.step(&s, tiles, characters, t1, dt)
-                }
-            }
+            let t1 = (self.steps + 1) as f64 * dt as f64;
+            let (s, tiles) = (&self.space, &self.tiles);
+            self.platforms.step(s, tiles, &mut self.characters, t1, dt);
         }
-        self.frame += 1;
+        self.steps += 1;
     }
 
-    /// The state of character `id` after the last step, in level coordinates.
-    pub fn state(&self, id: CharacterId) -> CharacterState {
+    fn state(&self, id: CharacterId) -> CharacterState {
         let c = &self.characters[id];
         CharacterState {
-            pos: match &self.grid {
-                Some(g) => g.feet(&c.on_grid.b),
-                None if self.config.positions == Positions::Double => {
-                    (c.pos64 - self.origin).as_vec2()
-                }
-                None => c.pos - self.origin.as_vec2(),
-            },
+            pos: self.space.feet(&c.body) - self.frame.origin,
             vel: c.motion.vel,
             grounded: c.motion.grounded,
             // The normal of the ground the step stood it on (a slope's, on slopes).

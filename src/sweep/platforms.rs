@@ -15,12 +15,13 @@
 //! gravity in one step, so a platform that drops away faster (starts or speeds up downward more
 //! sharply than gravity) leaves its rider airborne, as it would in the world.
 //!
-//! Written once over `Space`: in float the platforms follow their exact path and the moves
-//! are f32 with the seed's epsilon; in f64 ([`super::Positions::Double`]) they follow the same
-//! path (its f32 level coordinates, the float mode's at the origin) placed at the level's origin
-//! in f64, and the moves are f64 with the same epsilon, so a platform far from the origin moves
-//! as one at the origin does, up to the f64 spacing there; on the subpixel grid a platform's box is its path rounded to
-//! the nearest subpixel at each step ([`crate::level::Platform::grid_box`]: its motion stays a
+//! Written once over `Space`, the boxes in its coordinate: in float the platforms follow their
+//! exact path and the moves are f32 with the seed's epsilon; in f64
+//! ([`super::Positions::Double`]) they follow the same path (its f32 level coordinates, the
+//! float mode's at the origin) placed at the level's origin in f64, and the moves are f64 with
+//! the same epsilon, so a platform far from the origin moves as one at the origin does, up to
+//! the f64 spacing there; on the subpixel grid a platform's box is its path rounded to the
+//! nearest subpixel at each step ([`crate::level::Platform::grid_box`]: its motion stays a
 //! function of time, a step's move is the difference of two rounded positions, so no rounding
 //! accumulates), and riders are carried, characters pushed and crushes found in whole
 //! subpixels, as Celeste's and TowerFall's solids move their actors.
@@ -29,13 +30,14 @@ use glam::{DVec2, Vec2};
 use parry2d::bounding_volume::Aabb;
 
 use super::broadphase::{BoxKind, StaticTiles};
-use super::grid::{Grid, GridBox};
+use super::grid::Grid;
+use super::resolve::{shove, Obstacles};
 use super::space::{Rect, Space};
 use super::{Character, RiderFollow};
 use crate::level::Platform;
 
 /// A platform's motion and where it is.
-pub struct PlatformState {
+pub(crate) struct PlatformState {
     spec: Platform,
     /// The level's corner in the world, tiles.
     origin: DVec2,
@@ -45,7 +47,7 @@ pub struct PlatformState {
 
 impl PlatformState {
     /// The platform at t = 0, placed at the level's origin.
-    pub fn new(spec: &Platform, origin: DVec2) -> Self {
+    pub(super) fn new(spec: &Platform, origin: DVec2) -> Self {
         PlatformState {
             spec: spec.clone(),
             origin,
@@ -76,38 +78,32 @@ impl PlatformState {
 
     /// Its box on `grid` at time `t`, in world subpixels: its path rounded to the nearest
     /// subpixel ([`Platform::grid_box`]), placed at the level's corner on the grid.
-    pub(super) fn grid_box(&self, grid: &Grid, t: f64) -> GridBox {
+    pub(super) fn grid_box(&self, grid: &Grid, t: f64) -> Rect<i64> {
         let (min, max) = self.spec.grid_box(t, grid.per_tile);
-        GridBox {
-            min: min + grid.origin,
-            max: max + grid.origin,
+        Rect {
+            min: (min + grid.origin).to_array(),
+            max: (max + grid.origin).to_array(),
         }
     }
 }
 
-/// The moving platforms of a level, their boxes where the characters move against them, and the
-/// rider-follow rule.
-pub(super) struct Platforms {
+/// The moving platforms of a level, their boxes where the characters move against them (in the
+/// space's coordinate `C`), and the rider-follow rule.
+pub(super) struct Platforms<C> {
     pub states: Vec<PlatformState>,
-    /// Their boxes at the current frame, in float world tiles (float mode).
-    pub boxes: Vec<(Aabb, BoxKind)>,
-    /// Their boxes at the current frame on the subpixel grid (integer mode; empty otherwise).
-    pub grid_boxes: Vec<(GridBox, BoxKind)>,
-    /// Their boxes at the current frame in f64 world tiles (f64 mode; empty otherwise).
-    pub double_boxes: Vec<(Rect<f64>, BoxKind)>,
+    /// Their boxes at the current frame.
+    pub boxes: Vec<(Rect<C>, BoxKind)>,
     /// How a rider follows a descending platform.
     pub rule: RiderFollow,
     /// Gravity, tiles/s² (for [`RiderFollow::Gravity`]).
     pub gravity: f32,
 }
 
-impl Platforms {
-    /// `level`'s platforms at t = 0 (on `grid` too, in integer mode; in f64 too when
-    /// `double`).
-    pub fn new(
+impl<C: super::space::Coord> Platforms<C> {
+    /// `level`'s platforms at t = 0, placed as the space `s` places them.
+    pub fn new<S: Space<Coord = C>>(
         level: &crate::level::Level,
-        grid: Option<&Grid>,
-        double: bool,
+        s: &S,
         rule: RiderFollow,
         gravity: f32,
     ) -> Self {
@@ -116,38 +112,20 @@ impl Platforms {
             .iter()
             .map(|p| PlatformState::new(p, level.origin))
             .collect();
-        let kind = |i: usize, p: &Platform| BoxKind::Platform {
-            index: i as u32,
-            one_way: p.one_way,
-        };
-        let boxes = level
-            .platforms
+        let boxes = states
             .iter()
             .enumerate()
-            .map(|(i, p)| (p.aabb(0.0).translated(level.origin_f32()), kind(i, p)))
+            .map(|(i, p)| {
+                let kind = BoxKind::Platform {
+                    index: i as u32,
+                    one_way: p.spec.one_way,
+                };
+                (s.platform_at(p, 0.0), kind)
+            })
             .collect();
-        let grid_boxes = match grid {
-            Some(g) => states
-                .iter()
-                .enumerate()
-                .map(|(i, p)| (p.grid_box(g, 0.0), kind(i, &p.spec)))
-                .collect(),
-            None => Vec::new(),
-        };
-        let double_boxes = if double {
-            states
-                .iter()
-                .enumerate()
-                .map(|(i, p)| (p.aabb_f64(0.0), kind(i, &p.spec)))
-                .collect()
-        } else {
-            Vec::new()
-        };
         Platforms {
             states,
             boxes,
-            grid_boxes,
-            double_boxes,
             rule,
             gravity,
         }
@@ -155,26 +133,33 @@ impl Platforms {
 
     /// Moves every platform to its place at time `t1` (the end of this step of `dt` seconds),
     /// carrying its riders and pushing the characters it moves into, in the space `s`.
-    pub(super) fn step<S: Space>(
+    pub(super) fn step<S: Space<Coord = C>>(
         &mut self,
         s: &S,
         tiles: &StaticTiles,
-        characters: &mut [Character],
+        characters: &mut [Character<C>],
         t1: f64,
         dt: f32,
     ) {
-        let zero = S::Coord::default();
-        let eps = s.eps_coord();
+        let zero = C::default();
+        let frame = s.frame();
+        let eps = frame.eps_coord;
+        let level = Obstacles {
+            space: s,
+            tiles,
+            moving: &[],
+            eps,
+        };
         let g = self.gravity;
         for i in 0..self.states.len() {
             // Its box now is the one the characters just moved against.
-            let old = s.platform_now(self, i);
+            let old = self.boxes[i].0;
             let p = &mut self.states[i];
             let new = s.platform_at(p, t1);
             let delta = [new.min[0] - old.min[0], new.min[1] - old.min[1]];
             // How far a rider can follow downward in one step: from the platform's last speed,
             // under gravity.
-            let follow = s.length_up(p.down_speed * dt + g * dt * dt + s.eps());
+            let follow = s.length_up(p.down_speed * dt + g * dt * dt + frame.eps);
             for c in characters.iter_mut() {
                 if c.riding == Some(i as u32) {
                     let mut carry = delta;
@@ -182,8 +167,8 @@ impl Platforms {
                     if left_behind {
                         carry[1] = -follow;
                     }
-                    let blocked = s.shove(tiles, c, carry);
-                    let after = overlap(&s.rect(c), &new);
+                    let blocked = shove(&level, c, carry);
+                    let after = overlap(&c.body.rect(), &new);
                     if blocked && after[0] > eps && after[1] > eps {
                         // Carried into the level (lifted into a ceiling, pressed into a wall):
                         // squeezed between it and the platform, crushed on this very move.
@@ -201,13 +186,13 @@ impl Platforms {
                     }
                     continue;
                 }
-                let cb = s.rect(c);
+                let cb = c.body.rect();
                 let o = overlap(&cb, &new);
                 if o[0] <= eps || o[1] <= eps {
                     continue;
                 }
                 // A one-way platform only pushes what stood entirely above it.
-                if p.spec.one_way && s.bottom(c) < old.max[1] - eps {
+                if p.spec.one_way && c.body.at[1] < old.max[1] - eps {
                     continue;
                 }
                 // Push along the axis the platform moved on that needs the smaller push.
@@ -222,8 +207,8 @@ impl Platforms {
                     (_, Some(y)) => [zero, y],
                     (None, None) => continue,
                 };
-                let blocked = s.shove(tiles, c, push);
-                let after = overlap(&s.rect(c), &new);
+                let blocked = shove(&level, c, push);
+                let after = overlap(&c.body.rect(), &new);
                 if blocked && after[0] > eps && after[1] > eps {
                     c.crushed = true;
                 } else if push[1] > zero {
@@ -235,7 +220,7 @@ impl Platforms {
                 }
             }
             p.down_speed = (-s.to_tiles(delta[1]) / dt).max(0.0);
-            s.set_platform(self, i, new);
+            self.boxes[i].0 = new;
         }
     }
 }

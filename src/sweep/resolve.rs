@@ -1,5 +1,7 @@
 //! Collision resolution, the seed's "collision avoidance": move along one axis, find the
 //! closest obstacle the move would reach, snap the box flush against it, and report the hit.
+//! Written once ([`move_axis`]), generic over the coordinate the positions are stored in: f32 or
+//! f64 tiles, or whole subpixels (`space.rs`).
 //!
 //! The seed moves x first, then y. Each axis move sweeps the box over the whole displacement,
 //! so a fast mover cannot tunnel through a thin wall whatever its speed.
@@ -11,19 +13,17 @@
 //! mover already overlaps by less than `epsilon` along the move still counts as ahead of it (so
 //! the next snap puts it back flush rather than letting it sink further). Symmetrically, a move
 //! that ends less than `epsilon` short of an obstacle counts as reaching it and snaps flush, so
-//! a fall that arrives on the floor exactly (within rounding) is a landing on that frame.
-
-use glam::Vec2;
-use parry2d::bounding_volume::{Aabb, BoundingVolume};
+//! a fall that arrives on the floor exactly (within rounding) is a landing on that frame. On the
+//! integer grid the tolerance is 0 and the snap exact: the same rules with nothing to absorb.
 
 use super::broadphase::{BoxKind, NearCache, StaticTiles};
 use super::oneway;
-use super::space::{Rect, Space};
+use super::space::{Body, Coord, Rect, Space};
 use super::{Character, World};
 
 /// The axis of a move.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Axis {
+pub(crate) enum Axis {
     /// Horizontal.
     X,
     /// Vertical.
@@ -40,180 +40,161 @@ impl Axis {
     }
 }
 
-/// Moves the box whose feet are at `pos` by `delta` along `axis`, stopping flush at the
-/// closest obstacle among the static tiles (found through the mover's `near` cache) and the
-/// `extra` boxes (moving platforms at their current place). `skip` tells which boxes are not obstacles for this move (it gets the box
-/// and its kind). Returns the kind of the obstacle that stopped the move, if one did.
-#[allow(clippy::too_many_arguments)]
-pub fn move_axis(
-    tiles: &StaticTiles,
+/// What a move runs into, in one space: the static tiles (asked through the mover's near
+/// cache) and the `moving` boxes (moving platforms where they are now), with the space's
+/// overlap tolerance `eps`.
+pub(crate) struct Obstacles<'a, S: Space> {
+    /// How positions are stored, and how the broadphase is asked in them.
+    pub space: &'a S,
+    /// The level's static boxes.
+    pub tiles: &'a StaticTiles,
+    /// The moving platforms' boxes (none for a move against the static level only).
+    pub moving: &'a [(Rect<S::Coord>, BoxKind)],
+    /// The overlap tolerance: the seed's epsilon in float, 0 on the grid.
+    pub eps: S::Coord,
+}
+
+/// The seed's sweep and snap: moves `body` by `delta` along `axis`, stopping flush at the
+/// closest obstacle the box swept over the whole move reaches, and returns the kind of what
+/// stopped it. `skip` tells which boxes are not obstacles for this move (it gets a box's top
+/// and its kind). The tolerance `eps` counts as the module says; the snap moves the anchor
+/// (`body.at`) alone, so the box keeps its size.
+pub(crate) fn move_axis<S: Space>(
+    o: &Obstacles<'_, S>,
     near: &mut NearCache,
-    extra: &[(Aabb, BoxKind)],
-    pos: &mut Vec2,
-    size: Vec2,
+    body: &mut Body<S::Coord>,
     axis: Axis,
-    delta: f32,
-    epsilon: f32,
-    skip: impl Fn(&Aabb, BoxKind) -> bool,
+    delta: S::Coord,
+    skip: impl Fn(S::Coord, BoxKind) -> bool,
 ) -> Option<BoxKind> {
-    if delta == 0.0 {
+    let zero = S::Coord::default();
+    if delta == zero {
         return None;
     }
-    let a = axis.index();
-    let o = 1 - a;
-    let b = crate::level::character_box(*pos, size);
-    let (lo, hi) = (b.mins[a], b.maxs[a]);
-    // The box swept over the whole move (and epsilon beyond it), shrunk by epsilon across it:
-    // boxes that only touch (or overlap by less than epsilon) on the other axis are not
-    // obstacles.
+    let (a, across) = (axis.index(), 1 - axis.index());
+    let eps = o.eps;
+    let b = body.rect();
+    let (lo, hi) = (b.min[a], b.max[a]);
+    // The box swept over the whole move (and eps beyond it), shrunk by eps across it: boxes
+    // that only touch (or overlap by less than eps) on the other axis are not obstacles.
     let mut swept = b;
-    if delta > 0.0 {
-        swept.maxs[a] = hi + delta + epsilon;
+    if delta > zero {
+        swept.max[a] = hi + delta + eps;
     } else {
-        swept.mins[a] = lo + delta - epsilon;
+        swept.min[a] = lo + delta - eps;
     }
-    swept.mins[o] += epsilon;
-    swept.maxs[o] -= epsilon;
+    swept.min[across] = swept.min[across] + eps;
+    swept.max[across] = swept.max[across] - eps;
 
-    let mut closest: Option<(f32, BoxKind)> = None;
-    let moving = extra
-        .iter()
-        .filter(|(t, _)| t.intersects(&swept))
-        .map(|(t, k)| (t, *k));
-    for (t, kind) in near.query(tiles, &swept).chain(moving) {
-        if skip(t, kind) || !overlaps_across(&b, t, o, epsilon) {
+    let mut closest: Option<(S::Coord, BoxKind)> = None;
+    let statics = o.space.statics(o.tiles, near, swept);
+    for (t, kind) in statics.chain(o.moving.iter().copied()) {
+        // Only a box that touches the swept box (the broadphase's inclusive test, here in the
+        // storage's coordinate) can be in the way.
+        if !t.touches(&swept) || skip(t.max[1], kind) {
             continue;
         }
-        if delta > 0.0 {
-            let face = t.mins[a];
-            // Ahead of the mover (allowing an overlap below epsilon) and within reach.
-            if face >= hi - epsilon
-                && face <= hi + delta + epsilon
-                && closest.is_none_or(|(c, _)| face < c)
+        let beside = b.max[across].min(t.max[across]) - b.min[across].max(t.min[across]) > eps;
+        if !beside {
+            continue;
+        }
+        if delta > zero {
+            let face = t.min[a];
+            if face >= hi - eps && face <= hi + delta + eps && closest.is_none_or(|(c, _)| face < c)
             {
                 closest = Some((face, kind));
             }
         } else {
-            let face = t.maxs[a];
-            if face <= lo + epsilon
-                && face >= lo + delta - epsilon
-                && closest.is_none_or(|(c, _)| face > c)
+            let face = t.max[a];
+            if face <= lo + eps && face >= lo + delta - eps && closest.is_none_or(|(c, _)| face > c)
             {
                 closest = Some((face, kind));
             }
         }
     }
+    let at = body.at[a];
     match closest {
         None => {
-            pos[a] += delta;
+            body.at[a] = at + delta;
             None
         }
         Some((face, kind)) => {
             // Snap flush: the box's leading side goes onto the face.
-            pos[a] = if delta > 0.0 {
-                face - (hi - pos[a])
+            body.at[a] = if delta > zero {
+                face - (hi - at)
             } else {
-                face + (pos[a] - lo)
+                face + (at - lo)
             };
             Some(kind)
         }
     }
 }
 
-/// [`move_axis`] with the position in f64 world coordinates (the sweep's f64 mode): the same
-/// sweep, snap and epsilon fudge, every comparison and the snap in f64. The static boxes are
-/// kept in the level's own coordinates (`tiles` built at origin 0, where f32 is exact for tile
-/// faces) and placed at `origin` in f64; the broadphase is asked in f32 level coordinates with a
-/// margin of [`F64_QUERY_MARGIN`] so that its rounding never hides a box, and the boxes it
-/// returns are filtered again in f64. The `extra` boxes (moving platforms at their current
-/// place) are f64 world boxes already. `skip` gets a box's top (f64 world tiles) and its kind.
-#[allow(clippy::too_many_arguments)]
-pub fn move_axis_f64(
-    tiles: &StaticTiles,
+/// What the box's side facing `toward` (one storage unit along `axis`, signed) rests against:
+/// [`move_axis`] by it, undone unless the box stayed where it was (flush against what stopped
+/// it). The grid's "collide check one pixel down".
+pub(crate) fn touching<S: Space>(
+    o: &Obstacles<'_, S>,
     near: &mut NearCache,
-    extra: &[(Rect<f64>, BoxKind)],
-    origin: glam::DVec2,
-    pos: &mut glam::DVec2,
-    size: Vec2,
+    body: &mut Body<S::Coord>,
     axis: Axis,
-    delta: f64,
-    epsilon: f32,
-    skip: impl Fn(f64, BoxKind) -> bool,
+    toward: S::Coord,
+    skip: impl Fn(S::Coord, BoxKind) -> bool,
 ) -> Option<BoxKind> {
-    use glam::DVec2;
-    if delta == 0.0 {
-        return None;
-    }
-    let epsilon = epsilon as f64;
-    let a = axis.index();
-    let o = 1 - a;
-    let half = size.x as f64 * 0.5;
-    let bmin = DVec2::new(pos.x - half, pos.y);
-    let bmax = DVec2::new(pos.x + half, pos.y + size.y as f64);
-    let (lo, hi) = (bmin[a], bmax[a]);
-    let (mut smin, mut smax) = (bmin, bmax);
-    if delta > 0.0 {
-        smax[a] = hi + delta + epsilon;
+    let before = body.at;
+    let hit = move_axis(o, near, body, axis, toward, skip);
+    if body.at == before {
+        hit
     } else {
-        smin[a] = lo + delta - epsilon;
-    }
-    smin[o] += epsilon;
-    smax[o] -= epsilon;
-    let area = Aabb::new(
-        (smin - origin).as_vec2() - Vec2::splat(F64_QUERY_MARGIN),
-        (smax - origin).as_vec2() + Vec2::splat(F64_QUERY_MARGIN),
-    );
-    let placed = near
-        .query(tiles, &area)
-        .map(|(t, kind)| (t.mins.as_dvec2() + origin, t.maxs.as_dvec2() + origin, kind));
-    let moving = extra
-        .iter()
-        .map(|(t, kind)| (DVec2::from_array(t.min), DVec2::from_array(t.max), *kind));
-    let mut closest: Option<(f64, BoxKind)> = None;
-    for (tmin, tmax, kind) in placed.chain(moving) {
-        // The f64 box must touch the swept box (the f32 query's inclusive test, in f64).
-        let touches = (0..2).all(|k| tmin[k] <= smax[k] && tmax[k] >= smin[k]);
-        let across = bmax[o].min(tmax[o]) - bmin[o].max(tmin[o]) > epsilon;
-        if !touches || skip(tmax.y, kind) || !across {
-            continue;
-        }
-        if delta > 0.0 {
-            let face = tmin[a];
-            if face >= hi - epsilon
-                && face <= hi + delta + epsilon
-                && closest.is_none_or(|(c, _)| face < c)
-            {
-                closest = Some((face, kind));
-            }
-        } else {
-            let face = tmax[a];
-            if face <= lo + epsilon
-                && face >= lo + delta - epsilon
-                && closest.is_none_or(|(c, _)| face > c)
-            {
-                closest = Some((face, kind));
-            }
-        }
-    }
-    match closest {
-        None => {
-            pos[a] += delta;
-            None
-        }
-        Some((face, kind)) => {
-            pos[a] = if delta > 0.0 {
-                face - (hi - pos[a])
-            } else {
-                face + (pos[a] - lo)
-            };
-            Some(kind)
-        }
+        body.at = before;
+        None
     }
 }
 
-/// How far beyond the swept box (tiles) the f64 mode asks the f32 broadphase: level coordinates
-/// within a few thousand tiles of the level's corner round by under 1e-3 tile in f32.
-pub const F64_QUERY_MARGIN: f32 = 1e-2;
+/// One step's move of `c` by `delta` tiles along `axis` against the level and the moving
+/// platforms, in the storage's units ([`Space::whole_move`]). On the grid a fall too small to
+/// move a subpixel reports the ground the box rests on, and a move that hits drops the axis's
+/// carried fraction.
+fn step_move<S: Space>(
+    w: &World<S>,
+    c: &mut Character<S::Coord>,
+    axis: Axis,
+    delta: f32,
+    min_fall: bool,
+    skip: impl Fn(S::Coord, BoxKind) -> bool,
+) -> Option<BoxKind> {
+    let o = w.obstacles();
+    let d = w.space.whole_move(&mut c.body, axis, delta, min_fall);
+    let mut hit = move_axis(&o, &mut c.near, &mut c.body, axis, d, &skip);
+    if axis == Axis::Y && d == S::Coord::default() && delta < 0.0 {
+        // A fall of less than a subpixel this step moves nothing (only on the grid: in float a
+        // nonzero move always moves): the ground is there if the box rests on it (Celeste's
+        // "collide check one pixel down"). A move of a subpixel or more that ends on a face
+        // has already reported it.
+        hit = touching(&o, &mut c.near, &mut c.body, axis, -S::Coord::UNIT, &skip);
+    }
+    if hit.is_some() {
+        c.body.remainder[axis.index()] = 0.0;
+    }
+    hit
+}
+
+/// Moves `c` by `delta` (x, then y) against the static level only, as a moving platform
+/// carries or pushes it; returns whether the level stopped any part of the move (by more than
+/// the tolerance).
+pub(crate) fn shove<S: Space>(
+    o: &Obstacles<'_, S>,
+    c: &mut Character<S::Coord>,
+    delta: [S::Coord; 2],
+) -> bool {
+    let skip = |_, k: BoxKind| matches!(k, BoxKind::OneWay | BoxKind::Platform { .. });
+    let start = c.body.at;
+    for (axis, d) in [(Axis::X, delta[0]), (Axis::Y, delta[1])] {
+        move_axis(o, &mut c.near, &mut c.body, axis, d, skip);
+    }
+    let off = [0, 1].map(|k| c.body.at[k] - start[k] - delta[k]);
+    S::Coord::longer_than(off, o.eps)
+}
 
 /// Step 3, the x move ("integrate x one step forward, x before y"): sweeps the box along x and
 /// snaps it flush to the closest obstacle. One-way boxes never block it (the seed: "don't
@@ -221,13 +202,12 @@ pub const F64_QUERY_MARGIN: f32 = 1e-2;
 /// whose top is at most `ramp_top` (the overhang above the slope under the centre, see
 /// [`super::slopes::ramp_top_for_x`]). Returns whether a wall stopped it.
 pub(super) fn move_x<S: Space>(
-    s: &S,
-    w: &World,
-    c: &mut Character,
+    w: &World<S>,
+    c: &mut Character<S::Coord>,
     dx: f32,
     ramp_top: Option<S::Coord>,
 ) -> bool {
-    s.move_axis(w, c, Axis::X, dx, false, |top, kind| match kind {
+    step_move(w, c, Axis::X, dx, false, |top, kind| match kind {
         BoxKind::UnderSlope => true,
         BoxKind::Solid => ramp_top.is_some_and(|l| top <= l),
         k => oneway::is_one_way(k),
@@ -240,15 +220,14 @@ pub(super) fn move_x<S: Space>(
 /// top inside `ramp_band` (above its low end, at most its high end) belong to the slope rules.
 /// A drop through a one-way platform falls at least one storage unit. Returns what stopped it.
 pub(super) fn move_y<S: Space>(
-    s: &S,
-    w: &World,
-    c: &mut Character,
+    w: &World<S>,
+    c: &mut Character<S::Coord>,
     dy: f32,
     fall: &oneway::Fall<S::Coord>,
     ramp_band: Option<(S::Coord, S::Coord)>,
 ) -> Option<BoxKind> {
     let min_fall = c.motion.drop_through;
-    s.move_axis(w, c, Axis::Y, dy, min_fall, |top, kind| {
+    step_move(w, c, Axis::Y, dy, min_fall, |top, kind| {
         if oneway::is_one_way(kind) {
             fall.passes(top)
         } else if matches!(kind, BoxKind::Platform { .. }) {
@@ -259,15 +238,12 @@ pub(super) fn move_y<S: Space>(
     })
 }
 
-/// Whether `b` and `t` overlap by more than `epsilon` on axis `o`.
-fn overlaps_across(b: &Aabb, t: &Aabb, o: usize, epsilon: f32) -> bool {
-    b.maxs[o].min(t.maxs[o]) - b.mins[o].max(t.mins[o]) > epsilon
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::level::{Level, Tile};
+    use crate::sweep::space::FloatSpace;
+    use glam::Vec2;
 
     /// A floor row at j = 0 and a wall column at i = 10 (rows 1..4), 20 x 5 tiles.
     fn room() -> StaticTiles {
@@ -284,6 +260,8 @@ mod tests {
 
     const SIZE: Vec2 = Vec2::new(0.8, 0.9);
 
+    /// Moves the feet `p` of a box of `size` by `delta` along `axis` in float with tolerance
+    /// `eps`; returns whether an obstacle stopped it.
     fn hits(
         tiles: &StaticTiles,
         p: &mut Vec2,
@@ -291,20 +269,22 @@ mod tests {
         axis: Axis,
         delta: f32,
         eps: f32,
-        skip: impl Fn(&Aabb, BoxKind) -> bool,
     ) -> bool {
-        move_axis(
-            tiles,
-            &mut NearCache::default(),
-            &[],
-            p,
-            size,
-            axis,
-            delta,
+        let space = FloatSpace {
             eps,
-            skip,
-        )
-        .is_some()
+            origin: Vec2::ZERO,
+        };
+        let o = Obstacles {
+            space: &space,
+            tiles,
+            moving: &[],
+            eps,
+        };
+        let mut body = space.spawn(*p, size);
+        let mut near = NearCache::default();
+        let hit = move_axis(&o, &mut near, &mut body, axis, delta, |_, _| false);
+        *p = space.feet(&body);
+        hit.is_some()
     }
     const EPS: f32 = 0.001;
 
@@ -312,7 +292,7 @@ mod tests {
     fn falls_and_snaps_flush_onto_the_floor() {
         let tiles = room();
         let mut p = Vec2::new(2.5, 3.0);
-        assert!(hits(&tiles, &mut p, SIZE, Axis::Y, -5.0, EPS, |_, _| false));
+        assert!(hits(&tiles, &mut p, SIZE, Axis::Y, -5.0, EPS));
         assert_eq!(p.y, 1.0);
     }
 
@@ -321,7 +301,7 @@ mod tests {
         let tiles = room();
         let mut p = Vec2::new(2.5, 1.0);
         for _ in 0..60 {
-            assert!(!hits(&tiles, &mut p, SIZE, Axis::X, 0.1, EPS, |_, _| false));
+            assert!(!hits(&tiles, &mut p, SIZE, Axis::X, 0.1, EPS));
         }
         assert!((p.x - 8.5).abs() < 1e-4);
     }
@@ -330,12 +310,10 @@ mod tests {
     fn stops_flush_at_a_wall_even_at_huge_speed() {
         let tiles = room();
         let mut p = Vec2::new(2.5, 1.0);
-        assert!(hits(&tiles, &mut p, SIZE, Axis::X, 1000.0, EPS, |_, _| {
-            false
-        }));
+        assert!(hits(&tiles, &mut p, SIZE, Axis::X, 1000.0, EPS));
         assert!((p.x + SIZE.x / 2.0 - 10.0).abs() < 1e-5, "{p}");
         // Flush now: a further push is still stopped and does not sink in.
-        assert!(hits(&tiles, &mut p, SIZE, Axis::X, 0.5, EPS, |_, _| false));
+        assert!(hits(&tiles, &mut p, SIZE, Axis::X, 0.5, EPS));
         assert!(p.x + SIZE.x / 2.0 <= 10.0 + EPS);
     }
 
@@ -344,15 +322,11 @@ mod tests {
         let tiles = room();
         let mut p = Vec2::new(2.5, 1.5);
         // Stops 0.0005 short of the floor: a contact, snapped flush.
-        assert!(hits(&tiles, &mut p, SIZE, Axis::Y, -0.4995, EPS, |_, _| {
-            false
-        }));
+        assert!(hits(&tiles, &mut p, SIZE, Axis::Y, -0.4995, EPS));
         assert_eq!(p.y, 1.0);
         // Stops 0.01 short: no contact.
         let mut q = Vec2::new(2.5, 1.5);
-        assert!(!hits(&tiles, &mut q, SIZE, Axis::Y, -0.49, EPS, |_, _| {
-            false
-        }));
+        assert!(!hits(&tiles, &mut q, SIZE, Axis::Y, -0.49, EPS));
         assert!((q.y - 1.01).abs() < 1e-6);
     }
 
@@ -361,9 +335,9 @@ mod tests {
         let tiles = room();
         // Feet 0.0005 inside the floor: less than epsilon, so the floor does not block x.
         let mut p = Vec2::new(2.5, 1.0 - 0.0005);
-        assert!(!hits(&tiles, &mut p, SIZE, Axis::X, 1.0, EPS, |_, _| false));
+        assert!(!hits(&tiles, &mut p, SIZE, Axis::X, 1.0, EPS));
         // 0.01 inside: a real overlap, so the floor tile ahead blocks.
         let mut q = Vec2::new(2.5, 1.0 - 0.01);
-        assert!(hits(&tiles, &mut q, SIZE, Axis::X, 1.0, EPS, |_, _| false));
+        assert!(hits(&tiles, &mut q, SIZE, Axis::X, 1.0, EPS));
     }
 }

@@ -2,46 +2,116 @@
 //!
 //! The seed's "Collision Resolution – A Problem" slide: "if you store positions with integers
 //! you're fine; for floating point positions, placing an object tangent to another involves a
-//! subtraction, introduces floating point error, [so] allow a fudge factor for overlap". The
-//! step ([`super::step`]) and every stage it calls are written once, over [`Space`]; the three
-//! implementations are the three storages:
+//! subtraction, introduces floating point error, \[so\] allow a fudge factor for overlap". The
+//! step ([`super::step`]), every stage it calls and the one sweep-and-snap
+//! ([`super::resolve::move_axis`]) are written once, over a [`Space`] and its [`Coord`]; the
+//! three implementations are the three storages:
 //!
-//! - [`FloatSpace`]: f32 feet in world tiles, moves snapped flush by [`super::resolve::move_axis`]
-//!   with the seed's epsilon fudge.
-//! - [`DoubleSpace`]: the float rules with f64 feet in world tiles, moves swept and snapped in
-//!   f64 with the same epsilon, moving platforms as f64 world boxes.
+//! - [`FloatSpace`]: f32 feet in world tiles, snapped flush with the seed's epsilon fudge.
+//! - [`DoubleSpace`]: the float rules with f64 feet in world tiles, swept and snapped in f64
+//!   with the same epsilon, the static boxes asked of the f32 broadphase in level coordinates.
 //! - [`GridSpace`]: a box of whole subpixels (`i64`) with each axis's unused fraction carried
-//!   ([`super::grid`]), moves snapped flush in exact integer arithmetic, no epsilon.
+//!   ([`super::grid`]), snapped flush in exact integer arithmetic, no epsilon.
 //!
-//! The stages read and write feet in the space's *frame*: an f32 point with the level's corner
-//! at [`Space::origin`] (the world for float, the level's own coordinates for the grid, where
-//! positions on the grid are exact in f32). Comparisons against box faces (the one-way and slope
-//! rules) are done in the space's [`Space::Coord`] (f32 world tiles, or world subpixels), so the
-//! grid compares integers exactly.
+//! A character's [`Body`] is one position in the space's coordinate. The stages read and write
+//! feet in the space's *frame*: an f32 point with the level's corner at [`Frame::origin`] (the
+//! world for float, the level's own coordinates for f64 and the grid, where positions on the
+//! grid are exact in f32). Comparisons against box faces (the sweep, the one-way and slope
+//! rules) are done in the space's [`Coord`], so the grid compares integers exactly.
 
 use std::ops::{Add, Neg, Sub};
 
-use glam::{I64Vec2, Vec2};
+use glam::{DVec2, Vec2};
 use parry2d::bounding_volume::Aabb;
 
-use super::broadphase::{BoxKind, StaticTiles};
-use super::grid::{move_axis_grid, Grid, GridBox, GridPos};
-use super::platforms::{PlatformState, Platforms};
-use super::resolve::{move_axis, Axis};
-use super::{Character, World};
-use crate::level::character_box;
-use crate::motion::MotionState;
+use super::broadphase::{BoxKind, NearCache, StaticTiles};
+use super::grid::Grid;
+use super::platforms::PlatformState;
+use super::resolve::Axis;
 
-/// A box in a space's [`Space::Coord`]: its lower-left and upper-right corners, `[x, y]`.
+/// A coordinate in which box faces compare: world tiles (f32, f64) or world subpixels (i64).
+/// Its `Default` is zero.
+pub(crate) trait Coord:
+    Copy + Default + PartialOrd + Add<Output = Self> + Sub<Output = Self> + Neg<Output = Self>
+{
+    /// The smallest move the storage makes: one subpixel; 0 in float, where any move moves.
+    const UNIT: Self;
+    /// The smaller of two (the type's own `min`).
+    fn min(self, other: Self) -> Self;
+    /// The larger of two (the type's own `max`).
+    fn max(self, other: Self) -> Self;
+    /// Whether the offset `v` is longer than `eps`: its Euclidean length in float, any offset
+    /// on the grid.
+    fn longer_than(v: [Self; 2], eps: Self) -> bool;
+}
+
+impl Coord for f32 {
+    const UNIT: f32 = 0.0;
+    #[inline]
+    fn min(self, other: f32) -> f32 {
+        f32::min(self, other)
+    }
+    #[inline]
+    fn max(self, other: f32) -> f32 {
+        f32::max(self, other)
+    }
+    #[inline]
+    fn longer_than(v: [f32; 2], eps: f32) -> bool {
+        Vec2::from_array(v).length() > eps
+    }
+}
+
+impl Coord for f64 {
+    const UNIT: f64 = 0.0;
+    #[inline]
+    fn min(self, other: f64) -> f64 {
+        f64::min(self, other)
+    }
+    #[inline]
+    fn max(self, other: f64) -> f64 {
+        f64::max(self, other)
+    }
+    #[inline]
+    fn longer_than(v: [f64; 2], eps: f64) -> bool {
+        DVec2::from_array(v).length() > eps
+    }
+}
+
+impl Coord for i64 {
+    const UNIT: i64 = 1;
+    #[inline]
+    fn min(self, other: i64) -> i64 {
+        Ord::min(self, other)
+    }
+    #[inline]
+    fn max(self, other: i64) -> i64 {
+        Ord::max(self, other)
+    }
+    #[inline]
+    fn longer_than(v: [i64; 2], _eps: i64) -> bool {
+        v != [0, 0]
+    }
+}
+
+/// A box in a space's [`Coord`]: its lower-left and upper-right corners, `[x, y]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Rect<C> {
+pub(crate) struct Rect<C> {
     /// Lower-left corner.
     pub min: [C; 2],
     /// Upper-right corner.
     pub max: [C; 2],
 }
 
+impl<C: Coord> Rect<C> {
+    /// Whether the two boxes touch or overlap (inclusive, as parry2d's AABB test).
+    #[inline]
+    pub fn touches(&self, other: &Rect<C>) -> bool {
+        (0..2).all(|k| self.min[k] <= other.max[k] && self.max[k] >= other.min[k])
+    }
+}
+
 impl From<Aabb> for Rect<f32> {
+    #[inline]
     fn from(b: Aabb) -> Self {
         Rect {
             min: [b.mins.x, b.mins.y],
@@ -50,104 +120,102 @@ impl From<Aabb> for Rect<f32> {
     }
 }
 
-impl From<GridBox> for Rect<i64> {
-    fn from(b: GridBox) -> Self {
+/// A character's box in a space's [`Coord`]: one anchor point and how the box reaches from it,
+/// so that a move and its snap change the anchor alone.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Body<C> {
+    /// The anchor: the feet (bottom centre) in float, the lower-left corner on the grid.
+    pub at: [C; 2],
+    /// How far the box reaches left of the anchor (half the width in float, 0 on the grid).
+    pub left: C,
+    /// How far it reaches right of the anchor (half the width in float, the width on the grid).
+    pub right: C,
+    /// How far it reaches up from the anchor: its height.
+    pub height: C,
+    /// The size of the box it really moves, in tiles (on the grid: rounded up to subpixels).
+    pub size: Vec2,
+    /// The fraction of a storage unit its moves have not used yet, per axis (the grid's,
+    /// |r| <= 0.5; always 0 in float).
+    pub remainder: Vec2,
+}
+
+impl<C: Coord> Body<C> {
+    /// The box.
+    #[inline]
+    pub fn rect(&self) -> Rect<C> {
         Rect {
-            min: [b.min.x, b.min.y],
-            max: [b.max.x, b.max.y],
+            min: [self.at[0] - self.left, self.at[1]],
+            max: [self.at[0] + self.right, self.at[1] + self.height],
         }
     }
 }
 
-impl From<Rect<i64>> for GridBox {
-    fn from(r: Rect<i64>) -> Self {
-        GridBox {
-            min: I64Vec2::from_array(r.min),
-            max: I64Vec2::from_array(r.max),
-        }
-    }
-}
-
-/// A storage of positions the step is generic over (float with epsilon, or integer subpixels).
-pub trait Space {
-    /// A coordinate in which box faces compare: world tiles (f32) or world subpixels (i64).
-    /// Its `Default` is zero.
-    type Coord: Copy
-        + Default
-        + PartialOrd
-        + Add<Output = Self::Coord>
-        + Sub<Output = Self::Coord>
-        + Neg<Output = Self::Coord>;
-    /// A character's position saved before a move, to undo it.
-    type Saved: Copy;
-
+/// The stages' frame in one storage: where the level's corner is in it, and what the storage
+/// tolerates.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame<C> {
+    /// Where the level's corner is in the frame (tiles).
+    pub origin: Vec2,
     /// The overlap tolerance, in frame tiles: the seed's epsilon, or 0 on the grid.
-    fn eps(&self) -> f32;
+    pub eps: f32,
+    /// The overlap tolerance as a [`Coord`].
+    pub eps_coord: C,
     /// The smallest move the storage makes, in tiles: one subpixel on the grid, 0 in float (any
     /// fall moves).
-    fn unit(&self) -> f32;
-    /// The overlap tolerance as a [`Self::Coord`].
-    fn eps_coord(&self) -> Self::Coord;
-    /// Where the level's corner is in the frame (tiles).
-    fn origin(&self) -> Vec2;
-    /// The feet (bottom centre) of `c` in the frame, in tiles.
-    fn feet(&self, c: &Character) -> Vec2;
-    /// The size of the box the space really moves for `c`, in tiles.
-    fn size(&self, c: &Character) -> Vec2;
-    /// The bottom of `c`'s box as a [`Self::Coord`].
-    fn bottom(&self, c: &Character) -> Self::Coord;
-    /// A frame height (tiles) as a [`Self::Coord`] (on the grid: rounded to whole subpixels by
+    pub unit: f32,
+}
+
+/// A storage of positions the step is generic over: what differs between f32, f64 and whole
+/// subpixels, and nothing else.
+pub(crate) trait Space {
+    /// The coordinate box faces compare in.
+    type Coord: Coord;
+
+    /// The frame the stages work in, and the tolerances.
+    fn frame(&self) -> Frame<Self::Coord>;
+    /// A character of size `size` (tiles) with its feet at `feet` (level coordinates).
+    fn spawn(&self, feet: Vec2, size: Vec2) -> Body<Self::Coord>;
+    /// The feet (bottom centre) of `b` in the frame, in tiles.
+    fn feet(&self, b: &Body<Self::Coord>) -> Vec2;
+    /// Lets `f` change `b`'s feet (frame tiles); a changed position is put back on the storage
+    /// (on the grid: placed on the nearest subpixels, fractions dropped).
+    fn with_feet(&self, b: &mut Body<Self::Coord>, f: impl FnOnce(&mut Vec2));
+    /// A frame height (tiles) as a [`Coord`] (on the grid: rounded to whole subpixels by
     /// [`Grid::round_height`], the one rounding of surface heights).
     fn coord_y(&self, y: f32) -> Self::Coord;
-    /// `c`'s position, to restore with [`Space::restore_x`].
-    fn save(&self, c: &Character) -> Self::Saved;
-    /// The feet of a saved position, in the frame.
-    fn saved_feet(&self, s: &Self::Saved) -> Vec2;
-    /// Puts `c` back at the x of `s` (a move undone, as a wall would have stopped it).
-    fn restore_x(&self, c: &mut Character, s: &Self::Saved);
-    /// Lets `f` change `c`'s feet (frame tiles) and motion; a changed position is put back on
-    /// the storage (on the grid: placed on the nearest subpixels, fractions dropped).
-    fn with_feet(&self, c: &mut Character, f: impl FnOnce(&mut Vec2, &mut MotionState));
-    /// Puts `c`'s feet at frame height `y` (on the grid: [`Grid::round_height`], the y fraction
-    /// dropped).
-    fn set_feet_y(&self, c: &mut Character, y: f32);
-    /// Moves `c` by `delta` tiles along `axis`, stopping flush at the closest obstacle that
-    /// `skip` (given a box's top as a [`Self::Coord`] and its kind) does not exclude. With
-    /// `min_fall` a downward move of less than one storage unit still moves one (a drop through
-    /// a one-way platform must leave its top). Returns the kind of what stopped the move; on the
-    /// grid a fall too small to move a subpixel reports the ground it rests on.
-    fn move_axis(
+    /// A length in tiles as a [`Coord`] (on the grid: rounded up to whole subpixels).
+    fn length_up(&self, tiles: f32) -> Self::Coord;
+    /// A length in [`Coord`] as tiles.
+    fn to_tiles(&self, v: Self::Coord) -> f32;
+    /// This step's move of `delta` tiles along `axis` in the storage: as it is in float; on the
+    /// grid whole subpixels, the fraction carried in `b`'s remainder, and with `min_fall` at
+    /// least one subpixel down (a drop through a one-way platform must leave its top).
+    fn whole_move(
         &self,
-        w: &World,
-        c: &mut Character,
+        b: &mut Body<Self::Coord>,
         axis: Axis,
         delta: f32,
         min_fall: bool,
-        skip: impl Fn(Self::Coord, BoxKind) -> bool,
-    ) -> Option<BoxKind>;
-
-    /// `c`'s box, as [`Self::Coord`]s.
-    fn rect(&self, c: &Character) -> Rect<Self::Coord>;
+    ) -> Self::Coord;
+    /// The static boxes the broadphase finds around `swept`, with their kind, in its order,
+    /// asked through the mover's `near` cache: every box that touches `swept`, and in f64 and
+    /// on the grid maybe a few more (the broadphase is asked in f32 with a margin; the sweep
+    /// tests each box again in [`Coord`]).
+    fn statics<'a>(
+        &'a self,
+        tiles: &StaticTiles,
+        near: &'a mut NearCache,
+        swept: Rect<Self::Coord>,
+    ) -> impl Iterator<Item = (Rect<Self::Coord>, BoxKind)> + 'a;
     /// Moving platform `p`'s box at time `t` (seconds) as the space places it: its exact path
     /// in float, its path rounded to the nearest subpixel on the grid
     /// ([`crate::level::Platform::grid_box`]).
     fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<Self::Coord>;
-    /// Where platform `i` is now (the box the characters just moved against).
-    fn platform_now(&self, ps: &Platforms, i: usize) -> Rect<Self::Coord>;
-    /// Puts platform `i` at `r`.
-    fn set_platform(&self, ps: &mut Platforms, i: usize, r: Rect<Self::Coord>);
-    /// A length in [`Self::Coord`] as tiles.
-    fn to_tiles(&self, v: Self::Coord) -> f32;
-    /// A length in tiles as a [`Self::Coord`] (on the grid: rounded up to whole subpixels).
-    fn length_up(&self, tiles: f32) -> Self::Coord;
-    /// Moves `c` by `delta` (x, then y) against the static level only, as a moving platform
-    /// carries or pushes it; returns whether the level stopped any part of the move.
-    fn shove(&self, tiles: &StaticTiles, c: &mut Character, delta: [Self::Coord; 2]) -> bool;
 }
 
 /// f32 world positions with the seed's epsilon fudge.
 #[derive(Clone, Copy, Debug)]
-pub struct FloatSpace {
+pub(crate) struct FloatSpace {
     /// The seed's overlap tolerance, tiles.
     pub eps: f32,
     /// The level's corner in the world, tiles.
@@ -156,360 +224,258 @@ pub struct FloatSpace {
 
 impl Space for FloatSpace {
     type Coord = f32;
-    type Saved = Vec2;
 
-    fn eps(&self) -> f32 {
-        self.eps
+    #[inline]
+    fn frame(&self) -> Frame<f32> {
+        Frame {
+            origin: self.origin,
+            eps: self.eps,
+            eps_coord: self.eps,
+            unit: 0.0,
+        }
     }
-    fn unit(&self) -> f32 {
-        0.0
+    #[inline]
+    fn spawn(&self, feet: Vec2, size: Vec2) -> Body<f32> {
+        Body {
+            at: (feet + self.origin).to_array(),
+            left: size.x * 0.5,
+            right: size.x * 0.5,
+            height: size.y,
+            size,
+            remainder: Vec2::ZERO,
+        }
     }
-    fn eps_coord(&self) -> f32 {
-        self.eps
+    #[inline]
+    fn feet(&self, b: &Body<f32>) -> Vec2 {
+        Vec2::from_array(b.at)
     }
-    fn origin(&self) -> Vec2 {
-        self.origin
+    #[inline]
+    fn with_feet(&self, b: &mut Body<f32>, f: impl FnOnce(&mut Vec2)) {
+        let mut feet = Vec2::from_array(b.at);
+        f(&mut feet);
+        b.at = feet.to_array();
     }
-    fn feet(&self, c: &Character) -> Vec2 {
-        c.pos
-    }
-    fn size(&self, c: &Character) -> Vec2 {
-        c.size
-    }
-    fn bottom(&self, c: &Character) -> f32 {
-        c.pos.y
-    }
+    #[inline]
     fn coord_y(&self, y: f32) -> f32 {
         y
     }
-    fn save(&self, c: &Character) -> Vec2 {
-        c.pos
-    }
-    fn saved_feet(&self, s: &Vec2) -> Vec2 {
-        *s
-    }
-    fn restore_x(&self, c: &mut Character, s: &Vec2) {
-        c.pos.x = s.x;
-    }
-    fn with_feet(&self, c: &mut Character, f: impl FnOnce(&mut Vec2, &mut MotionState)) {
-        f(&mut c.pos, &mut c.motion);
-    }
-    fn set_feet_y(&self, c: &mut Character, y: f32) {
-        c.pos.y = y;
-    }
-    fn move_axis(
-        &self,
-        w: &World,
-        c: &mut Character,
-        axis: Axis,
-        delta: f32,
-        _min_fall: bool,
-        skip: impl Fn(f32, BoxKind) -> bool,
-    ) -> Option<BoxKind> {
-        move_axis(
-            w.tiles,
-            &mut c.near,
-            w.platform_boxes,
-            &mut c.pos,
-            c.size,
-            axis,
-            delta,
-            self.eps,
-            |t, k| skip(t.maxs.y, k),
-        )
-    }
-    fn rect(&self, c: &Character) -> Rect<f32> {
-        character_box(c.pos, c.size).into()
-    }
-    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<f32> {
-        p.aabb(t).into()
-    }
-    fn platform_now(&self, ps: &Platforms, i: usize) -> Rect<f32> {
-        ps.boxes[i].0.into()
-    }
-    fn set_platform(&self, ps: &mut Platforms, i: usize, r: Rect<f32>) {
-        ps.boxes[i].0 = Aabb::new(Vec2::from_array(r.min), Vec2::from_array(r.max));
-    }
-    fn to_tiles(&self, v: f32) -> f32 {
-        v
-    }
+    #[inline]
     fn length_up(&self, tiles: f32) -> f32 {
         tiles
     }
-    fn shove(&self, tiles: &StaticTiles, c: &mut Character, delta: [f32; 2]) -> bool {
-        let skip = |_: &Aabb, k: BoxKind| matches!(k, BoxKind::OneWay | BoxKind::Platform { .. });
-        let delta = Vec2::from_array(delta);
-        let start = c.pos;
-        for (axis, d) in [(Axis::X, delta.x), (Axis::Y, delta.y)] {
-            move_axis(
-                tiles,
-                &mut c.near,
-                &[],
-                &mut c.pos,
-                c.size,
-                axis,
-                d,
-                self.eps,
-                skip,
-            );
-        }
-        (c.pos - start - delta).length() > self.eps
+    #[inline]
+    fn to_tiles(&self, v: f32) -> f32 {
+        v
+    }
+    #[inline]
+    fn whole_move(&self, _: &mut Body<f32>, _: Axis, delta: f32, _: bool) -> f32 {
+        delta
+    }
+    #[inline]
+    fn statics<'a>(
+        &'a self,
+        tiles: &StaticTiles,
+        near: &'a mut NearCache,
+        swept: Rect<f32>,
+    ) -> impl Iterator<Item = (Rect<f32>, BoxKind)> + 'a {
+        let area = Aabb::new(Vec2::from_array(swept.min), Vec2::from_array(swept.max));
+        near.query(tiles, area).map(|(t, kind)| ((*t).into(), kind))
+    }
+    #[inline]
+    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<f32> {
+        p.aabb(t).into()
     }
 }
 
-/// f64 world positions with the seed's epsilon fudge: [`FloatSpace`]'s rules with the feet kept
-/// in f64 (`Character::pos64`) and every move swept and snapped in f64
-/// ([`super::resolve::move_axis_f64`]). The stages' frame is the level's own coordinates (as on
-/// the grid), where f32 is fine for the slope and ladder rules; a position they do not change
-/// keeps its f64 bits. Moving platforms are f64 world boxes (`Platforms::double_boxes`): their
-/// path in level coordinates placed at the origin in f64, and they carry, push and crush by
-/// f64 displacements.
+/// How far beyond the swept box (tiles) the f64 mode asks the f32 broadphase: level coordinates
+/// within a few thousand tiles of the level's corner round by under 1e-3 tile in f32.
+pub(crate) const F64_QUERY_MARGIN: f32 = 1e-2;
+
+/// f64 world positions with the seed's epsilon fudge: [`FloatSpace`]'s rules with the feet in
+/// f64 and every move swept and snapped in f64. The static boxes are kept in the level's own
+/// coordinates (the broadphase built at origin 0, where f32 is exact for tile faces) and placed
+/// at the origin in f64: the broadphase is asked in f32 level coordinates with a margin of
+/// [`F64_QUERY_MARGIN`] so that its rounding never hides a box, and the sweep tests the boxes
+/// it returns again in f64. The stages' frame is the level's own coordinates (as on the grid),
+/// where f32 is fine for the slope and ladder rules; a position they do not change keeps its
+/// f64 bits. Moving platforms are f64 world boxes: their path in level coordinates placed at
+/// the origin in f64 ([`PlatformState::aabb_f64`]), and they carry, push and crush by f64
+/// displacements.
 #[derive(Clone, Copy, Debug)]
-pub struct DoubleSpace {
+pub(crate) struct DoubleSpace {
     /// The seed's overlap tolerance, tiles.
     pub eps: f32,
     /// The level's corner in the world, tiles.
-    pub origin: glam::DVec2,
+    pub origin: DVec2,
 }
 
 impl Space for DoubleSpace {
     type Coord = f64;
-    type Saved = glam::DVec2;
 
-    fn eps(&self) -> f32 {
-        self.eps
+    #[inline]
+    fn frame(&self) -> Frame<f64> {
+        Frame {
+            origin: Vec2::ZERO,
+            eps: self.eps,
+            eps_coord: self.eps as f64,
+            unit: 0.0,
+        }
     }
-    fn unit(&self) -> f32 {
-        0.0
+    #[inline]
+    fn spawn(&self, feet: Vec2, size: Vec2) -> Body<f64> {
+        let half = size.x as f64 * 0.5;
+        Body {
+            at: (feet.as_dvec2() + self.origin).to_array(),
+            left: half,
+            right: half,
+            height: size.y as f64,
+            size,
+            remainder: Vec2::ZERO,
+        }
     }
-    fn eps_coord(&self) -> f64 {
-        self.eps as f64
+    #[inline]
+    fn feet(&self, b: &Body<f64>) -> Vec2 {
+        (DVec2::from_array(b.at) - self.origin).as_vec2()
     }
-    fn origin(&self) -> Vec2 {
-        Vec2::ZERO
+    #[inline]
+    fn with_feet(&self, b: &mut Body<f64>, f: impl FnOnce(&mut Vec2)) {
+        let mut feet = self.feet(b);
+        let before = feet;
+        f(&mut feet);
+        for k in 0..2 {
+            if feet[k] != before[k] {
+                b.at[k] = self.origin[k] + feet[k] as f64;
+            }
+        }
     }
-    fn feet(&self, c: &Character) -> Vec2 {
-        (c.pos64 - self.origin).as_vec2()
-    }
-    fn size(&self, c: &Character) -> Vec2 {
-        c.size
-    }
-    fn bottom(&self, c: &Character) -> f64 {
-        c.pos64.y
-    }
+    #[inline]
     fn coord_y(&self, y: f32) -> f64 {
         self.origin.y + y as f64
     }
-    fn save(&self, c: &Character) -> glam::DVec2 {
-        c.pos64
-    }
-    fn saved_feet(&self, s: &glam::DVec2) -> Vec2 {
-        (*s - self.origin).as_vec2()
-    }
-    fn restore_x(&self, c: &mut Character, s: &glam::DVec2) {
-        c.pos64.x = s.x;
-    }
-    fn with_feet(&self, c: &mut Character, f: impl FnOnce(&mut Vec2, &mut MotionState)) {
-        let mut feet = self.feet(c);
-        let before = feet;
-        f(&mut feet, &mut c.motion);
-        if feet.x != before.x {
-            c.pos64.x = self.origin.x + feet.x as f64;
-        }
-        if feet.y != before.y {
-            c.pos64.y = self.origin.y + feet.y as f64;
-        }
-    }
-    fn set_feet_y(&self, c: &mut Character, y: f32) {
-        c.pos64.y = self.coord_y(y);
-    }
-    fn move_axis(
-        &self,
-        w: &World,
-        c: &mut Character,
-        axis: Axis,
-        delta: f32,
-        _min_fall: bool,
-        skip: impl Fn(f64, BoxKind) -> bool,
-    ) -> Option<BoxKind> {
-        super::resolve::move_axis_f64(
-            w.tiles,
-            &mut c.near,
-            w.platform_double,
-            self.origin,
-            &mut c.pos64,
-            c.size,
-            axis,
-            delta as f64,
-            self.eps,
-            skip,
-        )
-    }
-    fn rect(&self, c: &Character) -> Rect<f64> {
-        let half = c.size.x as f64 * 0.5;
-        Rect {
-            min: [c.pos64.x - half, c.pos64.y],
-            max: [c.pos64.x + half, c.pos64.y + c.size.y as f64],
-        }
-    }
-    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<f64> {
-        p.aabb_f64(t)
-    }
-    fn platform_now(&self, ps: &Platforms, i: usize) -> Rect<f64> {
-        ps.double_boxes[i].0
-    }
-    fn set_platform(&self, ps: &mut Platforms, i: usize, r: Rect<f64>) {
-        ps.double_boxes[i].0 = r;
-    }
-    fn to_tiles(&self, v: f64) -> f32 {
-        v as f32
-    }
+    #[inline]
     fn length_up(&self, tiles: f32) -> f64 {
         tiles as f64
     }
-    fn shove(&self, tiles: &StaticTiles, c: &mut Character, delta: [f64; 2]) -> bool {
-        let skip = |_: f64, k: BoxKind| matches!(k, BoxKind::OneWay | BoxKind::Platform { .. });
-        let start = c.pos64;
-        for (axis, d) in [(Axis::X, delta[0]), (Axis::Y, delta[1])] {
-            super::resolve::move_axis_f64(
-                tiles,
-                &mut c.near,
-                &[],
-                self.origin,
-                &mut c.pos64,
-                c.size,
-                axis,
-                d,
-                self.eps,
-                skip,
-            );
-        }
-        (c.pos64 - start - glam::DVec2::from_array(delta)).length() > self.eps as f64
+    #[inline]
+    fn to_tiles(&self, v: f64) -> f32 {
+        v as f32
+    }
+    #[inline]
+    fn whole_move(&self, _: &mut Body<f64>, _: Axis, delta: f32, _: bool) -> f64 {
+        delta as f64
+    }
+    #[inline]
+    fn statics<'a>(
+        &'a self,
+        tiles: &StaticTiles,
+        near: &'a mut NearCache,
+        swept: Rect<f64>,
+    ) -> impl Iterator<Item = (Rect<f64>, BoxKind)> + 'a {
+        let (smin, smax) = (DVec2::from_array(swept.min), DVec2::from_array(swept.max));
+        let area = Aabb::new(
+            (smin - self.origin).as_vec2() - Vec2::splat(F64_QUERY_MARGIN),
+            (smax - self.origin).as_vec2() + Vec2::splat(F64_QUERY_MARGIN),
+        );
+        let origin = self.origin;
+        near.query(tiles, area).map(move |(t, kind)| {
+            let placed = Rect {
+                min: (t.mins.as_dvec2() + origin).to_array(),
+                max: (t.maxs.as_dvec2() + origin).to_array(),
+            };
+            (placed, kind)
+        })
+    }
+    #[inline]
+    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<f64> {
+        p.aabb_f64(t)
     }
 }
 
 /// Whole subpixels on a level's grid, fractions carried.
 #[derive(Clone, Copy, Debug)]
-pub struct GridSpace {
+pub(crate) struct GridSpace {
     /// The level's subpixel grid.
     pub grid: Grid,
 }
 
 impl Space for GridSpace {
     type Coord = i64;
-    type Saved = GridPos;
 
-    fn eps(&self) -> f32 {
-        0.0
+    #[inline]
+    fn frame(&self) -> Frame<i64> {
+        Frame {
+            origin: Vec2::ZERO,
+            eps: 0.0,
+            eps_coord: 0,
+            unit: 1.0 / self.grid.per_tile as f32,
+        }
     }
-    fn unit(&self) -> f32 {
-        1.0 / self.grid.per_tile as f32
+    #[inline]
+    fn spawn(&self, feet: Vec2, size: Vec2) -> Body<i64> {
+        let b = self.grid.place(feet, self.grid.size(size));
+        let (width, height) = (b.max[0] - b.min[0], b.max[1] - b.min[1]);
+        Body {
+            at: b.min,
+            left: 0,
+            right: width,
+            height,
+            size: Vec2::new(width as f32, height as f32) / self.grid.per_tile as f32,
+            remainder: Vec2::ZERO,
+        }
     }
-    fn eps_coord(&self) -> i64 {
-        0
+    #[inline]
+    fn feet(&self, b: &Body<i64>) -> Vec2 {
+        self.grid.feet(&b.rect())
     }
-    fn origin(&self) -> Vec2 {
-        Vec2::ZERO
+    #[inline]
+    fn with_feet(&self, b: &mut Body<i64>, f: impl FnOnce(&mut Vec2)) {
+        // The rules work in level coordinates, exact for the feet on the grid.
+        let mut feet = self.feet(b);
+        let before = feet;
+        f(&mut feet);
+        if feet != before {
+            b.at = self.grid.place(feet, [b.right, b.height].into()).min;
+            b.remainder = Vec2::ZERO;
+        }
     }
-    fn feet(&self, c: &Character) -> Vec2 {
-        self.grid.feet(&c.on_grid.b)
-    }
-    fn size(&self, c: &Character) -> Vec2 {
-        (c.on_grid.b.max - c.on_grid.b.min).as_vec2() / self.grid.per_tile as f32
-    }
-    fn bottom(&self, c: &Character) -> i64 {
-        c.on_grid.b.min.y
-    }
+    #[inline]
     fn coord_y(&self, y: f32) -> i64 {
         self.grid.origin.y + self.grid.round_height(y)
     }
-    fn save(&self, c: &Character) -> GridPos {
-        c.on_grid
-    }
-    fn saved_feet(&self, s: &GridPos) -> Vec2 {
-        self.grid.feet(&s.b)
-    }
-    fn restore_x(&self, c: &mut Character, s: &GridPos) {
-        c.on_grid.b.min.x = s.b.min.x;
-        c.on_grid.b.max.x = s.b.max.x;
-        c.on_grid.remainder.x = 0.0;
-    }
-    fn with_feet(&self, c: &mut Character, f: impl FnOnce(&mut Vec2, &mut MotionState)) {
-        // The rules work in level coordinates, exact for the feet on the grid.
-        let mut feet = self.grid.feet(&c.on_grid.b);
-        let before = feet;
-        f(&mut feet, &mut c.motion);
-        if feet != before {
-            let size = c.on_grid.b.max - c.on_grid.b.min;
-            c.on_grid.b = self.grid.place(feet, size);
-            c.on_grid.remainder = Vec2::ZERO;
-        }
-    }
-    fn set_feet_y(&self, c: &mut Character, y: f32) {
-        let b = &mut c.on_grid.b;
-        let h = b.max.y - b.min.y;
-        b.min.y = self.coord_y(y);
-        b.max.y = b.min.y + h;
-        c.on_grid.remainder.y = 0.0;
-    }
-    fn move_axis(
-        &self,
-        w: &World,
-        c: &mut Character,
-        axis: Axis,
-        delta: f32,
-        min_fall: bool,
-        skip: impl Fn(i64, BoxKind) -> bool,
-    ) -> Option<BoxKind> {
-        let g = &self.grid;
-        let p = &mut c.on_grid;
-        let mut n = p.whole_move(g, axis, delta);
-        if min_fall && n == 0 {
-            // The first step of a drop through a one-way platform falls less than a subpixel;
-            // it must still leave the top, or the next step (no longer dropping) lands on it.
-            n = -1;
-            p.remainder[axis.index()] = 0.0;
-        }
-        let skip = |t: &GridBox, k: BoxKind| skip(t.max.y, k);
-        let extra = w.platform_grid;
-        let mut hit = move_axis_grid(w.tiles, &mut c.near, g, p, axis, n, true, extra, skip);
-        if axis == Axis::Y && n == 0 && delta < 0.0 {
-            // A fall of less than a subpixel this step moves nothing: the ground is there if
-            // the box rests on it (Celeste's "collide check one pixel down"). A move of a
-            // subpixel or more that ends on a face has already reported it.
-            hit = move_axis_grid(w.tiles, &mut c.near, g, p, axis, -1, false, extra, skip);
-        }
-        if hit.is_some() {
-            p.remainder[axis.index()] = 0.0;
-        }
-        hit
-    }
-    fn rect(&self, c: &Character) -> Rect<i64> {
-        c.on_grid.b.into()
-    }
-    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<i64> {
-        p.grid_box(&self.grid, t).into()
-    }
-    fn platform_now(&self, ps: &Platforms, i: usize) -> Rect<i64> {
-        ps.grid_boxes[i].0.into()
-    }
-    fn set_platform(&self, ps: &mut Platforms, i: usize, r: Rect<i64>) {
-        ps.grid_boxes[i].0 = r.into();
-    }
-    fn to_tiles(&self, v: i64) -> f32 {
-        (v as f64 / self.grid.per_tile as f64) as f32
-    }
+    #[inline]
     fn length_up(&self, tiles: f32) -> i64 {
         (tiles as f64 * self.grid.per_tile as f64).ceil() as i64
     }
-    fn shove(&self, tiles: &StaticTiles, c: &mut Character, delta: [i64; 2]) -> bool {
-        let skip =
-            |_: &GridBox, k: BoxKind| matches!(k, BoxKind::OneWay | BoxKind::Platform { .. });
-        let start = c.on_grid.b.min;
-        for (axis, n) in [(Axis::X, delta[0]), (Axis::Y, delta[1])] {
-            let p = &mut c.on_grid;
-            move_axis_grid(tiles, &mut c.near, &self.grid, p, axis, n, true, &[], skip);
+    #[inline]
+    fn to_tiles(&self, v: i64) -> f32 {
+        (v as f64 / self.grid.per_tile as f64) as f32
+    }
+    #[inline]
+    fn whole_move(&self, b: &mut Body<i64>, axis: Axis, delta: f32, min_fall: bool) -> i64 {
+        let a = axis.index();
+        let total = delta * self.grid.per_tile as f32 + b.remainder[a];
+        let n = total.round();
+        b.remainder[a] = total - n;
+        if min_fall && n as i64 == 0 {
+            // The first step of a drop through a one-way platform falls less than a subpixel;
+            // it must still leave the top, or the next step (no longer dropping) lands on it.
+            b.remainder[a] = 0.0;
+            return -1;
         }
-        c.on_grid.b.min - start != I64Vec2::from_array(delta)
+        n as i64
+    }
+    #[inline]
+    fn statics<'a>(
+        &'a self,
+        tiles: &StaticTiles,
+        near: &'a mut NearCache,
+        swept: Rect<i64>,
+    ) -> impl Iterator<Item = (Rect<i64>, BoxKind)> + 'a {
+        near.query(tiles, self.grid.query_area(&swept))
+            .map(|(t, kind)| (self.grid.box_of(t), kind))
+    }
+    #[inline]
+    fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<i64> {
+        p.grid_box(&self.grid, t)
     }
 }

@@ -2,8 +2,8 @@
 //!
 //! One function, [`step`], reads as the numbered steps; each step is a named function in the
 //! file of its stage (ladders, integrate, resolve, slopes, oneway). It is generic over how
-//! positions are stored ([`Space`]: f32 with the seed's epsilon, or whole subpixels), so no
-//! stage is written twice. Moving platforms are the step's last part, run once for every
+//! positions are stored ([`Space`]: f32 or f64 with the seed's epsilon, or whole subpixels), so
+//! no stage is written twice. Moving platforms are the step's last part, run once for every
 //! platform after every character has stepped (the seed: "update platforms *after* all other
 //! objects"; [`super::platforms`]).
 
@@ -16,43 +16,42 @@ use crate::motion::{Contacts, Input};
 
 /// Moves one character by one step of `dt` seconds under `input`.
 pub(super) fn step<S: Space>(
-    s: &S,
-    w: &World,
+    w: &World<S>,
     stats: &mut SweepStats,
-    c: &mut Character,
+    c: &mut Character<S::Coord>,
     input: &Input,
     dt: f32,
 ) {
     // 1. Ladder: enter the ladder state ("AABB vs AABB player to ladder && up", or "stand on
     //    top and hit down"), x clamped to the ladder.
-    ladders::enter(s, w, stats, c, input);
+    ladders::enter(w, stats, c, input);
 
     // 2. Forces and integration: symplectic Euler, velocity first, then this step's move.
     let was_grounded = c.motion.grounded;
     let delta = integrate::forces_and_velocity(w, c, input, dt);
-    let start = s.save(c);
+    let start = c.body;
 
     // 3. x move: sweep and snap flush; one-way boxes and the mass under a ramp do not block.
-    let ramp_top = slopes::ramp_top_for_x(s, w, c);
-    let mut wall = resolve::move_x(s, w, c, delta.x, ramp_top);
+    let ramp_top = slopes::ramp_top_for_x(w, c);
+    let mut wall = resolve::move_x(w, c, delta.x, ramp_top);
 
     // 4. Climb limit: a slope rising faster than the steepest walkable one stops the x move.
-    let rise_allow = slopes::rise_allow(s, w, c, &start);
-    wall |= slopes::climb_limit(s, w, stats, c, &start, rise_allow);
+    let rise_allow = slopes::rise_allow(w, c, &start);
+    wall |= slopes::climb_limit(w, stats, c, &start, rise_allow);
 
     // 5. y move: sweep and snap flush; a one-way box blocks only a fall that started entirely
     //    above it.
-    let from = slopes::feet_before_y(s, w, c);
-    let ramp_band = slopes::ramp_band_for_y(s, w, c);
+    let from = slopes::feet_before_y(w, c);
+    let ramp_band = slopes::ramp_band_for_y(w, c);
     if w.level.features.one_way || w.level.features.ladders {
         stats.one_way_steps += 1;
     }
     let fall = oneway::Fall {
-        from: s.bottom(c),
-        eps: s.eps_coord(),
+        from: c.body.at[1],
+        eps: w.frame.eps_coord,
         passes: c.motion.drop_through || c.motion.on_ladder || delta.y >= 0.0,
     };
-    let hit_y = resolve::move_y(s, w, c, delta.y, &fall, ramp_band);
+    let hit_y = resolve::move_y(w, c, delta.y, &fall, ramp_band);
     let mut ground = hit_y.is_some() && delta.y < 0.0;
     let ceiling = hit_y.is_some() && delta.y > 0.0;
     let mut one_way = hit_y.is_some_and(oneway::is_one_way);
@@ -64,8 +63,7 @@ pub(super) fn step<S: Space>(
 
     // 6. Ground on slopes: resolve up onto the surface under the centre, or follow it down.
     let mut normal = Vec2::Y;
-    let on_slope =
-        slopes::ground_on_slopes(s, w, c, from, rise_allow, ground, was_grounded, delta.y);
+    let on_slope = slopes::ground_on_slopes(w, c, from, rise_allow, ground, was_grounded, delta.y);
     if let Some((g, up)) = on_slope {
         (ground, normal) = (true, g.normal);
         if up {
@@ -83,6 +81,6 @@ pub(super) fn step<S: Space>(
     integrate::apply_contacts(w, c, input, contacts);
 
     // 8. Ladder: leave the ladder state (jumped, past its ends, or grounded climbing down).
-    ladders::leave(s, w, c, input);
+    ladders::leave(w, c, input);
     c.ground_normal = if ground { normal } else { Vec2::ZERO };
 }
