@@ -96,7 +96,7 @@ pub struct SweepConfig {
     /// How a rider follows the moving platform it stands on when the platform moves down
     /// (default [`RiderFollow::Solid`], Celeste's rule: measured on every built-in platform
     /// scenario, it keeps the rider where the gravity rule leaves it airborne, and agrees with
-    /// it everywhere else; `tests/platforms.rs`).
+    /// it everywhere else; `tests/behaviour/platforms.rs`).
     pub rider_follow: RiderFollow,
 }
 

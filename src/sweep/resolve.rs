@@ -20,6 +20,7 @@ use super::broadphase::{BoxKind, NearCache, StaticTiles};
 use super::oneway;
 use super::space::{Body, Coord, Rect, Space};
 use super::{Character, World};
+use crate::oneway::OneWayCheck;
 
 /// The axis of a move.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -216,20 +217,20 @@ pub(super) fn move_x<S: Space>(
 }
 
 /// Step 5, the y move ("repeat for y"): sweeps the box along y and snaps it flush. One-way
-/// boxes block only as [`oneway::Fall`] says; moving platforms always block; solids with their
+/// boxes block only as [`OneWayCheck::blocks`] says; moving platforms always block; solids with their
 /// top inside `ramp_band` (above its low end, at most its high end) belong to the slope rules.
 /// A drop through a one-way platform falls at least one storage unit. Returns what stopped it.
 pub(super) fn move_y<S: Space>(
     w: &World<S>,
     c: &mut Character<S::Coord>,
     dy: f32,
-    fall: &oneway::Fall<S::Coord>,
+    fall: &OneWayCheck<S::Coord>,
     ramp_band: Option<(S::Coord, S::Coord)>,
 ) -> Option<BoxKind> {
     let min_fall = c.motion.drop_through;
     step_move(w, c, Axis::Y, dy, min_fall, |top, kind| {
         if oneway::is_one_way(kind) {
-            fall.passes(top)
+            !fall.blocks(top)
         } else if matches!(kind, BoxKind::Platform { .. }) {
             false
         } else {

@@ -13,6 +13,7 @@ use super::space::Space;
 use super::{integrate, ladders, oneway, resolve, slopes};
 use super::{Character, SweepStats, World};
 use crate::motion::{Contacts, Input};
+use crate::oneway::OneWayCheck;
 
 /// Moves one character by one step of `dt` seconds under `input`.
 pub(super) fn step<S: Space>(
@@ -46,10 +47,13 @@ pub(super) fn step<S: Space>(
     if w.level.features.one_way || w.level.features.ladders {
         stats.one_way_steps += 1;
     }
-    let fall = oneway::Fall {
-        from: c.body.at[1],
-        eps: w.frame.eps_coord,
-        passes: c.motion.drop_through || c.motion.on_ladder || delta.y >= 0.0,
+    // The shared one-way rule (crate::oneway) in the storage's coordinate and tolerance: a move
+    // that does not fall, drops through or climbs passes every one-way box.
+    let fall = OneWayCheck {
+        feet: c.body.at[1],
+        tolerance: w.frame.eps_coord,
+        passes_all: c.motion.drop_through || c.motion.on_ladder || delta.y >= 0.0,
+        dropping_through: None,
     };
     let hit_y = resolve::move_y(w, c, delta.y, &fall, ramp_band);
     let mut ground = hit_y.is_some() && delta.y < 0.0;
