@@ -8,13 +8,14 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use platbench::config::RunConfig;
 use platbench::level::Level;
 use platbench::metrics::{evaluate_recorded, MetricRow};
 use platbench::parallel::{default_jobs, for_each_ordered};
 use platbench::registry::Registry;
 use platbench::report::summary_rows::SummaryRows;
 use platbench::report::summary_table_in;
-use platbench::scenario::{RunConfig, Runner};
+use platbench::scenario::Runner;
 use platbench::trace::RowStore;
 
 /// Runs every (level, scenario, configuration) on `jobs` threads and returns the summary.

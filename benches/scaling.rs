@@ -9,10 +9,10 @@ use std::time::{Duration, Instant};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec2;
 use platbench::backend::{Backend, CharacterSpec};
+use platbench::config::RunConfig;
 use platbench::level::{Level, Tile};
 use platbench::motion::Input;
 use platbench::registry::Registry;
-use platbench::scenario::RunConfig;
 
 /// A level of about `tiles` tiles, four times wider than high: a floor and solid blocks at 10%
 /// density above it (a fixed pseudo-random pattern, so every run builds the same level).

@@ -6,8 +6,9 @@ use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use platbench::backend::{Backend, BackendError, CharacterSpec};
+use platbench::config::RunConfig;
 use platbench::level::{parse_level, Level, ScenarioSpec};
-use platbench::scenario::{effective_params, input_script, RunConfig};
+use platbench::scenario::{effective_params, input_script};
 
 #[path = "../compare/builtin.rs"]
 mod builtin;

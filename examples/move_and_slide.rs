@@ -16,9 +16,8 @@
 //! the step, not climbing a ladder and not dropping through it. Moving platforms are not
 //! modelled: the kind declares it, and the harness skips those levels.
 //!
-//! This is written from Godot's documented behaviour, not from its source; where Godot's code
-//! does something the docs do not say (its recovery iterations, its exact floor snapping), this
-//! mover does the simple thing and says so.
+//! Written from Godot's documented behaviour, not its source; where Godot's code does what the
+//! docs do not say (recovery iterations, exact floor snapping), this does the simple thing.
 //!
 //! `cargo run --release --example move_and_slide` runs the built-in comparison with it as extra
 //! rows; every platbench command takes it (`-- report --out DIR`; docs/move-and-slide.md).

@@ -10,12 +10,13 @@
 #[path = "../compare/builtin.rs"]
 mod builtin;
 
+use platbench::config::RunConfig;
 use platbench::level::parse_level;
 use platbench::metrics::{evaluate_with, MetricRow};
 use platbench::rapier::{
     CharacterShape, ColliderBuilding, GroundedMove, Length, PlatformOrder, RapierConfig,
 };
-use platbench::scenario::{RunConfig, Runner};
+use platbench::scenario::Runner;
 
 /// The set-ups compared, each a change from Rapier's defaults.
 fn setups() -> Vec<(&'static str, RapierConfig)> {

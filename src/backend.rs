@@ -376,7 +376,7 @@ impl SharedGeometry {
 
 /// One configuration of a backend: its settings, and what the harness needs to know of them
 /// to build it, skip the levels it does not model and score it fairly. A configuration is held
-/// as `Arc<dyn BackendSettings>` in [`crate::scenario::RunConfig`]. Implemented for every
+/// as `Arc<dyn BackendSettings>` in [`crate::config::RunConfig`]. Implemented for every
 /// [`crate::controller::Controller`] (whose methods document these); implement that instead.
 pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     /// The backend's short name, as in CSV files (the name of its [`crate::controller::BackendKind`]).

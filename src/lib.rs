@@ -1,15 +1,14 @@
 //! platbench: run 2D platformer character controllers over the same levels and compare them.
 //!
-//! The pieces, in dependency order: [`level`] (the tile model, its text format and the Tiled import) ←
-//! [`motion`], [`ladder`], [`backend`] and [`controller`] (shared game rules and the controller
-//! interface: the one trait a controller implements, [`controller::Controller`]) ← the
-//! controllers ([`sweep`], [`rapier`] in f32 and f64, [`box2d`]), listed in one [`registry::Registry`] ← [`scenario`] (the
-//! runner) and [`trace`] ← [`metrics`] ← [`report`], [`stress`], [`tradeoff`]. [`suite`] runs the
-//! comparison from code; [`parallel`] fans independent runs out over threads; [`cli`] is the
+//! The pieces, in layers that point one way (ARCHITECTURE.md gives one row per module): the
+//! tile model [`level`] ← the shared rules ([`motion`], [`ladder`], [`oneway`], [`shape`]) ← the
+//! controller API ([`backend`], [`config`], [`controller`]: the one trait a controller
+//! implements, [`controller::Controller`]) ← the controllers ([`sweep`], [`rapier`] in f32 and
+//! f64, [`box2d`]) ← running ([`scenario`], [`trace`], [`parallel`]) ← [`metrics`] ←
+//! [`registry`] ← analysis ([`stress`], [`tradeoff`]) ← [`report`] and [`suite`] ← [`cli`], the
 //! `platbench` command line, which a user's crate gets with its own controller beside ours from
-//! [`cli::main_with`] (see `examples/box_mover.rs`, the README's plug-in example, and
-//! `examples/move_and_slide.rs`).
-
+//! [`cli::main_with`] (see `examples/box_mover.rs`, the README's plug-in example). The names a
+//! controller of one's own needs are in [`prelude`].
 //!
 //! Cargo features, all on by default: `rapier` (rapier2d's controller, f32 and f64), `box2d`
 //! (Box2D v3's mover, built from C), `tiled` (Tiled maps) and `ldtk` (LDtk projects). With

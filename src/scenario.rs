@@ -2,7 +2,7 @@
 //! configuration, yielding a [`Trace`].
 
 use crate::backend::{Backend, BackendError, CharacterId, CharacterSpec, SharedGeometry};
-pub use crate::config::RunConfig;
+use crate::config::RunConfig;
 use crate::level::{Level, ScenarioSpec};
 use crate::motion::{Input, MotionParams};
 
@@ -403,7 +403,7 @@ fn check_dt(spec: &ScenarioSpec) -> Result<(), BackendError> {
         Ok(_) => Ok(()),
         Err(message) => Err(crate::backend::invalid(
             "dt",
-            message,
+            message.to_string(),
             "a time step 1e-6..=1 s and a duration of 1 to 10,000,000 frames (crate::limits)",
         )),
     }

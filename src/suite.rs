@@ -11,9 +11,10 @@
 //! ```
 
 use crate::backend::BackendError;
+use crate::config::RunConfig;
 use crate::level::{parse_level, Level, LevelError};
 use crate::metrics::{evaluate_with, MetricRow};
-use crate::scenario::{RunConfig, Runner};
+use crate::scenario::Runner;
 use crate::trace::Trace;
 
 /// The built-in levels (the files of `compare/levels/`), parsed.

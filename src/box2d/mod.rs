@@ -36,7 +36,8 @@ pub use crate::shape::CharacterShape;
 pub use bounds::{check_extent, check_radius, LINEAR_SLOP, MAX_LEVEL_EXTENT};
 pub use config::{Box2dConfig, PogoShape};
 pub use mover::ONE_WAY_TOLERANCE;
-pub use world::{b2, ColliderBuilding, LevelWorld, ShapeTag, ONE_WAY, PLATFORM, SOLID};
+pub use world::ColliderBuilding;
+pub(crate) use world::{LevelWorld, ShapeTag, ONE_WAY, PLATFORM, SOLID};
 
 struct Character {
     /// Feet position (bottom centre of the box, where the pogo rests), world.
@@ -261,7 +262,7 @@ mod tests {
             let s = b.state(id);
             assert!(s.grounded, "{colliders:?}: {s:?}");
             // The pogo holds the feet near the ground's top (y = 1) after 3 s: the spring's sag
-            // under gravity is 0.029 tiles (derived in tests/box2d.rs); a tenth of a tile
+            // under gravity is 0.029 tiles (derived in tests/controllers/box2d.rs); a tenth of a tile
             // bounds it loosely.
             assert!(
                 (s.pos.y - 1.0).abs() < ONE_WAY_TOLERANCE,

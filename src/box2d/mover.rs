@@ -15,7 +15,7 @@ use super::{Box2dBackend, PogoShape, ShapeTag, ONE_WAY, PLATFORM, SOLID};
 /// How far below a one-way platform's top the feet may be and still land on it, and how far
 /// from a ladder's top they may be and still stand on it (the shared ladder rules'
 /// `enter_within`), in tiles: the pogo holds the feet with a spring, which rests them below the
-/// surface by its sag under gravity (0.029 tiles at 60 Hz, `tests/box2d.rs`) and dips further on
+/// surface by its sag under gravity (0.029 tiles at 60 Hz, `tests/controllers/box2d.rs`) and dips further on
 /// a landing. A tenth of a tile is a chosen margin over that sag, not a measured bound on the
 /// dip.
 pub const ONE_WAY_TOLERANCE: f32 = 0.1;

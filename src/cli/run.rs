@@ -10,11 +10,12 @@ use clap::Args;
 
 use super::select::Selection;
 use super::{load_levels_with, out, output, Harness, ImportArgs};
+use crate::config::RunConfig;
 use crate::metrics::{evaluate_recorded, evaluate_with, MetricRow, RecordError};
 use crate::parallel;
 use crate::report::summary_rows::SummaryRows;
 use crate::report::{detail_table, summary_table_in, Coverage};
-use crate::scenario::{RunConfig, Runner};
+use crate::scenario::Runner;
 use crate::trace::RowStore;
 
 #[derive(Args, Default)]

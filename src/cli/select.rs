@@ -7,8 +7,8 @@ use clap::Args;
 
 use super::Harness;
 use crate::backend::Precision;
+use crate::config::RunConfig;
 use crate::level::Level;
-use crate::scenario::RunConfig;
 
 /// Which configurations and scenarios a command runs, and on how many threads.
 #[derive(Args, Default, Clone)]

@@ -12,6 +12,8 @@
 use std::collections::HashMap;
 
 use glam::Vec2;
+
+use crate::oneway::OneWayCheck;
 use parry2d::math::Pose;
 use parry2d::query::{cast_shapes, contact, ShapeCastHit, ShapeCastOptions};
 use parry2d::shape::{Cuboid, SharedShape};
@@ -22,6 +24,10 @@ use crate::shape::CharacterShape;
 
 /// How far below the feet the ground is looked for, in tiles.
 pub const GROUND_SEARCH: f32 = 2.0;
+
+/// How far below a one-way top a shape's feet may be and still stand on it, for the ground
+/// the metrics find: f32 rounding of a position of a few tiles, no more.
+const ONE_WAY_ROUNDING: f32 = 1e-3;
 
 /// The level's ground geometry for one character shape.
 pub struct Ground<'a> {
@@ -351,8 +357,15 @@ impl<'a> Ground<'a> {
         for i in i0..=i1 {
             for j in (j_low..=j_top).rev() {
                 let origin = Vec2::new(i as f32, j as f32);
-                // One-way tops (platforms, ladder tops) are ground for a shape above them.
-                let one_way_below = self.level.is_one_way(i, j) && feet.y >= j as f32 + 1.0 - 1e-3;
+                // One-way tops (platforms, ladder tops) are ground for a shape above them: the
+                // shared one-way rule, with rounding's tolerance.
+                let above = OneWayCheck {
+                    feet: feet.y,
+                    tolerance: ONE_WAY_ROUNDING,
+                    passes_all: false,
+                    dropping_through: None,
+                };
+                let one_way_below = self.level.is_one_way(i, j) && above.blocks(j as f32 + 1.0);
                 let (tile_pose, tile_shape): (Pose, &dyn parry2d::shape::Shape) =
                     match self.level.tile(i, j) {
                         _ if one_way_below => (

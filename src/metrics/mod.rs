@@ -189,7 +189,7 @@ fn standing(r: &TraceRow) -> bool {
 pub(crate) fn timing_row(
     level: &Level,
     spec: &ScenarioSpec,
-    run: &crate::scenario::RunConfig,
+    run: &crate::config::RunConfig,
     ns: f64,
 ) -> MetricRow {
     MetricRow {
@@ -218,7 +218,7 @@ pub struct Evaluation {
 pub fn evaluate(
     level: &Level,
     spec: &ScenarioSpec,
-    run: &crate::scenario::RunConfig,
+    run: &crate::config::RunConfig,
 ) -> Result<Evaluation, crate::backend::BackendError> {
     evaluate_with(&mut crate::scenario::Runner::new(level), spec, run)
 }
@@ -227,7 +227,7 @@ pub fn evaluate(
 pub fn evaluate_with(
     runner: &mut crate::scenario::Runner,
     spec: &ScenarioSpec,
-    run: &crate::scenario::RunConfig,
+    run: &crate::config::RunConfig,
 ) -> Result<Evaluation, crate::backend::BackendError> {
     let trace = runner.run(spec, run)?;
     let metrics = with_context(runner.level(), spec, run, &trace, compute);
@@ -276,7 +276,7 @@ pub enum RecordError {
 pub fn evaluate_recorded(
     runner: &mut crate::scenario::Runner,
     spec: &ScenarioSpec,
-    run: &crate::scenario::RunConfig,
+    run: &crate::config::RunConfig,
     mut store: RowStore,
 ) -> Result<Recorded, RecordError> {
     // Row 0 and one per step; a time step out of range is refused before anything is reserved.
@@ -304,7 +304,7 @@ pub fn evaluate_recorded(
 pub(crate) fn with_context<R>(
     level: &Level,
     spec: &ScenarioSpec,
-    run: &crate::scenario::RunConfig,
+    run: &crate::config::RunConfig,
     trace: &Trace,
     f: impl FnOnce(&Context) -> R,
 ) -> R {

@@ -8,7 +8,8 @@ use engine::prelude::{
     RigidBodySet,
 };
 
-pub use crate::level::outlines::{one_way_rects, slope_outlines, solid_rects, ColliderBuilding};
+pub use crate::level::outlines::ColliderBuilding;
+use crate::level::outlines::{one_way_rects, slope_outlines, solid_rects};
 use crate::level::Level;
 
 /// The level's static colliders and the broad phase that holds them. Built once per level and

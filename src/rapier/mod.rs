@@ -30,7 +30,7 @@ mod presets;
 pub use crate::backend::Precision;
 use crate::motion::MotionParams;
 pub use crate::shape::CharacterShape;
-pub use backend::{build_shape, controller, pose, Move, RapierBackend};
+pub use backend::{controller, pose, Move, RapierBackend};
 pub use colliders::{one_way_top, ColliderBuilding, StaticWorld};
 pub use platforms::Platforms;
 

@@ -5,10 +5,11 @@ use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
 use crate::backend::{BackendError, Precision};
+use crate::config::RunConfig;
 use crate::level::{Platform, ScenarioSpec};
 use crate::metrics::seams::STUCK_FRACTION;
 use crate::metrics::{commanded_steps, evaluate_with, MetricRow};
-use crate::scenario::{effective_params, input_script, RunConfig, Runner};
+use crate::scenario::{effective_params, input_script, Runner};
 
 use super::definition::{
     dimensions, pairs, Case, BASE, F32_OFFSET_LIMIT, JUMP_TOLERANCE, PROGRESS_BAND,

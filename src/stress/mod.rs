@@ -23,6 +23,7 @@ pub use execution::{
     points, points_with, run_point, stress_matrix, stress_matrix_on, stress_matrix_with, Point,
     StressRow,
 };
-pub use probes::{check_base_dt, ProbeTimingError};
+pub use probes::check_base_dt;
+pub use probes::ProbeTimingError;
 pub use verdicts::{cells, envelope, reach, verdicts, Cell, Edge, Envelope, Reach, Verdict};
 pub use world::{world_verdicts, WorldVerdict};

@@ -35,6 +35,7 @@ use super::resolve::{shove, Obstacles};
 use super::space::{Rect, Space};
 use super::{Character, RiderFollow};
 use crate::level::Platform;
+use crate::oneway::OneWayCheck;
 
 /// A platform's motion and where it is.
 pub(crate) struct PlatformState {
@@ -191,8 +192,14 @@ impl<C: super::space::Coord> Platforms<C> {
                 if o[0] <= eps || o[1] <= eps {
                     continue;
                 }
-                // A one-way platform only pushes what stood entirely above it.
-                if p.spec.one_way && c.body.at[1] < old.max[1] - eps {
+                // A one-way platform only pushes what stood entirely above it (the shared rule).
+                let stood_above = OneWayCheck {
+                    feet: c.body.at[1],
+                    tolerance: eps,
+                    passes_all: false,
+                    dropping_through: None,
+                };
+                if p.spec.one_way && !stood_above.blocks(old.max[1]) {
                     continue;
                 }
                 // Push along the axis the platform moved on that needs the smaller push.

@@ -5,8 +5,8 @@
 use crate::common;
 
 use common::{builtin_levels, evaluate_all, level, rows, value};
+use platbench::config::RunConfig;
 use platbench::metrics::evaluate;
-use platbench::scenario::RunConfig;
 use platbench::sweep::{RiderFollow, SweepConfig, INTEGER_SUPPORTED};
 
 const PER_TILE: u32 = 32;

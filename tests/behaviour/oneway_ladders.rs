@@ -15,9 +15,9 @@ use crate::common;
 use common::{evaluate_all, level, rows, some_rows};
 use glam::Vec2;
 use platbench::backend::CharacterSpec;
+use platbench::config::RunConfig;
 use platbench::motion::{Input, MotionParams};
 use platbench::rapier::{CharacterShape, ColliderBuilding};
-use platbench::scenario::RunConfig;
 use platbench::sweep::{SweepBackend, SweepConfig};
 
 fn every_config() -> Vec<RunConfig> {

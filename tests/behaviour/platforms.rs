@@ -12,9 +12,9 @@
 use crate::common;
 
 use common::{evaluate_all, level, rows, some_rows, value};
+use platbench::config::RunConfig;
 use platbench::metrics::Evaluation;
 use platbench::rapier::{CharacterShape, ColliderBuilding};
-use platbench::scenario::RunConfig;
 use platbench::sweep::{RiderFollow, SweepConfig};
 
 fn find<'a>(evals: &'a [(String, Evaluation)], name: &str) -> &'a Evaluation {

@@ -5,8 +5,9 @@
 use crate::common;
 
 use common::{builtin_levels, evaluate_all, level, rows, some_rows};
+use platbench::config::RunConfig;
 use platbench::motion::{discrete_apex, jump_speed, JumpMode, MotionParams};
-use platbench::scenario::{effective_params, RunConfig};
+use platbench::scenario::effective_params;
 use platbench::sweep::SweepConfig;
 
 #[test]

@@ -249,8 +249,9 @@ fn the_summary_of_the_kept_rows_is_the_summary_of_every_row_on_the_built_in_set(
 /// in-memory run. `platbench run` measures a run of more than `SPILL_ROWS` rows this way.
 #[test]
 fn a_spilled_run_measures_bit_for_bit_as_one_held_in_memory() {
+    use platbench::config::RunConfig;
     use platbench::metrics::{evaluate_recorded, evaluate_with};
-    use platbench::scenario::{RunConfig, Runner};
+    use platbench::scenario::Runner;
     use platbench::trace::RowStore;
 
     let mut configs: Vec<RunConfig> = Vec::new();

@@ -389,7 +389,7 @@ fn the_sweep_in_f64_holds_to_1e13_tiles_and_breaks_where_its_spacing_swallows_a_
 }
 
 /// The `carry_no_drift` row of `run` alone at `offset` (the base case elsewhere).
-fn carry_at(run: &platbench::scenario::RunConfig, offset: f64) -> StressRow {
+fn carry_at(run: &platbench::config::RunConfig, offset: f64) -> StressRow {
     use platbench::stress::{run_point, Point, BASE};
     let point = Point {
         run: run.clone(),
@@ -429,11 +429,7 @@ fn the_sweep_in_f64_carries_its_riders_at_1e13_tiles_where_the_f32_sweep_loses_t
 
 /// The point of the stress matrix for `run` at the combination cell `offset x dt` (failing if the
 /// matrix has no such cell for it), run alone: its rows.
-fn f64_offset_dt_cell(
-    run: &platbench::scenario::RunConfig,
-    offset: f64,
-    dt: f64,
-) -> Vec<StressRow> {
+fn f64_offset_dt_cell(run: &platbench::config::RunConfig, offset: f64, dt: f64) -> Vec<StressRow> {
     use platbench::stress::{points, run_point};
     let point = points(std::slice::from_ref(run))
         .into_iter()

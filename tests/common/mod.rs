@@ -4,9 +4,9 @@
 #[path = "../../compare/builtin.rs"]
 mod builtin;
 
+use platbench::config::RunConfig;
 use platbench::level::{parse_level, Level};
 use platbench::metrics::{evaluate, Evaluation, MetricRow};
-use platbench::scenario::RunConfig;
 
 /// Every built-in level, parsed.
 pub fn builtin_levels() -> Vec<Level> {

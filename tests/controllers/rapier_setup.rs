@@ -16,6 +16,7 @@ use crate::common;
 use common::{builtin_levels, evaluate_all, level, rows, value};
 use glam::Vec2;
 use platbench::backend::CharacterSpec;
+use platbench::config::RunConfig;
 use platbench::level::{Level, Tile};
 use platbench::metrics::Evaluation;
 use platbench::motion::{Input, MotionParams};
@@ -23,7 +24,6 @@ use platbench::rapier::{
     CharacterShape, ColliderBuilding, GroundedMove, Length, PlatformCarry, PlatformOrder,
     RapierBackend, RapierConfig,
 };
-use platbench::scenario::RunConfig;
 use platbench::sweep::SweepConfig;
 use rapier2d::prelude::ColliderBuilder;
 

@@ -10,11 +10,11 @@ use glam::Vec2;
 
 use platbench::backend::{BackendError, CharacterId, CharacterState, DeclaredContact};
 use platbench::cli::{run_cli, Harness};
+use platbench::config::RunConfig;
 use platbench::controller::{Controller, Setup};
 use platbench::level::Features;
 use platbench::motion::{Contacts, Input, MotionParams, MotionState};
 use platbench::registry::Registry;
-use platbench::scenario::RunConfig;
 
 /// A toy controller: the shared motion, and a floor at the highest solid top of the level
 /// (nothing else collides).

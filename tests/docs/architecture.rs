@@ -1,99 +1,198 @@
-//! The library's layers point one way (ARCHITECTURE.md): every `crate::` path in a module of
-//! `src/` names a module of its own layer or a lower one, but for the known debts listed here,
-//! which may only shrink.
+//! The library's layers point one way (ARCHITECTURE.md): every `crate::`, `$crate::` and
+//! `super::` path in a module of `src/` names a module of its own layer or a lower one; modules of
+//! one layer never import each other in a cycle; and the table lists every module of `src/`.
 
-use std::collections::BTreeSet;
-use std::path::Path;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
 
-/// Each top-level module's layer, as ARCHITECTURE.md's table gives it.
-const LAYERS: &[(&str, u32)] = &[
-    ("limits", 0),
-    ("level", 1),
-    ("builtin", 1),
-    ("motion", 2),
-    ("ladder", 2),
-    ("shape", 2),
-    ("oneway", 2),
-    ("backend", 3),
-    ("config", 3),
-    ("controller", 3),
-    ("sweep", 4),
-    ("rapier", 4),
-    ("box2d", 4),
-    ("scenario", 5),
-    ("trace", 5),
-    ("parallel", 5),
-    ("metrics", 6),
-    ("registry", 7),
-    ("stress", 8),
-    ("tradeoff", 8),
-    ("report", 9),
-    ("suite", 9),
-    ("cli", 10),
-    ("prelude", 11),
-];
-
-/// The imports that point up (`from -> to`) and are known: none. The list may only shrink; an
-/// upward import is a design change to argue in ARCHITECTURE.md, not a line to add here.
-const KNOWN: &[&str] = &[];
-
-fn layer(module: &str) -> Option<u32> {
-    LAYERS.iter().find(|(m, _)| *m == module).map(|(_, l)| *l)
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The identifier `s` starts with (after spaces).
-fn leading_name(s: &str) -> String {
-    s.trim()
-        .chars()
-        .take_while(|c| c.is_alphanumeric() || *c == '_')
-        .collect()
-}
-
-/// The top-level modules `text` names through `crate::` (comments left out).
-fn crate_refs(text: &str) -> BTreeSet<String> {
-    let mut out = BTreeSet::new();
+/// Each top-level module's layer, read from ARCHITECTURE.md's table (`| N | `name` | ... |`).
+fn layers() -> BTreeMap<String, u32> {
+    let text = std::fs::read_to_string(root().join("ARCHITECTURE.md")).unwrap();
+    let mut out = BTreeMap::new();
     for line in text.lines() {
-        let code = line.split("//").next().unwrap_or("");
-        let mut rest = code;
-        while let Some(i) = rest.find("crate::") {
-            rest = &rest[i + "crate::".len()..];
-            if let Some(group) = rest.strip_prefix('{') {
-                // `use crate::{a, b::c}` on one line.
-                let inner = group.split('}').next().unwrap_or("");
-                out.extend(inner.split(',').map(leading_name).filter(|n| !n.is_empty()));
-            } else {
-                let name = leading_name(rest);
-                if !name.is_empty() {
-                    out.insert(name);
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        if cells.len() < 4 {
+            continue;
+        }
+        if let (Ok(layer), Some(name)) = (
+            cells[1].parse::<u32>(),
+            cells[2].strip_prefix('`').and_then(|c| c.strip_suffix('`')),
+        ) {
+            assert!(
+                out.insert(name.to_string(), layer).is_none(),
+                "ARCHITECTURE.md lists {name} twice"
+            );
+        }
+    }
+    assert!(!out.is_empty(), "ARCHITECTURE.md has no layer table");
+    out
+}
+
+/// `text` with comments, string literals and char literals blanked out, so that only code is
+/// read (a `//` inside a string does not hide the rest of its line).
+fn code_only(text: &str) -> String {
+    let b: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        let next = b.get(i + 1).copied();
+        if c == '/' && next == Some('/') {
+            while i < b.len() && b[i] != '\n' {
+                i += 1;
+            }
+        } else if c == '/' && next == Some('*') {
+            i += 2;
+            while i + 1 < b.len() && !(b[i] == '*' && b[i + 1] == '/') {
+                i += 1;
+            }
+            i += 2;
+        } else if c == 'r' && (next == Some('"') || next == Some('#')) && !ident_before(&b, i) {
+            // A raw string: r"..." or r#"..."#.
+            let mut j = i + 1;
+            let mut hashes = 0;
+            while b.get(j) == Some(&'#') {
+                hashes += 1;
+                j += 1;
+            }
+            if b.get(j) != Some(&'"') {
+                out.push(c);
+                i += 1;
+                continue;
+            }
+            j += 1;
+            while j < b.len()
+                && !(b[j] == '"' && (0..hashes).all(|k| b.get(j + 1 + k) == Some(&'#')))
+            {
+                j += 1;
+            }
+            i = j + 1 + hashes;
+            out.push(' ');
+        } else if c == '"' {
+            i += 1;
+            while i < b.len() && b[i] != '"' {
+                i += if b[i] == '\\' { 2 } else { 1 };
+            }
+            i += 1;
+            out.push(' ');
+        } else if c == '\'' && (b.get(i + 2) == Some(&'\'') || next == Some('\\')) {
+            // A char literal ('x' or '\n'), not a lifetime.
+            i += 1;
+            while i < b.len() && b[i] != '\'' {
+                i += if b[i] == '\\' { 2 } else { 1 };
+            }
+            i += 1;
+            out.push(' ');
+        } else {
+            out.push(c);
+            i += 1;
+        }
+    }
+    out
+}
+
+fn ident_before(b: &[char], i: usize) -> bool {
+    i > 0 && (b[i - 1].is_alphanumeric() || b[i - 1] == '_')
+}
+
+/// Identifiers and the punctuation a path is made of (`::`, `{`, `}`, `,`), in order.
+fn tokens(code: &str) -> Vec<String> {
+    let b: Vec<char> = code.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        if c.is_alphanumeric() || c == '_' || c == '$' {
+            let s = i;
+            while i < b.len() && (b[i].is_alphanumeric() || b[i] == '_' || b[i] == '$') {
+                i += 1;
+            }
+            out.push(b[s..i].iter().collect());
+        } else if c == ':' && b.get(i + 1) == Some(&':') {
+            out.push("::".into());
+            i += 2;
+        } else {
+            if matches!(c, '{' | '}' | ',' | ';') {
+                out.push(c.to_string());
+            } else if !c.is_whitespace() {
+                out.push("#".into());
+            }
+            i += 1;
+        }
+    }
+    out
+}
+
+/// The first segments of the paths that start at token `i` (just after a `::`): one name, or
+/// each item's first name of a `{...}` group, nested groups included.
+fn first_segments(t: &[String], i: usize) -> Vec<String> {
+    match t.get(i).map(String::as_str) {
+        Some("{") => {
+            let mut out = Vec::new();
+            let mut depth = 0;
+            let mut expect = true;
+            for tok in &t[i..] {
+                match tok.as_str() {
+                    "{" => {
+                        depth += 1;
+                        expect = depth == 1;
+                    }
+                    "}" => {
+                        depth -= 1;
+                        if depth == 0 {
+                            break;
+                        }
+                    }
+                    "," => expect = depth == 1,
+                    name if expect => {
+                        out.push(name.to_string());
+                        expect = false;
+                    }
+                    _ => {}
                 }
             }
+            out
         }
+        Some(name) => vec![name.to_string()],
+        None => Vec::new(),
     }
-    out
 }
 
-/// A multi-line `use crate::{` group: its top-level names.
-fn grouped_refs(text: &str) -> BTreeSet<String> {
+/// The top-level modules a file of module path `module` (e.g. `["sweep", "resolve"]`) names
+/// through `crate::`, `$crate::` and `super::` paths.
+fn refs(text: &str, module: &[String]) -> BTreeSet<String> {
+    let t = tokens(&code_only(text));
     let mut out = BTreeSet::new();
-    let mut rest = text;
-    while let Some(i) = rest.find("use crate::{") {
-        rest = &rest[i + "use crate::{".len()..];
-        let inner = rest.split('}').next().unwrap_or("");
-        for part in inner.split(',') {
-            let part = part
-                .lines()
-                .map(|l| l.split("//").next().unwrap_or(""))
-                .collect::<String>();
-            let name = leading_name(&part);
-            if !name.is_empty() {
-                out.insert(name);
+    let mut i = 0;
+    while i + 1 < t.len() {
+        let starts = i == 0 || t[i - 1] != "::";
+        if starts && (t[i] == "crate" || t[i] == "$crate") && t[i + 1] == "::" {
+            out.extend(first_segments(&t, i + 2));
+        } else if starts && t[i] == "super" && t[i + 1] == "::" {
+            let mut ups = 1;
+            let mut j = i + 2;
+            while t.get(j).map(String::as_str) == Some("super")
+                && t.get(j + 1).map(String::as_str) == Some("::")
+            {
+                ups += 1;
+                j += 2;
+            }
+            // `super` from a file's module goes up `ups` levels; reaching the crate root, the
+            // next segment is a top-level module.
+            if ups >= module.len() {
+                out.extend(first_segments(&t, j));
             }
         }
+        i += 1;
     }
     out
 }
 
-fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for e in std::fs::read_dir(dir).unwrap() {
         let p = e.unwrap().path();
         if p.is_dir() {
@@ -104,32 +203,53 @@ fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
     }
 }
 
-/// Every import between two top-level modules of `src/`: `(from, to)`.
-fn module_imports() -> BTreeSet<(String, String)> {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
-    let mut edges = BTreeSet::new();
-    for f in &files {
-        let rel = f.strip_prefix(&src).unwrap();
-        let first = rel
-            .components()
-            .next()
-            .unwrap()
-            .as_os_str()
-            .to_string_lossy();
-        let own = first.trim_end_matches(".rs").to_string();
-        if own == "lib" {
-            continue;
+/// A file's module path under `src/`: `sweep/resolve.rs` is `["sweep", "resolve"]`,
+/// `sweep/mod.rs` is `["sweep"]`.
+fn module_path(rel: &Path) -> Vec<String> {
+    let mut parts: Vec<String> = rel
+        .iter()
+        .map(|c| c.to_string_lossy().trim_end_matches(".rs").to_string())
+        .collect();
+    if parts.last().is_some_and(|p| p == "mod") {
+        parts.pop();
+    }
+    parts
+}
+
+/// Every import between two top-level modules: `(from, to)`. Files `lib.rs` pulls in with
+/// `#[path]` from outside `src/` count as the module they are declared as.
+fn module_imports(layers: &BTreeMap<String, u32>) -> BTreeSet<(String, String)> {
+    let src = root().join("src");
+    let mut files: Vec<(PathBuf, Vec<String>)> = Vec::new();
+    let mut found = Vec::new();
+    rust_files(&src, &mut found);
+    for f in found {
+        let module = module_path(f.strip_prefix(&src).unwrap());
+        if module != ["lib"] {
+            files.push((f, module));
         }
+    }
+    let lib = std::fs::read_to_string(src.join("lib.rs")).unwrap();
+    let lines: Vec<&str> = lib.lines().collect();
+    for (k, line) in lines.iter().enumerate() {
+        if let Some(path) = line.trim().strip_prefix("#[path = \"") {
+            let path = path.trim_end_matches("\"]");
+            let decl = lines[k + 1];
+            let name = decl.rsplit("mod ").next().unwrap().trim_end_matches(';');
+            files.push((src.join(path), vec![name.to_string()]));
+        }
+    }
+    let mut edges = BTreeSet::new();
+    for (f, module) in &files {
+        let own = &module[0];
         assert!(
-            layer(&own).is_some(),
-            "src/{own}: add it to ARCHITECTURE.md and LAYERS"
+            layers.contains_key(own),
+            "src/{own}: add it to ARCHITECTURE.md's table"
         );
         let text = std::fs::read_to_string(f).unwrap();
-        for m in crate_refs(&text).union(&grouped_refs(&text)) {
-            if *m != own && layer(m).is_some() {
-                edges.insert((own.clone(), m.clone()));
+        for m in refs(&text, module) {
+            if m != *own && layers.contains_key(&m) {
+                edges.insert((own.clone(), m));
             }
         }
     }
@@ -137,49 +257,41 @@ fn module_imports() -> BTreeSet<(String, String)> {
 }
 
 #[test]
-fn imports_point_down_the_layers_but_for_the_known_debts() {
-    let up: BTreeSet<String> = module_imports()
+fn imports_point_down_the_layers() {
+    let layers = layers();
+    let up: Vec<String> = module_imports(&layers)
         .into_iter()
-        .filter(|(from, to)| layer(to) > layer(from))
+        .filter(|(from, to)| layers[to] > layers[from])
         .map(|(from, to)| format!("{from} -> {to}"))
         .collect();
-    let known: BTreeSet<String> = KNOWN.iter().map(|s| s.to_string()).collect();
-    let new: Vec<&String> = up.difference(&known).collect();
     assert!(
-        new.is_empty(),
-        "imports that point up the layers (ARCHITECTURE.md): {new:?}"
+        up.is_empty(),
+        "imports that point up the layers (ARCHITECTURE.md): {up:?}"
     );
-    let gone: Vec<&String> = known.difference(&up).collect();
-    assert!(
-        gone.is_empty(),
-        "known upward imports no longer there: remove them from KNOWN: {gone:?}"
-    );
-}
-
-/// The modules `from` reaches through imports of its own layer.
-fn reach_within_layer(edges: &BTreeSet<(String, String)>, from: &str) -> BTreeSet<String> {
-    let mut seen = BTreeSet::new();
-    let mut todo = vec![from.to_string()];
-    while let Some(m) = todo.pop() {
-        for (a, b) in edges {
-            if *a == m && layer(a) == layer(b) && seen.insert(b.clone()) {
-                todo.push(b.clone());
-            }
-        }
-    }
-    seen
 }
 
 #[test]
 fn modules_of_one_layer_import_each_other_one_way() {
-    // Upward imports are the test above's; a cycle can also close inside a layer (backend and
-    // controller both at layer 3), which the layer numbers alone do not catch.
-    let edges = module_imports();
-    let cyclic: Vec<&str> = LAYERS
-        .iter()
-        .map(|(m, _)| *m)
-        .filter(|m| reach_within_layer(&edges, m).contains(*m))
+    // A cycle can also close inside a layer (backend and controller both at layer 3), which the
+    // layer numbers alone do not catch.
+    let layers = layers();
+    let edges: Vec<(String, String)> = module_imports(&layers)
+        .into_iter()
+        .filter(|(a, b)| layers[a] == layers[b])
         .collect();
+    let reach = |from: &str| {
+        let mut seen = BTreeSet::new();
+        let mut todo = vec![from.to_string()];
+        while let Some(m) = todo.pop() {
+            for (a, b) in &edges {
+                if *a == m && seen.insert(b.clone()) {
+                    todo.push(b.clone());
+                }
+            }
+        }
+        seen
+    };
+    let cyclic: Vec<&String> = layers.keys().filter(|m| reach(m).contains(*m)).collect();
     assert!(
         cyclic.is_empty(),
         "modules of one layer that import each other in a cycle: {cyclic:?}"
@@ -187,21 +299,64 @@ fn modules_of_one_layer_import_each_other_one_way() {
 }
 
 #[test]
-fn the_check_sees_an_upward_import() {
-    // The reader finds each form of path the check relies on.
-    let text = "use crate::metrics::MetricRow;\nuse crate::{scenario::RunConfig, level::Level};\nfn f() { crate::tradeoff::x(); } // crate::report\n";
-    let refs = crate_refs(text);
-    for m in ["metrics", "scenario", "level", "tradeoff"] {
-        assert!(refs.contains(m), "{m}: {refs:?}");
+fn the_table_lists_the_modules_lib_rs_declares() {
+    let lib = std::fs::read_to_string(root().join("src/lib.rs")).unwrap();
+    let declared: BTreeSet<String> = lib
+        .lines()
+        .filter_map(|l| l.trim().rsplit_once("mod "))
+        .map(|(_, name)| name.trim_end_matches(';').to_string())
+        .collect();
+    let listed: BTreeSet<String> = layers().into_keys().collect();
+    assert_eq!(declared, listed, "src/lib.rs against ARCHITECTURE.md");
+}
+
+#[test]
+fn the_reader_sees_every_form_of_path() {
+    let m = |s: &[&str]| s.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    let set = |s: &[&str]| s.iter().map(|x| x.to_string()).collect::<BTreeSet<_>>();
+    let top = m(&["sweep", "resolve"]);
+    for (text, want) in [
+        ("use crate::metrics::MetricRow;", set(&["metrics"])),
+        (
+            "use crate::{scenario::Runner, level::Level};",
+            set(&["level", "scenario"]),
+        ),
+        // The cases a line-by-line reader missed: a nested group, a group over lines, a
+        // `super::` chain to the crate root, a `//` in a string, spaces around `::`.
+        (
+            "use crate::{level::{Level, Tile}, report::Table};",
+            set(&["level", "report"]),
+        ),
+        (
+            "use crate::{\n    level::{Level, Tile},\n    report::Table,\n};",
+            set(&["level", "report"]),
+        ),
+        ("use super::super::report::Table;", set(&["report"])),
+        (
+            "let u = \"http://x\"; crate::report::f();",
+            set(&["report"]),
+        ),
+        ("use crate :: report :: Table;", set(&["report"])),
+        (
+            "macro_rules! m { () => { $crate::trace::x() } }",
+            set(&["trace"]),
+        ),
+        // Not imports: comments, strings, a `super` inside the module, a path's inner segment.
+        (
+            "// crate::report\n/* crate::cli */ let s = \"crate::cli\";",
+            set(&[]),
+        ),
+        (
+            "use super::space::Space; let c = 'c'; fn f<'a>(x: &'a u8) {}",
+            set(&[]),
+        ),
+        ("use glam::crate_like::x; use other::super_thing;", set(&[])),
+    ] {
+        assert_eq!(refs(text, &top), want, "{text}");
     }
-    assert!(!refs.contains("report"), "a comment is not an import");
-    let grouped =
-        grouped_refs("use crate::{\n    backend::X,\n    // crate::cli\n    motion::Y,\n};\n");
+    // From a module's own `mod.rs`, one `super` reaches the root.
     assert_eq!(
-        grouped,
-        ["backend", "motion"]
-            .iter()
-            .map(|s| s.to_string())
-            .collect()
+        refs("use super::report::X;", &m(&["sweep"])),
+        set(&["report"])
     );
 }

@@ -12,10 +12,10 @@
 ))]
 
 use glam::Vec2;
+use platbench::config::RunConfig;
 use platbench::level::{parse_level, InputEvent, Level, ScenarioSpec, Tile};
 use platbench::metrics::evaluate;
 use platbench::rapier::{CharacterShape, ColliderBuilding};
-use platbench::scenario::RunConfig;
 use platbench::sweep::SweepConfig;
 use proptest::prelude::*;
 
