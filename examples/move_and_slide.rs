@@ -31,7 +31,7 @@ use parry2d::query::{self, ShapeCastOptions};
 use parry2d::shape::SharedShape;
 
 use platbench::level::outlines::{one_way_rects, solid_rects, ColliderBuilding};
-use platbench::oneway::OneWayCheck;
+use platbench::oneway::{drop_over, drop_start, OneWayCheck};
 use platbench::prelude::*;
 
 /// The backend's name, as in CSV files.
@@ -402,9 +402,7 @@ impl MoveAndSlide {
         }
         let was_on_floor = c.motion.grounded;
         let desired = c.motion.integrate(&self.params, input, dt);
-        if c.motion.drop_through {
-            c.drop_top = c.one_way_ground;
-        }
+        c.drop_top = drop_start(c.drop_top, c.motion.drop_through, c.one_way_ground);
         let c = &self.characters[id];
         let feet_at_start = c.pos.y;
         let mut pos = c.pos;
@@ -481,9 +479,7 @@ impl MoveAndSlide {
         } else {
             None
         };
-        if c.drop_top.is_some_and(|top| c.pos.y + c.size.y < top) {
-            c.drop_top = None;
-        }
+        c.drop_top = drop_over(c.drop_top, c.pos.y + c.size.y);
         c.ground_normal = match floor {
             Some((n, _)) if contacts.ground => n,
             _ => Vec2::ZERO,

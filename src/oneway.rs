@@ -46,6 +46,27 @@ impl<T: Copy + PartialOrd + Sub<Output = T>> OneWayCheck<T> {
     }
 }
 
+/// A drop through a one-way platform, the other half of the rule: the drop input on one-way
+/// ground starts one through the platform stood on (`one_way_ground`, its top), which the
+/// character then passes ([`OneWayCheck::dropping_through`]) until [`drop_over`].
+pub fn drop_start<T: Copy>(
+    drop: Option<T>,
+    drop_input: bool,
+    one_way_ground: Option<T>,
+) -> Option<T> {
+    if drop_input {
+        one_way_ground
+    } else {
+        drop
+    }
+}
+
+/// The drop after a step that left the character's head (its box's top) at `head`: over once
+/// the head is below the platform's top, so the character is entirely under it.
+pub fn drop_over<T: Copy + PartialOrd>(drop: Option<T>, head: T) -> Option<T> {
+    drop.filter(|top| head.partial_cmp(top) != Some(std::cmp::Ordering::Less))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -76,5 +97,22 @@ mod tests {
             ..c(5.0)
         };
         assert!(drop.blocks(5.0));
+    }
+
+    #[test]
+    fn a_drop_starts_on_one_way_ground_and_ends_below_the_top() {
+        assert_eq!(drop_start(None, true, Some(3.0)), Some(3.0));
+        assert_eq!(drop_start(Some(3.0), false, None), Some(3.0), "it lasts");
+        assert_eq!(
+            drop_start::<f32>(None, true, None),
+            None,
+            "not on one-way ground"
+        );
+        assert_eq!(
+            drop_over(Some(3.0), 3.5),
+            Some(3.0),
+            "the head is still above"
+        );
+        assert_eq!(drop_over(Some(3.0), 2.9), None);
     }
 }

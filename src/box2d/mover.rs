@@ -8,7 +8,7 @@ use boxdd::{clip_vector, solve_planes, CollisionPlane, Position, QueryFilter, Sh
 
 use crate::backend::CharacterId;
 use crate::motion::{Contacts, Input};
-use crate::oneway::OneWayCheck;
+use crate::oneway::{drop_over, drop_start, OneWayCheck};
 
 use super::{Box2dBackend, PogoShape, ShapeTag, ONE_WAY, PLATFORM, SOLID};
 
@@ -144,9 +144,7 @@ impl Box2dBackend {
             );
         }
         let mut desired = c.motion.integrate(&self.params, input, dt);
-        if c.motion.drop_through {
-            c.drop_top = c.one_way_ground;
-        }
+        c.drop_top = drop_start(c.drop_top, c.motion.drop_through, c.one_way_ground);
         let on_ladder = c.motion.on_ladder;
         let may_land_one_way = !on_ladder && !c.motion.drop_through;
         let mut mask = SOLID | PLATFORM;
@@ -296,9 +294,7 @@ impl Box2dBackend {
         } else {
             None
         };
-        if c.drop_top.is_some_and(|top| c.pos.y + c.size.y < top) {
-            c.drop_top = None;
-        }
+        c.drop_top = drop_over(c.drop_top, c.pos.y + c.size.y);
         c.ground_normal = match hit {
             Some(h) if contacts.ground => h.normal,
             _ => Vec2::ZERO,

@@ -17,7 +17,7 @@ use super::{
 use crate::backend::{require_supported, BackendError, CharacterId, CharacterSpec, CharacterState};
 use crate::level::{Features, Level};
 use crate::motion::{Contacts, Input, MotionParams, MotionState};
-use crate::oneway::OneWayCheck;
+use crate::oneway::{drop_over, drop_start, OneWayCheck};
 use crate::shape::ShapeParams;
 use engine::control::{CharacterAutostep, CharacterLength, KinematicCharacterController};
 use engine::parry::math::Pose;
@@ -334,9 +334,7 @@ impl RapierBackend {
             let t0 = self.frame as f64 * dt as f64;
             desired += p.displacement(i as usize, t0, t0 + dt as f64);
         }
-        if c.motion.drop_through {
-            c.drop_top = c.one_way_ground;
-        }
+        c.drop_top = drop_start(c.drop_top, c.motion.drop_through, c.one_way_ground);
         let m = self.move_shape(id, desired, dt);
         let c = &mut self.characters[id];
         c.pos += m.translation;
@@ -359,9 +357,7 @@ impl RapierBackend {
             _ => None,
         };
         // The drop ends once the character is wholly below the platform it left.
-        if c.drop_top.is_some_and(|top| c.pos.y + s(c.size.y) < top) {
-            c.drop_top = None;
-        }
+        c.drop_top = drop_over(c.drop_top, c.pos.y + s(c.size.y));
         c.ground_normal = if contacts.ground {
             m.ground_normal.unwrap_or(Vect::Y)
         } else {
