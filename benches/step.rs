@@ -5,7 +5,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use platbench::backend::{Backend, BackendError, CharacterSpec};
+use platbench::backend::{Backend, CharacterSpec};
 use platbench::config::RunConfig;
 use platbench::level::{parse_level, Level, ScenarioSpec};
 use platbench::scenario::{effective_params, input_script};
@@ -20,7 +20,7 @@ fn try_fresh(
     level: &Level,
     spec: &ScenarioSpec,
     run: &RunConfig,
-) -> Result<Box<dyn Backend>, BackendError> {
+) -> Result<Box<dyn Backend>, platbench::scenario::RunError> {
     let params = effective_params(&run.params, spec);
     platbench::scenario::Runner::new(level).build(run, &params, &[CharacterSpec::of(spec)])
 }

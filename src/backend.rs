@@ -37,8 +37,14 @@ impl CharacterSpec {
         }
     }
 
-    /// Checks that the spawn and velocity are finite and the size positive.
-    pub fn validate(&self) -> Result<(), BackendError> {
+    /// Checks that the spawn and velocity are finite and the size positive: the harness's check
+    /// of its own input, made before any controller is built.
+    pub fn validate(&self) -> Result<(), crate::motion::InvalidParam> {
+        let invalid = |name, value: Vec2, expected| crate::motion::InvalidParam {
+            name,
+            value: format!("{value:?}"),
+            expected,
+        };
         let finite = |v: Vec2| v.is_finite();
         if !finite(self.spawn) {
             return Err(invalid("spawn", self.spawn, "finite coordinates (tiles)"));

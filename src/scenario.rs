@@ -4,7 +4,7 @@
 use crate::backend::{Backend, BackendError, CharacterId, CharacterSpec, SharedGeometry};
 use crate::config::RunConfig;
 use crate::level::{Level, ScenarioSpec};
-use crate::motion::{Input, MotionParams};
+use crate::motion::{Input, InvalidParam, MotionParams};
 
 pub use crate::backend::DeclaredContact;
 use crate::trace::{Trace, TraceRow};
@@ -255,7 +255,7 @@ impl<'a> Runner<'a> {
         run: &RunConfig,
         params: &MotionParams,
         characters: &[CharacterSpec],
-    ) -> Result<Box<dyn Backend>, BackendError> {
+    ) -> Result<Box<dyn Backend>, RunError> {
         let settings = &*run.backend;
         crate::backend::require_supported(
             settings.backend(),
@@ -290,10 +290,11 @@ impl<'a> Runner<'a> {
                 },
                 e => e,
             })
+            .map_err(RunError::from)
     }
 
     /// Runs one scenario of the level on one configuration (see [`run_scenario`]).
-    pub fn run(&mut self, spec: &ScenarioSpec, run: &RunConfig) -> Result<Trace, BackendError> {
+    pub fn run(&mut self, spec: &ScenarioSpec, run: &RunConfig) -> Result<Trace, RunError> {
         check_dt(spec)?;
         let mut rows = Vec::with_capacity(step_count(spec) + 1);
         let mut trace = self.record(spec, run, &mut |r| rows.push(r))?;
@@ -309,7 +310,7 @@ impl<'a> Runner<'a> {
         spec: &ScenarioSpec,
         run: &RunConfig,
         sink: &mut dyn FnMut(TraceRow),
-    ) -> Result<Trace, BackendError> {
+    ) -> Result<Trace, RunError> {
         let params = effective_params(&run.params, spec);
         let backend = self.build(run, &params, &[CharacterSpec::of(spec)])?;
         drive(&self.level.name, spec, run, backend, sink)
@@ -324,7 +325,7 @@ pub(crate) fn time_scenario(
     spec: &ScenarioSpec,
     run: &RunConfig,
     repeats: usize,
-) -> Result<f64, BackendError> {
+) -> Result<f64, RunError> {
     check_dt(spec)?;
     let params = effective_params(&run.params, spec);
     let script = input_script(spec);
@@ -351,7 +352,7 @@ pub fn run_scenario(
     level: &Level,
     spec: &ScenarioSpec,
     run: &RunConfig,
-) -> Result<Trace, BackendError> {
+) -> Result<Trace, RunError> {
     Runner::new(level).run(spec, run)
 }
 
@@ -363,7 +364,7 @@ fn drive(
     run: &RunConfig,
     mut backend: Box<dyn Backend>,
     sink: &mut dyn FnMut(TraceRow),
-) -> Result<Trace, BackendError> {
+) -> Result<Trace, RunError> {
     check_dt(spec)?;
     let id: CharacterId = 0;
     let script = input_script(spec);
@@ -398,14 +399,36 @@ fn drive(
 
 /// Refuses a time step or duration outside the ranges of [`crate::limits`]: the frames a run
 /// takes (and the trace it records) are bounded before it starts.
-fn check_dt(spec: &ScenarioSpec) -> Result<(), BackendError> {
+fn check_dt(spec: &ScenarioSpec) -> Result<(), InvalidParam> {
     match crate::limits::check_timing(spec.duration as f64, spec.dt as f64) {
         Ok(_) => Ok(()),
-        Err(message) => Err(crate::backend::invalid(
-            "dt",
-            message.to_string(),
-            "a time step 1e-6..=1 s and a duration of 1 to 10,000,000 frames (crate::limits)",
-        )),
+        Err(message) => Err(InvalidParam {
+            name: "dt",
+            value: format!("{:?}", message.to_string()),
+            expected:
+                "a time step 1e-6..=1 s and a duration of 1 to 10,000,000 frames (crate::limits)",
+        }),
+    }
+}
+
+/// Why a run did not happen: the controller refused the level or failed to build over it (its
+/// own [`BackendError`]), or the harness refused the scenario's input (a character or a time
+/// step outside the documented ranges) before building anything.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RunError {
+    /// The controller's error.
+    #[error(transparent)]
+    Controller(#[from] BackendError),
+    /// The scenario's input is outside the documented ranges.
+    #[error(transparent)]
+    Input(#[from] InvalidParam),
+}
+
+impl RunError {
+    /// Whether the controller does not model something the level has or holds it beyond a
+    /// bound it keeps (the run is skipped, not failed).
+    pub fn is_unsupported(&self) -> bool {
+        matches!(self, RunError::Controller(BackendError::Unsupported { .. }))
     }
 }
 

@@ -10,10 +10,10 @@
 //! println!("{} traces, {} metric rows", run.traces.len(), run.metrics.len());
 //! ```
 
-use crate::backend::BackendError;
 use crate::config::RunConfig;
 use crate::level::{parse_level, Level, LevelError};
 use crate::metrics::{evaluate_with, MetricRow};
+use crate::scenario::RunError;
 use crate::scenario::Runner;
 use crate::trace::Trace;
 
@@ -54,14 +54,14 @@ pub struct SuiteRun {
 /// does: geometry is built once per level and shared, and a configuration that does not model
 /// a level's features is left out of that level (listed in [`SuiteRun::skipped`]), never run on
 /// part of it. Any other error of a backend stops the run.
-pub fn run_suite(levels: &[Level], configs: &[RunConfig]) -> Result<SuiteRun, BackendError> {
+pub fn run_suite(levels: &[Level], configs: &[RunConfig]) -> Result<SuiteRun, RunError> {
     let mut out = SuiteRun::default();
     for level in levels {
         let mut runner = Runner::new(level);
         for spec in &level.scenarios {
             for run in configs {
                 match evaluate_with(&mut runner, spec, run) {
-                    Err(e @ BackendError::Unsupported { .. }) => {
+                    Err(e) if e.is_unsupported() => {
                         let skipped = Skipped {
                             level: level.name.clone(),
                             backend: run.backend.backend().to_string(),

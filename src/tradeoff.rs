@@ -16,12 +16,12 @@ use serde::{Deserialize, Serialize};
 use svg::node::element::{Circle, Line, Polyline, Text, Title};
 use svg::Document;
 
-use crate::backend::BackendError;
 pub use crate::config::Setting;
 use crate::level::Level;
 use crate::metrics::score::Score;
 use crate::metrics::{evaluate_with, Behaviour, MetricRow};
 use crate::registry::Registry;
+use crate::scenario::RunError;
 use crate::scenario::{time_scenario, Runner};
 
 /// The grid of [`Registry::builtin`]: each setting varies one thing from the defaults (for the
@@ -110,7 +110,7 @@ pub fn run_tradeoff(
     settings: &[Setting],
     score: &Score,
     progress: impl FnMut(usize, usize, &str),
-) -> Result<Vec<TradeoffRow>, BackendError> {
+) -> Result<Vec<TradeoffRow>, RunError> {
     run_tradeoff_on(
         levels,
         settings,
@@ -129,7 +129,7 @@ pub fn run_tradeoff_on(
     score: &Score,
     jobs: usize,
     mut progress: impl FnMut(usize, usize, &str),
-) -> Result<Vec<TradeoffRow>, BackendError> {
+) -> Result<Vec<TradeoffRow>, RunError> {
     // Each setting's scenarios, with the setting's time step: (setting, level, scenario).
     let spec_of = |s: &Setting, level: &Level, si: usize| {
         let mut spec = level.scenarios[si].clone();
@@ -163,13 +163,13 @@ pub fn run_tradeoff_on(
             };
             let spec = spec_of(&settings[k], &levels[li], si);
             match evaluate_with(runner, &spec, &settings[k].run) {
-                Err(BackendError::Unsupported { .. }) => Ok(None),
+                Err(e) if e.is_unsupported() => Ok(None),
                 e => e.map(|e| Some(e.metrics)),
             }
         },
         |_, r| {
             measured.push(r?);
-            Ok::<(), BackendError>(())
+            Ok::<(), RunError>(())
         },
     )?;
     let mut out = Vec::new();

@@ -72,7 +72,7 @@ pub(crate) fn evaluate_or_skip(
 ) -> Result<Option<crate::metrics::Evaluation>> {
     let level = runner.level();
     match evaluate_with(runner, spec, run) {
-        Err(e @ crate::backend::BackendError::Unsupported { .. }) => {
+        Err(e) if e.is_unsupported() => {
             let note = format!("{} {}: {e}", run.backend.backend(), run.label);
             if !skipped.contains(&note) {
                 skipped.push(note);
@@ -273,7 +273,7 @@ fn execute<'a>(
             unreachable!("set just above")
         };
         let mut e = match evaluate_recorded(runner, spec, run, RowStore::default()) {
-            Err(RecordError::Backend(e @ crate::backend::BackendError::Unsupported { .. })) => {
+            Err(RecordError::Run(e)) if e.is_unsupported() => {
                 return Ok(Outcome::Skipped(format!(
                     "{} {}: {e}",
                     run.backend.backend(),

@@ -219,7 +219,7 @@ pub fn evaluate(
     level: &Level,
     spec: &ScenarioSpec,
     run: &crate::config::RunConfig,
-) -> Result<Evaluation, crate::backend::BackendError> {
+) -> Result<Evaluation, crate::scenario::RunError> {
     evaluate_with(&mut crate::scenario::Runner::new(level), spec, run)
 }
 
@@ -228,7 +228,7 @@ pub fn evaluate_with(
     runner: &mut crate::scenario::Runner,
     spec: &ScenarioSpec,
     run: &crate::config::RunConfig,
-) -> Result<Evaluation, crate::backend::BackendError> {
+) -> Result<Evaluation, crate::scenario::RunError> {
     let trace = runner.run(spec, run)?;
     let metrics = with_context(runner.level(), spec, run, &trace, compute);
     Ok(Evaluation { trace, metrics })
@@ -260,9 +260,9 @@ impl Recorded {
 /// Why a recorded run failed.
 #[derive(Debug, thiserror::Error)]
 pub enum RecordError {
-    /// The backend refused or failed the run.
+    /// The controller refused or failed the run, or the harness refused its input.
     #[error(transparent)]
-    Backend(#[from] crate::backend::BackendError),
+    Run(#[from] crate::scenario::RunError),
     /// The temporary file holding a long run's rows could not be written or read back.
     #[error(
         "cannot hold the run's rows in a temporary file in {} (set TMPDIR to a writable folder with room for 44 bytes a frame)",

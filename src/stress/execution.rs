@@ -4,11 +4,12 @@
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
-use crate::backend::{BackendError, Precision};
+use crate::backend::Precision;
 use crate::config::RunConfig;
 use crate::level::{Platform, ScenarioSpec};
 use crate::metrics::seams::STUCK_FRACTION;
 use crate::metrics::{commanded_steps, evaluate_with, MetricRow};
+use crate::scenario::RunError;
 use crate::scenario::{effective_params, input_script, Runner};
 
 use super::definition::{
@@ -201,7 +202,7 @@ pub fn points_with(runs: &[RunConfig], dt: Option<f32>) -> Vec<Point> {
 pub fn stress_matrix(
     runs: &[RunConfig],
     progress: impl FnMut(&str),
-) -> Result<Vec<StressRow>, BackendError> {
+) -> Result<Vec<StressRow>, RunError> {
     stress_matrix_on(runs, crate::parallel::default_jobs(), progress)
 }
 
@@ -212,7 +213,7 @@ pub fn stress_matrix_on(
     runs: &[RunConfig],
     jobs: usize,
     progress: impl FnMut(&str),
-) -> Result<Vec<StressRow>, BackendError> {
+) -> Result<Vec<StressRow>, RunError> {
     stress_matrix_with(runs, None, jobs, progress)
 }
 
@@ -223,7 +224,7 @@ pub fn stress_matrix_with(
     dt: Option<f32>,
     jobs: usize,
     mut progress: impl FnMut(&str),
-) -> Result<Vec<StressRow>, BackendError> {
+) -> Result<Vec<StressRow>, RunError> {
     let points = points_with(runs, dt);
     let mut out = Vec::new();
     let mut last = String::new();
@@ -239,7 +240,7 @@ pub fn stress_matrix_with(
                 last = what;
             }
             out.extend(rows?);
-            Ok::<(), BackendError>(())
+            Ok::<(), RunError>(())
         },
     )?;
     Ok(out)
@@ -273,7 +274,7 @@ struct Outcome {
 
 /// Runs one point's probes and returns its rows, one per invariant (no `carry_no_drift` row
 /// for a configuration that does not model moving platforms).
-pub fn run_point(point: &Point) -> Result<Vec<StressRow>, BackendError> {
+pub fn run_point(point: &Point) -> Result<Vec<StressRow>, RunError> {
     let run = &point.run;
     let case = point.case;
     let size = Vec2::new(case.width, case.width * 1.125);
@@ -298,7 +299,7 @@ pub fn run_point(point: &Point) -> Result<Vec<StressRow>, BackendError> {
     for spec in probes(size, case.dt, case.speed) {
         let e = if spec.ride.is_some() {
             match evaluate_with(&mut ride_runner, &spec, run) {
-                Err(BackendError::Unsupported { .. }) => {
+                Err(e) if e.is_unsupported() => {
                     // No moving platforms in this configuration: no carry row.
                     carry_modelled = false;
                     continue;
@@ -309,7 +310,7 @@ pub fn run_point(point: &Point) -> Result<Vec<StressRow>, BackendError> {
             match evaluate_with(&mut runner, &spec, run) {
                 // The backend refuses the probe level itself (Box2D's f32 geometry far from
                 // the origin): the point is not measured, so it has no rows.
-                Err(BackendError::Unsupported { .. }) => return Ok(Vec::new()),
+                Err(e) if e.is_unsupported() => return Ok(Vec::new()),
                 e => e?,
             }
         };

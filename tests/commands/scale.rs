@@ -282,7 +282,7 @@ fn a_spilled_run_measures_bit_for_bit_as_one_held_in_memory() {
             for run in &configs {
                 let held = match evaluate_with(&mut runner, spec, run) {
                     // A level the configuration does not model.
-                    Err(platbench::backend::BackendError::Unsupported { .. }) => continue,
+                    Err(e) if e.is_unsupported() => continue,
                     e => e.unwrap(),
                 };
                 let store = RowStore::with_limits(1, 3);

@@ -29,9 +29,9 @@ fn the_showcase_runs_on_every_configuration_of_both_backends() {
             let e = match evaluate(&level, spec, run) {
                 // The sweep's integer mode refuses the showcase's ramp and platform by name
                 // (tests/behaviour/integer.rs); every other configuration must run it.
-                Err(platbench::backend::BackendError::Unsupported { feature, .. })
-                    if run.label.starts_with("positions=integer") =>
-                {
+                Err(platbench::scenario::RunError::Controller(
+                    platbench::backend::BackendError::Unsupported { feature, .. },
+                )) if run.label.starts_with("positions=integer") => {
                     assert!(feature.contains("slopes") || feature.contains("moving"));
                     continue;
                 }

@@ -30,6 +30,14 @@ fn named(e: BackendError, name: &str) {
     }
 }
 
+/// A run the harness refuses before building anything: its own input error, not a controller's.
+fn refused_input(e: platbench::scenario::RunError, name: &str) {
+    match e {
+        platbench::scenario::RunError::Input(p) => assert_eq!(p.name, name),
+        other => panic!("expected {name} to be refused, got {other}"),
+    }
+}
+
 #[test]
 fn motion_parameters_are_checked_by_both_backends() {
     let bad = [
@@ -127,12 +135,12 @@ fn characters_and_time_steps_are_checked() {
     .unwrap();
     let mut spec = level.scenarios[0].clone();
     spec.dt = 0.0;
-    named(
+    refused_input(
         run_scenario(&level, &spec, &platbench::sweep::kind::run_default()).unwrap_err(),
         "dt",
     );
     spec.dt = f32::NAN;
-    named(
+    refused_input(
         run_scenario(&level, &spec, &platbench::sweep::kind::run_default()).unwrap_err(),
         "dt",
     );
