@@ -404,6 +404,7 @@ fn check_dt(spec: &ScenarioSpec) -> Result<(), InvalidParam> {
         Ok(_) => Ok(()),
         Err(message) => Err(InvalidParam {
             name: "dt",
+            // Quoted as the value of a parameter error always is (its Debug form).
             value: format!("{:?}", message.to_string()),
             expected:
                 "a time step 1e-6..=1 s and a duration of 1 to 10,000,000 frames (crate::limits)",

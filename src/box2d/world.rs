@@ -215,24 +215,23 @@ impl LevelWorld {
             }
             static_shapes += 1;
         }
-        if level.features.one_way || level.features.ladders {
-            let def = b2(
-                "box2d shape",
-                ShapeDef::builder().filter(filter(ONE_WAY)).build(),
-            )?;
-            for r in one_way_rects(level, building) {
-                let id = add_box(&mut world, &r, &def)?;
-                let top = r.maxs.y + origin.y;
-                tags.insert(
-                    id,
-                    ShapeTag {
-                        one_way_top: Some(top),
-                        one_way: true,
-                        platform: None,
-                    },
-                );
-                static_shapes += 1;
-            }
+        // Empty for a level without one-way tiles or ladders (level::outlines decides).
+        let one_way = b2(
+            "box2d shape",
+            ShapeDef::builder().filter(filter(ONE_WAY)).build(),
+        )?;
+        for r in one_way_rects(level, building) {
+            let id = add_box(&mut world, &r, &one_way)?;
+            let top = r.maxs.y + origin.y;
+            tags.insert(
+                id,
+                ShapeTag {
+                    one_way_top: Some(top),
+                    one_way: true,
+                    platform: None,
+                },
+            );
+            static_shapes += 1;
         }
         let mut platforms = Vec::with_capacity(level.platforms.len());
         for (i, p) in level.platforms.iter().enumerate() {

@@ -83,6 +83,7 @@ pub(crate) fn tradeoff_settings() -> Vec<Setting> {
     g
 }
 
+/// [`Setting::new`] with motion parameters of its own (the jump-mode settings change them).
 fn setting(
     label: &str,
     config: SweepConfig,
@@ -90,13 +91,7 @@ fn setting(
     substeps: u32,
     dt: Option<f32>,
 ) -> Setting {
-    Setting {
-        label: label.into(),
-        run: RunConfig {
-            params,
-            substeps,
-            ..RunConfig::new(label, config)
-        },
-        dt,
-    }
+    let mut s = Setting::new(label, config, substeps, dt);
+    s.run.params = params;
+    s
 }
