@@ -291,6 +291,25 @@ impl DeclaredContact {
     }
 }
 
+/// What a configuration declares it can do beyond the level features it models
+/// ([`Features`]): facts from its documentation that the built-in scenarios do not measure,
+/// shown beside the measurements so a game profile that needs one of them reads the
+/// declaration instead of a guess.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Capabilities {
+    /// It pushes dynamic rigid bodies it walks into (Rapier's
+    /// `solve_character_collision_impulses`). No built-in level has a dynamic body, so this is
+    /// declared, not measured. Default: false.
+    pub pushes_bodies: bool,
+    /// Its positions lie on a fixed grid (whole pixels or fractions of a tile), so a rest
+    /// height is exact by construction. Default: false.
+    pub integer_positions: bool,
+    /// Its documentation promises bit-identical results across machines and platforms (the
+    /// harness itself checks only the same machine: the same inputs give bit-identical
+    /// traces). Default: false.
+    pub cross_platform_determinism: bool,
+}
+
 /// The floating-point type a configuration keeps world positions in: what decides how far from
 /// the world's origin it can place a level before a position's spacing swallows a step.
 /// Whatever the precision, [`CharacterState`] and the traces are in level coordinates (f32, a
@@ -420,6 +439,8 @@ pub trait BackendSettings: std::fmt::Debug + Send + Sync + 'static {
     fn with_epsilon(&self, epsilon: f32) -> Option<std::sync::Arc<dyn BackendSettings>>;
     /// The precision this configuration keeps world positions in. Default: f32.
     fn precision(&self) -> Precision;
+    /// What this configuration declares it can do beyond its features. Default: nothing.
+    fn capabilities(&self) -> Capabilities;
     /// How far from the world's origin this configuration places a level, in tiles on each axis
     /// (a level farther out is refused, [`origin_supported`]). Default: by
     /// [`BackendSettings::precision`], [`crate::limits::MAX_F32_ORIGIN`] in f32 (beyond it an

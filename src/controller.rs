@@ -16,8 +16,8 @@ use std::marker::PhantomData;
 use glam::Vec2;
 
 use crate::backend::{
-    Backend, BackendError, BackendSettings, CharacterId, CharacterSpec, CharacterState,
-    DeclaredContact, Precision, SharedGeometry, ShownByDefault,
+    Backend, BackendError, BackendSettings, Capabilities, CharacterId, CharacterSpec,
+    CharacterState, DeclaredContact, Precision, SharedGeometry, ShownByDefault,
 };
 use crate::config::RunConfig;
 use crate::config::Setting;
@@ -237,6 +237,12 @@ pub trait Controller:
     fn precision(&self) -> Precision {
         Precision::F32
     }
+    /// What it declares it can do beyond the level features it models (pushing dynamic bodies,
+    /// positions on a grid, determinism across machines), from its documentation: shown in the
+    /// capability table, never measured. Default: nothing declared.
+    fn capabilities(&self) -> Capabilities {
+        Capabilities::default()
+    }
     /// These settings built in `precision`, if it offers that precision besides its own.
     fn with_precision(&self, precision: Precision) -> Option<Self> {
         let _ = precision;
@@ -311,6 +317,9 @@ impl<C: Controller> BackendSettings for C {
     }
     fn precision(&self) -> Precision {
         Controller::precision(self)
+    }
+    fn capabilities(&self) -> Capabilities {
+        Controller::capabilities(self)
     }
     fn max_origin(&self) -> f64 {
         Controller::max_origin(self)

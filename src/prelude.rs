@@ -15,8 +15,8 @@
 //! controllers; the command line is [`crate::cli::main_with`].
 
 pub use crate::backend::{
-    BackendError, CharacterId, CharacterSpec, CharacterState, DeclaredContact, Precision,
-    ShownByDefault,
+    BackendError, Capabilities, CharacterId, CharacterSpec, CharacterState, DeclaredContact,
+    Precision, ShownByDefault,
 };
 pub use crate::config::RunConfig;
 pub use crate::controller::{Controller, Setup};

@@ -5,7 +5,9 @@
 use glam::Vec2;
 
 use super::{Box2dBackend, Box2dConfig, CharacterShape, PogoShape, LINEAR_SLOP};
-use crate::backend::{BackendError, CharacterId, CharacterSpec, CharacterState, DeclaredContact};
+use crate::backend::{
+    BackendError, Capabilities, CharacterId, CharacterSpec, CharacterState, DeclaredContact,
+};
 use crate::config::RunConfig;
 use crate::config::Setting;
 use crate::controller::{Controller, Setup};
@@ -25,6 +27,16 @@ impl Controller for Box2dConfig {
 
     fn features(&self) -> Features {
         Box2dBackend::SUPPORTED
+    }
+
+    /// Box2D v3 promises cross-platform determinism (its v3.1 release notes; the docs'
+    /// "Determinism" section). The mover pushes nothing: it "is not a rigid body and does not
+    /// exist in the simulation world" (docs/character.md); pushing is left to the game.
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            cross_platform_determinism: true,
+            ..Capabilities::default()
+        }
     }
 
     /// The sample's capsule (the only shape it offers), on a level within

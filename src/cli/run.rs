@@ -13,7 +13,11 @@ use super::{load_levels_with, out, output, Harness, ImportArgs};
 use crate::config::RunConfig;
 use crate::metrics::{evaluate_recorded, evaluate_with, MetricRow, RecordError};
 use crate::parallel;
+use crate::report::profile::{builtin_profiles, parse_profile, Profile};
 use crate::report::summary_rows::SummaryRows;
+use crate::report::verdict::{
+    pick, render_capabilities, render_scorecard, render_verdict, Facts, Scorecard, VerdictRows,
+};
 use crate::report::{detail_table, summary_table_in, Coverage};
 use crate::scenario::Runner;
 use crate::trace::RowStore;
@@ -41,10 +45,16 @@ pub(crate) struct RunArgs {
     /// ratio or tiles/s, one frame, one count), or is NaN. A run that errors stops the run.
     #[arg(long, value_enum, value_name = "WHICH", requires = "out")]
     pub(crate) traces: Option<Traces>,
-    /// Print every metric of every scenario, not only the per-metric summary (this holds every
-    /// metric row in memory until the end; without it only the rows the summary needs are kept).
+    /// After the verdict and the scorecard, print the worst value of every metric per
+    /// configuration, the statements they support, and every metric of every scenario (this
+    /// holds every metric row in memory until the end; without it only the rows the verdict
+    /// needs are kept).
     #[arg(long)]
     pub(crate) detail: bool,
+    /// A game profile file (TOML; see compare/profiles/pixel_precise.toml for the format): the
+    /// verdict judges these profiles instead of the built-in ones (repeat for several).
+    #[arg(long = "profile", value_name = "FILE")]
+    pub(crate) profiles: Vec<PathBuf>,
     /// Replace the committed baseline (compare/baseline for platbench itself; the harness's
     /// baseline directory for a crate calling platbench::cli) with this run: the only way it is
     /// written. Runs the built-in set with every configuration.
@@ -107,6 +117,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         .select
         .levels(load_levels_with(&args.levels, &args.import)?)?;
     let configs = args.select.builtin_configs(h)?;
+    let profiles = load_profiles(&args.profiles)?;
     // The runs that will write a trace: a configuration that does not model a level's
     // features skips that level (said once, below).
     let scenarios: usize = levels.iter().map(|l| l.scenarios.len()).sum();
@@ -130,7 +141,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         args.traces.unwrap_or(Traces::All)
     };
     let started = Instant::now();
-    let (metrics, coverage, notes, rows, written) = match &target {
+    let (metrics, coverage, notes, verdict, rows, written) = match &target {
         Some(target) => {
             let mut result = None;
             output::write_output(target, kind, args.force, |dir| {
@@ -142,23 +153,57 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         None => execute(&levels, &configs, args, jobs, None)?,
     };
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
-    let mut text = summary_table_in(&metrics, &coverage);
-    for n in notes {
-        text.push_str(&format!("\n- {n}"));
-    }
-    out(&text);
+    out(&verdict_text(&verdict, &profiles));
     if args.detail {
-        out(&format!("\n{}", detail_table(&metrics)));
+        let mut text = summary_table_in(&metrics, &coverage);
+        for n in notes {
+            text.push_str(&format!("\n- {n}"));
+        }
+        out(&format!(
+            "\nWorst value of each metric per configuration:\n{text}"
+        ));
+        out(&format!(
+            "\nEvery metric of every scenario:\n{}",
+            detail_table(&metrics)
+        ));
+    } else {
+        out("\n(`--detail` prints the worst value of every metric and every scenario's; `--out DIR` writes the CSV files\nand traces; `platbench report` writes the HTML report with replays)");
     }
-    match &target {
-        Some(target) => eprintln!(
+    if let Some(target) = &target {
+        eprintln!(
             "wrote {written} traces ({}) and {rows} metric rows to {}",
             traces.describe(),
             target.display()
-        ),
-        None => eprintln!("(worst case per metric over all scenarios; `platbench run --detail` lists every scenario, `--out DIR` writes the CSV files)"),
+        );
     }
     Ok(())
+}
+
+/// The game profiles of `files`, or the built-in ones when none is given.
+pub(crate) fn load_profiles(files: &[PathBuf]) -> Result<Vec<Profile>> {
+    if files.is_empty() {
+        return Ok(builtin_profiles());
+    }
+    files
+        .iter()
+        .map(|f| {
+            let text = crate::limits::read_text_capped(f)
+                .with_context(|| format!("cannot read profile {}", f.display()))?;
+            Ok(parse_profile(&text, &f.display().to_string())?)
+        })
+        .collect()
+}
+
+/// The verdict of `profiles`, the scorecard and the capability table, as the terminal prints
+/// them.
+pub(crate) fn verdict_text(card: &Scorecard, profiles: &[Profile]) -> String {
+    let verdicts: Vec<_> = profiles.iter().map(|p| pick(card, p)).collect();
+    format!(
+        "{}\n{}\n{}",
+        render_verdict(card, &verdicts),
+        render_scorecard(card),
+        render_capabilities(card)
+    )
 }
 
 /// Which traces `run --out` writes.
@@ -217,8 +262,15 @@ fn modelled_runs(levels: &[crate::level::Level], configs: &[RunConfig]) -> usize
 }
 
 /// What [`execute`] returns: the rows the summary reads, the scenarios each configuration ran,
-/// the notes, the number of metric rows, the number of traces written.
-type Executed = (Vec<MetricRow>, Coverage, Vec<String>, usize, usize);
+/// the notes, the scorecard, the number of metric rows, the number of traces written.
+type Executed = (
+    Vec<MetricRow>,
+    Coverage,
+    Vec<String>,
+    Scorecard,
+    usize,
+    usize,
+);
 
 /// Runs every scenario of `levels` on every configuration on `jobs` threads, writing each trace
 /// `dir` asks for as soon as its run ends and metrics.csv as the rows come, in run order (level,
@@ -317,6 +369,7 @@ fn execute<'a>(
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut kept = SummaryRows::default();
     let mut notes = crate::report::notes::RunNotes::new();
+    let mut verdict = VerdictRows::new(configs.iter().map(Facts::of).collect());
     let mut rows_seen = 0usize;
     let (mut done, mut written) = (0usize, 0usize);
     // Refusals on the current level, per configuration: the first is said, the others counted
@@ -345,6 +398,7 @@ fn execute<'a>(
                     }
                 }
                 rows_seen += rows.len();
+                verdict.push_run(&rows);
                 if args.detail {
                     metrics.extend(rows);
                 } else {
@@ -407,5 +461,12 @@ fn execute<'a>(
         metrics = rows;
         (coverage, notes.notes())
     };
-    Ok((metrics, coverage, notes, rows_seen, written))
+    Ok((
+        metrics,
+        coverage,
+        notes,
+        verdict.scorecard(),
+        rows_seen,
+        written,
+    ))
 }

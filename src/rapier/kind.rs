@@ -7,7 +7,9 @@ use std::rc::Rc;
 use glam::Vec2;
 
 use super::{CharacterShape, ColliderBuilding, RapierBackend, RapierConfig, StaticWorld};
-use crate::backend::{BackendError, CharacterId, CharacterState, DeclaredContact, Precision};
+use crate::backend::{
+    BackendError, Capabilities, CharacterId, CharacterState, DeclaredContact, Precision,
+};
 use crate::config::RunConfig;
 use crate::config::Setting;
 use crate::controller::{Controller, Setup};
@@ -55,6 +57,18 @@ impl Controller for RapierConfig {
 
     fn precision(&self) -> Precision {
         self.precision
+    }
+
+    /// Rapier's character controller pushes the dynamic bodies it hits
+    /// (`KinematicCharacterController::solve_character_collision_impulses`, in its character
+    /// controller guide). Rapier is deterministic only on one machine unless built with its
+    /// `enhanced-determinism` feature (rapier.rs, "Determinism"), which this build does not
+    /// enable.
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            pushes_bodies: true,
+            ..Capabilities::default()
+        }
     }
 
     /// Every Rapier configuration has a build in both precisions.

@@ -5,9 +5,11 @@
 pub mod diff;
 pub mod html;
 pub mod notes;
+pub mod profile;
 pub mod replay;
 pub mod rules;
 pub mod summary_rows;
+pub mod verdict;
 
 use comfy_table::{presets, CellAlignment, Table};
 

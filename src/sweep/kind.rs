@@ -7,7 +7,8 @@ use glam::Vec2;
 
 use super::{Positions, SweepBackend, SweepConfig, DOUBLE_SUPPORTED, INTEGER_SUPPORTED};
 use crate::backend::{
-    BackendError, CharacterId, CharacterState, DeclaredContact, Precision, ShownByDefault,
+    BackendError, Capabilities, CharacterId, CharacterState, DeclaredContact, Precision,
+    ShownByDefault,
 };
 use crate::config::RunConfig;
 use crate::config::Setting;
@@ -90,6 +91,17 @@ impl Controller for SweepConfig {
 
     /// f64 in the f64 mode ([`Positions::Double`]), else f32 (the integer mode's tile faces are
     /// f32, exact to 2^24 tiles).
+    /// Positions on a grid in the integer mode (whole subpixels, the seed's "integer
+    /// positions"); nothing else declared: the float modes use the machine's float arithmetic,
+    /// which the seed does not promise is the same across platforms, and the sweep pushes no
+    /// bodies.
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            integer_positions: matches!(self.positions, Positions::Integer { .. }),
+            ..Capabilities::default()
+        }
+    }
+
     fn precision(&self) -> Precision {
         match self.positions {
             Positions::Double => Precision::F64,

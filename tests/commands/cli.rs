@@ -13,27 +13,80 @@ use crate::common;
 use common::{assert_success, platbench};
 
 #[test]
-fn no_arguments_prints_the_summary() {
+fn no_arguments_prints_the_verdict_first_within_120_columns() {
     let out = platbench().output().unwrap();
-    assert!(out.status.success());
+    assert_success(&out);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    // Metric names are stacked in the header, one word a line.
-    for m in [
-        "land",
-        "penetration",
-        "apex",
-        "progress",
-        "stuck",
-        "tunneled",
-    ] {
-        assert!(stdout.contains(m), "summary lacks {m}:\n{stdout}");
+    // The verdict first, one block per built-in profile (compare/profiles), then the scorecard,
+    // then the declared capabilities.
+    assert!(
+        stdout.starts_with("Which controller for which game"),
+        "{stdout}"
+    );
+    let at = |s: &str| {
+        stdout
+            .find(s)
+            .unwrap_or_else(|| panic!("no {s:?} in:\n{stdout}"))
+    };
+    let profiles = [
+        "\npixel-precise: ",
+        "\nslopes: ",
+        "\nmoving-platforms: ",
+        "\nhuge-worlds: ",
+        "\ncrowds: ",
+    ];
+    let mut last = 0;
+    for p in profiles {
+        assert!(at(p) > last, "{p} out of order");
+        last = at(p);
     }
+    assert!(at("\nScorecard:") > last);
+    assert!(at("\nDeclared, ") > at("\nScorecard:"));
+    assert!(stdout.matches("\n  pick       ").count() == profiles.len());
+    // The terminal: 120 columns, in a terminal and a CI log alike.
+    for line in stdout.lines() {
+        assert!(
+            line.chars().count() <= 120,
+            "{} columns: {line}",
+            line.chars().count()
+        );
+    }
+    // One scorecard row per configuration, named as in every table.
     for config in [
-        "| sweep ",
-        "| rapier per-tile capsule ",
-        "| rapier merged cuboid ",
+        "\nsweep ",
+        "\nrapier per-tile capsule ",
+        "\nrapier merged cuboid ",
+        "\nbox2d per-tile capsule ",
     ] {
-        assert!(stdout.contains(config), "summary lacks {config}:\n{stdout}");
+        assert!(
+            stdout.contains(config),
+            "scorecard lacks {config}:\n{stdout}"
+        );
+    }
+    // The metric tables are behind --detail.
+    assert!(!stdout.contains("| configuration"), "{stdout}");
+}
+
+#[test]
+fn detail_adds_the_metric_tables_after_the_verdict() {
+    let out = platbench()
+        .args([
+            "run",
+            "compare/levels/jumps.toml",
+            "--detail",
+            "--backend",
+            "sweep",
+        ])
+        .output()
+        .unwrap();
+    assert_success(&out);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let verdict = stdout.find("Which controller").unwrap();
+    let tables = stdout.find("Worst value of each metric").unwrap();
+    assert!(verdict < tables);
+    // Metric names are stacked in the tables' headers, one word a line.
+    for m in ["land", "apex", "error"] {
+        assert!(stdout[tables..].contains(m), "tables lack {m}:\n{stdout}");
     }
 }
 

@@ -169,16 +169,52 @@ fn the_readme_trade_figures_are_the_committed_sweep_run() {
     }
 }
 
-#[test]
-fn the_readme_summary_is_what_platbench_prints() {
-    // docs/comparison.md: "The built-in comparison today (`platbench`, this build)": every line
-    // the command prints (tables and the notes under them) appears there as printed.
-    let out = common::platbench().output().expect("platbench runs");
+/// What `platbench` prints with `args`, as text.
+fn printed(args: &[&str]) -> String {
+    let out = common::platbench()
+        .args(args)
+        .output()
+        .expect("platbench runs");
     common::assert_success(&out);
-    let printed = String::from_utf8(out.stdout).expect("utf-8");
+    String::from_utf8(out.stdout).expect("utf-8")
+}
+
+#[test]
+fn the_readme_verdict_and_the_comparison_chapter_are_what_platbench_prints() {
+    // The README opens with the verdict: the block between its markers is what `platbench`
+    // prints before the scorecard, line for line.
+    let verdict = printed(&[]);
+    let readme = readme();
+    let start = readme
+        .find("<!-- verdict: generated")
+        .expect("README's verdict block");
+    let block = &readme[start..];
+    let block = &block[block.find("```\n").expect("its code fence") + 4..];
+    let block = &block[..block.find("```").expect("its closing fence")];
+    let head = &verdict[..verdict.find("\nScorecard:").expect("a scorecard") + 1];
+    assert_eq!(
+        block.trim_end(),
+        head.trim_end(),
+        "README's verdict differs from what platbench prints (regenerate it with the command in its marker)"
+    );
+    // docs/comparison.md, "The built-in comparison today": every line of the default output
+    // (verdict, scorecard, capabilities) and of `--detail`'s worst values and statements
+    // appears there as printed, so a change of behaviour that moves a number fails until the
+    // page says so.
+    let detail = printed(&["run", "--detail"]);
+    let worst = &detail[detail
+        .find("Worst value of each metric")
+        .expect("--detail's tables")
+        ..detail
+            .find("Every metric of every scenario")
+            .expect("--detail's scenario table")];
     let text = doc("docs/comparison.md");
-    let lines: Vec<&str> = printed.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert!(lines.len() > 20, "{printed}");
+    let lines: Vec<&str> = verdict
+        .lines()
+        .chain(worst.lines())
+        .filter(|l| !l.trim().is_empty())
+        .collect();
+    assert!(lines.len() > 60, "{verdict}{worst}");
     for l in &lines {
         assert!(
             text.contains(l),
@@ -189,7 +225,7 @@ fn the_readme_summary_is_what_platbench_prints() {
     // the command prints, as printed.
     let mut fence = false;
     let mut shown = 0;
-    for l in readme().lines() {
+    for l in readme.lines() {
         if l.starts_with("```") {
             fence = !fence;
         } else if fence && l.starts_with('|') {

@@ -1,0 +1,345 @@
+//! The verdict, the scorecard and the capability table as terminal text: every line at most
+//! [`WIDTH`] columns, so they read the same in a 120-column terminal and a CI log.
+
+use std::fmt::Write as _;
+
+use super::{Column, Grade, ProfileVerdict, Reason, Scorecard};
+use crate::metrics::registry::Behaviour;
+
+/// The widest line printed.
+pub const WIDTH: usize = 120;
+
+/// `text` wrapped at word boundaries to [`WIDTH`] columns, the first line after `first`, the
+/// others after `indent`.
+fn wrap(first: &str, indent: &str, text: &str) -> String {
+    let mut out = String::new();
+    let mut line = first.to_string();
+    let mut empty = true;
+    for word in text.split(' ').filter(|w| !w.is_empty()) {
+        let len = line.chars().count();
+        if !empty && len + 1 + word.chars().count() > WIDTH {
+            out.push_str(line.trim_end());
+            out.push('\n');
+            line = indent.to_string();
+            empty = true;
+        }
+        if !empty {
+            line.push(' ');
+        }
+        line.push_str(word);
+        empty = false;
+        // A single word longer than the line is cut, never left to overflow.
+        while line.chars().count() > WIDTH {
+            let cut: String = line.chars().take(WIDTH).collect();
+            out.push_str(&cut);
+            out.push('\n');
+            line = format!("{indent}{}", line.chars().skip(WIDTH).collect::<String>());
+        }
+    }
+    out.push_str(line.trim_end());
+    out.push('\n');
+    out
+}
+
+fn grade_word(g: Option<Grade>) -> &'static str {
+    g.map_or("not run", Grade::word)
+}
+
+/// A decider: `seams ok vs FAIL (flat_seams.walk ... stuck_frames 9 (ideal 0))`.
+fn decider(r: &Reason) -> String {
+    let mut s = format!(
+        "{} {} vs {}",
+        r.behaviour.key(),
+        grade_word(r.pick),
+        grade_word(r.other)
+    );
+    if r.pick == r.other {
+        s.push_str(" but closer");
+    }
+    if let Some(w) = &r.worst {
+        let _ = write!(s, " ({})", w.describe());
+    }
+    s
+}
+
+/// The verdict of every profile: pick, runner-up, why, and what the pick still gets wrong.
+pub fn render_verdict(card: &Scorecard, verdicts: &[ProfileVerdict]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "Which controller for which game: {} scenarios, {} configurations. Error: 0 every promise kept, 1 all clearly off.\nProfiles are compare/profiles/*.toml; `--profile FILE` judges your own.",
+        card.total_scenarios,
+        card.cards.len()
+    );
+    for v in verdicts {
+        let p = &v.profile;
+        out.push('\n');
+        out.push_str(&wrap(&format!("{}: ", p.name), "    ", &p.title));
+        let mut weighs = format!("weighs {}", p.describe_weights());
+        if !p.needs.is_empty() {
+            let needs: Vec<&str> = p.needs.iter().map(|n| n.name()).collect();
+            let _ = write!(weighs, "; needs {}", needs.join(", "));
+        }
+        out.push_str(&wrap("  ", "    ", &weighs));
+        let label = |c: usize| card.cards[c].facts.label.as_str();
+        match v.pick {
+            None => {
+                out.push_str(&wrap(
+                    "  pick       ",
+                    "             ",
+                    &format!("none: {}", v.no_pick.as_deref().unwrap_or("")),
+                ));
+            }
+            Some((c, e)) => {
+                out.push_str(&wrap(
+                    "  pick       ",
+                    "             ",
+                    &format!("{} (error {:.3})", label(c), e),
+                ));
+                if let Some((r, e)) = v.runner_up {
+                    out.push_str(&wrap(
+                        "  runner-up  ",
+                        "             ",
+                        &format!("{} (error {:.3})", label(r), e),
+                    ));
+                }
+                if !v.why.is_empty() {
+                    let ratio = |c: usize| {
+                        let cheapest = card
+                            .cards
+                            .iter()
+                            .filter_map(|x| x.median_cost())
+                            .filter(|x| *x > 0.0)
+                            .min_by(f64::total_cmp);
+                        match (card.cards[c].median_cost(), cheapest) {
+                            (Some(m), Some(lo)) => format!("{:.1}x", m / lo),
+                            _ => "-".into(),
+                        }
+                    };
+                    let why: Vec<String> = v
+                        .why
+                        .iter()
+                        .map(|r| match (r.behaviour, v.runner_up) {
+                            (Behaviour::Cost, Some((o, _))) => format!(
+                                "cost {} vs {} the cheapest configuration's time per step",
+                                ratio(c),
+                                ratio(o)
+                            ),
+                            _ => decider(r),
+                        })
+                        .collect();
+                    out.push_str(&wrap("  why        ", "             ", &why.join("; ")));
+                }
+                let wrong = if v.still_wrong.is_empty() {
+                    "nothing this profile weighs".to_string()
+                } else {
+                    v.still_wrong
+                        .iter()
+                        .map(|r| {
+                            let mut s = format!("{} {}", r.behaviour.key(), grade_word(r.pick));
+                            if let Some(w) = &r.worst {
+                                let _ = write!(s, " ({})", w.describe());
+                            }
+                            s
+                        })
+                        .collect::<Vec<_>>()
+                        .join("; ")
+                };
+                out.push_str(&wrap("  still off  ", "             ", &wrong));
+            }
+        }
+        // Left out, grouped by why: "does not declare f64_positions: every configuration".
+        let mut reasons: Vec<(&str, Vec<&str>)> = Vec::new();
+        for (c, why) in &v.left_out {
+            match reasons.iter_mut().find(|(w, _)| w == why) {
+                Some((_, list)) => list.push(label(*c)),
+                None => reasons.push((why, vec![label(*c)])),
+            }
+        }
+        for (why, list) in reasons {
+            let who = if list.len() == card.cards.len() {
+                "every configuration of this run".to_string()
+            } else {
+                list.join(", ")
+            };
+            out.push_str(&wrap(
+                "  left out   ",
+                "             ",
+                &format!("{who} ({why})"),
+            ));
+        }
+        if !v.unmeasured.is_empty() {
+            let list: Vec<&str> = v.unmeasured.iter().map(|b| b.key()).collect();
+            out.push_str(&wrap(
+                "  unmeasured ",
+                "             ",
+                &format!("{} (no scenario of this run measures it)", list.join(", ")),
+            ));
+        }
+    }
+    out
+}
+
+/// The scorecard: one row per configuration, one grade per column, the cost when timed; under a
+/// row that is not all `ok`, the scenario and metric behind each other grade.
+pub fn render_scorecard(card: &Scorecard) -> String {
+    let mut out = String::new();
+    out.push_str(&wrap(
+        "",
+        "",
+        "Scorecard: does each configuration keep its own documented promise on each behaviour's scenarios? ok: every scored metric within the clearly-wrong size (0.01 tiles, 0.01 ratio, exact frames and counts); minor: within ten times it (0.1 tiles), 3 frames or 2 counts; FAIL: beyond, or a wrong result; -: not run. landing includes jumps. Under a row, the scenario and metric behind each grade that is not ok. cost: median time per character step over the cheapest configuration's (run --timing).",
+    ));
+    let label_width = card
+        .cards
+        .iter()
+        .map(|c| c.facts.label.chars().count())
+        .chain(["configuration".len()])
+        .max()
+        .unwrap_or(13);
+    let widths: Vec<usize> = Column::ALL
+        .iter()
+        .map(|c| c.header().len().max(5))
+        .collect();
+    // The label column gives way to keep a row within the width: 1 space between columns,
+    // 6 for the cost.
+    let cells: usize = widths.iter().map(|w| w + 1).sum::<usize>() + 7;
+    let label_width = label_width.min(WIDTH.saturating_sub(cells));
+    let fit = |s: &str| -> String {
+        if s.chars().count() <= label_width {
+            format!("{s:<label_width$}")
+        } else {
+            let cut: String = s.chars().take(label_width.saturating_sub(1)).collect();
+            format!("{cut}~")
+        }
+    };
+    let mut header = fit("configuration");
+    for (c, w) in Column::ALL.iter().zip(&widths) {
+        let _ = write!(header, " {:>w$}", c.header());
+    }
+    let _ = write!(header, " {:>6}", "cost");
+    out.push_str(header.trim_end());
+    out.push('\n');
+    let cheapest = card
+        .cards
+        .iter()
+        .filter_map(|c| c.median_cost())
+        .filter(|x| *x > 0.0)
+        .min_by(f64::total_cmp);
+    for (i, c) in card.cards.iter().enumerate() {
+        let mut line = fit(&c.facts.label);
+        let mut notes = Vec::new();
+        for (col, w) in Column::ALL.iter().zip(&widths) {
+            let g = card.column_grade(i, *col);
+            let word = g.map_or("-", |(g, _)| g.word());
+            let _ = write!(line, " {word:>w$}");
+            if let Some((g, Some(worst))) = g {
+                if g != Grade::Keeps {
+                    notes.push(format!("{}: {}", col.header(), worst.describe()));
+                }
+            }
+        }
+        let cost = match (c.median_cost(), cheapest) {
+            (Some(m), Some(lo)) => format!("{:.1}x", m / lo),
+            _ => "-".into(),
+        };
+        let _ = write!(line, " {cost:>6}");
+        out.push_str(line.trim_end());
+        out.push('\n');
+        if !notes.is_empty() {
+            out.push_str(&wrap("    ", "      ", &notes.join("; ")));
+        }
+    }
+    out
+}
+
+/// The capability table: what each configuration declares, beside what the run measured. Rows
+/// group the configurations of one backend that declare the same.
+pub fn render_capabilities(card: &Scorecard) -> String {
+    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+    for (i, c) in card.cards.iter().enumerate() {
+        let f = &c.facts;
+        let key = (f.backend.clone(), f.features, f.precision, f.capabilities);
+        match groups.iter_mut().find(|(_, v)| {
+            let g = &card.cards[v[0]].facts;
+            (g.backend.clone(), g.features, g.precision, g.capabilities) == key
+        }) {
+            Some((_, v)) => v.push(i),
+            None => groups.push((f.backend.clone(), vec![i])),
+        }
+    }
+    let mut out = String::new();
+    out.push_str(&wrap(
+        "",
+        "",
+        "Declared, from each controller's documentation (slopes to platforms are also measured above; the rest are not measured): pushes = pushes dynamic bodies, grid = positions on a fixed grid, f64 = f64 world positions, x-platform = bit-identical results across machines.",
+    ));
+    let heads = [
+        "slopes",
+        "oneway",
+        "ladders",
+        "platforms",
+        "pushes",
+        "grid",
+        "f64",
+        "x-platform",
+    ];
+    let mut rows: Vec<(String, Vec<bool>)> = Vec::new();
+    for (backend, members) in &groups {
+        let all_of_backend = card
+            .cards
+            .iter()
+            .filter(|c| c.facts.backend == *backend)
+            .count()
+            == members.len();
+        let first = &card.cards[members[0]].facts;
+        let label = if all_of_backend {
+            backend.clone()
+        } else if members.len() == 1 {
+            first.label.clone()
+        } else {
+            format!("{} (+{} alike)", first.label, members.len() - 1)
+        };
+        let f = first;
+        rows.push((
+            label,
+            vec![
+                f.features.slopes,
+                f.features.one_way,
+                f.features.ladders,
+                f.features.moving_platforms,
+                f.capabilities.pushes_bodies,
+                f.capabilities.integer_positions,
+                f.precision == crate::backend::Precision::F64,
+                f.capabilities.cross_platform_determinism,
+            ],
+        ));
+    }
+    let label_width = rows
+        .iter()
+        .map(|(l, _)| l.chars().count())
+        .chain(["configuration".len()])
+        .max()
+        .unwrap_or(13)
+        .min(40);
+    let mut header = format!("{:<label_width$}", "configuration");
+    for h in heads {
+        let _ = write!(header, " | {h}");
+    }
+    out.push_str(&header);
+    out.push('\n');
+    for (label, v) in rows {
+        let label: String = label.chars().take(label_width).collect();
+        let mut line = format!("{label:<label_width$}");
+        for (h, yes) in heads.iter().zip(v) {
+            let _ = write!(
+                line,
+                " | {:<w$}",
+                if yes { "yes" } else { "-" },
+                w = h.len()
+            );
+        }
+        out.push_str(line.trim_end());
+        out.push('\n');
+    }
+    out
+}
