@@ -146,6 +146,9 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
     for n in notes {
         text.push_str(&format!("\n- {n}"));
     }
+    for (c, why) in crate::report::notes::why_lines(&coverage, &configs, &h.registry) {
+        text.push_str(&format!("\n- {c}: {why}"));
+    }
     out(&text);
     if args.detail {
         out(&format!("\n{}", detail_table(&metrics)));
