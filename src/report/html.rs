@@ -66,7 +66,7 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
 }
 
 /// "Which backend for which game": the statements of [`super::rules::RULES`], each evaluated
-/// for every configuration on its worst values, with the numbers; then what each setting that
+/// for every configuration on its extreme value in the statement's direction, with the numbers; then what each setting that
 /// one configuration adds to another changes ([`super::rules::setting_effects`]).
 pub(crate) fn recommendations(rows: &[MetricRow]) -> Vec<String> {
     let mut out = super::rules::evaluate(super::rules::RULES, rows);

@@ -116,7 +116,10 @@ pub fn outside_program(
 /// reported one frame late (grounded only on a step that started grounded), so it lands a frame
 /// after the integrator's landing frame. Everything else is the sweep's.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct LateLander(pub platbench::sweep::SweepConfig);
+pub struct LateLander(
+    /// The sweep it wraps, with its settings.
+    pub platbench::sweep::SweepConfig,
+);
 
 /// What [`LateLander`] keeps: the sweep's mover and, per character, whether it was grounded
 /// before the last step.
