@@ -54,8 +54,7 @@ pub struct MoveAndSlideConfig {
     /// Gap the mover keeps from what it hits, in tiles: a cast stops this far short of a
     /// contact (Godot's `safe_margin`, default 0.08 px: 0.005 tiles).
     pub safe_margin: f32,
-    /// How many times one step may hit something and slide on (Godot's `max_slides`,
-    /// default 4).
+    /// How many times one step may hit something and slide on (Godot's `max_slides`, default 4).
     pub max_slides: u32,
     /// Steepest surface that counts as a floor, in radians from up (Godot's
     /// `floor_max_angle`, default 45 degrees).
@@ -88,8 +87,7 @@ impl Default for MoveAndSlideConfig {
 }
 
 impl MoveAndSlideConfig {
-    /// Label for tables and file names: the shape, then each setting that differs from the
-    /// default.
+    /// Label for tables and file names: the shape, then each setting that differs from the default.
     pub fn label(&self) -> String {
         let d = MoveAndSlideConfig::default();
         let mut label = self.shape.label();
@@ -542,7 +540,7 @@ impl Controller for MoveAndSlideConfig {
     }
 
     /// Godot's defaults with a box and with a capsule, the box with constant speed on floors,
-    /// and the box with a floor snap of 4 px (0.25 tiles).
+    /// and the box with a floor snap of 4 px (0.25 tiles); each with its design and source.
     fn configs() -> Vec<RunConfig> {
         let configs = [
             MoveAndSlideConfig::default(),
@@ -561,9 +559,16 @@ impl Controller for MoveAndSlideConfig {
                 ..Default::default()
             },
         ];
+        let whys = [
+            "a box: 0.005-tile safe_margin gap, 1 px floor snap, stops on slopes (Godot 4.3 CharacterBody2D docs)",
+            "a capsule: 0.005-tile safe_margin gap, 1 px floor snap, stops on slopes (Godot 4.3 CharacterBody2D docs)",
+            "floor_constant_speed: run speed along slopes, not slower up and faster down (Godot 4.3 CharacterBody2D docs)",
+            "a 4 px floor snap: stays grounded down a 45-degree ramp at run speed (Godot 4.3 CharacterBody2D docs)",
+        ];
         configs
             .into_iter()
-            .map(|c| RunConfig::new(c.label(), c))
+            .zip(whys)
+            .map(|(c, why)| RunConfig::new(c.label(), c).with_why(why))
             .collect()
     }
 

@@ -25,6 +25,13 @@ pub struct RunConfig {
     /// Steps the backend takes per frame, each of `dt / substeps` (1: one step per frame).
     /// Traces keep one row per frame.
     pub substeps: u32,
+    /// Why this configuration behaves as it does: its documented design in one line, with its
+    /// source (the paper, docs or sample it follows), printed beside its row by `platbench run`
+    /// and the report, the same way for every configuration. Set by its controller's presets
+    /// ([`RunConfig::with_why`]); empty from [`RunConfig::new`], and then the report uses the
+    /// controller's [`crate::controller::Controller::description`]. Not compared by `==`: it
+    /// describes the settings, it is not one.
+    pub why: String,
 }
 
 impl PartialEq for RunConfig {
@@ -45,7 +52,14 @@ impl RunConfig {
             backend: Arc::new(settings),
             params: MotionParams::default(),
             substeps: 1,
+            why: String::new(),
         }
+    }
+
+    /// This configuration with `why` as its one-line design and source ([`RunConfig::why`]).
+    pub fn with_why(mut self, why: impl Into<String>) -> Self {
+        self.why = why.into();
+        self
     }
 
     /// The character's collision shape in this configuration.

@@ -6,6 +6,10 @@ use super::{Box2dConfig, ColliderBuilding};
 use crate::config::RunConfig;
 use crate::config::Setting;
 
+/// The design of the sample's mover ([`RunConfig::why`]): its pogo, no rider carry, no slope
+/// limit (docs/box2d.md).
+pub(crate) const WHY: &str = "stands on a 5 Hz pogo spring, not a contact; carries no rider; no slope limit (Box2D's Mover sample)";
+
 /// The sample's capsule on one box per tile and on merged chain loops.
 pub(crate) fn configs() -> Vec<RunConfig> {
     [ColliderBuilding::PerTile, ColliderBuilding::Merged]
@@ -15,6 +19,7 @@ pub(crate) fn configs() -> Vec<RunConfig> {
                 colliders,
                 ..Default::default()
             })
+            .with_why(WHY)
         })
         .collect()
 }

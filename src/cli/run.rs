@@ -145,12 +145,19 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         Some(target) => {
             let mut result = None;
             output::write_output(target, kind, args.force, |dir| {
-                result = Some(execute(&levels, &configs, args, jobs, Some((dir, traces)))?);
+                result = Some(execute(
+                    &h.registry,
+                    &levels,
+                    &configs,
+                    args,
+                    jobs,
+                    Some((dir, traces)),
+                )?);
                 Ok(())
             })?;
             result.unwrap_or_default()
         }
-        None => execute(&levels, &configs, args, jobs, None)?,
+        None => execute(&h.registry, &levels, &configs, args, jobs, None)?,
     };
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
     out(&verdict_text(&verdict, &profiles));
@@ -158,6 +165,9 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         let mut text = summary_table_in(&metrics, &coverage);
         for n in notes {
             text.push_str(&format!("\n- {n}"));
+        }
+        for (c, why) in crate::report::notes::why_lines(&coverage, &configs, &h.registry) {
+            text.push_str(&format!("\n- {c}: {why}"));
         }
         out(&format!(
             "\nWorst value of each metric per configuration:\n{text}"
@@ -177,6 +187,17 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// What configuration `run` declares, its why falling back on its controller's description.
+pub(crate) fn facts(run: &RunConfig, registry: &crate::registry::Registry) -> Facts {
+    let mut f = Facts::of(run);
+    if f.why.is_empty() {
+        if let Some(k) = registry.get(&f.backend) {
+            f.why = k.description().to_string();
+        }
+    }
+    f
 }
 
 /// The game profiles of `files`, or the built-in ones when none is given.
@@ -278,6 +299,7 @@ type Executed = (
 /// (every row with --detail; see [`SummaryRows`]) with the scenarios each configuration ran,
 /// the notes on the rows, the number of rows, and the number of traces written.
 fn execute<'a>(
+    registry: &crate::registry::Registry,
     levels: &'a [crate::level::Level],
     configs: &[RunConfig],
     args: &RunArgs,
@@ -369,7 +391,7 @@ fn execute<'a>(
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut kept = SummaryRows::default();
     let mut notes = crate::report::notes::RunNotes::new();
-    let mut verdict = VerdictRows::new(configs.iter().map(Facts::of).collect());
+    let mut verdict = VerdictRows::new(configs.iter().map(|c| facts(c, registry)).collect());
     let mut rows_seen = 0usize;
     let (mut done, mut written) = (0usize, 0usize);
     // Refusals on the current level, per configuration: the first is said, the others counted

@@ -19,18 +19,27 @@ pub(crate) fn configs() -> Vec<RunConfig> {
     let mut set = Vec::new();
     for shape in CharacterShape::ALL {
         for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
-            set.push(run(building, shape));
+            set.push(run(building, shape).with_why(WHY_DEFAULT));
         }
     }
     for shape in CharacterShape::ALL {
-        set.push(run_with(RapierConfig {
+        let advised = run_with(RapierConfig {
             shape,
             grounded_move: GroundedMove::NoneExceptOnPlatforms,
             ..Default::default()
-        }));
+        });
+        set.push(advised.with_why(WHY_ADVISED));
     }
     set
 }
+
+/// The design of Rapier fed gravity every step ([`RunConfig::why`]): its offset (its docs say
+/// it must not be zero), its ground prediction (docs/rapier.md) and its slide, which projects
+/// a horizontal move onto a slope (cos²θ of it horizontally; `KinematicCharacterController`).
+pub(crate) const WHY_DEFAULT: &str = "keeps an offset gap; grounds offset+0.05 tiles early (predict_ground); slides slopes at cos²θ (rapier2d's KCC)";
+
+/// The design of Rapier fed as its docs and the bevy_rapier example advise ([`RunConfig::why`]).
+pub(crate) const WHY_ADVISED: &str = "fed no vertical move while grounded off platforms: bevy_rapier example's fix for sticking (docs/rapier.md)";
 
 /// The capsule on per-tile and merged colliders, and on per-tile colliders fed as Rapier's
 /// docs and examples advise for a character that gets stuck (no vertical move while

@@ -66,7 +66,7 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
 }
 
 /// "Which backend for which game": the statements of [`super::rules::RULES`], each evaluated
-/// for every configuration on its worst values, with the numbers; then what each setting that
+/// for every configuration on its extreme value in the statement's direction, with the numbers; then what each setting that
 /// one configuration adds to another changes ([`super::rules::setting_effects`]).
 pub(crate) fn recommendations(rows: &[MetricRow]) -> Vec<String> {
     let mut out = super::rules::evaluate(super::rules::RULES, rows);
@@ -369,6 +369,13 @@ pub(crate) fn render_report(
         let _ = write!(html, "<li>{}</li>", escape(&r));
         let _ = writeln!(md, "- {r}");
     }
+    html.push_str("</ul><h2 id=\"why\">Each configuration's design</h2><ul>");
+    md.push_str("\n## Each configuration's design\n\n");
+    let built_in = registry.builtin_configs();
+    for (c, why) in super::notes::why_lines(&super::Coverage::of(rows), &built_in, registry) {
+        let _ = write!(html, "<li><b>{}</b>: {}</li>", escape(&c), escape(&why));
+        let _ = writeln!(md, "- {c}: {why}");
+    }
     html.push_str("</ul><h2>By behaviour</h2>");
     md.push_str("\n## By behaviour\n");
     let all_notes = super::notes::notes(rows);
@@ -435,20 +442,7 @@ pub(crate) fn render_report(
     (html, md)
 }
 
-/// Whether a summary note explains `metric` (the notes name the metrics they explain).
+/// Whether a summary note explains `metric` (a note starts with the metric it explains).
 fn note_is_about(note: &str, metric: &str) -> bool {
-    let key = match metric {
-        "rest_gap" => "rest_gap",
-        "slope_overlap" => "slope_overlap",
-        "idle_drift" => "idle_drift",
-        "land_frame_error" => "lands early",
-        "max_penetration" => "sinks into",
-        "false_grounded" => "false_grounded",
-        "progress_ratio" => "progress",
-        "steep_blocked" => "too-steep",
-        "carry_airborne_frames" => "riders",
-        "apex_error" => "jump=continuous",
-        _ => return false,
-    };
-    note.contains(key)
+    note.starts_with(&format!("{metric} "))
 }

@@ -1,21 +1,30 @@
 //! "Which backend for which game" as data: each statement is a [`Rule`] over one metric
 //! (metric, comparison, threshold, wording), evaluated for every configuration, the sweep
-//! included, on its worst value over the scenarios it ran. No rule names a backend or a
-//! scenario; adding a statement is adding one entry to [`RULES`].
+//! included, on its extreme value in the rule's direction over the scenarios it ran. No rule
+//! names a backend or a scenario, or explains one controller's behaviour as design (each
+//! configuration's own design is its [`crate::config::RunConfig::why`], printed beside its row);
+//! a signed metric has a statement for each direction of fault; a statement that credits a
+//! configuration says so only over the scenarios it ran. Adding a statement is adding one entry
+//! to [`RULES`].
 
-use super::{format_value, worst_matrix};
+use std::collections::BTreeSet;
+
+use super::{column, format_value, worst_matrix};
 use crate::metrics::MetricRow;
 
-/// How a configuration's worst value is compared with a rule's threshold.
+/// How a configuration's value is compared with a rule's threshold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Comparison {
-    /// The value is greater than the threshold.
+    /// The value is greater than the threshold (read on the configuration's largest value).
     Above,
-    /// The value is less than the threshold.
+    /// The value is less than the threshold (read on its smallest value).
     Below,
-    /// The value's magnitude is greater than the threshold.
+    /// The value's magnitude is greater than the threshold (read on its value farthest from
+    /// ideal).
     MagnitudeAbove,
-    /// The value's magnitude is at most the threshold.
+    /// The value's magnitude is at most the threshold (read on its value farthest from ideal): a
+    /// statement that credits the configuration, made only over every scenario the metric was
+    /// measured in (see [`Rule::partial`]).
     MagnitudeAtMost,
 }
 
@@ -28,214 +37,394 @@ impl Comparison {
             Comparison::MagnitudeAtMost => value.abs() <= threshold,
         }
     }
+
+    /// Whether a statement of this comparison credits a configuration (all its values within a
+    /// bound) rather than states a fault it showed on some scenario.
+    pub fn credits(self) -> bool {
+        self == Comparison::MagnitudeAtMost
+    }
+
+    /// The value of `rows` this comparison reads: the largest for [`Comparison::Above`], the
+    /// smallest for [`Comparison::Below`], the one farthest from ideal (a NaN first) otherwise.
+    fn extreme(self, rows: &[&MetricRow]) -> Option<f64> {
+        let finite = || rows.iter().map(|r| r.value).filter(|v| !v.is_nan());
+        match self {
+            Comparison::Above => finite().reduce(f64::max),
+            Comparison::Below => finite().reduce(f64::min),
+            _ => rows
+                .iter()
+                .max_by(|a, b| badness(a).total_cmp(&badness(b)))
+                .map(|r| r.value),
+        }
+    }
 }
 
-/// One statement of the report: made when `metric`'s worst value (over the scenarios a
-/// configuration ran) compares to `threshold` as `comparison` says, for every configuration
-/// it holds for.
+/// How far a row is from ideal, a NaN farthest.
+fn badness(r: &MetricRow) -> f64 {
+    if r.error.is_nan() {
+        f64::INFINITY
+    } else {
+        r.error.abs()
+    }
+}
+
+/// One statement of the report: made when `metric`'s value (over the scenarios a configuration
+/// ran, the extreme [`Comparison`] reads) compares to `threshold` as `comparison` says, for
+/// every configuration it holds for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rule {
     /// The metric (a registry name).
     pub metric: &'static str,
-    /// How its worst value is compared.
+    /// How its value is compared.
     pub comparison: Comparison,
     /// The threshold, in the metric's unit.
     pub threshold: f64,
     /// The statement; the configurations it holds for and their values follow it.
     pub wording: &'static str,
+    /// For a statement that credits ([`Comparison::credits`]): its wording for a configuration
+    /// that did not run every scenario the metric was measured in, followed by "on the levels it
+    /// ran (skipped: ...)" (so it claims nothing of the levels it skipped). `None` for a fault,
+    /// which is stated wherever it was seen.
+    pub partial: Option<&'static str>,
 }
 
-/// Every statement the report can make, in print order.
+/// A statement of a fault.
+const fn fault(
+    metric: &'static str,
+    comparison: Comparison,
+    threshold: f64,
+    wording: &'static str,
+) -> Rule {
+    Rule {
+        metric,
+        comparison,
+        threshold,
+        wording,
+        partial: None,
+    }
+}
+
+/// A statement that credits a configuration whose every value is within `threshold` of 0.
+const fn credit(
+    metric: &'static str,
+    threshold: f64,
+    wording: &'static str,
+    partial: &'static str,
+) -> Rule {
+    Rule {
+        metric,
+        comparison: Comparison::MagnitudeAtMost,
+        threshold,
+        wording,
+        partial: Some(partial),
+    }
+}
+
+use Comparison::{Above, Below};
+
+/// Every statement the report can make, in print order. Thresholds: 0.01 is the error score's
+/// clearly-wrong size for a length, a ratio or a speed ([`crate::metrics::MetricDef::scale`]),
+/// 0 for a count of faults (any is one), 1e-4 tiles contact "exact" (a pixel-exact sprite).
 pub const RULES: &[Rule] = &[
-    Rule {
-        metric: "rest_gap_declared",
-        comparison: Comparison::MagnitudeAtMost,
-        threshold: 1e-4,
-        wording: "Rests exactly where it promises (within 1e-4 tiles of its declared contact: flush, or its offset)",
-    },
-    Rule {
-        metric: "rest_gap",
-        comparison: Comparison::MagnitudeAtMost,
-        threshold: 1e-4,
-        wording: "Pixel-exact contact everywhere it rests, slopes included (sprites that must touch the ground)",
-    },
-    Rule {
-        metric: "slope_overlap",
-        comparison: Comparison::Above,
+    credit(
+        "rest_gap_declared",
+        1e-4,
+        "Rests exactly where it promises everywhere it rests (within 1e-4 tiles of its declared contact: flush, or its declared gap)",
+        "Rests exactly where it promises (within 1e-4 tiles of its declared contact: flush, or its declared gap)",
+    ),
+    fault(
+        "rest_gap_declared",
+        Above,
+        0.01,
+        "Rests above the contact it declares (hovers higher than it promises), by up to (tiles)",
+    ),
+    fault(
+        "rest_gap_declared",
+        Below,
+        -0.01,
+        "Rests below the contact it declares (sinks lower than it promises), by (tiles)",
+    ),
+    credit(
+        "rest_gap",
+        1e-4,
+        "Pixel-exact contact everywhere it rests, slopes included (sprites that must touch the ground)",
+        "Pixel-exact contact where it rests (sprites that must touch the ground)",
+    ),
+    fault(
+        "slope_overlap",
+        Above,
         // A tenth of a tile: 1.6 pixels of a 16-pixel tile, visible.
-        threshold: 0.1,
-        wording: "Overhangs slopes visibly (the seed's centre-column rule does by design): a box-shaped sprite sinks a corner into ramps, by up to (tiles)",
-    },
-    Rule {
-        metric: "penetration_beyond_declared",
-        comparison: Comparison::Above,
-        threshold: 0.01,
-        wording: "Ends up inside the level beyond what it declares (sinks into floors or slopes, or stands part-way inside a slope too steep to climb), by up to",
-    },
-    Rule {
-        metric: "slope_gap_declared",
-        comparison: Comparison::MagnitudeAbove,
-        // The error score's clearly-wrong size for a length (0.01 tiles).
-        threshold: 0.01,
-        wording: "Floats above (or sinks into) walkable slopes beyond its declared contact while it reports grounded, on some frame, by up to (tiles)",
-    },
-    Rule {
-        metric: "rest_jitter",
-        comparison: Comparison::Above,
-        // The clearly-wrong size for a length (0.01 tiles).
-        threshold: 0.01,
-        wording: "Does not rest still: the feet move over the settled rest by up to (tiles)",
-    },
-    Rule {
-        metric: "bounce_frames",
-        comparison: Comparison::Above,
-        threshold: 0.0,
-        wording: "Bounces or lifts off after landing: frames airborne after first touching ground, up to",
-    },
-    Rule {
-        metric: "grounded_flicker",
-        comparison: Comparison::Above,
-        threshold: 0.0,
-        wording: "Flickers between grounded and airborne with ground under its feet: switches, up to",
-    },
-    Rule {
-        metric: "apex_error",
-        comparison: Comparison::MagnitudeAbove,
-        // The clearly-wrong size for a length (0.01 tiles).
-        threshold: 0.01,
-        wording: "Jumps off the requested height: apex minus the requested height, by up to (tiles)",
-    },
-    Rule {
-        metric: "land_frame_error",
-        comparison: Comparison::Below,
-        threshold: 0.0,
-        wording: "Lands early: reports grounded before the integrator's landing frame, by",
-    },
-    Rule {
-        metric: "ladder_speed_error",
-        comparison: Comparison::MagnitudeAbove,
-        threshold: 0.1,
-        wording: "Climbs ladders off the configured speed (quantized steps), by up to (tiles/s)",
-    },
-    Rule {
-        metric: "progress_ratio",
-        comparison: Comparison::Below,
-        threshold: 0.5,
-        wording: "Sticks on some flat floors: covers as little of the commanded walk as",
-    },
-    Rule {
-        metric: "stuck_frames",
-        comparison: Comparison::Above,
-        threshold: 10.0,
-        wording: "Catches on tile seams: stuck frames on open ground, up to",
-    },
-    Rule {
-        metric: "slope_airborne_frames",
-        comparison: Comparison::Above,
-        threshold: 0.0,
-        wording: "Leaves walkable slopes airborne while walking them (launches off crests or down ramps): frames, up to",
-    },
-    Rule {
-        metric: "slope_speed_ratio",
-        comparison: Comparison::Below,
+        0.1,
+        "Overhangs slopes visibly: a box-shaped sprite sinks a corner into ramps, by up to (tiles)",
+    ),
+    fault(
+        "penetration_beyond_declared",
+        Above,
+        0.01,
+        "Ends up inside the level beyond what it declares (sinks into floors or slopes, or stands part-way inside a slope too steep to climb), by up to",
+    ),
+    fault(
+        "slope_gap_declared",
+        Above,
+        0.01,
+        "Floats above walkable slopes beyond its declared contact while it reports grounded, on some frame, by up to (tiles)",
+    ),
+    fault(
+        "slope_gap_declared",
+        Below,
+        -0.01,
+        "Sinks into walkable slopes beyond its declared contact while it reports grounded, on some frame, by (tiles)",
+    ),
+    fault(
+        "rest_jitter",
+        Above,
+        0.01,
+        "Does not rest still: the feet move over the settled rest by up to (tiles)",
+    ),
+    fault(
+        "bounce_frames",
+        Above,
+        0.0,
+        "Bounces or lifts off after landing: frames airborne after first touching ground, up to",
+    ),
+    fault(
+        "grounded_flicker",
+        Above,
+        0.0,
+        "Flickers between grounded and airborne with ground under its feet: switches, up to",
+    ),
+    fault(
+        "apex_error",
+        Above,
+        0.01,
+        "Jumps higher than requested: apex minus the requested height, up to (tiles)",
+    ),
+    fault(
+        "apex_error",
+        Below,
+        -0.01,
+        "Jumps short of the requested height: apex minus the requested height, down to (tiles)",
+    ),
+    fault(
+        "land_frame_error",
+        Below,
+        0.0,
+        "Lands early: reports grounded before the integrator's landing frame, by (frames)",
+    ),
+    fault(
+        "land_frame_error",
+        Above,
+        0.0,
+        "Lands late: reports grounded after the integrator's landing frame, by (frames)",
+    ),
+    fault(
+        "ladder_speed_error",
+        Above,
+        // A tenth of a tile a second: 2.5% of the default ladder speed (4 tiles/s).
+        0.1,
+        "Climbs ladders faster than the configured speed (quantized steps, or a push), by up to (tiles/s)",
+    ),
+    fault(
+        "ladder_speed_error",
+        Below,
+        // As above, slower.
+        -0.1,
+        "Climbs ladders slower than the configured speed (quantized steps, or catching), by (tiles/s)",
+    ),
+    fault(
+        "progress_ratio",
+        Below,
+        // Half the commanded walk lost.
+        0.5,
+        "Sticks on some flat floors: covers as little of the commanded walk as",
+    ),
+    fault(
+        "progress_ratio",
+        Above,
+        // A tenth beyond the commanded walk, as the slope speed's bound.
+        1.1,
+        "Overshoots the commanded walk on flat floors: covers of it up to",
+    ),
+    fault(
+        "stuck_frames",
+        Above,
+        // A sixth of a second at 60 Hz: a catch a player sees, not one step's rounding.
+        10.0,
+        "Catches on tile seams: stuck frames on open ground, up to",
+    ),
+    fault(
+        "slope_airborne_frames",
+        Above,
+        0.0,
+        "Leaves walkable slopes airborne while walking them (launches off crests or down ramps): frames, up to",
+    ),
+    fault(
+        "slope_speed_ratio",
+        Below,
         // A tenth below the run speed: a slow-down a player feels.
-        threshold: 0.9,
-        wording: "Slows horizontally on slopes (constant speed along the surface, or catching on the ramp): horizontal speed over the run speed down to",
-    },
-    Rule {
-        metric: "slope_surface_speed_ratio",
-        comparison: Comparison::Above,
+        0.9,
+        "Slows horizontally on slopes (constant speed along the surface, a move projected onto the ramp, or catching on it): horizontal speed over the run speed down to",
+    ),
+    fault(
+        "slope_speed_ratio",
+        Above,
         // A tenth above the run speed.
-        threshold: 1.1,
-        wording: "Moves faster along slopes than it runs on flat ground (constant horizontal speed, the seed's model: 1.41 times the run speed along a 45-degree ramp, where Godot's floor_constant_speed keeps 1): speed along the surface over the run speed up to",
-    },
-    Rule {
-        metric: "steep_blocked",
-        comparison: Comparison::Below,
-        threshold: 1.0,
-        wording: "Climbs a slope steeper than its climb limit",
-    },
-    Rule {
-        metric: "oneway_result",
-        comparison: Comparison::Below,
-        threshold: 1.0,
-        wording: "Ends a one-way platform scenario elsewhere than the seed's rule puts it",
-    },
-    Rule {
-        metric: "ladder_result",
-        comparison: Comparison::Below,
-        threshold: 1.0,
-        wording: "Ends a ladder scenario elsewhere than expected (top, bottom, floor)",
-    },
-    Rule {
-        metric: "carry_drift",
-        comparison: Comparison::Above,
+        1.1,
+        "Speeds up horizontally on slopes: horizontal speed over the run speed up to",
+    ),
+    fault(
+        "slope_surface_speed_ratio",
+        Above,
+        // A tenth above the run speed.
+        1.1,
+        "Moves faster along slopes than it runs on flat ground (constant horizontal speed: 1.41 times the run speed along a 45-degree ramp): speed along the surface over the run speed up to",
+    ),
+    fault(
+        "slope_surface_speed_ratio",
+        Below,
+        // A tenth below the run speed.
+        0.9,
+        "Moves slower along slopes than it runs on flat ground (a move projected onto the ramp, or catching on it): speed along the surface over the run speed down to",
+    ),
+    fault(
+        "steep_blocked",
+        Below,
+        1.0,
+        "Climbs a slope steeper than its climb limit",
+    ),
+    fault(
+        "oneway_result",
+        Below,
+        1.0,
+        "Ends a one-way platform scenario elsewhere than the one-way rule puts it (a top blocks only feet that start above it)",
+    ),
+    fault(
+        "ladder_result",
+        Below,
+        1.0,
+        "Ends a ladder scenario elsewhere than expected (top, bottom, floor)",
+    ),
+    fault(
+        "carry_drift",
+        Above,
         // A tenth of a tile: 1.6 pixels of a 16-pixel tile, visible.
-        threshold: 0.1,
-        wording: "Loses its grip on moving platforms: the rider drifts relative to its platform by up to (tiles)",
-    },
-    Rule {
-        metric: "carry_airborne_frames",
-        comparison: Comparison::Above,
-        threshold: 0.0,
-        wording: "Airborne while riding a moving platform (a platform dropping faster than gravity leaves any rider; beyond that the grip is lost): frames, up to",
-    },
-    Rule {
-        metric: "push_penetration",
-        comparison: Comparison::Above,
+        0.1,
+        "Loses its grip on moving platforms: the rider drifts relative to its platform by up to (tiles)",
+    ),
+    fault(
+        "carry_airborne_frames",
+        Above,
+        0.0,
+        "Airborne while riding a moving platform (a platform dropping faster than gravity leaves any rider; beyond that the grip is lost): frames, up to",
+    ),
+    fault(
+        "push_penetration",
+        Above,
         // A tenth of a tile: visible.
-        threshold: 0.1,
-        wording: "Lets moving platforms into the character (pushed or squeezed), by up to (tiles)",
-    },
-    Rule {
-        metric: "crush_count",
-        comparison: Comparison::Above,
-        threshold: 0.0,
-        wording: "Ends up crushed inside a moving platform (a platform squeezing it against the level): times, up to",
-    },
-    Rule {
-        metric: "idle_drift",
-        comparison: Comparison::Above,
-        threshold: 0.01,
-        wording: "Moves a character that stands still with no input, by up to (tiles)",
-    },
-    Rule {
-        metric: "false_grounded",
-        comparison: Comparison::Above,
-        threshold: 0.0,
-        wording: "Reports grounded with no ground under it (can jump from there): frames, up to",
-    },
-    Rule {
-        metric: "tunneled",
-        comparison: Comparison::Above,
-        threshold: 0.0,
-        wording: "Tunnels through a wall at speed",
-    },
+        0.1,
+        "Lets moving platforms into the character (pushed or squeezed), by up to (tiles)",
+    ),
+    fault(
+        "crush_count",
+        Above,
+        0.0,
+        "Ends up crushed inside a moving platform (a platform squeezing it against the level): times, up to",
+    ),
+    fault(
+        "idle_drift",
+        Above,
+        0.01,
+        "Moves a character that stands still with no input, by up to (tiles)",
+    ),
+    fault(
+        "false_grounded",
+        Above,
+        0.0,
+        "Reports grounded with no ground under it (can jump from there): frames, up to",
+    ),
+    fault(
+        "tunneled",
+        Above,
+        0.0,
+        "Tunnels through a wall at speed",
+    ),
 ];
 
 /// The statements `rules` make on `rows`: for each rule that holds for some configuration, its
-/// wording followed by each such configuration and its worst value.
+/// wording followed by each such configuration and its value. A statement that credits is made
+/// for a configuration that ran every scenario any configuration measured its metric in; one
+/// that skipped some gets the rule's partial wording with the levels it skipped, one statement
+/// per set of skipped levels.
 pub fn evaluate(rules: &[Rule], rows: &[MetricRow]) -> Vec<String> {
+    // Configurations in first-run order, labelled with their coverage ("over N of M").
+    let m = worst_matrix(rows, |_| false);
+    let columns: Vec<String> = rows.iter().map(column).collect();
+    let ran: Vec<BTreeSet<(&str, &str)>> = m
+        .configs
+        .iter()
+        .map(|c| {
+            rows.iter()
+                .zip(&columns)
+                .filter(|(_, col)| *col == c)
+                .map(|(r, _)| (r.level.as_str(), r.scenario.as_str()))
+                .collect()
+        })
+        .collect();
     let mut out = Vec::new();
     for rule in rules {
-        let m = worst_matrix(rows, |name| name == rule.metric);
-        let Some(mi) = m.metrics.iter().position(|(n, _, _)| *n == rule.metric) else {
-            continue;
-        };
-        let holds: Vec<String> = (0..m.configs.len())
-            .filter_map(|ci| {
-                let (v, _) = m.cells[ci][mi]?;
-                rule.comparison
-                    .holds(v, rule.threshold)
-                    .then(|| format!("{} ({})", m.label(ci), format_value(v)))
-            })
+        let of_metric: Vec<(&MetricRow, &String)> = rows
+            .iter()
+            .zip(&columns)
+            .filter(|(r, _)| r.metric == rule.metric)
             .collect();
+        let measured: BTreeSet<(&str, &str)> = of_metric
+            .iter()
+            .map(|(r, _)| (r.level.as_str(), r.scenario.as_str()))
+            .collect();
+        let mut holds: Vec<String> = Vec::new();
+        // Credited over part of the scenarios: (skipped levels, configurations).
+        let mut partial: Vec<(Vec<&str>, Vec<String>)> = Vec::new();
+        for (ci, c) in m.configs.iter().enumerate() {
+            let mine: Vec<&MetricRow> = of_metric
+                .iter()
+                .filter(|(_, col)| *col == c)
+                .map(|(r, _)| *r)
+                .collect();
+            let Some(v) = rule.comparison.extreme(&mine) else {
+                continue;
+            };
+            if !rule.comparison.holds(v, rule.threshold) {
+                continue;
+            }
+            let said = format!("{} ({})", m.label(ci), format_value(v));
+            let mut skipped: Vec<&str> = measured
+                .difference(&ran[ci])
+                .map(|(level, _)| *level)
+                .collect();
+            skipped.dedup();
+            match (rule.partial, skipped.is_empty()) {
+                (Some(_), false) => match partial.iter_mut().find(|(s, _)| *s == skipped) {
+                    Some((_, cs)) => cs.push(said),
+                    None => partial.push((skipped, vec![said])),
+                },
+                _ => holds.push(said),
+            }
+        }
         if !holds.is_empty() {
             out.push(format!(
                 "{} [{}]: {}.",
                 rule.wording,
                 rule.metric,
                 holds.join(", ")
+            ));
+        }
+        for (skipped, cs) in partial {
+            out.push(format!(
+                "{} on the levels it ran (skipped: {}) [{}]: {}.",
+                rule.partial.unwrap_or(rule.wording),
+                skipped.join(", "),
+                rule.metric,
+                cs.join(", ")
             ));
         }
     }
@@ -253,7 +442,7 @@ pub(crate) fn setting_effects(rows: &[MetricRow]) -> Vec<String> {
     let labels = worst_matrix(rows, keep).configs;
     let ran = |c: &str| -> std::collections::BTreeSet<(&str, &str)> {
         rows.iter()
-            .filter(|r| super::column(r) == c)
+            .filter(|r| column(r) == c)
             .map(|r| (r.level.as_str(), r.scenario.as_str()))
             .collect()
     };
@@ -272,7 +461,7 @@ pub(crate) fn setting_effects(rows: &[MetricRow]) -> Vec<String> {
             let pair: Vec<MetricRow> = rows
                 .iter()
                 .filter(|r| {
-                    let c = super::column(r);
+                    let c = column(r);
                     (c == *a || c == *b) && both.contains(&(r.level.as_str(), r.scenario.as_str()))
                 })
                 .cloned()
@@ -321,95 +510,4 @@ pub(crate) fn setting_effects(rows: &[MetricRow]) -> Vec<String> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn row(backend: &str, config: &str, metric: &'static str, value: f64) -> MetricRow {
-        MetricRow {
-            level: "l".into(),
-            scenario: "s".into(),
-            backend: backend.into(),
-            config: config.into(),
-            metric,
-            value,
-            unit: "tiles",
-            reference: 0.0,
-            error: value,
-        }
-    }
-
-    #[test]
-    fn a_rule_is_evaluated_for_every_configuration_the_sweep_included() {
-        let rows = vec![
-            row("sweep", "default", "slope_overlap", 0.28),
-            row("other", "x", "slope_overlap", 0.0),
-            // Below the rule's tenth of a tile: not visible, not stated.
-            row("third", "y", "slope_overlap", 0.02),
-        ];
-        let s = evaluate(RULES, &rows);
-        assert_eq!(s.len(), 1, "{s:?}");
-        assert!(s[0].contains("sweep (0.2800)"), "{s:?}");
-        assert!(!s[0].contains("third"), "{s:?}");
-        assert!(!s[0].contains("other"), "{s:?}");
-    }
-
-    #[test]
-    fn every_rule_names_a_registered_metric() {
-        for r in RULES {
-            assert!(
-                crate::metrics::registry::get(r.metric).is_some(),
-                "{}",
-                r.metric
-            );
-        }
-    }
-
-    #[test]
-    fn a_setting_is_judged_only_over_the_scenarios_both_ran() {
-        let at = |scenario: &str, config: &str, value: f64| MetricRow {
-            scenario: scenario.into(),
-            ..row("sweep", config, "rest_gap", value)
-        };
-        // The base configuration is bad only on a scenario the other never ran.
-        let rows = vec![
-            at("hard", "default", 0.5),
-            at("easy", "default", 0.0),
-            at("easy", "positions=integer/32", 0.0),
-        ];
-        assert!(
-            setting_effects(&rows).is_empty(),
-            "{:?}",
-            setting_effects(&rows)
-        );
-        // Where both ran and it differs, it is reported, with both values.
-        let rows = vec![
-            at("easy", "default", 0.2),
-            at("easy", "positions=integer/32", 0.0),
-        ];
-        let e = setting_effects(&rows);
-        assert_eq!(e.len(), 1, "{e:?}");
-        assert!(e[0].contains("rest_gap 0.2000 -> 0"), "{e:?}");
-    }
-
-    #[test]
-    fn every_scored_metric_has_a_statement() {
-        // Found by review: metrics the default score charges had no statement in the report,
-        // so a configuration's fault there showed only in a table.
-        let scored: Vec<&str> = crate::metrics::registry::METRICS
-            .iter()
-            .filter(|d| d.weight > 0.0)
-            .map(|d| d.name)
-            .collect();
-        assert!(!scored.is_empty());
-        for m in scored {
-            assert!(RULES.iter().any(|r| r.metric == m), "no rule for {m}");
-        }
-        for r in RULES {
-            assert!(
-                crate::metrics::registry::get(r.metric).is_some(),
-                "{}",
-                r.metric
-            );
-        }
-    }
-}
+mod tests;

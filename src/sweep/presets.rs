@@ -7,9 +7,18 @@ use crate::config::RunConfig;
 use crate::config::Setting;
 use crate::motion::{JumpMode, MotionParams};
 
+/// The default sweep's design ([`RunConfig::why`]): the seed's slope rule.
+pub(crate) const WHY_DEFAULT: &str = "stands a box on the slope under its centre: overhangs ramps by half-width x gradient (Gaul's slides)";
+
+/// The continuous jump formula's design ([`RunConfig::why`]).
+pub(crate) const WHY_CONTINUOUS: &str = "jumps at v = sqrt(2gh): exact for continuous motion, short by up to v*dt/2 stepped (Gaul's slides)";
+
+/// Integer positions' design ([`RunConfig::why`]).
+pub(crate) const WHY_INTEGER: &str = "positions on an integer grid, 32 a tile: moves, climbs and contacts snap to it (docs/sweep.md)";
+
 /// The default sweep; the sweep with the seed's continuous jump formula, so the two jump
 /// modes' apex errors stand side by side; and the sweep on integer positions (32 subpixels
-/// per tile; levels it does not model are skipped).
+/// per tile; levels it does not model are skipped). Each with its design and source.
 pub(crate) fn configs() -> Vec<RunConfig> {
     let continuous = RunConfig {
         label: "jump=continuous".into(),
@@ -19,7 +28,11 @@ pub(crate) fn configs() -> Vec<RunConfig> {
         },
         ..run_default()
     };
-    vec![run_default(), continuous, run_integer(32)]
+    vec![
+        run_default().with_why(WHY_DEFAULT),
+        continuous.with_why(WHY_CONTINUOUS),
+        run_integer(32).with_why(WHY_INTEGER),
+    ]
 }
 
 pub(crate) fn stress_configs() -> Vec<RunConfig> {

@@ -1,4 +1,4 @@
-//! What controllers do on the levels, read from their traces: geometry, idling, integer positions, one-way platforms and ladders, moving platforms, slopes, the models' limits and the sweep on the built-in set.
+//! What controllers do on the levels, read from their traces: geometry, idling, integer positions, one-way platforms and ladders, moving platforms, slopes, the models' limits, the sweep on the built-in set, and the report's statements on a toy controller.
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -10,4 +10,5 @@ mod models;
 mod oneway_ladders;
 mod platforms;
 mod slopes;
+mod statements;
 mod sweep_builtin;

@@ -111,3 +111,68 @@ pub fn outside_program(
     }
     found
 }
+
+/// A toy controller for the report's statements: the default sweep, but its grounded flag is
+/// reported one frame late (grounded only on a step that started grounded), so it lands a frame
+/// after the integrator's landing frame. Everything else is the sweep's.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LateLander(
+    /// The sweep it wraps, with its settings.
+    pub platbench::sweep::SweepConfig,
+);
+
+/// What [`LateLander`] keeps: the sweep's mover and, per character, whether it was grounded
+/// before the last step.
+pub struct LateMover {
+    inner: <platbench::sweep::SweepConfig as platbench::controller::Controller>::Mover,
+    before: Vec<bool>,
+}
+
+impl platbench::controller::Controller for LateLander {
+    type Mover = LateMover;
+    const NAME: &'static str = "late_lander";
+
+    fn features(&self) -> platbench::level::Features {
+        self.0.features()
+    }
+    fn build(
+        &self,
+        setup: platbench::controller::Setup<'_>,
+    ) -> Result<LateMover, platbench::backend::BackendError> {
+        let before = vec![false; setup.characters.len()];
+        Ok(LateMover {
+            inner: self.0.build(setup)?,
+            before,
+        })
+    }
+    fn step(&self, m: &mut LateMover, inputs: &[platbench::motion::Input], dt: f32) {
+        for (id, b) in m.before.iter_mut().enumerate() {
+            *b = self.0.state(&m.inner, id).grounded;
+        }
+        self.0.step(&mut m.inner, inputs, dt);
+    }
+    fn state(
+        &self,
+        m: &LateMover,
+        id: platbench::backend::CharacterId,
+    ) -> platbench::backend::CharacterState {
+        let mut s = self.0.state(&m.inner, id);
+        s.grounded &= m.before[id];
+        s
+    }
+    fn declared_contact(
+        &self,
+        size: glam::Vec2,
+        max_climb_angle: f32,
+    ) -> platbench::backend::DeclaredContact {
+        self.0.declared_contact(size, max_climb_angle)
+    }
+    fn declared_contact_in(
+        &self,
+        size: glam::Vec2,
+        params: &platbench::motion::MotionParams,
+        dt: f32,
+    ) -> platbench::backend::DeclaredContact {
+        self.0.declared_contact_in(size, params, dt)
+    }
+}

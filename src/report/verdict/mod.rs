@@ -148,6 +148,10 @@ pub struct Facts {
     pub precision: Precision,
     /// What else it declares.
     pub capabilities: Capabilities,
+    /// Its documented design in one line ([`RunConfig::why`], else its controller's
+    /// description): why it behaves as it does, attached to its row alike for every
+    /// configuration.
+    pub why: String,
 }
 
 impl Facts {
@@ -165,6 +169,7 @@ impl Facts {
             features: run.backend.features(),
             precision: run.backend.precision(),
             capabilities: run.backend.capabilities(),
+            why: run.why.clone(),
         }
     }
 }
@@ -384,6 +389,7 @@ impl VerdictRows {
                 features: Features::NONE,
                 precision: Precision::F32,
                 capabilities: Capabilities::default(),
+                why: String::new(),
             });
         self.cards.push(Card {
             facts,

@@ -187,7 +187,7 @@ pub fn render_scorecard(card: &Scorecard) -> String {
     out.push_str(&wrap(
         "",
         "",
-        "Scorecard: does each configuration keep its own documented promise on each behaviour's scenarios? ok: every scored metric within the clearly-wrong size (0.01 tiles, 0.01 ratio, exact frames and counts); minor: within ten times it (0.1 tiles), 3 frames or 2 counts; FAIL: beyond, or a wrong result; -: not run. landing includes jumps. Under a row, the scenario and metric behind each grade that is not ok. cost: median time per character step over the cheapest configuration's (run --timing).",
+        "Scorecard: does each configuration keep its own documented promise on each behaviour's scenarios? ok: every scored metric within the clearly-wrong size (0.01 tiles, 0.01 ratio, exact frames and counts); minor: within ten times it (0.1 tiles), 3 frames or 2 counts; FAIL: beyond, or a wrong result; -: not run. landing includes jumps. Under a row, its documented design and the scenario and metric behind each grade that is not ok. cost: median time per character step over the cheapest configuration's (run --timing).",
     ));
     let label_width = card
         .cards
@@ -245,6 +245,9 @@ pub fn render_scorecard(card: &Scorecard) -> String {
         let _ = write!(line, " {cost:>6}");
         out.push_str(line.trim_end());
         out.push('\n');
+        if !c.facts.why.is_empty() {
+            out.push_str(&wrap("    design: ", "      ", &c.facts.why));
+        }
         if !notes.is_empty() {
             out.push_str(&wrap("    ", "      ", &notes.join("; ")));
         }

@@ -28,6 +28,7 @@ fn facts(backend: &str) -> Facts {
         features: Features::ALL,
         precision: Precision::F32,
         capabilities: Capabilities::default(),
+        why: String::new(),
     }
 }
 
