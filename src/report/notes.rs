@@ -182,6 +182,7 @@ mod tests {
             unit: "tiles",
             reference: 0.0,
             error: value,
+            frame: None,
         };
         let runs = [
             vec![
