@@ -196,6 +196,64 @@ fn slope_metrics_give_the_deepest_and_the_farthest_frame() {
     assert_eq!(frame(&rows, "slope_gap_max"), Some(Some(5)));
 }
 
+/// A 45-degree ramp rising right over columns 5 to 7, from the floor (top y = 1) to y = 4.
+const HILL: &str = r#"
+name = "m"
+map = """
+..............
+.......a......
+......a#......
+.....a##......
+##############
+"""
+[legend]
+"a" = { line = [0.0, 1.0] }
+"#;
+
+#[test]
+fn slope_speeds_give_the_step_farthest_from_the_run_speed() {
+    // Walking up at 3 tiles/s across, but 1 tile/s on the step into frame 5.
+    let walk = spec(Vec2::new(5.05, 1.05), hold(true, false, false), 0.7);
+    let xs = [5.05, 5.35, 5.65, 5.95, 6.25, 6.35, 6.65, 6.95];
+    let rows = measure_on(HILL, &walk, &trace(&xs.map(|x| (x, x - 4.0, true))));
+    assert_eq!(frame(&rows, "slope_speed_ratio"), Some(Some(5)));
+    assert_eq!(frame(&rows, "slope_surface_speed_ratio"), Some(Some(5)));
+}
+
+/// A ramp steeper than the climb limit at column 4, two tiles high.
+const STEEP: &str = r#"
+name = "m"
+map = """
+..........
+....b.....
+....a#....
+##########
+"""
+[legend]
+"a" = { line = [0.0, 2.0] }
+"b" = { line = [-1.0, 1.0] }
+"#;
+
+#[test]
+fn a_blocked_climb_gives_its_highest_frame() {
+    let walk = spec(Vec2::new(2.5, 1.0), hold(true, false, false), 0.5);
+    let pts = [
+        (2.5, 1.0, true),
+        (3.1, 1.0, true),
+        (3.5, 1.0, true),
+        (3.6, 1.2, true),
+        (3.6, 1.1, true),
+        (3.6, 1.0, true),
+    ];
+    let rows = measure_on(STEEP, &walk, &trace(&pts));
+    assert_eq!(
+        rows.iter()
+            .find(|r| r.metric == "steep_blocked")
+            .map(|r| (r.value, r.frame)),
+        Some((1.0, Some(3)))
+    );
+}
+
 /// A ladder at column 4 from the floor (top y = 1) to y = 3, and a one-way platform at y = 3.
 const LADDER: &str = r#"
 name = "m"
