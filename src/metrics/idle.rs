@@ -76,6 +76,8 @@ pub const STOPPED_STEP: f64 = 1e-6;
 /// [`REST_WINDOW`] seconds after the commanded glide ended, whatever it moves or reports (0 if
 /// it never stands idle). Reported for every scenario whose script has an idle step and that rides no platform,
 /// whatever the controller does, so every configuration is measured on the same scenarios.
+///
+/// Frame: the first frame at the largest displacement (`None` if it never stood idle).
 pub fn idle_drift(ctx: &Context, rows: Frames) -> Option<Measure> {
     let script = input_script(ctx.spec);
     if ctx.spec.ride.is_some() || !script.iter().any(|i| *i == Input::default()) {
@@ -91,6 +93,7 @@ pub fn idle_drift(ctx: &Context, rows: Frames) -> Option<Measure> {
     let settle = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
     let shape = ctx.shape.build(ctx.spec.size);
     let mut worst: Option<f32> = None;
+    let mut frame = None;
     let mut k = 1;
     while k < rows.len() {
         if !idle_frame(ctx, &shape, &script, rows, k) {
@@ -118,6 +121,9 @@ pub fn idle_drift(ctx: &Context, rows: Frames) -> Option<Measure> {
             }
             if let Some(a) = anchor {
                 let d = (pos(&r) - pos(&a)).length();
+                if worst.is_none_or(|w| d > w) {
+                    frame = Some(r.frame);
+                }
                 worst = Some(worst.map_or(d, |w| w.max(d)));
             }
             k += 1;
@@ -127,5 +133,6 @@ pub fn idle_drift(ctx: &Context, rows: Frames) -> Option<Measure> {
         metric: "idle_drift",
         value: worst.unwrap_or(0.0) as f64,
         reference: 0.0,
+        frame,
     })
 }

@@ -9,6 +9,8 @@ use parry2d::bounding_volume::Aabb;
 /// `apex_error`: the rise of the feet from take-off to the apex of the first jump, minus the
 /// requested jump height, in tiles. Only for a jump with no solid within the jump's reach above
 /// the character.
+///
+/// Frame: the first frame at the apex (the take-off frame if it never rose).
 pub fn apex_error(ctx: &Context, rows: Frames) -> Option<Measure> {
     let script = input_script(ctx.spec);
     let press = script
@@ -30,7 +32,11 @@ pub fn apex_error(ctx: &Context, rows: Frames) -> Option<Measure> {
         return None;
     }
     let mut apex = start.y;
+    let mut frame = start.frame;
     for r in rows.iter().skip(press + 1) {
+        if r.y > apex {
+            frame = r.frame;
+        }
         apex = apex.max(r.y);
         if r.is_grounded() && r.frame as usize > press + 1 {
             break;
@@ -40,5 +46,6 @@ pub fn apex_error(ctx: &Context, rows: Frames) -> Option<Measure> {
         metric: "apex_error",
         value: (apex - start.y) as f64 - h as f64,
         reference: 0.0,
+        frame: Some(frame),
     })
 }

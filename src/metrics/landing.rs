@@ -2,7 +2,7 @@
 //! whether its grounded flag tells the truth.
 
 use super::ground::Ground;
-use super::{pos, predicted_landing_frame, standing, Context, Measure};
+use super::{pos, predicted_landing_frame, standing, Context, Measure, Peak};
 use crate::level::Tile;
 use crate::scenario::input_script;
 use crate::trace::{Frames, TraceRow};
@@ -18,21 +18,27 @@ pub const FLICKER_SUPPORT_TOLERANCE: f32 = 0.1;
 /// (solid tiles' squares and slope tiles' true solid parts, nothing left out) over the whole run,
 /// in tiles, from parry's contact query (not from a backend's contacts); on grounded frames
 /// standing on a one-way top (platform or ladder top), how far it is sunk below that top.
+///
+/// Frame: the first frame at the deepest overlap.
 pub fn max_penetration(g: &Ground, rows: Frames) -> Measure {
-    let worst = rows
-        .iter()
-        .map(|r| g.penetration(pos(&r), r.t as f64, standing(&r)))
-        .fold(0.0f32, f32::max);
+    let mut worst = Peak::new(0.0);
+    for r in rows.iter() {
+        worst.push(r.frame, g.penetration(pos(&r), r.t as f64, standing(&r)));
+    }
     Measure {
         metric: "max_penetration",
-        value: worst as f64,
+        value: worst.value as f64,
         reference: 0.0,
+        frame: worst.frame,
     }
 }
 
 /// `land_frame_error`: first grounded frame minus the frame the discrete integrator predicts,
 /// for a character that starts in the air, above ground, with no horizontal velocity and no
 /// input before it should land.
+///
+/// Frame: the first grounded frame (the landing); the last frame if it never landed (still in
+/// the air, or fallen through, at the end).
 pub fn land_frame_error(ctx: &Context, rows: Frames) -> Option<Measure> {
     let spec = ctx.spec;
     if spec.velocity.x != 0.0 {
@@ -79,6 +85,7 @@ pub fn land_frame_error(ctx: &Context, rows: Frames) -> Option<Measure> {
         metric: "land_frame_error",
         value,
         reference: 0.0,
+        frame: landed.or_else(|| rows.last().map(|r| r.frame)),
     })
 }
 
@@ -114,7 +121,7 @@ pub(super) fn rest_frames(
 }
 
 /// `rest_gap`: signed gap from the character's shape down to the ground at the last frame
-/// (negative: sunk into a solid), in tiles; see [`Ground::gap`].
+/// (negative: sunk into a solid), in tiles; see [`Ground::gap`]. Frame: that last frame.
 pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
     let last = rows.last().map_or(ctx.spec.spawn, |r| pos(&r));
     Measure {
@@ -123,6 +130,7 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
             g.gap_at(last, r.t as f64, standing(&r))
         }) as f64,
         reference: 0.0,
+        frame: rows.last().map(|r| r.frame),
     }
 }
 
@@ -134,7 +142,7 @@ pub(super) fn rest_gap(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
 /// on integer positions, on the surface rounded up to its subpixel, [`crate::scenario::DeclaredContact::stance_height`]),
 /// or, for a controller standing on a flat foot (Box2D's segment pogo,
 /// `DeclaredContact::stance_half_width`), the gap of its shape with the feet on the highest
-/// surface under the foot, plus its declared gap.
+/// surface under the foot, plus its declared gap. Frame: the last frame, as `rest_gap`'s.
 pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
     let rest = rest_gap(ctx, g, rows);
     let feet = rows.last().map_or(ctx.spec.spawn, |r| pos(&r));
@@ -142,6 +150,7 @@ pub(super) fn rest_gap_declared(ctx: &Context, g: &Ground, rows: Frames) -> Meas
         metric: "rest_gap_declared",
         value: gap_beyond_declared(ctx, g, feet, rest.value),
         reference: 0.0,
+        frame: rest.frame,
     }
 }
 
@@ -199,15 +208,18 @@ pub(super) fn stance_over_slope(ctx: &Context, feet: glam::Vec2) -> Option<f32> 
 /// its centre: the designed overhang into a ramp (or the ground that continues it) at that very
 /// place, measured the same way as the overlap itself. Sunk below that stance, the difference
 /// counts. A controller keeping its promise scores 0.
+///
+/// Frame: the first frame at the deepest overlap beyond the declared one.
 pub(super) fn penetration_beyond_declared(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
-    let worst = rows
-        .iter()
-        .map(|r| beyond_declared(ctx, g, &r))
-        .fold(0.0f32, f32::max);
+    let mut worst = Peak::new(0.0);
+    for r in rows.iter() {
+        worst.push(r.frame, beyond_declared(ctx, g, &r));
+    }
     Measure {
         metric: "penetration_beyond_declared",
-        value: worst as f64,
+        value: worst.value as f64,
         reference: 0.0,
+        frame: worst.frame,
     }
 }
 
@@ -310,20 +322,24 @@ fn stance_surface(ctx: &Context, p: glam::Vec2, overhang: f32) -> Option<f32> {
 /// the character spends airborne after it first touched ground: a landing that bounces or lifts
 /// off again. `rest_jitter` judges only the settled rest and `land_frame_error` only the first
 /// grounded frame, so without this a bounce after landing would be charged nowhere.
+///
+/// Frame: the first of those airborne frames (`None` if there is none).
 pub(super) fn bounce_frames(ctx: &Context, rows: Frames) -> Measure {
     let script = input_script(ctx.spec);
     let idle = crate::motion::Input::default();
     let first_idle_row = script.rposition(|i| *i != idle).map_or(0, |k| k + 1) + 1;
     let span = rows.slice(first_idle_row.min(rows.len())..rows.len());
-    let count = span
-        .iter()
-        .skip_while(|r| !r.is_grounded())
-        .filter(|r| !r.is_grounded())
-        .count();
+    let (count, first) = first_and_count(
+        span.iter()
+            .skip_while(|r| !r.is_grounded())
+            .filter(|r| !r.is_grounded())
+            .map(|r| r.frame),
+    );
     Measure {
         metric: "bounce_frames",
         value: count as f64,
         reference: 0.0,
+        frame: first,
     }
 }
 
@@ -337,12 +353,17 @@ pub(super) fn settled(ctx: &Context, rest: std::ops::Range<usize>) -> std::ops::
 
 /// `rest_jitter`: max minus min of y over the settled resting frames (see [`settled`]), in
 /// tiles.
+///
+/// Frame: the frame at which the range reached its final width (the later of the lowest and
+/// the highest frame, each the first at its height).
 pub(super) fn rest_jitter(rows: Frames) -> Measure {
-    let (lo, hi) = rows
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), r| {
-            (lo.min(r.y), hi.max(r.y))
-        });
+    let (mut lo, mut hi, mut frame) = (f32::INFINITY, f32::NEG_INFINITY, None);
+    for r in rows.iter() {
+        if r.y < lo || r.y > hi {
+            frame = Some(r.frame);
+        }
+        (lo, hi) = (lo.min(r.y), hi.max(r.y));
+    }
     Measure {
         metric: "rest_jitter",
         value: if rows.is_empty() {
@@ -351,6 +372,7 @@ pub(super) fn rest_jitter(rows: Frames) -> Measure {
             (hi - lo) as f64
         },
         reference: 0.0,
+        frame,
     }
 }
 
@@ -372,23 +394,30 @@ pub fn supported(ctx: &Context, g: &Ground, r: &TraceRow) -> bool {
 /// [`FLICKER_SUPPORT_TOLERANCE`] below the shape (standing on air, or on a wall's side). Not in
 /// DESIGN.md's catalog: added because a controller that calls itself grounded mid-air resets
 /// its fall and can jump from there.
+///
+/// Frame: the first such frame (`None` if there is none).
 pub fn false_grounded(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
-    let count = rows
-        .iter()
-        .filter(|r| r.is_grounded() && !supported(ctx, g, r))
-        .count();
+    let (count, first) = first_and_count(
+        rows.iter()
+            .filter(|r| r.is_grounded() && !supported(ctx, g, r))
+            .map(|r| r.frame),
+    );
     Measure {
         metric: "false_grounded",
         value: count as f64,
         reference: 0.0,
+        frame: first,
     }
 }
 
 /// `grounded_flicker`: grounded-to-airborne switches that no jump explains while the ground is
 /// still within [`FLICKER_SUPPORT_TOLERANCE`] under the feet.
+///
+/// Frame: the first airborne frame of the first such switch (`None` if there is none).
 pub fn grounded_flicker(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
     let script = input_script(ctx.spec);
     let mut count = 0u32;
+    let mut first = None;
     for k in 1..rows.len() {
         let (prev, cur) = (rows.at(k - 1), rows.at(k));
         if !prev.is_grounded() || cur.is_grounded() {
@@ -399,11 +428,18 @@ pub fn grounded_flicker(ctx: &Context, g: &Ground, rows: Frames) -> Measure {
             && (k < 2 || script.get(k - 2).is_none_or(|i| !i.jump));
         if !jumped && supported(ctx, g, &cur) {
             count += 1;
+            first = first.or(Some(cur.frame));
         }
     }
     Measure {
         metric: "grounded_flicker",
         value: count as f64,
         reference: 0.0,
+        frame: first,
     }
+}
+
+/// How many frames `frames` yields, and the first of them.
+pub(super) fn first_and_count(frames: impl Iterator<Item = u32>) -> (usize, Option<u32>) {
+    frames.fold((0, None), |(n, first), f| (n + 1, first.or(Some(f))))
 }

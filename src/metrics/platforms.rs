@@ -1,7 +1,7 @@
 //! Moving platforms: carrying a rider, and pushing (or crushing) a character.
 
 use super::ground::Ground;
-use super::{pos, Context, Measure};
+use super::{pos, Context, Measure, Peak};
 use crate::scenario::input_script;
 use crate::trace::{Frames, TraceRow};
 
@@ -63,47 +63,57 @@ pub(super) fn ride_frames(ctx: &Context, rows: Frames) -> Option<std::ops::Range
 }
 
 /// `carry_drift`: over the idle part of the ride, the largest change of the character's position
-/// relative to its platform, in tiles.
+/// relative to its platform, in tiles. Frame: the first frame at the largest change.
 pub fn carry_drift(ctx: &Context, rows: Frames, ride: &std::ops::Range<usize>) -> Measure {
     let p = &ctx.level.platforms[ctx.spec.ride.unwrap_or(0) as usize];
     let rel = |k: usize| pos(&rows.at(k)) - placed(ctx, p, k).mins;
     let first = rel(ride.start);
-    let drift = ride
-        .clone()
-        .map(|k| (rel(k) - first).length())
-        .fold(0.0f32, f32::max);
+    let mut drift = Peak::new(0.0);
+    for k in ride.clone() {
+        drift.push(rows.at(k).frame, (rel(k) - first).length());
+    }
     Measure {
         metric: "carry_drift",
-        value: drift as f64,
+        value: drift.value as f64,
         reference: 0.0,
+        frame: drift.frame,
     }
 }
 
-/// `carry_airborne_frames`: frames airborne during the idle part of the ride.
+/// `carry_airborne_frames`: frames airborne during the idle part of the ride. Frame: the first
+/// of them (`None` if there is none).
 pub fn carry_airborne_frames(rows: Frames, ride: &std::ops::Range<usize>) -> Measure {
+    let (count, first) = super::landing::first_and_count(
+        ride.clone()
+            .map(|k| rows.at(k))
+            .filter(|r| !r.is_grounded())
+            .map(|r| r.frame),
+    );
     Measure {
         metric: "carry_airborne_frames",
-        value: ride.clone().filter(|&k| !rows.at(k).is_grounded()).count() as f64,
+        value: count as f64,
         reference: 0.0,
+        frame: first,
     }
 }
 
 /// `push_penetration`: on a level with moving platforms, the deepest overlap of the character's
 /// shape with a platform that is not one-way, over the run, in tiles (parry's penetration depth,
 /// [`Ground::box_penetration`], against the platform where the configuration places it).
+/// Frame: the first frame at the deepest overlap.
 pub fn push_penetration(ctx: &Context, g: &Ground, rows: Frames) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
-    let deepest = rows
-        .iter()
-        .enumerate()
-        .map(|(k, r)| platform_depth(ctx, g, &r, k))
-        .fold(0.0f32, f32::max);
+    let mut deepest = Peak::new(0.0);
+    for (k, r) in rows.iter().enumerate() {
+        deepest.push(r.frame, platform_depth(ctx, g, &r, k));
+    }
     Some(Measure {
         metric: "push_penetration",
-        value: deepest as f64,
+        value: deepest.value as f64,
         reference: 0.0,
+        frame: deepest.frame,
     })
 }
 
@@ -115,17 +125,22 @@ pub const CRUSH_DEPTH: f32 = 0.25;
 /// up inside a (not one-way) platform by more than [`CRUSH_DEPTH`]: crushed against the level, or
 /// run through by a platform that did not push it. Read from the geometry, so a backend without a
 /// crush event (Rapier) is counted the same way as the sweep, whose trace also flags the crush.
+///
+/// Frame: the frame of the first crush (`None` if there is none).
 pub fn crush_count(ctx: &Context, g: &Ground, rows: Frames) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
     let inside = |k: usize| platform_depth(ctx, g, &rows.at(k), k) > CRUSH_DEPTH;
-    let count = (1..rows.len())
-        .filter(|&k| inside(k) && !inside(k - 1))
-        .count();
+    let (count, first) = super::landing::first_and_count(
+        (1..rows.len())
+            .filter(|&k| inside(k) && !inside(k - 1))
+            .map(|k| rows.at(k).frame),
+    );
     Some(Measure {
         metric: "crush_count",
         value: count as f64,
         reference: 0.0,
+        frame: first,
     })
 }

@@ -176,6 +176,7 @@ mod tests {
             unit,
             reference,
             error: value - reference,
+            frame: None,
         }
     }
 

@@ -15,6 +15,8 @@ pub(crate) const PROGRESS_SPAWN_HEIGHT: f32 = 0.05;
 
 /// `progress_ratio`: distance walked over distance commanded, for a walk that starts on the
 /// ground with the whole commanded path flat, supported and free of obstacles.
+///
+/// Frame: the last frame (where the distance walked is read).
 pub fn progress_ratio(ctx: &Context, rows: Frames) -> Option<Measure> {
     let spec = ctx.spec;
     let script = input_script(spec);
@@ -56,6 +58,7 @@ pub fn progress_ratio(ctx: &Context, rows: Frames) -> Option<Measure> {
         metric: "progress_ratio",
         value: walked / d,
         reference: 1.0,
+        frame: Some(last.frame),
     })
 }
 
@@ -68,12 +71,20 @@ pub(crate) const STUCK_FLOOR_BAND: f32 = 0.05;
 /// `stuck_frames`: steps in which the character was commanded to move horizontally, was
 /// grounded, and moved less than [`STUCK_FRACTION`] of the commanded step, while nothing in the
 /// level blocked that step (a wall being pushed against is not "stuck").
+///
+/// Frame: the frame the first stuck step ends on (`None` if none was stuck).
 pub fn stuck_frames(ctx: &Context, rows: Frames) -> Measure {
-    let count = stuck_steps(ctx, rows).filter(|s| *s).count();
+    let (count, first) = super::landing::first_and_count(
+        stuck_steps(ctx, rows)
+            .enumerate()
+            .filter(|(_, s)| *s)
+            .map(|(k, _)| rows.at(k + 1).frame),
+    );
     Measure {
         metric: "stuck_frames",
         value: count as f64,
         reference: 0.0,
+        frame: first,
     }
 }
 

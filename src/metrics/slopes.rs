@@ -2,7 +2,7 @@
 //! climb limit.
 
 use super::ground::Ground;
-use super::{commanded_distance, pos, Context, Measure};
+use super::{commanded_distance, pos, Context, Measure, Peak};
 use crate::scenario::input_script;
 use crate::trace::Frames;
 
@@ -87,6 +87,7 @@ pub(super) fn walks_over_slopes(ctx: &Context) -> bool {
 }
 
 /// `slope_airborne_frames`: frames airborne over a walkable slope while walking, without a jump.
+/// Frame: the first such frame (`None` if there is none).
 pub(super) fn slope_airborne_frames(
     ctx: &Context,
     rows: Frames,
@@ -96,13 +97,18 @@ pub(super) fn slope_airborne_frames(
         return None;
     }
     let script = input_script(ctx.spec);
-    let count = (1..rows.len())
-        .filter(|&k| on.get(k) && script[k - 1].horizontal() != 0.0 && !rows.at(k).is_grounded())
-        .count();
+    let (count, first) = super::landing::first_and_count(
+        (1..rows.len())
+            .filter(|&k| {
+                on.get(k) && script[k - 1].horizontal() != 0.0 && !rows.at(k).is_grounded()
+            })
+            .map(|k| rows.at(k).frame),
+    );
     Some(Measure {
         metric: "slope_airborne_frames",
         value: count as f64,
         reference: 0.0,
+        frame: first,
     })
 }
 
@@ -110,19 +116,27 @@ pub(super) fn slope_airborne_frames(
 /// between the character's shape and the level's surface that is farthest from touching, in
 /// tiles: positive a gap above the surface, negative the depth inside it (the seed's box
 /// overhanging a ramp reads as inside it). 0 if it never stood on one.
+///
+/// Frame: the first of those frames at that gap (`None` if it never stood on one).
 pub(super) fn slope_gap_max(ctx: &Context, g: &Ground, on: &SlopeFrames) -> Option<Measure> {
     if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
         return None;
     }
-    let worst = on
-        .rows()
-        .filter(|(r, o)| *o && r.is_grounded())
-        .map(|(r, _)| g.gap(pos(&r)))
-        .fold(0.0f32, |a, b| if b.abs() > a.abs() { b } else { a });
+    let (mut worst, mut frame) = (0.0f32, None);
+    for (r, _) in on.rows().filter(|(r, o)| *o && r.is_grounded()) {
+        let b = g.gap(pos(&r));
+        if frame.is_none() || b.abs() > worst.abs() {
+            frame = Some(r.frame);
+        }
+        if b.abs() > worst.abs() {
+            worst = b;
+        }
+    }
     Some(Measure {
         metric: "slope_gap_max",
         value: worst as f64,
         reference: 0.0,
+        frame,
     })
 }
 
@@ -141,6 +155,8 @@ pub(crate) const LANDING_SETTLE: f32 = 0.05;
 /// ([`LANDING_SETTLE`]) are left out (land_frame_error's business). `slope_gap_max` measures
 /// against touching; this is the promise, and it is scored (a controller hovering over a ramp
 /// while it walks would otherwise be seen only at rest).
+///
+/// Frame: the first of the frames judged at that value (`None` if no frame was judged).
 pub(super) fn slope_gap_declared(ctx: &Context, g: &Ground, on: &SlopeFrames) -> Option<Measure> {
     if !(walks_over_slopes(ctx) || rest_on_slope(ctx)) {
         return None;
@@ -148,7 +164,7 @@ pub(super) fn slope_gap_declared(ctx: &Context, g: &Ground, on: &SlopeFrames) ->
     // Frames within LANDING_SETTLE of the last airborne frame are left out.
     let settle = (LANDING_SETTLE / ctx.spec.dt).ceil() as usize;
     let mut since_air = usize::MAX;
-    let mut worst = 0.0f64;
+    let (mut worst, mut frame) = (0.0f64, None);
     for (r, o) in on.rows() {
         since_air = if r.is_grounded() {
             since_air.saturating_add(1)
@@ -159,6 +175,9 @@ pub(super) fn slope_gap_declared(ctx: &Context, g: &Ground, on: &SlopeFrames) ->
             continue;
         }
         let b = super::landing::gap_beyond_declared(ctx, g, pos(&r), g.gap(pos(&r)) as f64);
+        if frame.is_none() || b.abs() > worst.abs() {
+            frame = Some(r.frame);
+        }
         if b.abs() > worst.abs() {
             worst = b;
         }
@@ -167,6 +186,7 @@ pub(super) fn slope_gap_declared(ctx: &Context, g: &Ground, on: &SlopeFrames) ->
         metric: "slope_gap_declared",
         value: worst,
         reference: 0.0,
+        frame,
     })
 }
 
@@ -176,18 +196,21 @@ pub(super) fn slope_gap_declared(ctx: &Context, g: &Ground, on: &SlopeFrames) ->
 /// box overhangs the ramp by up to half its width times the gradient (0.4 tiles vertically on a
 /// 45-degree ramp for a 0.8-wide box, 0.28 along the ramp's normal): this is that overlap, by
 /// design, reported as what it is.
+///
+/// Frame: the first frame at the deepest overlap.
 pub fn slope_overlap(ctx: &Context, g: &Ground, rows: Frames) -> Option<Measure> {
     if !ctx.level.features.slopes {
         return None;
     }
-    let worst = rows
-        .iter()
-        .map(|r| g.slope_penetration(pos(&r)))
-        .fold(0.0f32, f32::max);
+    let mut worst = Peak::new(0.0);
+    for r in rows.iter() {
+        worst.push(r.frame, g.slope_penetration(pos(&r)));
+    }
     Some(Measure {
         metric: "slope_overlap",
-        value: worst as f64,
+        value: worst.value as f64,
         reference: 0.0,
+        frame: worst.frame,
     })
 }
 
@@ -214,6 +237,9 @@ pub(super) fn rest_on_slope(ctx: &Context) -> bool {
 ///
 /// A controller is not wrong for following either model: the report shows both. 0 if it never
 /// walked the slope at full speed.
+///
+/// Frame: for each, the frame ending the measured step whose speed is farthest from the run
+/// speed (the first such; `None` if no step was measured): where the mean is best shown off.
 pub(super) fn slope_speed_ratios(
     ctx: &Context,
     rows: Frames,
@@ -246,19 +272,35 @@ pub(super) fn slope_speed_ratios(
             steps().map(speed).sum::<f64>() / count as f64
         }
     };
-    let horizontal = mean(&|k| ((rows.at(k).x - rows.at(k - 1).x) as f64 / dt).abs());
-    let along = mean(&|k| (pos(&rows.at(k)) - pos(&rows.at(k - 1))).length() as f64 / dt);
+    let horizontal_at = |k: usize| ((rows.at(k).x - rows.at(k - 1).x) as f64 / dt).abs();
+    let along_at = |k: usize| (pos(&rows.at(k)) - pos(&rows.at(k - 1))).length() as f64 / dt;
+    let horizontal = mean(&horizontal_at);
+    let along = mean(&along_at);
     let run = ctx.params.run_speed as f64;
+    // The step farthest from the run speed in each model, a third pass over the steps.
+    let (mut h_worst, mut a_worst) = ((-1.0f64, None), (-1.0f64, None));
+    for k in steps() {
+        let frame = Some(rows.at(k).frame);
+        let (h, a) = ((horizontal_at(k) - run).abs(), (along_at(k) - run).abs());
+        if h > h_worst.0 {
+            h_worst = (h, frame);
+        }
+        if a > a_worst.0 {
+            a_worst = (a, frame);
+        }
+    }
     [
         Some(Measure {
             metric: "slope_speed_ratio",
             value: horizontal / run,
             reference: 1.0,
+            frame: h_worst.1,
         }),
         Some(Measure {
             metric: "slope_surface_speed_ratio",
             value: along / run,
             reference: 1.0,
+            frame: a_worst.1,
         }),
     ]
 }
@@ -274,6 +316,8 @@ pub(super) fn steep_ahead(ctx: &Context) -> bool {
 
 /// `steep_blocked`: for a walk toward a slope that rises more steeply than the climb limit, 1 if
 /// the character never got half a tile above where it started, else 0.
+///
+/// Frame: the first frame at the highest the feet got (where the climb stopped, or got over).
 pub fn steep_blocked(ctx: &Context, rows: Frames) -> Option<Measure> {
     let script = input_script(ctx.spec);
     if !walks_without_jumping(&script) {
@@ -282,10 +326,14 @@ pub fn steep_blocked(ctx: &Context, rows: Frames) -> Option<Measure> {
     if !steep_ahead(ctx) {
         return None;
     }
-    let top = rows.iter().map(|r| r.y).fold(f32::NEG_INFINITY, f32::max);
+    let mut top = Peak::new(f32::NEG_INFINITY);
+    for r in rows.iter() {
+        top.push(r.frame, r.y);
+    }
     Some(Measure {
         metric: "steep_blocked",
-        value: (top < ctx.spec.spawn.y + 0.5) as u8 as f64,
+        value: (top.value < ctx.spec.spawn.y + 0.5) as u8 as f64,
         reference: 1.0,
+        frame: top.frame,
     })
 }

@@ -8,18 +8,22 @@ use parry2d::bounding_volume::Aabb;
 
 /// `tunneled`: 1 if between two frames the character passed entirely through a solid tile that
 /// overlapped its box's cross-section both before and after the move, else 0.
+///
+/// Frame: the frame the first such move ends on, on the far side (`None` if it never tunneled).
 pub fn tunneled(ctx: &Context, rows: Frames) -> Measure {
     let size = ctx.spec.size;
     let pairs = rows.iter().zip(rows.iter().skip(1));
-    let passed = pairs.into_iter().any(|(r0, r1)| {
+    let passed = pairs.into_iter().find_map(|(r0, r1)| {
         let a = character_box(pos(&r0), size);
         let b = character_box(pos(&r1), size);
-        passed_through(ctx.level, &a, &b, 0) || passed_through(ctx.level, &a, &b, 1)
+        (passed_through(ctx.level, &a, &b, 0) || passed_through(ctx.level, &a, &b, 1))
+            .then_some(r1.frame)
     });
     Measure {
         metric: "tunneled",
-        value: passed as u8 as f64,
+        value: passed.is_some() as u8 as f64,
         reference: 0.0,
+        frame: passed,
     }
 }
 

@@ -134,6 +134,7 @@ mod tests {
             unit: "tiles",
             reference: 0.0,
             error: value,
+            frame: None,
         }
     }
 

@@ -543,6 +543,7 @@ mod tests {
             unit: "frames",
             reference: 0.0,
             error: stuck,
+            frame: None,
         }
     }
 

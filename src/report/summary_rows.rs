@@ -176,6 +176,7 @@ mod tests {
             unit: crate::metrics::registry::unit(metric),
             reference: 0.0,
             error: v,
+            frame: None,
         }
     }
 

@@ -101,9 +101,18 @@ fn run_writes_traces_and_metrics() {
         .unwrap();
     assert_success(&out);
     let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
-    assert!(
-        metrics.starts_with("level,scenario,backend,config,metric,value,unit,reference,error\n")
-    );
+    assert!(metrics
+        .starts_with("level,scenario,backend,config,metric,value,unit,reference,error,frame\n"));
+    // The frame column (the last): a maximum over frames always has one.
+    let deepest: Vec<&str> = metrics
+        .lines()
+        .filter(|l| l.contains(",max_penetration,"))
+        .collect();
+    assert!(!deepest.is_empty());
+    for l in deepest {
+        let frame = l.rsplit(',').next().unwrap();
+        assert!(frame.parse::<u32>().is_ok(), "{l}");
+    }
     let trace = out_dir.join("traces/flat_seams.walk_right_10s.sweep.csv");
     let text = std::fs::read_to_string(&trace).unwrap();
     // 10 s at 1/60 s: the spawn row, 600 step rows, and the header.

@@ -266,6 +266,7 @@ fn the_committed_trade_off_scores_the_committed_baseline_with_the_default_score(
                 unit: d.unit,
                 reference: r.reference,
                 error: r.error,
+                frame: r.frame,
             })
         })
         .collect();

@@ -62,6 +62,11 @@ pub struct MetricDiff {
     pub new: Option<f64>,
     /// The verdict.
     pub change: Change,
+    /// The trace frame of the baseline value, if its `metrics.csv` gives one (shown, never
+    /// compared).
+    pub base_frame: Option<u32>,
+    /// The trace frame of the new value, if its `metrics.csv` gives one (shown, never compared).
+    pub new_frame: Option<u32>,
 }
 
 /// What happened to one trace.
@@ -309,6 +314,8 @@ mod timing_tests {
                 metric: metric.into(),
                 base: Some(1.0),
                 new: Some(2.0),
+                base_frame: None,
+                new_frame: None,
                 change,
             }],
             ..Default::default()

@@ -35,6 +35,11 @@ pub struct MetricRecord {
     pub reference: f64,
     /// `value - reference`.
     pub error: f64,
+    /// The trace frame the value was reached at or is best shown at, if the file has a `frame`
+    /// column and the row a frame there (files written before the column have none: they read
+    /// as `None`). Never compared: a frame moving is not a regression.
+    #[serde(default)]
+    pub frame: Option<u32>,
 }
 
 impl MetricRecord {
@@ -147,6 +152,8 @@ pub fn diff_runs(
                 metric: br.metric.clone(),
                 base: Some(br.value),
                 new: new_by_key.get(&br.key()).map(|r| r.value),
+                base_frame: br.frame,
+                new_frame: new_by_key.get(&br.key()).and_then(|r| r.frame),
                 change,
             });
         }
@@ -158,6 +165,8 @@ pub fn diff_runs(
             metric: nr.metric.clone(),
             base: None,
             new: Some(nr.value),
+            base_frame: None,
+            new_frame: nr.frame,
             change: Change::Added,
         });
     }
@@ -189,4 +198,75 @@ pub fn diff_runs(
         }
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const HEADER: &str = "level,scenario,backend,config,metric,value,unit,reference,error";
+
+    /// A run directory holding `metrics` as its metrics.csv and no trace.
+    fn run_dir(root: &Path, name: &str, metrics: &str) -> PathBuf {
+        let dir = root.join(name);
+        std::fs::create_dir_all(dir.join("traces")).unwrap();
+        std::fs::write(dir.join("metrics.csv"), metrics).unwrap();
+        dir
+    }
+
+    #[test]
+    fn metrics_are_read_with_or_without_the_frame_column_and_frames_are_not_compared() {
+        let root = tempfile::tempdir().unwrap();
+        // Written before the frame column (an old baseline, a user's CI baseline).
+        let old = run_dir(
+            root.path(),
+            "old",
+            &format!("{HEADER}\nm,s,sweep,default,max_penetration,0.5,tiles,0,0.5\n"),
+        );
+        // With it: the same value reached on another frame, and a row without a frame.
+        let new = run_dir(
+            root.path(),
+            "new",
+            &format!(
+                "{HEADER},frame\nm,s,sweep,default,max_penetration,0.5,tiles,0,0.5,7\n\
+                 m,s,sweep,default,ns_per_character_step,9,ns,0,9,\n"
+            ),
+        );
+        let o = read_metrics(&old).unwrap();
+        assert_eq!(o.len(), 1);
+        assert_eq!((o[0].value, o[0].frame), (0.5, None));
+        let n = read_metrics(&new).unwrap();
+        assert_eq!(n[0].frame, Some(7));
+        assert_eq!(n[1].frame, None);
+        // Old against new: the value is the same, the frame is not compared (only the added
+        // timing row is listed).
+        let d = diff_runs(&old, &new, &BTreeMap::new(), 1e-4).unwrap();
+        assert_eq!(d.compared, 1);
+        assert_eq!(d.metrics.len(), 1, "{:?}", d.metrics);
+        assert_eq!(d.metrics[0].change, Change::Added);
+        // A frame that moved is no change either; a value that moved shows both frames.
+        let moved = run_dir(
+            root.path(),
+            "moved",
+            &format!("{HEADER},frame\nm,s,sweep,default,max_penetration,0.5,tiles,0,0.5,3\n"),
+        );
+        assert!(diff_runs(&new, &moved, &BTreeMap::new(), 1e-4)
+            .unwrap()
+            .metrics
+            .iter()
+            .all(|m| m.metric != "max_penetration"));
+        let worse = run_dir(
+            root.path(),
+            "worse",
+            &format!("{HEADER},frame\nm,s,sweep,default,max_penetration,0.9,tiles,0,0.9,12\n"),
+        );
+        let d = diff_runs(&new, &worse, &BTreeMap::new(), 1e-4).unwrap();
+        let m = d
+            .metrics
+            .iter()
+            .find(|m| m.metric == "max_penetration")
+            .unwrap();
+        assert_eq!(m.change, Change::Worse);
+        assert_eq!((m.base_frame, m.new_frame), (Some(7), Some(12)));
+    }
 }

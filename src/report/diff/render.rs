@@ -14,8 +14,13 @@ pub enum DiffFormat {
     Csv,
 }
 
-fn fmt_opt(v: Option<f64>) -> String {
-    v.map_or("-".into(), crate::report::format_value)
+/// A value, with the trace frame it was reached at when the run's `metrics.csv` gives one.
+fn fmt_opt(v: Option<f64>, frame: Option<u32>) -> String {
+    match (v, frame) {
+        (None, _) => "-".into(),
+        (Some(v), None) => crate::report::format_value(v),
+        (Some(v), Some(f)) => format!("{} (frame {f})", crate::report::format_value(v)),
+    }
 }
 
 fn fmt_pos(p: Option<(f32, f32)>) -> String {
@@ -88,8 +93,8 @@ pub fn render(d: &RunDiff, format: DiffFormat) -> String {
                 m.scenario.clone(),
                 m.config.clone(),
                 m.metric.clone(),
-                fmt_opt(m.base),
-                fmt_opt(m.new),
+                fmt_opt(m.base, m.base_frame),
+                fmt_opt(m.new, m.new_frame),
             ]);
         }
         out.push('\n');

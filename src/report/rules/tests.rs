@@ -14,6 +14,7 @@ fn row(backend: &str, config: &str, metric: &'static str, value: f64) -> MetricR
         unit: "tiles",
         reference: 0.0,
         error: value,
+        frame: None,
     }
 }
 

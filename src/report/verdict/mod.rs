@@ -85,11 +85,12 @@ pub struct Worst {
 }
 
 impl Worst {
-    /// `level.scenario metric value (ideal reference)`.
+    /// `level.scenario frame N: metric value (ideal reference)`: where to look, and what.
     pub fn describe(&self) -> String {
         let r = &self.row;
+        let at = r.frame.map_or(String::new(), |f| format!(" frame {f}"));
         format!(
-            "{}.{} {} {} (ideal {})",
+            "{}.{}{at}: {} {} (ideal {})",
             r.level,
             r.scenario,
             r.metric,

@@ -18,6 +18,7 @@ fn row(
         unit: registry::unit(metric),
         reference,
         error: value - reference,
+        frame: None,
     }
 }
 
