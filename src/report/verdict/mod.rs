@@ -7,11 +7,13 @@
 //! Everything is read from a stream of runs ([`VerdictRows::push_run`]) in memory that grows
 //! with the configurations and levels, not with the rows.
 
+mod html;
 mod pick;
 mod render;
 
 use std::collections::{BTreeMap, BTreeSet};
 
+pub use html::{render_verdict_html, STYLE};
 pub use pick::{pick, ProfileVerdict, Reason};
 pub use render::{render_capabilities, render_scorecard, render_verdict};
 
