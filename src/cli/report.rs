@@ -76,6 +76,8 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
     // The extra files first: a bad one fails before the long run.
     output::check_target(&args.out, output::Kind::Report, args.force)?;
     let extras = Extras {
+        // No verdict from the CLI yet: the section is left out until one is written.
+        verdict: String::new(),
         tradeoff: args.tradeoff.as_deref().map(read_tradeoff).transpose()?,
         stability: args.stability.as_deref().map(read_rows).transpose()?,
     };
