@@ -123,8 +123,9 @@ pub(crate) struct Extras {
 }
 
 /// The widest picture, in pixels, that a replay shares its row with another: half the page's
-/// 1180 px ([`super::html_nav::PAGE_STYLE`]) less the gap. A wider one has the row to itself.
-const HALF_COLUMN: f32 = 570.0;
+/// 1220 px ([`super::html_nav::PAGE_STYLE`]) less the 20 px gap. A wider one has the row to
+/// itself.
+const HALF_COLUMN: f32 = 600.0;
 
 /// Renders the report: (HTML, Markdown).
 pub(crate) fn render_report(

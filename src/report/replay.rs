@@ -1,7 +1,10 @@
 //! The report's scenario pictures and their replay: the level with each configuration's path,
 //! and its character (its real shape) moving along the trace with the moving platforms, played
-//! by a small inline script (real time or slowed, pause, a scrubber, a picker of the shown
-//! configurations, faulty frames marked). Everything is inline: the page fetches nothing.
+//! by a small inline script (real time or slowed, pause, a scrubber, arrow keys frame by frame,
+//! zoom and pan, follow, a collapsed picker of the shown configurations, each shown character's
+//! state at the frame, faulty frames marked). The data it plays is
+//! `html_replay_data.rs`'s; the colours `html_colours.rs`'s. Everything is inline: the page
+//! fetches nothing.
 
 use std::fmt::Write as _;
 
@@ -226,7 +229,7 @@ pub(crate) fn scenario_replay(
     // The picture and the state table side by side where both fit, else one above the other.
     out.push_str("<div class=\"stage\">");
     out.push_str(&doc.to_string());
-    out.push_str("<table class=\"state\"><thead><tr><th>at this frame</th><th>position x, y</th><th>velocity x, y</th><th>grounded: normal</th></tr></thead><tbody></tbody></table></div>");
+    out.push_str("<table class=\"state\"><thead><tr><th>at this frame</th><th title=\"feet, tiles\">x, y</th><th title=\"tiles/s\">vx, vy</th><th title=\"grounded, and the ground's normal\">ground</th></tr></thead><tbody></tbody></table></div>");
     out.push_str("<script type=\"application/json\" class=\"replay-data\">");
     out.push_str(&replay_json(
         s,
@@ -383,7 +386,7 @@ pub(crate) const SCRIPT: &str = include_str!("replay.js");
 
 /// The replay's style sheet: the picture at most as wide as its column (its own size when
 /// smaller), the picker one line until opened, the state table compact.
-pub(crate) const STYLE: &str = ".replay{margin:0.3em 0 1.2em;outline:none}\n.replay:focus-visible svg.scenario,.replay:focus svg.scenario{border-color:#1565c0}\n.replay .controls{margin:0.3em 0;font-size:13px}\n.replay .controls button{font-size:13px;min-width:2em}\n.replay .scrub{width:12em;max-width:40%;vertical-align:middle}\n.replay .clock{font-family:monospace}\n.replay .view{white-space:nowrap}\n.replay details.picker{display:inline-block;vertical-align:top;font-size:12px;margin-left:0.5em}\n.replay details.picker[open]{display:block;margin:0.3em 0}\n.replay details.picker summary{cursor:pointer}\n.replay .picker div{margin:0.1em 0}\n.replay .picker label{display:inline-block;margin-right:1em}\n.replay i{display:inline-block;width:1.2em;height:0.8em;margin:0 0.3em}\n.replay svg.scenario{display:block;cursor:grab;touch-action:none}\n.replay .stage{display:flex;flex-wrap:wrap;align-items:flex-start;gap:4px 8px}\n.replay .stage svg{flex:0 1 auto;min-width:0}\n.replay table.state{font-size:12px;margin:0;font-variant-numeric:tabular-nums}\n.replay table.state td,.replay table.state th{padding:1px 6px}\n.replay tr.bad td{background:#ffebee}\n.replay .fault{color:#d50000;font-weight:bold}\n.replay table.state td:first-child{max-width:12em}\n.replay g.body.bad{stroke:#d50000;stroke-width:3;fill:#d50000}\n.replay-legend{font-size:13px;margin:0.5em 0}\n.replay-legend i{height:0.8em}\n";
+pub(crate) const STYLE: &str = ".replay{margin:0.3em 0 1.2em;outline:none}\n.replay:focus-visible svg.scenario,.replay:focus svg.scenario{border-color:#1565c0}\n.replay .controls{margin:0.2em 0;font-size:12px}\n.replay .controls button,.replay .controls select{font-size:12px;padding:0 4px}\n.replay .scrub{width:9em;max-width:30%;vertical-align:middle}\n.replay .clock{font-family:monospace;font-size:11px}\n.replay .view{white-space:nowrap}\n.replay details.picker{display:inline-block;vertical-align:top;font-size:12px;margin-left:0.5em}\n.replay details.picker[open]{display:block;margin:0.3em 0}\n.replay details.picker summary{cursor:pointer}\n.replay .picker div{margin:0.1em 0}\n.replay .picker label{display:inline-block;margin-right:1em}\n.replay i{display:inline-block;width:1.2em;height:0.8em;margin:0 0.3em}\n.replay svg.scenario{display:block;cursor:grab;touch-action:none}\n.replay .stage{display:flex;flex-wrap:wrap;align-items:flex-start;gap:4px 8px}\n.replay .stage svg{flex:0 1 auto;min-width:0}\n.replay table.state{font-size:11px;margin:0;font-variant-numeric:tabular-nums;white-space:nowrap}\n.replay table.state td,.replay table.state th{padding:0 4px}\n.replay tr.bad td{background:#ffebee}\n.replay .fault{color:#d50000;font-weight:bold}\n.replay g.body.bad{stroke:#d50000;stroke-width:3;fill:#d50000}\n.replay-legend{font-size:13px;margin:0.5em 0}\n.replay-legend i{height:0.8em}\n";
 
 /// The configurations a scenario's replay in the report shows before the reader picks,
 /// from `rows`, that scenario's metric rows: per kind of `registry` in order, what its
