@@ -298,16 +298,19 @@ mod tests {
     }
 
     fn page(verdict: &str) -> String {
+        page_with(Extras {
+            verdict: verdict.into(),
+            ..Extras::default()
+        })
+    }
+
+    fn page_with(extras: Extras) -> String {
         let rows = [
             row("default", "a", 0.01),
             row("default", "b", -0.2),
             row("other", "a", 0.0),
             row("other", "b", 0.05),
         ];
-        let extras = Extras {
-            verdict: verdict.into(),
-            ..Extras::default()
-        };
         render_report(&crate::registry::Registry::builtin(), &rows, &[], &extras).0
     }
 
@@ -332,6 +335,17 @@ mod tests {
         }
         assert!(nav.contains("href=\"#verdict\""), "{nav}");
         assert!(nav.contains("href=\"#behaviour-jumping\""), "{nav}");
+        // The slower commands' sections are linked when present.
+        let extras = page_with(Extras {
+            tradeoff: Some(Vec::new()),
+            stability: Some(Vec::new()),
+            ..Extras::default()
+        });
+        let nav = &extras[extras.find("<nav id=\"toc\">").unwrap()..extras.find("</nav>").unwrap()];
+        for id in ["tradeoff", "stability"] {
+            assert!(extras.contains(&format!("<h2 id=\"{id}\">")), "{id}");
+            assert!(nav.contains(&format!("href=\"#{id}\"")), "{id}: {nav}");
+        }
         // Without a verdict, no section and no link to it.
         let none = page("");
         assert!(!none.contains("id=\"verdict\"") && !none.contains("href=\"#verdict\""));

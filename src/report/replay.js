@@ -198,7 +198,8 @@
       if (e.button !== 0) return;
       drag = { x: e.clientX, y: e.clientY, vx: vb.x, vy: vb.y };
       root.focus({ preventScroll: true });
-      if (svg.setPointerCapture) svg.setPointerCapture(e.pointerId);
+      // A pointer the browser does not know (a synthetic one) cannot be captured.
+      try { svg.setPointerCapture(e.pointerId); } catch (err) { /* panning still works */ }
     });
     svg.addEventListener("pointermove", function (e) {
       if (!drag) return;
@@ -366,6 +367,16 @@
         if (x < v.x || x > v.x + v.w || y < v.y || y > v.y + v.h) inView = false;
       });
       out.followed = inView && v.w < first.full[2];
+      // Dragging pans by the distance dragged (in picture units) and stops following.
+      var svg = first.root.querySelector("svg"), before = first.view().x;
+      var ptr = function (type, x) {
+        svg.dispatchEvent(new PointerEvent(type, { clientX: x, clientY: 10, button: 0, pointerId: 1, bubbles: true }));
+      };
+      ptr("pointerdown", 100); ptr("pointermove", 60); ptr("pointerup", 60);
+      var dragged = 40 * first.view().w / svg.getBoundingClientRect().width;
+      out.panned = Math.abs(first.view().x - (before + dragged)) < 0.1 &&
+        !first.root.querySelector(".follow").checked;
+      first.root.querySelector(".follow").checked = true;
       first.root.querySelector(".zoom-fit").click();
       out.fit = first.view().w === first.full[2];
       first.show(0);

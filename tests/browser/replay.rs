@@ -151,5 +151,6 @@ fn the_replays_play_scrub_and_pick_in_headless_chromium() {
     // One zoom step is ZOOM_STEP (replay.js): 1.25 times.
     assert_eq!(r["zoom"], 1.25, "{r}");
     assert_eq!(r["followed"], true, "zoomed in and played to the end: {r}");
+    assert_eq!(r["panned"], true, "dragged 40 px to the left: {r}");
     assert_eq!(r["fit"], true, "{r}");
 }
