@@ -183,14 +183,20 @@
     });
     root.addEventListener("mouseenter", function () { hovered = self; });
     root.addEventListener("mouseleave", function () { if (hovered === self) hovered = null; });
+    // A point of the window in picture units (through the SVG's own transform, which accounts
+    // for a picture drawn smaller than its box).
+    function toPicture(x, y) {
+      var pt = svg.createSVGPoint();
+      pt.x = x; pt.y = y;
+      return pt.matrixTransform(svg.getScreenCTM().inverse());
+    }
     // The wheel zooms when the picture was clicked (the replay has the focus) or with Ctrl, so
     // that it scrolls the page otherwise.
     svg.addEventListener("wheel", function (e) {
       if (!(e.ctrlKey || root.contains(document.activeElement))) return;
       e.preventDefault();
-      var r = svg.getBoundingClientRect();
-      zoom(e.deltaY < 0 ? ZOOM_STEP : 1 / ZOOM_STEP,
-        vb.x + (e.clientX - r.left) / r.width * vb.w, vb.y + (e.clientY - r.top) / r.height * vb.h);
+      var p = toPicture(e.clientX, e.clientY);
+      zoom(e.deltaY < 0 ? ZOOM_STEP : 1 / ZOOM_STEP, p.x, p.y);
     }, { passive: false });
     // Dragging pans (and stops following).
     var drag = null;
@@ -206,7 +212,8 @@
       var dx = e.clientX - drag.x, dy = e.clientY - drag.y;
       if (Math.abs(dx) + Math.abs(dy) < 3) return;
       follow.checked = false;
-      var s = vb.w / svg.getBoundingClientRect().width;
+      // Picture units per screen pixel (the view's scale, whatever the letterboxing).
+      var s = 1 / svg.getScreenCTM().a;
       setView(drag.vx - dx * s, drag.vy - dy * s, vb.w);
     });
     svg.addEventListener("pointerup", function () { drag = null; });
@@ -373,7 +380,7 @@
         svg.dispatchEvent(new PointerEvent(type, { clientX: x, clientY: 10, button: 0, pointerId: 1, bubbles: true }));
       };
       ptr("pointerdown", 100); ptr("pointermove", 60); ptr("pointerup", 60);
-      var dragged = 40 * first.view().w / svg.getBoundingClientRect().width;
+      var dragged = 40 / svg.getScreenCTM().a;
       out.panned = Math.abs(first.view().x - (before + dragged)) < 0.1 &&
         !first.root.querySelector(".follow").checked;
       first.root.querySelector(".follow").checked = true;
