@@ -284,6 +284,11 @@
   }
   go();
   window.addEventListener("hashchange", go);
+  // A link to the address already shown changes no hash: follow it again all the same.
+  document.addEventListener("click", function (e) {
+    var a = e.target.closest && e.target.closest("a[href^='#view=']");
+    if (a && a.getAttribute("href") === location.hash) go();
+  });
 
   function report(id, out) {
     var pre = document.createElement("pre");
