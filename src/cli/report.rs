@@ -32,6 +32,10 @@ pub(crate) struct ReportArgs {
     /// Include the stability table from this stability.csv (written by `platbench stress`).
     #[arg(long, value_name = "FILE")]
     pub(crate) stability: Option<PathBuf>,
+    /// A game profile file (TOML; see compare/profiles/pixel_precise.toml for the format): the
+    /// verdict judges these profiles instead of the built-in ones (repeat for several).
+    #[arg(long = "profile", value_name = "FILE")]
+    pub(crate) profiles: Vec<PathBuf>,
     #[command(flatten)]
     pub(crate) select: Selection,
     #[command(flatten)]
@@ -75,7 +79,11 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
     use crate::report::html::{render_report, Extras, ReplayRun, ScenarioTraces};
     // The extra files first: a bad one fails before the long run.
     output::check_target(&args.out, output::Kind::Report, args.force)?;
-    let extras = Extras {
+    let profiles = super::run::load_profiles(&args.profiles)?;
+    let mut extras = Extras {
+        // Filled once the run is in (below).
+        verdict: String::new(),
+        verdict_text: String::new(),
         tradeoff: args.tradeoff.as_deref().map(read_tradeoff).transpose()?,
         stability: args.stability.as_deref().map(read_rows).transpose()?,
     };
@@ -166,6 +174,19 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
                 .collect(),
         })
         .collect();
+    // The verdict over every row, in run order (scenario by scenario, configuration by
+    // configuration), as `run` makes it.
+    let facts = configs
+        .iter()
+        .map(|c| super::run::facts(c, &h.registry))
+        .collect();
+    let card = crate::report::verdict::VerdictRows::of(facts, &metrics);
+    let verdicts: Vec<_> = profiles
+        .iter()
+        .map(|p| crate::report::verdict::pick(&card, p))
+        .collect();
+    extras.verdict = crate::report::verdict::render_verdict_html(&card, &verdicts);
+    extras.verdict_text = super::run::verdict_text(&card, &profiles);
     let (html, md) = render_report(&h.registry, &metrics, &scenarios, &extras);
     output::write_output(&args.out, output::Kind::Report, args.force, |dir| {
         for (name, text) in [("report.html", &html), ("report.md", &md)] {

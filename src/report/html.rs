@@ -1,20 +1,46 @@
 //! The "pick a backend" report: one self-contained HTML file (inline SVG, CSS and one small
-//! script, nothing fetched) and a Markdown twin. Per behaviour, a table of every configuration's
-//! worst value with the best marked and the measured reasons; per scenario, a replay of every
-//! configuration's run over the level ([`super::replay`]); and a closing "which backend for which
-//! game" derived from the numbers.
+//! script, nothing fetched) and a Markdown twin. Under the title, the verdict and a table of
+//! contents; per behaviour, a table of every configuration's worst value with the best marked
+//! and the measured reasons, each value a link to the replay of the scenario where it happened
+//! and each metric a link to its definition; the definitions; the slower commands' sections
+//! (`html_sections.rs`); and per scenario, grouped by level, a replay of every
+//! configuration's run over the level ([`super::replay`]).
 
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
+pub(crate) use super::html_nav::wide;
+use super::html_nav::{metric_definitions, metric_header, replay_link, Toc, PAGE_STYLE};
+pub(crate) use super::html_sections::{breaks_list, pair_tables};
+use super::html_sections::{stability_section, tradeoff_section};
 use super::replay::{escape, scenario_replay, styles};
 pub use super::replay::{ReplayRun, ScenarioTraces};
-use super::{format_setting, format_value, worst_matrix};
+use super::{badness, column, format_value, worst_matrix};
 use crate::metrics::{registry, Behaviour, MetricRow};
-use crate::stress::{envelope, Envelope, StressRow};
-use crate::tradeoff::{chart_svg, TradeoffRow};
+use crate::stress::StressRow;
+use crate::tradeoff::TradeoffRow;
 
-/// The metric table of one behaviour, as HTML rows and as Markdown.
-fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, String)> {
+/// Each configuration column's worst row of each metric, keyed by (metric, column): the row
+/// whose value [`worst_matrix`] shows (the last of the largest badness, as `Iterator::max_by`
+/// picks it there), so a table cell links to the scenario its value comes from.
+fn worst_rows(rows: &[MetricRow]) -> HashMap<(&'static str, String), &MetricRow> {
+    let mut out: HashMap<(&'static str, String), &MetricRow> = HashMap::new();
+    for r in rows {
+        let slot = out.entry((r.metric, column(r))).or_insert(r);
+        if badness(r).total_cmp(&badness(slot)).is_ge() {
+            *slot = r;
+        }
+    }
+    out
+}
+
+/// The metric table of one behaviour, as HTML rows and as Markdown. Each metric's name links
+/// to its definition; each value links to its scenario's replay at its frame.
+fn behaviour_tables(
+    rows: &[MetricRow],
+    worst: &HashMap<(&'static str, String), &MetricRow>,
+    metrics: &[&str],
+) -> Option<(String, String)> {
     if !rows.iter().any(|r| metrics.contains(&r.metric)) {
         return None;
     }
@@ -22,7 +48,7 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
     let mut html = String::from("<table><thead><tr><th>configuration</th>");
     let mut md = String::from("| configuration |");
     for (name, unit, _) in &m.metrics {
-        let _ = write!(html, "<th>{name}<br><small>{unit}</small></th>");
+        html.push_str(&metric_header(name, unit));
         let _ = write!(md, " {name} ({unit}) |");
     }
     html.push_str("</tr></thead><tbody><tr class=\"ideal\"><td>ideal</td>");
@@ -41,7 +67,7 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
         let c = m.label(ci);
         let _ = write!(html, "<tr><td>{}</td>", escape(&c));
         let _ = write!(md, "\n| {c} |");
-        for cell in row {
+        for (mi, cell) in row.iter().enumerate() {
             match cell {
                 None => {
                     html.push_str("<td>-</td>");
@@ -49,20 +75,20 @@ fn behaviour_tables(rows: &[MetricRow], metrics: &[&str]) -> Option<(String, Str
                 }
                 Some((v, best)) => {
                     let class = if *best { " class=\"best\"" } else { "" };
-                    let _ = write!(html, "<td{class}>{}</td>", format_value(*v));
-                    let _ = write!(
-                        md,
-                        " {}{} |",
-                        format_value(*v),
-                        if *best { " **best**" } else { "" }
-                    );
+                    let value = format_value(*v);
+                    let linked = match worst.get(&(m.metrics[mi].0, m.configs[ci].clone())) {
+                        Some(r) => replay_link(r, r.frame, &value),
+                        None => value.clone(),
+                    };
+                    let _ = write!(html, "<td{class}>{linked}</td>");
+                    let _ = write!(md, " {value}{} |", if *best { " **best**" } else { "" });
                 }
             }
         }
         html.push_str("</tr>");
     }
     html.push_str("</tbody></table>");
-    Some((html, md))
+    Some((wide(&html), md))
 }
 
 /// "Which backend for which game": the statements of [`super::rules::RULES`], each evaluated
@@ -74,279 +100,26 @@ pub(crate) fn recommendations(rows: &[MetricRow]) -> Vec<String> {
     out
 }
 
-/// Results of the slower commands the report can include: `platbench sweep`'s `tradeoff.csv`
-/// and `platbench stress`'s `stability.csv`, read back from their files.
+/// What the report includes beside the run's own rows: the verdict, and the results of the
+/// slower commands, `platbench sweep`'s `tradeoff.csv` and `platbench stress`'s
+/// `stability.csv`, read back from their files.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Extras {
+    /// The verdict, pre-rendered HTML: placed first, right under the title, in
+    /// `<section id="verdict">` (left out when empty).
+    pub verdict: String,
+    /// The verdict as the terminal prints it, for the Markdown twin (left out when empty).
+    pub verdict_text: String,
     /// Rows of `tradeoff.csv`: drawn as the cost-against-error chart with the Pareto front listed.
     pub tradeoff: Option<Vec<TradeoffRow>>,
     /// Rows of `stability.csv`: summarised as each configuration's envelope per dimension.
     pub stability: Option<Vec<StressRow>>,
 }
 
-/// Setting values as a short comma-separated list ("-" when empty).
-pub(crate) fn value_list(v: &[f64]) -> String {
-    if v.is_empty() {
-        return "-".into();
-    }
-    v.iter()
-        .map(|&x| format_setting(x))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-/// The speed-against-accuracy section: the chart and the settings on the Pareto front.
-fn tradeoff_section(rows: &[TradeoffRow]) -> (String, String) {
-    let mut html = String::from("<h2 id=\"tradeoff\">Speed against accuracy</h2><p>Each dot is one setting of <code>platbench sweep</code>: its cost (microseconds per character per second of game time) against its error score (0 is ideal); the line joins the Pareto front, the settings no other setting beats on both.</p>");
-    let mut md = String::from("\n## Speed against accuracy\n\nThe chart is in the HTML report. Settings on the Pareto front (no other setting is both cheaper and more accurate):\n\n| backend | setting | us per character per game second | error score |\n|---|---|---:|---:|\n");
-    html.push_str(&chart_svg(rows));
-    html.push_str("<table><thead><tr><th>backend</th><th>setting</th><th>us per character per game second</th><th>error score</th></tr></thead><tbody>");
-    let mut front: Vec<&TradeoffRow> = rows
-        .iter()
-        .filter(|r| r.pareto && r.scope == crate::tradeoff::ALL)
-        .collect();
-    front.sort_by(|a, b| a.cost_us.total_cmp(&b.cost_us));
-    for r in front {
-        let (b, s) = (escape(&r.backend), escape(&r.setting));
-        let _ = write!(
-            html,
-            "<tr><td>{b}</td><td>{s}</td><td>{:.1}</td><td>{:.4}</td></tr>",
-            r.cost_us, r.error
-        );
-        let _ = writeln!(
-            md,
-            "| {} | {} | {:.1} | {:.4} |",
-            r.backend, r.setting, r.cost_us, r.error
-        );
-    }
-    html.push_str("</tbody></table>");
-    // The front of each behaviour's own score, cheapest first.
-    html.push_str("<p>The front of each behaviour's own score (its metrics alone), cheapest first:</p><table><thead><tr><th>behaviour</th><th>settings on its front</th></tr></thead><tbody>");
-    md.push_str("\nThe front of each behaviour's own score (its metrics alone), cheapest first:\n\n| behaviour | settings on its front |\n|---|---|\n");
-    for b in crate::tradeoff::scored_behaviours() {
-        let mut f: Vec<&TradeoffRow> = rows
-            .iter()
-            .filter(|r| r.pareto && r.scope == b.key())
-            .collect();
-        if f.is_empty() {
-            continue;
-        }
-        f.sort_by(|x, y| x.cost_us.total_cmp(&y.cost_us));
-        let list = f
-            .iter()
-            .map(|r| format!("{} {}", r.backend, r.setting))
-            .collect::<Vec<_>>()
-            .join(", ");
-        let _ = write!(
-            html,
-            "<tr><td>{}</td><td>{}</td></tr>",
-            b.title(),
-            escape(&list)
-        );
-        let _ = writeln!(md, "| {} | {list} |", b.title());
-    }
-    html.push_str("</tbody></table>");
-    // Each behaviour's front drawn, as platbench sweep draws it (tradeoff.<behaviour>.svg).
-    for b in crate::tradeoff::scored_behaviours() {
-        if rows.iter().any(|r| r.scope == b.key()) {
-            let _ = write!(
-                html,
-                "<h3>Speed against accuracy: {}</h3>{}",
-                b.title(),
-                crate::tradeoff::chart_svg_scope(rows, b.key())
-            );
-        }
-    }
-    (html, md)
-}
-
-/// What broke where, for a table cell: `carry_no_drift at 0, 1000; finite at 1e7`, or `-`.
-pub(crate) fn breaks_list(e: &Envelope) -> String {
-    if e.breaks.is_empty() {
-        return "-".into();
-    }
-    e.breaks
-        .iter()
-        .map(|(inv, vs)| format!("{inv} at {}", value_list(vs)))
-        .collect::<Vec<_>>()
-        .join("; ")
-}
-
-/// The colour of a combination cell whose first broken invariant is `first` (green where every
-/// invariant held).
-fn invariant_colour(first: Option<&str>) -> &'static str {
-    const COLOURS: [&str; 9] = [
-        "#b71c1c", "#e65100", "#6a1b9a", "#f9a825", "#00838f", "#1565c0", "#d81b60", "#795548",
-        "#546e7a",
-    ];
-    match first {
-        None => "#a5d6a7",
-        Some(i) => crate::stress::INVARIANTS
-            .iter()
-            .position(|k| *k == i)
-            .map_or("#212121", |k| COLOURS[k]),
-    }
-}
-
-/// Each pair of dimensions' combination cells as a grid: per pair, a row per configuration and
-/// first value, a column per second value, each cell `ok` or the invariants that broke there
-/// (first broken first). Each grid is `(pair, header, rows)`.
-pub(crate) fn pair_grids(rows: &[StressRow]) -> Vec<(String, Vec<String>, Vec<Vec<String>>)> {
-    let cells = crate::stress::cells(rows);
-    let mut out: Vec<(String, Vec<String>, Vec<Vec<String>>)> = Vec::new();
-    let mut pairs: Vec<&str> = Vec::new();
-    for c in &cells {
-        if !pairs.contains(&c.pair.as_str()) {
-            pairs.push(&c.pair);
-        }
-    }
-    for pair in pairs {
-        let of_pair: Vec<&crate::stress::Cell> = cells.iter().filter(|c| c.pair == pair).collect();
-        let mut bs: Vec<f64> = of_pair.iter().map(|c| c.b).collect();
-        bs.sort_by(f64::total_cmp);
-        bs.dedup();
-        let (da, db) = pair.split_once(" x ").unwrap_or((pair, ""));
-        let mut header = vec!["configuration".to_string(), format!("{da} \\ {db}")];
-        header.extend(bs.iter().map(|&b| format_setting(b)));
-        let mut keys: Vec<(&str, f64)> = Vec::new();
-        for c in &of_pair {
-            if !keys.contains(&(c.config.as_str(), c.a)) {
-                keys.push((&c.config, c.a));
-            }
-        }
-        let mut grid = Vec::new();
-        for (config, a) in keys {
-            let mut row = vec![config.to_string(), format_setting(a)];
-            for &b in &bs {
-                let cell = of_pair
-                    .iter()
-                    .find(|c| c.config == config && c.a == a && c.b == b);
-                row.push(match cell {
-                    None => "-".into(),
-                    Some(c) if c.broken.is_empty() => "ok".into(),
-                    Some(c) => c.broken.join(", "),
-                });
-            }
-            grid.push(row);
-        }
-        out.push((pair.to_string(), header, grid));
-    }
-    out
-}
-
-/// [`pair_grids`] as plain-text tables, for `platbench stress`.
-pub(crate) fn pair_tables(rows: &[StressRow]) -> Vec<String> {
-    pair_grids(rows)
-        .into_iter()
-        .map(|(_, header, grid)| {
-            let mut t = comfy_table::Table::new();
-            t.load_style(comfy_table::presets::ASCII_MARKDOWN);
-            t.set_header(header);
-            for r in grid {
-                t.add_row(r);
-            }
-            t.to_string()
-        })
-        .collect()
-}
-
-/// The stability section: per configuration and dimension, the verdict (the last value where
-/// every invariant held and the first where one broke, each side of the base case) and every
-/// invariant that broke and where; then each pair's combination cells as a heat map coloured
-/// by the first invariant that broke.
-fn stability_section(rows: &[StressRow]) -> (String, String) {
-    let mut html = String::from("<h2 id=\"stability\">Stability at the extremes</h2><p>From <code>platbench stress</code>: each dimension is pushed away from the base case alone; the verdict gives, each side of the base value, the last value where every invariant (finite, penetration, no tunneling, stable rest, no flicker, carry without drift, progress, no stuck step, jump height) held and the first where one broke, naming it; the last column names each invariant that broke and where.</p><table><thead><tr><th>configuration</th><th>dimension</th><th>verdict</th><th>each invariant that broke, where</th></tr></thead><tbody>");
-    let mut md = String::from("\n## Stability at the extremes\n\n| configuration | dimension | verdict | each invariant that broke, where |\n|---|---|---|---|\n");
-    let envelopes = envelope(rows);
-    for v in crate::stress::verdicts(rows) {
-        let (config, dim) = (&v.config, &v.dimension);
-        let ok = v.text();
-        let bad = envelopes
-            .iter()
-            .find(|e| e.config == v.config && e.dimension == v.dimension)
-            .map_or("-".into(), breaks_list);
-        let _ = write!(
-            html,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            escape(config),
-            escape(dim),
-            escape(&ok),
-            escape(&bad)
-        );
-        let _ = writeln!(md, "| {config} | {dim} | {ok} | {bad} |");
-    }
-    html.push_str("</tbody></table>");
-    html.push_str("<h3>How far from the origin each configuration holds</h3><p>The offset rows walked out from 0, with the invariants that already broke at 0 set aside (they break for another reason than the distance), so that f32 and f64 builds of one set-up compare on what the distance breaks:</p><table><thead><tr><th>configuration</th><th>offset (tiles)</th></tr></thead><tbody>");
-    md.push_str("\n### How far from the origin each configuration holds\n\nThe offset rows walked out from 0, with the invariants that already broke at 0 set aside:\n\n| configuration | offset (tiles) |\n|---|---|\n");
-    for r in crate::stress::reach(rows) {
-        let text = r.text();
-        let _ = write!(
-            html,
-            "<tr><td>{}</td><td>{}</td></tr>",
-            escape(&r.config),
-            escape(&text)
-        );
-        let _ = writeln!(md, "| {} | {text} |", r.config);
-    }
-    html.push_str("</tbody></table>");
-    let grids = pair_grids(rows);
-    if !grids.is_empty() {
-        html.push_str("<h3>Combinations</h3><p>Pairs of dimensions whose failures interact, each on a small grid (the base case elsewhere). One cell per pair of values, coloured by the first invariant that broke there (green: every invariant held):</p><p class=\"legend\">");
-        md.push_str("\n### Combinations\n\nPairs of dimensions whose failures interact, each on a small grid (the base case elsewhere); each cell names the invariants that broke there, first broken first (the HTML report colours it by the first):\n");
-        for (i, c) in std::iter::once(None)
-            .chain(crate::stress::INVARIANTS.iter().map(|i| Some(*i)))
-            .map(|i| (i, invariant_colour(i)))
-        {
-            let _ = write!(
-                html,
-                "<span><i style=\"background:{c};height:1em\"></i>{}</span>",
-                i.unwrap_or("every invariant holds")
-            );
-        }
-        html.push_str("</p>");
-        for (pair, header, grid) in grids {
-            let _ = write!(html, "<h4>{}</h4><table><thead><tr>", escape(&pair));
-            for h in &header {
-                let _ = write!(html, "<th>{}</th>", escape(h));
-            }
-            html.push_str("</tr></thead><tbody>");
-            let _ = write!(
-                md,
-                "\n#### {pair}\n\n| {} |\n|{}\n",
-                header.join(" | "),
-                "---|".repeat(header.len())
-            );
-            for row in grid {
-                html.push_str("<tr>");
-                for (k, cell) in row.iter().enumerate() {
-                    if k < 2 {
-                        let _ = write!(html, "<td>{}</td>", escape(cell));
-                        continue;
-                    }
-                    let first = match cell.as_str() {
-                        "ok" | "-" => None,
-                        c => c.split(", ").next(),
-                    };
-                    let colour = if cell == "-" {
-                        "#eeeeee"
-                    } else {
-                        invariant_colour(first)
-                    };
-                    let _ = write!(
-                        html,
-                        "<td style=\"background:{colour}\" title=\"{}\">{}</td>",
-                        escape(cell),
-                        escape(first.unwrap_or(cell))
-                    );
-                }
-                html.push_str("</tr>");
-                let _ = writeln!(md, "| {} |", row.join(" | "));
-            }
-            html.push_str("</tbody></table>");
-        }
-    }
-    (html, md)
-}
+/// The widest picture, in pixels, that a replay shares its row with another: half the page's
+/// 1220 px ([`super::html_nav::PAGE_STYLE`]) less the 20 px gap. A wider one has the row to
+/// itself.
+const HALF_COLUMN: f32 = 600.0;
 
 /// Renders the report: (HTML, Markdown).
 pub(crate) fn render_report(
@@ -357,33 +130,48 @@ pub(crate) fn render_report(
 ) -> (String, String) {
     let mut html = String::new();
     let mut md = String::new();
-    html.push_str("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>platbench report</title><style>\nbody{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\ntable{border-collapse:collapse;margin:0.5em 0 1em;font-size:13px}\nth,td{border:1px solid #ccc;padding:3px 6px;text-align:right}\nth:first-child,td:first-child{text-align:left}\ntd.best{background:#c8e6c9;font-weight:bold}\ntr.ideal td{color:#777;font-style:italic}\nsvg.scenario{background:#fafafa;border:1px solid #ddd;max-width:100%;height:auto}\n.legend span{display:inline-block;margin-right:1em}\n.legend i{display:inline-block;width:1.5em;height:3px;vertical-align:middle;margin-right:0.3em}\n");
+    let mut toc = Toc::default();
+    html.push_str("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>platbench report</title><style>\n");
+    html.push_str(PAGE_STYLE);
+    html.push_str(super::verdict::STYLE);
     html.push_str(super::replay::STYLE);
     html.push_str("</style></head><body>\n");
     let configs = worst_matrix(rows, |_| false).configs.len();
-    let _ = write!(html, "<h1>platbench report</h1><p>{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; the best is highlighted.</p>", scenarios.len());
+    let _ = write!(html, "<h1>platbench report</h1>");
+    if !extras.verdict.is_empty() {
+        toc.add("verdict", "Verdict");
+        let _ = write!(html, "<section id=\"verdict\">{}</section>", extras.verdict);
+    }
+    let _ = write!(html, "<p class=\"lead\">{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios (a link to that scenario's replay); the best is highlighted.</p>", scenarios.len());
+    // The table of contents goes here once every section is known.
+    let toc_at = html.len();
     let _ = write!(md, "# platbench report\n\n{} scenarios on {configs} configurations. Each table cell is a configuration's worst value over the scenarios; **best** marks the best.\n", scenarios.len());
-    html.push_str("<h2 id=\"which\">Which backend for which game</h2><ul>");
-    md.push_str("\n## Which backend for which game\n\n");
+    if !extras.verdict_text.is_empty() {
+        let _ = write!(
+            md,
+            "\n## Which controller for which game\n\n```\n{}\n```\n",
+            extras.verdict_text.trim_end()
+        );
+    }
+    toc.add("statements", "What the worst values show");
+    html.push_str("<h2 id=\"statements\">What the worst values show</h2><ul>");
+    md.push_str("\n## What the worst values show\n\n");
     for r in recommendations(rows) {
         let _ = write!(html, "<li>{}</li>", escape(&r));
         let _ = writeln!(md, "- {r}");
     }
-    html.push_str("</ul><h2 id=\"why\">Each configuration's design</h2><ul>");
-    md.push_str("\n## Each configuration's design\n\n");
-    let built_in = registry.builtin_configs();
-    for (c, why) in super::notes::why_lines(&super::Coverage::of(rows), &built_in, registry) {
-        let _ = write!(html, "<li><b>{}</b>: {}</li>", escape(&c), escape(&why));
-        let _ = writeln!(md, "- {c}: {why}");
-    }
-    html.push_str("</ul><h2>By behaviour</h2>");
+    toc.add("behaviour", "By behaviour");
+    html.push_str("</ul><h2 id=\"behaviour\">By behaviour</h2>");
     md.push_str("\n## By behaviour\n");
     let all_notes = super::notes::notes(rows);
+    let worst = worst_rows(rows);
     for b in Behaviour::ALL.into_iter().filter(|b| *b != Behaviour::Cost) {
         let title = b.title();
         let metrics: Vec<&str> = registry::of_behaviour(b).map(|d| d.name).collect();
-        if let Some((t_html, t_md)) = behaviour_tables(rows, &metrics) {
-            let _ = write!(html, "<h3>{title}</h3>{t_html}");
+        if let Some((t_html, t_md)) = behaviour_tables(rows, &worst, &metrics) {
+            let id = format!("behaviour-{}", b.key());
+            toc.sub(&id, title);
+            let _ = write!(html, "<h3 id=\"{id}\">{title}</h3>{t_html}");
             let _ = write!(md, "\n### {title}\n\n{t_md}\n");
             for n in all_notes
                 .iter()
@@ -393,6 +181,14 @@ pub(crate) fn render_report(
                 let _ = writeln!(md, "\n{n}");
             }
         }
+    }
+    toc.add("metrics", "Metric definitions");
+    html.push_str(&metric_definitions());
+    if extras.tradeoff.is_some() {
+        toc.add("tradeoff", "Speed against accuracy");
+    }
+    if extras.stability.is_some() {
+        toc.add("stability", "Stability at the extremes");
     }
     for (h, m) in [
         extras.tradeoff.as_deref().map(tradeoff_section),
@@ -415,9 +211,27 @@ pub(crate) fn render_report(
         }
     }
     let styles = styles(registry, &configs);
-    html.push_str("<h2>Scenarios</h2><p>Each scenario replays every configuration's run: <b>play</b> it in real time or slowed down, pause, or drag the scrubber; tick the configurations to show (by default the reference kind's listed configuration and the best and worst configuration of each other kind on that scenario, by the error score of its metrics). Each character is drawn with its real shape; moving platforms move. A character turns red, and its name in the list says why, on a faulty frame: inside a solid deeper than its configuration declares or inside a moving platform, stuck on open ground, airborne with the ground near after leaving it, grounded over air, or crushed. On the paths, red dots mark faulty frames and hollow dots airborne ones.</p>");
+    toc.add("scenarios", "Scenarios");
+    html.push_str("<h2 id=\"scenarios\">Scenarios</h2><p>Each scenario replays every configuration's run: <b>play</b> it in real time or slowed down, pause, drag the scrubber, or step frame by frame with the left and right arrow keys (click the picture first, or keep the mouse over it); zoom with + and &minus; (or the wheel over the clicked picture) and drag to pan; <b>follow</b> keeps the shown characters in view. Open <b>configurations</b> to pick the ones shown (by default the reference kind's listed configuration and the best and worst configuration of each other kind on that scenario, by the error score of its metrics). The table under each picture gives each shown character's state at the frame. Each character is drawn with its real shape; moving platforms move. A character turns red, and its row says why, on a faulty frame: inside a solid deeper than its configuration declares or inside a moving platform, stuck on open ground, airborne with the ground near after leaving it, grounded over air, or crushed. On the paths, red dots mark faulty frames and hollow dots airborne ones.</p>");
+    html.push_str(&super::html_nav::legend(&styles));
     md.push_str("\n## Scenarios\n\nReplays are in the HTML report. Shown by default:\n");
+    // Per level, its scenarios' replays side by side where they are narrow enough.
+    let mut level: Option<&str> = None;
     for s in scenarios {
+        if level != Some(s.level.name.as_str()) {
+            if level.is_some() {
+                html.push_str("</div>");
+            }
+            level = Some(&s.level.name);
+            let lid = format!("level-{}", s.level.name);
+            toc.sub(&lid, &s.level.name);
+            let _ = write!(
+                html,
+                "<h3 id=\"{}\">{}</h3><div class=\"replays\">",
+                escape(&lid),
+                escape(&s.level.name)
+            );
+        }
         let id = format!("{}.{}", s.level.name, s.spec.name);
         let scenario_rows: Vec<MetricRow> = rows
             .iter()
@@ -425,10 +239,13 @@ pub(crate) fn render_report(
             .cloned()
             .collect();
         let shown = super::replay::shown_by_default(registry, &scenario_rows);
+        let (replay, width) = scenario_replay(&id, s, &styles, &shown);
         let _ = write!(
             html,
-            "<h3 id=\"{id}\">{id}</h3>{}",
-            scenario_replay(&id, s, &styles, &shown)
+            "<div class=\"scenario{}\"><h4 id=\"{}\">{}</h4>{replay}</div>",
+            if width > HALF_COLUMN { " full" } else { "" },
+            escape(&id),
+            escape(&id),
         );
         let list = shown
             .iter()
@@ -437,12 +254,109 @@ pub(crate) fn render_report(
             .join(", ");
         let _ = writeln!(md, "- {id}: {list}");
     }
+    if level.is_some() {
+        html.push_str("</div>");
+    }
     let _ = write!(html, "<script>{}</script>", super::replay::SCRIPT);
     html.push_str("\n</body></html>\n");
+    html.insert_str(toc_at, &toc.render());
     (html, md)
 }
 
 /// Whether a summary note explains `metric` (a note starts with the metric it explains).
 fn note_is_about(note: &str, metric: &str) -> bool {
     note.starts_with(&format!("{metric} "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(config: &str, scenario: &str, value: f64) -> MetricRow {
+        MetricRow {
+            level: "jumps".into(),
+            scenario: scenario.into(),
+            backend: "sweep".into(),
+            config: config.into(),
+            metric: "apex_error",
+            value,
+            unit: "tiles",
+            reference: 0.0,
+            error: value,
+            frame: Some(7),
+        }
+    }
+
+    fn page(verdict: &str) -> String {
+        page_with(Extras {
+            verdict: verdict.into(),
+            ..Extras::default()
+        })
+    }
+
+    fn page_with(extras: Extras) -> String {
+        let rows = [
+            row("default", "a", 0.01),
+            row("default", "b", -0.2),
+            row("other", "a", 0.0),
+            row("other", "b", 0.05),
+        ];
+        render_report(&crate::registry::Registry::builtin(), &rows, &[], &extras).0
+    }
+
+    #[test]
+    fn the_verdict_comes_first_then_the_contents() {
+        let html = page("<p>Pick the sweep.</p>");
+        let after_title = &html[html.find("</h1>").unwrap() + "</h1>".len()..];
+        assert!(
+            after_title.starts_with("<section id=\"verdict\"><p>Pick the sweep.</p></section>"),
+            "{after_title:.200}"
+        );
+        let (toc, which) = (
+            html.find("<nav id=\"toc\">").unwrap(),
+            html.find("<h2").unwrap(),
+        );
+        assert!(toc < which);
+        // The contents link every h2 of the page.
+        let nav = &html[toc..html.find("</nav>").unwrap()];
+        for h2 in html.split("<h2 id=\"").skip(1) {
+            let id = &h2[..h2.find('"').unwrap()];
+            assert!(nav.contains(&format!("href=\"#{id}\"")), "{id}: {nav}");
+        }
+        assert!(nav.contains("href=\"#verdict\""), "{nav}");
+        assert!(nav.contains("href=\"#behaviour-jumping\""), "{nav}");
+        // The slower commands' sections are linked when present.
+        let extras = page_with(Extras {
+            tradeoff: Some(Vec::new()),
+            stability: Some(Vec::new()),
+            ..Extras::default()
+        });
+        let nav = &extras[extras.find("<nav id=\"toc\">").unwrap()..extras.find("</nav>").unwrap()];
+        for id in ["tradeoff", "stability"] {
+            assert!(extras.contains(&format!("<h2 id=\"{id}\">")), "{id}");
+            assert!(nav.contains(&format!("href=\"#{id}\"")), "{id}: {nav}");
+        }
+        // Without a verdict, no section and no link to it.
+        let none = page("");
+        assert!(!none.contains("id=\"verdict\"") && !none.contains("href=\"#verdict\""));
+    }
+
+    #[test]
+    fn each_worst_value_links_to_the_scenario_it_comes_from() {
+        let html = page("");
+        // default's worst is b (|-0.2|), other's is b too (0.05), each at its row's frame (7).
+        assert!(html.contains(
+            "<a href=\"#view=jumps.b&amp;frame=7&amp;show=sweep%20default\" title=\"jumps.b (-0.2000)\">-0.2000</a>"
+        ));
+        assert!(html.contains("title=\"jumps.b (0.0500)\">0.0500</a>"));
+        assert!(html.contains("<a href=\"#metric-apex_error\" title=\""));
+        // Every metric of the registry has its definition.
+        for d in registry::METRICS {
+            assert!(
+                html.contains(&format!("<tr id=\"metric-{}\">", d.name)),
+                "{}",
+                d.name
+            );
+        }
+    }
 }

@@ -4,6 +4,10 @@
 
 pub mod diff;
 pub mod html;
+mod html_colours;
+mod html_nav;
+mod html_replay_data;
+mod html_sections;
 pub mod notes;
 pub mod profile;
 pub mod replay;

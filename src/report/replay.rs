@@ -1,7 +1,10 @@
 //! The report's scenario pictures and their replay: the level with each configuration's path,
 //! and its character (its real shape) moving along the trace with the moving platforms, played
-//! by a small inline script (real time or slowed, pause, a scrubber, a picker of the shown
-//! configurations, faulty frames marked). Everything is inline: the page fetches nothing.
+//! by a small inline script (real time or slowed, pause, a scrubber, arrow keys frame by frame,
+//! zoom and pan, follow, a collapsed picker of the shown configurations, each shown character's
+//! state at the frame, faulty frames marked). The data it plays is
+//! `html_replay_data.rs`'s; the colours `html_colours.rs`'s. Everything is inline: the page
+//! fetches nothing.
 
 use std::fmt::Write as _;
 
@@ -11,11 +14,14 @@ use svg::Document;
 
 use crate::backend::ShownByDefault;
 use crate::level::{Level, ScenarioSpec, Tile};
-use crate::metrics::{faults, MetricRow};
+use crate::metrics::MetricRow;
 use crate::registry::Registry;
 use crate::shape::CharacterShape;
 use crate::trace::{Trace, TraceRow};
 use crate::tradeoff::error_score;
+
+pub use super::html_colours::{styles, Style};
+use super::html_replay_data::{px, replay_json};
 
 /// One configuration's run of a scenario, as the replay draws it.
 pub struct ReplayRun<'a> {
@@ -39,19 +45,8 @@ pub struct ScenarioTraces<'a> {
     pub runs: Vec<ReplayRun<'a>>,
 }
 
-/// How a configuration appears in every picture: its key `(backend, config label)` and colour.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Style {
-    /// Backend name.
-    pub backend: String,
-    /// Configuration label.
-    pub config: String,
-    /// CSS colour.
-    pub colour: String,
-}
-
 /// Pixels per tile in the pictures.
-const SCALE: f32 = 22.0;
+pub(crate) const SCALE: f32 = 22.0;
 /// Largest picture width, in tiles: long levels are cropped around the trajectories. Wide
 /// enough for every built-in walk (the 10 s walks cover about 63 tiles; at 60 the review found
 /// characters leaving the picture in 9 of 64 scenarios), bounded so a run that flies off cannot
@@ -63,39 +58,6 @@ const MAX_TILES: f32 = 80.0;
 /// (`platbench report` prints the size) and play at 30 or more drawn frames per second of a
 /// scenario up to 13 s long.
 pub(crate) const MAX_DRAWN_FRAMES: usize = 400;
-
-/// Colours for the configurations a kind gives none ([`crate::controller::BackendKind::drawn`]),
-/// handed out in order.
-const PALETTE: [&str; 16] = [
-    "#6a1b9a", "#00838f", "#ad1457", "#4e342e", "#283593", "#558b2f", "#ff8f00", "#37474f",
-    "#d81b60", "#00695c", "#8d6e63", "#7b1fa2", "#0277bd", "#827717", "#bf360c", "#1b5e20",
-];
-
-/// The style of every configuration in `configs` (`(backend, config label)`, in run order): the
-/// colour its kind draws it in, else the next palette colour no kind uses.
-pub fn styles(registry: &crate::registry::Registry, configs: &[(String, String)]) -> Vec<Style> {
-    let fixed = registry.drawn();
-    let mut free = PALETTE
-        .iter()
-        .filter(|c| !fixed.iter().any(|(_, _, f)| f == *c))
-        .cycle();
-    configs
-        .iter()
-        .map(|(b, c)| {
-            let colour = fixed
-                .iter()
-                .find(|(fb, fc, _)| fb == b && fc == c)
-                .map(|(_, _, col)| col.to_string())
-                .or_else(|| free.next().map(|c| c.to_string()))
-                .unwrap_or_else(|| registry.colour(b).to_string());
-            Style {
-                backend: b.clone(),
-                config: c.clone(),
-                colour,
-            }
-        })
-        .collect()
-}
 
 /// Text escaped for HTML content and attribute values.
 pub(crate) fn escape(s: &str) -> String {
@@ -123,13 +85,14 @@ fn drawn_frames(frames: usize, stride: usize) -> impl Iterator<Item = usize> {
 /// The picture of one scenario with its replay: the level, each configuration's path (faulty
 /// frames as red dots, airborne ones hollow), each character's shape and the platforms at frame
 /// 0, the controls, the picker, and the drawn frames as inline JSON for the script. `shown`
-/// lists the configurations visible before the reader picks.
+/// lists the configurations visible before the reader picks. Returns the HTML and the
+/// picture's own width in pixels (the page lays narrow pictures side by side).
 pub(crate) fn scenario_replay(
     id: &str,
     s: &ScenarioTraces,
     styles: &[Style],
     shown: &[(String, String)],
-) -> String {
+) -> (String, f32) {
     let level = s.level;
     let rows: Vec<(Vec<&TraceRow>, &ReplayRun, &Style)> = s
         .runs
@@ -187,14 +150,22 @@ pub(crate) fn scenario_replay(
     }
     doc = doc.add(plats);
     let is_shown = |t: &Trace| shown.iter().any(|(b, c)| *b == t.backend && *c == t.config);
+    // A point of a path: the character's centre at a drawn frame, in pixels.
+    let centre = |r: &TraceRow, run: &ReplayRun| to_px(Vec2::new(r.x, r.y + run.size.y * 0.5));
     for (k, (rs, run, style)) in rows.iter().enumerate() {
         let t = run.trace;
         let colour = style.colour.as_str();
-        let pts: Vec<(f32, f32)> = picked
-            .iter()
-            .filter_map(|&f| rs.get(f))
-            .map(|r| to_px(Vec2::new(r.x, r.y + run.size.y * 0.5)))
-            .collect();
+        let mut pts = String::new();
+        for r in picked.iter().filter_map(|&f| rs.get(f)) {
+            let (x, y) = centre(r, run);
+            let _ = write!(
+                pts,
+                "{}{},{}",
+                if pts.is_empty() { "" } else { " " },
+                px(x),
+                px(y)
+            );
+        }
         let mut g = Group::new()
             .set("class", format!("path backend-{}", t.backend))
             .set("data-k", k)
@@ -215,11 +186,11 @@ pub(crate) fn scenario_replay(
             let Some(r) = rs.get(f) else { break };
             let bad = frame_faults(&run.faults, &picked, i) != 0;
             if bad || (!r.is_grounded() && i % 4 == 0) {
-                let (x, y) = to_px(Vec2::new(r.x, r.y + run.size.y * 0.5));
+                let (x, y) = centre(r, run);
                 g = g.add(
                     Circle::new()
-                        .set("cx", x)
-                        .set("cy", y)
+                        .set("cx", px(x))
+                        .set("cy", px(y))
                         .set("r", 1.8)
                         .set("fill", if bad { "#d50000" } else { "none" })
                         .set("stroke", if bad { "#d50000" } else { colour }),
@@ -230,9 +201,7 @@ pub(crate) fn scenario_replay(
     }
     // The characters at frame 0, on top of every path.
     for (k, (rs, run, style)) in rows.iter().enumerate() {
-        let (x, y) = rs.first().map_or((0.0, 0.0), |r| {
-            to_px(Vec2::new(r.x, r.y + run.size.y * 0.5))
-        });
+        let (x, y) = rs.first().map_or((0.0, 0.0), |r| centre(r, run));
         let mut g = Group::new()
             .set("class", "body")
             .set("data-k", k)
@@ -250,31 +219,70 @@ pub(crate) fn scenario_replay(
     let mut out = String::new();
     let _ = write!(
         out,
-        "<div class=\"replay\" id=\"replay-{id}\"><div class=\"controls\"><button type=\"button\" class=\"play\">play</button> <select class=\"speed\" title=\"speed\"><option value=\"1\">real time</option><option value=\"0.5\">1/2 speed</option><option value=\"0.25\">1/4 speed</option><option value=\"0.1\">1/10 speed</option></select> <input type=\"range\" class=\"scrub\" min=\"0\" max=\"{}\" value=\"0\" step=\"1\"> <span class=\"clock\"></span></div>",
+        "<div class=\"replay\" id=\"replay-{}\" tabindex=\"0\" aria-label=\"replay of {}: the arrow keys step a frame\"><div class=\"controls\"><button type=\"button\" class=\"play\">play</button> <select class=\"speed\" title=\"speed\"><option value=\"1\">real time</option><option value=\"0.5\">1/2 speed</option><option value=\"0.25\">1/4 speed</option><option value=\"0.1\">1/10 speed</option></select> <input type=\"range\" class=\"scrub\" min=\"0\" max=\"{}\" value=\"0\" step=\"1\" title=\"frame (the arrow keys step one)\"> <span class=\"clock\"></span> <span class=\"view\"><button type=\"button\" class=\"zoom-in\" title=\"zoom in (or the wheel over the focused picture)\">+</button><button type=\"button\" class=\"zoom-out\" title=\"zoom out\">&minus;</button><button type=\"button\" class=\"zoom-fit\" title=\"the whole picture\">fit</button> <label title=\"keep the shown characters in view\"><input type=\"checkbox\" class=\"follow\" checked> follow</label></span>",
+        escape(id),
+        escape(id),
         picked.len().saturating_sub(1)
     );
+    out.push_str(&picker(&rows, shown));
+    out.push_str("</div>");
+    // The picture and the state table side by side where both fit, else one above the other.
+    out.push_str("<div class=\"stage\">");
     out.push_str(&doc.to_string());
-    out.push_str("<div class=\"picker\">");
+    out.push_str("<table class=\"state\"><thead><tr><th>at this frame</th><th title=\"feet, tiles\">x, y</th><th title=\"tiles/s\">vx, vy</th><th title=\"grounded, and the ground's normal\">ground</th></tr></thead><tbody></tbody></table></div>");
+    out.push_str("<script type=\"application/json\" class=\"replay-data\">");
+    out.push_str(&replay_json(
+        s,
+        &rows,
+        &picked,
+        stride,
+        Vec2::new(lo.x, hi.y),
+        &to_px,
+    ));
+    out.push_str("</script></div>");
+    (out, w * SCALE)
+}
+
+/// The picker of a replay: a collapsed list of its configurations, grouped by backend, each a
+/// checkbox with its colour; its summary says how many are shown. The colours are named once
+/// per page (the legend above the scenarios), so the picker stays one line until opened.
+fn picker(rows: &[(Vec<&TraceRow>, &ReplayRun, &Style)], shown: &[(String, String)]) -> String {
+    let is_shown = |t: &Trace| shown.iter().any(|(b, c)| *b == t.backend && *c == t.config);
+    let n = rows.iter().filter(|(_, r, _)| is_shown(r.trace)).count();
+    let mut out = format!(
+        "<details class=\"picker\"><summary>configurations: <span class=\"count\">{n}</span> of {} shown</summary>",
+        rows.len()
+    );
+    let mut backend: Option<&str> = None;
     for (k, (_, run, style)) in rows.iter().enumerate() {
         let t = run.trace;
+        if backend != Some(t.backend.as_str()) {
+            if backend.is_some() {
+                out.push_str("</div>");
+            }
+            let _ = write!(out, "<div><b>{}</b>", escape(&t.backend));
+            backend = Some(&t.backend);
+        }
         let _ = write!(
             out,
-            "<label><input type=\"checkbox\" data-k=\"{k}\"{}><i style=\"background:{}\"></i>{} {} <span class=\"fault\"></span></label>",
+            "<label><input type=\"checkbox\" data-k=\"{k}\" data-run=\"{} {}\"{}><i style=\"background:{}\"></i>{}</label>",
+            escape(&t.backend),
+            escape(&t.config),
             if is_shown(t) { " checked" } else { "" },
             escape(&style.colour),
-            escape(&t.backend),
             escape(&t.config)
         );
     }
-    out.push_str("</div><script type=\"application/json\" class=\"replay-data\">");
-    out.push_str(&replay_json(s, &rows, &picked, stride, &to_px));
-    out.push_str("</script></div>");
+    if backend.is_some() {
+        out.push_str("</div>");
+    }
+    out.push_str("</details>");
     out
 }
 
 /// The fault bits of drawn frame `i`: those of every frame it stands for (since the drawn frame
 /// before it), so subsampling the drawing never hides a fault.
-fn frame_faults(faults: &[u8], picked: &[usize], i: usize) -> u8 {
+pub(crate) fn frame_faults(faults: &[u8], picked: &[usize], i: usize) -> u8 {
     let from = if i == 0 { 0 } else { picked[i - 1] + 1 };
     let to = picked[i];
     faults
@@ -365,91 +373,22 @@ fn shape_element(shape: CharacterShape, size: Vec2) -> Box<dyn svg::Node> {
     }
 }
 
-/// A number for the JSON: one decimal of a pixel (0.005 tiles), 0 for a non-finite one.
-fn px(v: f32) -> String {
-    if v.is_finite() {
-        let s = format!("{v:.1}");
-        s.strip_suffix(".0").unwrap_or(&s).to_string()
-    } else {
-        "0".into()
-    }
-}
-
-/// The drawn frames as JSON: time step, stride, frame count, each platform's corner and each
-/// run's centre per drawn frame (pixels), and each run's faults per drawn frame as one character
-/// each (`'0'` plus the fault bits), with the fault names.
-fn replay_json(
-    s: &ScenarioTraces,
-    rows: &[(Vec<&TraceRow>, &ReplayRun, &Style)],
-    picked: &[usize],
-    stride: usize,
-    to_px: &impl Fn(Vec2) -> (f32, f32),
-) -> String {
-    let frames = picked.last().map_or(0, |l| l + 1);
-    let mut j = format!(
-        "{{\"dt\":{},\"stride\":{stride},\"frames\":{frames},\"names\":[",
-        s.spec.dt
-    );
-    for (i, (bit, name)) in faults::NAMES.iter().enumerate() {
-        let _ = write!(j, "{}[{bit},\"{name}\"]", if i > 0 { "," } else { "" });
-    }
-    j.push_str("],\"platforms\":[");
-    let times: Vec<f64> = picked
-        .iter()
-        .map(|&f| {
-            rows.iter()
-                .find_map(|(rs, _, _)| rs.get(f).map(|r| r.t as f64))
-                .unwrap_or(f as f64 * s.spec.dt as f64)
-        })
-        .collect();
-    for (pi, p) in s.level.platforms.iter().enumerate() {
-        let (mut xs, mut ys) = (Vec::new(), Vec::new());
-        for &t in &times {
-            let b = p.aabb(t);
-            let (x, y) = to_px(Vec2::new(b.mins.x, b.maxs.y));
-            xs.push(px(x));
-            ys.push(px(y));
-        }
-        let _ = write!(
-            j,
-            "{}{{\"x\":[{}],\"y\":[{}]}}",
-            if pi > 0 { "," } else { "" },
-            xs.join(","),
-            ys.join(",")
-        );
-    }
-    j.push_str("],\"runs\":[");
-    for (k, (rs, run, _)) in rows.iter().enumerate() {
-        let (mut xs, mut ys, mut fs) = (Vec::new(), Vec::new(), String::new());
-        for (i, &f) in picked.iter().enumerate() {
-            let Some(r) = rs.get(f) else { break };
-            let (x, y) = to_px(Vec2::new(r.x, r.y + run.size.y * 0.5));
-            xs.push(px(x));
-            ys.push(px(y));
-            fs.push(char::from(b'0' + frame_faults(&run.faults, picked, i)));
-        }
-        let _ = write!(
-            j,
-            "{}{{\"x\":[{}],\"y\":[{}],\"f\":\"{fs}\"}}",
-            if k > 0 { "," } else { "" },
-            xs.join(","),
-            ys.join(",")
-        );
-    }
-    j.push_str("]}");
-    // Inside <script>, "</" would end the element: JSON allows "<" escaped.
-    j.replace('<', "\\u003c")
-}
-
-/// The replay script, inline once per report: plays, pauses, scrubs and picks. With `#selftest`
-/// in the address it checks every replay (the scrubber moves the characters and platforms,
-/// playing advances the frame, the picker hides a character) and writes the result into
-/// `<pre id="selftest">`; with `#view=REPLAY_ID&frame=N` it shows only that replay at drawn frame
-/// N (for a screenshot).
+/// The replay script, inline once per report: plays, pauses, scrubs, steps (arrow keys), zooms
+/// and pans (the SVG's viewBox), follows the shown characters, picks, and shows each shown
+/// character's state at the frame. `#view=REPLAY_ID&frame=N` (a table value's link) shows that
+/// replay at trace frame N, scrolled to and focused (`&show=BACKEND CONFIG` ticks that
+/// configuration; `&alone` hides the rest of the page, for a screenshot). With `#selftest` it
+/// checks every replay (the scrubber moves the characters and platforms, playing advances the
+/// frame, the picker hides a character, the keys step, zoom and follow keep the characters in
+/// view) and writes the result into `<pre id="selftest">`; with `#measure` it writes the page's
+/// layout (width, height, where the contents end) into `<pre id="measure">`.
 pub(crate) const SCRIPT: &str = include_str!("replay.js");
 
-/// The replay's style sheet.
-pub(crate) const STYLE: &str = ".replay .controls{margin:0.3em 0;font-size:13px}\n.replay .scrub{width:40%;vertical-align:middle}\n.replay .clock{font-family:monospace}\n.replay .picker{font-size:12px;margin:0.3em 0 1em}\n.replay .picker label{display:inline-block;margin-right:1em}\n.replay .picker i{display:inline-block;width:1.2em;height:0.8em;margin:0 0.3em}\n.replay .fault{color:#d50000;font-weight:bold}\n.replay g.body.bad{stroke:#d50000;stroke-width:3;fill:#d50000}\n";
+/// The replay's style sheet: the picture at most as wide as its column and 480 px tall (its own
+/// size when smaller; a taller one, a fall of 50 tiles or the elevator's ride, is drawn smaller
+/// so that it plays on one screen with its controls, and the zoom and follow show it closer),
+/// the picker one line until opened, the state table compact.
+pub(crate) const STYLE: &str = ".replay{margin:0.3em 0 1.2em;outline:none}\n.replay:focus-visible svg.scenario,.replay:focus svg.scenario{border-color:#1565c0}\n.replay .controls{margin:0.2em 0;font-size:12px}\n.replay .controls button,.replay .controls select{font-size:12px;padding:0 4px}\n.replay .scrub{width:9em;max-width:30%;vertical-align:middle}\n.replay .clock{font-family:monospace;font-size:11px}\n.replay .view{white-space:nowrap}\n.replay details.picker{display:inline-block;vertical-align:top;font-size:12px;margin-left:0.5em}\n.replay details.picker[open]{display:block;margin:0.3em 0}\n.replay details.picker summary{cursor:pointer}\n.replay .picker div{margin:0.1em 0}\n.replay .picker label{display:inline-block;margin-right:1em}\n.replay i{display:inline-block;width:1.2em;height:0.8em;margin:0 0.3em}\n.replay svg.scenario{display:block;cursor:grab;touch-action:none;max-height:480px}\n.replay .stage{display:flex;flex-wrap:wrap;align-items:flex-start;gap:4px 8px}\n.replay .stage svg{flex:0 1 auto;min-width:0}\n.replay table.state{font-size:11px;margin:0;font-variant-numeric:tabular-nums;white-space:nowrap}\n.replay table.state td:first-child{white-space:normal;min-width:10em;max-width:15em}\n.replay table.state td,.replay table.state th{padding:0 4px}\n.replay tr.bad td{background:#ffebee}\n.replay .fault{color:#d50000;font-weight:bold}\n.replay g.body.bad{stroke:#d50000;stroke-width:3;fill:#d50000}\n.replay-legend{font-size:13px;margin:0.5em 0}\n.replay-legend i{height:0.8em}\n";
 
 /// The configurations a scenario's replay in the report shows before the reader picks,
 /// from `rows`, that scenario's metric rows: per kind of `registry` in order, what its
@@ -500,6 +439,7 @@ pub fn shown_by_default(registry: &Registry, rows: &[MetricRow]) -> Vec<(String,
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::metrics::faults;
 
     #[test]
     fn subsampling_keeps_the_last_frame_and_every_fault() {

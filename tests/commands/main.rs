@@ -10,3 +10,4 @@ mod selection;
 mod stress;
 mod sweep_cli;
 mod tradeoff;
+mod verdict;

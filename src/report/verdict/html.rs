@@ -8,15 +8,19 @@ use super::{Column, Grade, ProfileVerdict, Scorecard, Worst};
 use crate::metrics::registry::Behaviour;
 use crate::report::replay::escape;
 
-/// A link to `w`'s replay at its frame, showing `text`.
+/// A link to `w`'s replay at its frame, showing `text`; its tooltip names the scenario, the
+/// metric, its value and ideal, the frame, and what the metric measures.
 fn link(w: &Worst, text: &str) -> String {
     let r = &w.row;
-    let id = format!("{}.{}", r.level, r.scenario);
-    let frame = r.frame.map_or(String::new(), |f| format!("&frame={f}"));
+    let at = r.frame.map_or(String::new(), |f| format!(", frame {f}"));
     format!(
-        "<a href=\"#view={}{frame}\" title=\"{} ({})\">{}</a>",
-        escape(&id),
-        escape(&w.describe()),
+        "<a href=\"{}\" title=\"{}.{} ({} {}, ideal {}{at}: {})\">{}</a>",
+        escape(&crate::report::html_nav::replay_href(r, r.frame)),
+        escape(&r.level),
+        escape(&r.scenario),
+        r.metric,
+        crate::report::format_value(r.value),
+        crate::report::format_value(r.reference),
         escape(crate::metrics::registry::get(r.metric).map_or("", |d| d.meaning)),
         escape(text)
     )
@@ -49,7 +53,7 @@ fn grade_word(g: Option<Grade>) -> &'static str {
 }
 
 /// The styles of the verdict's tables.
-pub const STYLE: &str = ".verdict td,.verdict th{vertical-align:top}\n.verdict td{text-align:left}\ntd.g-ok{background:#e8f5e9}\ntd.g-minor{background:#fff8e1}\ntd.g-fail{background:#ffebee;font-weight:bold}\ntd.g-none{color:#999}\n.scorecard td{text-align:center}\n.scorecard td:first-child{text-align:left}\n.verdict .small{font-size:12px;color:#555}\n";
+pub const STYLE: &str = "table.verdict,table.scorecard{font-size:12px;margin:0.3em 0}\n.verdict td,.verdict th{vertical-align:top;text-align:left;padding:2px 5px}\n.scorecard td,.scorecard th{padding:1px 5px}\n.scorecard td.design{max-width:420px;white-space:nowrap;overflow:hidden;text-overflow:ellipsis;text-align:left;font-size:11px;color:#555}\n#verdict h2{margin:0.2em 0}\n#verdict h3{margin:0.5em 0 0.2em}\n#verdict p.small{margin:0.2em 0}\n#verdict .small{font-size:12px;color:#555}\ntd.g-ok{background:#e8f5e9}\ntd.g-minor{background:#fff8e1}\ntd.g-fail{background:#ffebee;font-weight:bold}\ntd.g-none{color:#999}\n.scorecard td{text-align:center}\n.scorecard td:first-child{text-align:left}\n.verdict .small{font-size:12px;color:#555}\n";
 
 /// The verdict of every profile, the scorecard and the capabilities.
 pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict]) -> String {
@@ -57,11 +61,11 @@ pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict]) -> Str
     let label = |c: usize| escape(&card.cards[c].facts.label);
     let _ = write!(
         h,
-        "<h2>Which controller for which game</h2><p class=\"small\">{} scenarios, {} configurations. Each game profile (<code>compare/profiles/*.toml</code>; <code>--profile FILE</code> judges your own) picks the configuration with the lowest weighted error: 0 every promise kept, 1 all clearly off; a scenario a configuration skipped counts as clearly off.</p>",
+        "<h2>Which controller for which game</h2><p class=\"small\">{} scenarios, {} configurations. Each game profile (<code>compare/profiles/*.toml</code>; <code>--profile FILE</code> judges your own) picks the configuration with the lowest weighted error (in brackets: 0 every promise kept, 1 all clearly off; a skipped scenario counts as clearly off).</p>",
         card.total_scenarios,
         card.cards.len()
     );
-    h.push_str("<div class=\"wide\"><table class=\"verdict\"><thead><tr><th>game</th><th>pick</th><th>runner-up</th><th>why</th><th>still off</th></tr></thead><tbody>");
+    h.push_str("<div class=\"wide\"><table class=\"verdict\"><thead><tr><th>game</th><th>pick (runner-up)</th><th>why</th><th>still off</th></tr></thead><tbody>");
     for v in verdicts {
         let p = &v.profile;
         let mut needs = String::new();
@@ -71,7 +75,7 @@ pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict]) -> Str
         }
         let _ = write!(
             h,
-            "<tr><td><b>{}</b><br>{}<br><span class=\"small\">weighs {}{}</span></td>",
+            "<tr><td><b>{}</b>: {}<br><span class=\"small\">weighs {}{}</span></td>",
             escape(&p.name),
             escape(&p.title),
             escape(&p.describe_weights()),
@@ -81,18 +85,26 @@ pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict]) -> Str
             None => {
                 let _ = write!(
                     h,
-                    "<td colspan=\"4\">none: {}</td>",
+                    "<td colspan=\"3\">none: {}</td>",
                     escape(v.no_pick.as_deref().unwrap_or(""))
                 );
             }
             Some((c, e)) => {
-                let _ = write!(h, "<td><b>{}</b><br>error {e:.3}</td>", label(c));
-                match v.runner_up {
-                    Some((r, e)) => {
-                        let _ = write!(h, "<td>{}<br>error {e:.3}</td>", label(r));
-                    }
-                    None => h.push_str("<td>-</td>"),
+                let _ = write!(
+                    h,
+                    "<td><b>{}</b> ({})",
+                    label(c),
+                    super::render::error_text(e)
+                );
+                if let Some((r, e)) = v.runner_up {
+                    let _ = write!(
+                        h,
+                        "<br><span class=\"small\">runner-up: {} ({})</span>",
+                        label(r),
+                        super::render::error_text(e)
+                    );
                 }
+                h.push_str("</td>");
                 let why: Vec<String> = v
                     .why
                     .iter()
@@ -168,7 +180,7 @@ fn scorecard_html(card: &Scorecard) -> String {
         }
         let _ = write!(
             h,
-            "<td class=\"small\" style=\"text-align:left\">{}</td></tr>",
+            "<td class=\"design\" title=\"{0}\">{0}</td></tr>",
             escape(&c.facts.why)
         );
     }

@@ -62,6 +62,18 @@ fn decider(r: &Reason) -> String {
     s
 }
 
+/// A weighted error as printed: `0`, three decimals, or two significant digits below 0.001 (so
+/// that two errors that differ never print alike as `0.000`).
+pub(crate) fn error_text(e: f64) -> String {
+    if e == 0.0 {
+        "0".into()
+    } else if e < 1e-3 {
+        format!("{e:.1e}")
+    } else {
+        format!("{e:.3}")
+    }
+}
+
 /// The verdict of every profile: pick, runner-up, why, and what the pick still gets wrong.
 pub fn render_verdict(card: &Scorecard, verdicts: &[ProfileVerdict]) -> String {
     let mut out = String::new();
@@ -94,13 +106,13 @@ pub fn render_verdict(card: &Scorecard, verdicts: &[ProfileVerdict]) -> String {
                 out.push_str(&wrap(
                     "  pick       ",
                     "             ",
-                    &format!("{} (error {:.3})", label(c), e),
+                    &format!("{} (error {})", label(c), error_text(e)),
                 ));
                 if let Some((r, e)) = v.runner_up {
                     out.push_str(&wrap(
                         "  runner-up  ",
                         "             ",
-                        &format!("{} (error {:.3})", label(r), e),
+                        &format!("{} (error {})", label(r), error_text(e)),
                     ));
                 }
                 if !v.why.is_empty() {
