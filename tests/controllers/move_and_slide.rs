@@ -1,8 +1,8 @@
-//! The collide-and-slide example (`examples/move_and_slide.rs`) as the harness runs it: every
+//! The collide-and-slide example (`examples/move_and_slide/`) as the harness runs it: every
 //! built-in scenario it models, on every configuration it contributes, with its metrics in the
 //! CSV files and its rows in the report; the levels it does not model are skipped.
 
-#[path = "../../examples/move_and_slide.rs"]
+#[path = "../../examples/move_and_slide/main.rs"]
 #[allow(dead_code)]
 mod example;
 
