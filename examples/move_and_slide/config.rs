@@ -30,11 +30,18 @@ pub struct MoveAndSlideConfig {
     /// snapping off.
     pub floor_snap_length: f32,
     /// Whether a character on a slope with no horizontal move stays put instead of sliding
-    /// down (Godot's `floor_stop_on_slope`, default true).
+    /// down, and the first hit of a step on a floor is cast again unslid rather than slid along
+    /// (Godot's `floor_stop_on_slope`, default true).
     pub floor_stop_on_slope: bool,
+    /// Whether a wall hit while walking on the floor stops the move instead of sliding up it: a
+    /// character that walked off its floor into the wall has the move cancelled and is snapped
+    /// back down, one still on the floor casts the rest again unslid, and one in the air slides
+    /// only the vertical part of the rest (Godot's `floor_block_on_wall`, default true).
+    pub floor_block_on_wall: bool,
     /// Whether a character on the floor moves along slopes at the speed it would have on flat
     /// ground, rather than slower uphill and faster downhill (Godot's `floor_constant_speed`,
-    /// default false).
+    /// default false). As in Godot, the speed along the slope is the flat-ground speed, so the
+    /// horizontal speed on a slope is lower.
     pub floor_constant_speed: bool,
 }
 
@@ -47,6 +54,7 @@ impl Default for MoveAndSlideConfig {
             floor_max_angle: 45f32.to_radians(),
             floor_snap_length: 1.0 / 16.0,
             floor_stop_on_slope: true,
+            floor_block_on_wall: true,
             floor_constant_speed: false,
         }
     }
@@ -65,6 +73,9 @@ impl MoveAndSlideConfig {
         }
         if self.floor_stop_on_slope != d.floor_stop_on_slope {
             label += &format!(" stop_on_slope={}", self.floor_stop_on_slope);
+        }
+        if self.floor_block_on_wall != d.floor_block_on_wall {
+            label += &format!(" block_on_wall={}", self.floor_block_on_wall);
         }
         if self.safe_margin != d.safe_margin {
             label += &format!(" margin={}", self.safe_margin);

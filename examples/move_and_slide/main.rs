@@ -1,23 +1,46 @@
 //! A third controller built only on platbench's public API: a collide-and-slide mover in the
-//! style of Godot's `CharacterBody2D.move_and_slide()` (reference: the Godot 4.3 class docs of
-//! `CharacterBody2D`, whose property defaults the config below takes) and of the kinematic
-//! character examples of Rust physics crates.
+//! style of Godot 4's `CharacterBody2D.move_and_slide()` in its grounded mode. Its settings and
+//! their defaults are the Godot 4.3 class docs' properties of `CharacterBody2D`; its slide rules
+//! are read from Godot's source, `CharacterBody2D::_move_and_slide_grounded` in
+//! `scene/2d/physics/character_body_2d.cpp` (`scene/2d/physics_body_2d.cpp` before 4.3).
 //!
 //! Each step: the shared motion ([`MotionState::integrate`]) turns the input into the desired
-//! displacement; the mover first recovers from any overlap, then casts the character's shape
-//! (parry2d shape casts) along the displacement against the level's colliders, stops
-//! `safe_margin` short of the first hit, and slides the rest along the surface it hit, up to
-//! `max_slides` times. A hit whose normal is within `floor_max_angle` of up is a floor. A
-//! character that was on the floor and is not rising is snapped down onto a floor within
-//! `floor_snap_length`. With `floor_stop_on_slope`, a character standing on a slope with no
-//! horizontal move does not slide down it; with `floor_constant_speed`, it walks up and down
-//! slopes at its flat-ground speed. One-way platforms follow the rule the built-in backends
-//! use: one counts only for a character whose feet were on or above its top at the start of
-//! the step, not climbing a ladder and not dropping through it. Moving platforms are not
-//! modelled: the kind declares it, and the harness skips those levels.
+//! displacement, gravity included (as a Godot script adds gravity to `velocity` every frame).
+//! The mover casts the character's shape (parry2d shape casts) along it against the level's
+//! colliders, stops `safe_margin` short of the first hit and decides what the rest does, up to
+//! `max_slides` times, by Godot's rules:
 //!
-//! Written from Godot's documented behaviour, not its source; where Godot's code does what the
-//! docs do not say (recovery iterations, exact floor snapping), this does the simple thing.
+//! - A hit whose normal is within `floor_max_angle` of up is a floor, within it of down a
+//!   ceiling, anything else a wall; each stays set for the rest of the step.
+//! - `floor_stop_on_slope`: a move straight down onto a floor ends there; and the first hit of a
+//!   step does not slide while on a floor: its rest is cast again unchanged, and sliding starts
+//!   with the second hit (the first-slide rule; off with `floor_stop_on_slope` off).
+//! - `floor_block_on_wall`: a wall hit by a move with a horizontal part into it does not turn
+//!   into a climb. Walked off the floor into it, the move ends and a snap down (a wall counting
+//!   as floor) keeps the character stood; still on the floor, the rest is cast again unslid; in
+//!   the air, only the rest's vertical part slides along the wall.
+//! - `floor_constant_speed`: once a step, on a floor only, the rest goes along the slope for the
+//!   horizontal distance left; walking down a slope a snap would stand on, the first move is
+//!   redone along the previous floor at flat-ground speed.
+//! - Otherwise the rest slides along the surface, unless the slide turns against the velocity.
+//!
+//! A character that was on the floor, is not rising and found no floor is then snapped down
+//! onto one within `floor_snap_length`. Last, it is pushed out to `safe_margin` from anything
+//! closer (the recovery), and a floor within the margin is stood on. One-way platforms follow
+//! the rule the built-in backends use: one counts only for a character whose feet were on or
+//! above its top at the start of the step, not climbing a ladder and not dropping through it.
+//!
+//! Not modelled, by design or for simplicity:
+//! - Moving platforms: the kind declares it, and the harness skips those levels.
+//! - Godot's recovery order: Godot recovers first, in every `move_and_collide`
+//!   (`GodotSpace2D::test_body_motion` in `modules/godot_physics_2d/godot_space_2d.cpp`, "STEP
+//!   1"), by 40% of the depth a pass, and counts a contact within the margin as a collision;
+//!   here the casts stop the margin short and one exact recovery comes after the moves, so
+//!   Godot's undoing of a travel within the margin (its recovery's push) has nothing to undo.
+//! - Velocity: the shared motion's contact rule replaces what `move_and_slide` does to
+//!   `velocity` (a blocked axis loses its speed; held input keeps driving the feet).
+//! - `slide_on_ceiling` off, `wall_min_slide_angle` (floating mode), the snap's up-axis-only
+//!   travel and its `max(floor_snap_length, safe_margin)` length (a 0 snap is off here).
 //!
 //! `cargo run --release --example move_and_slide` runs the built-in comparison with it as extra
 //! rows; every platbench command takes it (`-- report --out DIR`; docs/move-and-slide.md).
@@ -111,8 +134,8 @@ impl Controller for MoveAndSlideConfig {
             },
         ];
         let whys = [
-            "a box: 0.005-tile safe_margin gap, 1 px floor snap, stops on slopes (Godot 4.3 CharacterBody2D docs)",
-            "a capsule: 0.005-tile safe_margin gap, 1 px floor snap, stops on slopes (Godot 4.3 CharacterBody2D docs)",
+            "a box: 0.005-tile safe_margin gap, 1 px floor snap, stops on slopes, blocks on walls (Godot 4.3 CharacterBody2D docs)",
+            "a capsule: 0.005-tile safe_margin gap, 1 px floor snap, stops on slopes, blocks on walls (Godot 4.3 CharacterBody2D docs)",
             "floor_constant_speed: run speed along slopes, not slower up and faster down (Godot 4.3 CharacterBody2D docs)",
             "a 4 px floor snap: stays grounded down a 45-degree ramp at run speed (Godot 4.3 CharacterBody2D docs)",
         ];

@@ -204,6 +204,39 @@ impl MoveAndSlide {
         floor
     }
 
+    /// The floor a cast of `floor_snap_length` (and the margin) straight down from `pos` finds,
+    /// and how far down it is; with `wall_as_floor`, anything but a ceiling counts (Godot's
+    /// `_apply_floor_snap`). None on a ladder or with snapping off.
+    fn floor_below(
+        &self,
+        c: &Character,
+        feet: f32,
+        pos: Vec2,
+        wall_as_floor: bool,
+    ) -> Option<(Vec2, Hit)> {
+        let cfg = &self.config;
+        if cfg.floor_snap_length <= 0.0 || c.motion.on_ladder {
+            return None;
+        }
+        let down = Vec2::new(0.0, -(cfg.floor_snap_length + cfg.safe_margin));
+        let hit = self.cast(c, feet.min(pos.y), pos, down, cfg.safe_margin)?;
+        let stands = self.is_floor(hit.normal) || (wall_as_floor && !self.is_ceiling(hit.normal));
+        stands.then_some((down * hit.toi, hit))
+    }
+
+    /// Moves `pos` down onto the floor below, if any, and returns it.
+    fn snap(
+        &self,
+        c: &Character,
+        feet: f32,
+        pos: &mut Vec2,
+        wall_as_floor: bool,
+    ) -> Option<(Vec2, Option<f32>)> {
+        let (drop, hit) = self.floor_below(c, feet, *pos, wall_as_floor)?;
+        *pos += drop;
+        Some((hit.normal, hit.one_way_top))
+    }
+
     fn is_floor(&self, n: Vec2) -> bool {
         n.y >= (self.config.floor_max_angle + FLOOR_ANGLE_SLACK).cos()
     }
@@ -212,6 +245,9 @@ impl MoveAndSlide {
         -n.y >= (self.config.floor_max_angle + FLOOR_ANGLE_SLACK).cos()
     }
 
+    /// One step of one character: the shared motion's move, made by the rules of Godot's
+    /// `CharacterBody2D::_move_and_slide_grounded` (scene/2d/physics/character_body_2d.cpp), then
+    /// the snap, the recovery and the contacts the shared motion applies.
     pub(crate) fn step_character(&mut self, id: CharacterId, input: &Input, dt: f32) {
         let c = &mut self.characters[id];
         if let Some(level) = &self.ladders {
@@ -227,52 +263,112 @@ impl MoveAndSlide {
         let mut contacts = Contacts::default();
         let mut floor: Option<(Vec2, Option<f32>)> = None;
         let mut motion = desired;
-        // The fraction of the step's move not yet made, for a constant-speed floor.
-        let mut left = 1.0f32;
+        // The state Godot's `CharacterBody2D::_move_and_slide_grounded` keeps through one call
+        // (scene/2d/physics/character_body_2d.cpp): a hit sets on-floor, on-ceiling or on-wall
+        // for the rest of the step; rising is judged on the velocity; `motion_slide_up` is the
+        // move with its vertical part removed.
+        let rising = desired.y > 0.0;
+        let slide_up = Vec2::new(desired.x, 0.0);
+        let mut on_wall = false;
+        // The first-slide rule: with `floor_stop_on_slope`, the first hit on a floor does not
+        // slide; the rest is cast again unchanged, and sliding starts from the second hit.
+        let mut sliding = !cfg.floor_stop_on_slope;
+        // Constant speed applies once, on the first hit that may slide.
+        let mut constant_ok = sliding;
+        let mut travelled_x = 0.0f32;
         for slide in 0..cfg.max_slides {
             if motion.length_squared() < 1e-12 {
                 break;
             }
             let Some(hit) = self.cast(c, feet_at_start, pos, motion, cfg.safe_margin) else {
+                // Walking down a slope leaves it without a hit: with constant speed, a first move
+                // that a snap would put back on the floor is redone along the previous floor at
+                // flat-ground speed (Godot's `_on_floor_if_snapped` branch).
+                if cfg.floor_constant_speed
+                    && slide == 0
+                    && was_on_floor
+                    && !rising
+                    && self
+                        .floor_below(c, feet_at_start, pos + motion, false)
+                        .is_some()
+                {
+                    let along = motion - c.ground_normal * motion.dot(c.ground_normal);
+                    motion = along.normalize_or_zero() * slide_up.length();
+                    sliding = true;
+                    constant_ok = false;
+                    continue;
+                }
                 pos += motion;
                 break;
             };
-            pos += motion * hit.toi;
-            let rest = motion * (1.0 - hit.toi);
-            left *= 1.0 - hit.toi;
+            let travel = motion * hit.toi;
+            pos += travel;
+            let rest = motion - travel;
             let n = hit.normal;
             if self.is_floor(n) {
                 floor = Some((n, hit.one_way_top));
-                // Standing still on a slope: gravity's pull is not turned into a slide.
-                if cfg.floor_stop_on_slope && desired.x.abs() < 1e-9 && slide == 0 {
-                    break;
-                }
             } else if self.is_ceiling(n) {
                 contacts.ceiling = true;
-            } else if n.x * desired.x < 0.0 {
-                contacts.wall = true;
+            } else {
+                on_wall = true;
+                contacts.wall |= n.x * desired.x < 0.0;
             }
-            let mut slid = rest - n * rest.dot(n);
-            if cfg.floor_constant_speed && was_on_floor && self.is_floor(n) && slid.x.abs() > 1e-9 {
-                // As far along the slope as flat ground would have taken it in the time left.
-                slid = slid.normalize_or_zero() * desired.x.abs() * left;
+            let on_floor = floor.is_some();
+            // `floor_stop_on_slope`: a move straight down onto a floor ends there, so gravity's
+            // pull is not turned into a slide. (Godot also undoes a travel within the margin:
+            // there the travel includes its recovery's push, which here comes after the moves.)
+            if on_floor && cfg.floor_stop_on_slope && desired.x.abs() < 1e-9 && desired.y < 0.0 {
+                break;
             }
-            motion = slid;
+            if rest.length_squared() < 1e-12 {
+                break;
+            }
+            if cfg.floor_block_on_wall && on_wall && slide_up.dot(n) <= 0.0 {
+                // `floor_block_on_wall`: a wall hit while walking does not become a climb.
+                if was_on_floor && !on_floor && !rising {
+                    // Left the floor into a wall: the rest of the move is cancelled and a snap
+                    // down, taking a wall for a floor, keeps it stood (Godot also undoes a travel
+                    // within the margin, its recovery's push, as above).
+                    floor = self.snap(c, feet_at_start, &mut pos, true);
+                    break;
+                } else if !on_floor {
+                    // In the air: only the vertical part of the rest slides along the wall.
+                    let up = Vec2::new(0.0, rest.y);
+                    motion = up - n * up.dot(n);
+                } else {
+                    // On the floor: the rest is cast again unslid, so it stays at the wall.
+                    motion = rest;
+                }
+            } else if cfg.floor_constant_speed
+                && on_floor
+                && !on_wall
+                && !contacts.ceiling
+                && constant_ok
+                && was_on_floor
+                && motion.dot(n) < 0.0
+            {
+                // `floor_constant_speed`: along the slope for the horizontal distance left.
+                constant_ok = false;
+                let along = (rest - n * rest.dot(n)).normalize_or_zero();
+                motion = along * (slide_up.length() - travelled_x - travel.x.abs()).max(0.0);
+            } else if sliding || !on_floor {
+                // Regular sliding; a slide that would turn against the velocity stops instead.
+                let slid = rest - n * rest.dot(n);
+                motion = if slid.dot(desired) > 0.0 {
+                    slid
+                } else {
+                    Vec2::ZERO
+                };
+            } else {
+                motion = rest;
+            }
+            travelled_x += travel.x.abs();
+            constant_ok = !constant_ok && !sliding;
+            sliding = true;
         }
         // Snap to the floor: only after a step that began on the floor and does not rise.
-        if floor.is_none()
-            && was_on_floor
-            && desired.y <= 0.0
-            && cfg.floor_snap_length > 0.0
-            && !c.motion.on_ladder
-        {
-            let down = Vec2::new(0.0, -(cfg.floor_snap_length + cfg.safe_margin));
-            if let Some(hit) = self.cast(c, feet_at_start.min(pos.y), pos, down, cfg.safe_margin) {
-                if self.is_floor(hit.normal) {
-                    pos += down * hit.toi;
-                    floor = Some((hit.normal, hit.one_way_top));
-                }
-            }
+        if floor.is_none() && was_on_floor && !rising {
+            floor = self.snap(c, feet_at_start, &mut pos, false);
         }
         // Out to the margin from whatever the move came closer to; a floor within the margin is
         // stood on.
