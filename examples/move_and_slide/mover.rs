@@ -158,7 +158,8 @@ impl MoveAndSlide {
     /// Pushes the character at `pos` out to `safe_margin` from anything closer (the recovery
     /// Godot's docs describe: "if the body is at least this close to another body, it will
     /// consider them to be colliding and will be pushed away"), up to 4 passes, and returns
-    /// the floor it touches within the margin, if any.
+    /// the floor it touches within the margin, if any. Called once, after the moves; Godot
+    /// recovers before each move instead (`GodotSpace2D::test_body_motion`, "STEP 1").
     fn recover(
         &self,
         c: &Character,
