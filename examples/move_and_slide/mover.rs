@@ -318,7 +318,9 @@ impl MoveAndSlide {
             // `floor_stop_on_slope`: a move straight down onto a floor ends there, so gravity's
             // pull is not turned into a slide. (Godot also undoes a travel within the margin:
             // there the travel includes its recovery's push, which here comes after the moves.)
-            if on_floor && cfg.floor_stop_on_slope && desired.x.abs() < 1e-9 && desired.y < 0.0 {
+            // Straight down within Godot's tolerance: the unit velocity within 0.01 of down.
+            let straight_down = (desired.normalize_or_zero() + Vec2::Y).length() < 0.01;
+            if on_floor && cfg.floor_stop_on_slope && straight_down {
                 break;
             }
             if rest.length_squared() < 1e-12 {
