@@ -1,8 +1,8 @@
-//! The collide-and-slide example (`examples/move_and_slide.rs`) as the harness runs it: every
+//! The collide-and-slide example (`examples/move_and_slide/`) as the harness runs it: every
 //! built-in scenario it models, on every configuration it contributes, with its metrics in the
 //! CSV files and its rows in the report; the levels it does not model are skipped.
 
-#[path = "../../examples/move_and_slide.rs"]
+#[path = "../../examples/move_and_slide/main.rs"]
 #[allow(dead_code)]
 mod example;
 
@@ -71,6 +71,18 @@ fn the_example_runs_every_builtin_scenario_it_models_and_reports_them() {
     }
     let traces = std::fs::read_dir(out.join("traces")).unwrap().count();
     assert_eq!(traces, modelled * configs.len());
+    // docs/move-and-slide.md counts the built-in scenarios it runs, out of all of them.
+    let total: usize = levels.iter().map(|l| l.scenarios.len()).sum();
+    let doc = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/move-and-slide.md"),
+    )
+    .unwrap()
+    .replace('\n', " ");
+    let count = format!("{modelled} of the {total} built-in scenarios");
+    assert!(
+        doc.contains(&count),
+        "docs/move-and-slide.md lacks {count:?}"
+    );
     // A few of its figures, as docs/move-and-slide.md quotes them: it keeps its margin at rest, never
     // tunnels, and its default (Godot's 1 px snap) loses a 45-degree ramp walked down at run
     // speed, which a 0.25-tile snap keeps.
@@ -117,4 +129,106 @@ fn the_example_runs_every_builtin_scenario_it_models_and_reports_them() {
     }
     let html = std::fs::read_to_string(report.join("report.html")).unwrap();
     assert!(html.contains("move_and_slide cuboid"));
+}
+
+/// The example's configurations on the two levels with surfaces steeper than its 45-degree
+/// `floor_max_angle`, with their metric rows.
+fn steep_rows(configs: Vec<platbench::config::RunConfig>) -> Vec<platbench::metrics::MetricRow> {
+    let levels: Vec<_> = platbench::suite::builtin_levels()
+        .unwrap()
+        .into_iter()
+        .filter(|l| l.name == "slope_63_4" || l.name == "seed_tile")
+        .collect();
+    assert_eq!(levels.len(), 2);
+    platbench::suite::run_suite(&levels, &configs)
+        .unwrap()
+        .metrics
+}
+
+fn value(
+    rows: &[platbench::metrics::MetricRow],
+    scenario: &str,
+    config: &str,
+    metric: &str,
+) -> f64 {
+    rows.iter()
+        .find(|r| {
+            format!("{}.{}", r.level, r.scenario) == scenario
+                && r.config == config
+                && r.metric == metric
+        })
+        .unwrap_or_else(|| panic!("no {scenario} {config} {metric}"))
+        .value
+}
+
+#[test]
+fn godots_floor_block_on_wall_keeps_the_mover_off_steep_slopes() {
+    use example::MoveAndSlideConfig;
+    use platbench::prelude::{CharacterShape, Controller};
+    // Godot's defaults, floor_block_on_wall on (character_body_2d.cpp,
+    // CharacterBody2D::_move_and_slide_grounded): walking into a 63.4-degree ramp (a wall
+    // under the 45-degree floor_max_angle) no longer slides up it. Before the rule was modelled
+    // (commit 0693ae0) every configuration climbed it, fell back and climbed again: 7 grounded
+    // changes for the box, 8 for the capsule, each way; and the capsule climbed the seed's steep
+    // height-array tile (seed_tile.walk_up steep_blocked 0). Measured with the rule: 0 changes
+    // and blocked for every configuration.
+    let rows = steep_rows(<MoveAndSlideConfig as Controller>::configs());
+    for config in [
+        "cuboid",
+        "capsule",
+        "cuboid constant_speed=true",
+        "cuboid snap=0.25",
+    ] {
+        for scenario in [
+            "slope_63_4.walk_into_steep",
+            "slope_63_4.walk_into_steep_leftward",
+        ] {
+            assert_eq!(
+                value(&rows, scenario, config, "grounded_flicker"),
+                0.0,
+                "{scenario} {config}"
+            );
+            assert_eq!(
+                value(&rows, scenario, config, "steep_blocked"),
+                1.0,
+                "{scenario} {config}"
+            );
+        }
+        assert_eq!(
+            value(&rows, "seed_tile.walk_up", config, "steep_blocked"),
+            1.0,
+            "{config}"
+        );
+    }
+    // The rule is the cause: turned off (the other slide rules kept), the climb and its flicker
+    // come back (8 changes for the box each way, the capsule up the seed's steep tile).
+    let off: Vec<_> = [CharacterShape::Cuboid, CharacterShape::Capsule]
+        .into_iter()
+        .map(|shape| {
+            let c = MoveAndSlideConfig {
+                shape,
+                floor_block_on_wall: false,
+                ..Default::default()
+            };
+            platbench::config::RunConfig::new(c.label(), c)
+        })
+        .collect();
+    let rows = steep_rows(off);
+    assert!(
+        value(
+            &rows,
+            "slope_63_4.walk_into_steep",
+            "cuboid block_on_wall=false",
+            "grounded_flicker"
+        ) >= 7.0
+    );
+    assert_eq!(
+        value(
+            &rows,
+            "seed_tile.walk_up",
+            "capsule block_on_wall=false",
+            "steep_blocked"
+        ),
+        0.0
+    );
 }
