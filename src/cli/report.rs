@@ -180,13 +180,21 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
         .iter()
         .map(|c| super::run::facts(c, &h.registry))
         .collect();
-    let card = crate::report::verdict::VerdictRows::of(facts, &metrics);
+    let level_features = levels
+        .iter()
+        .map(|l| (l.name.clone(), l.features))
+        .collect();
+    let card = crate::report::verdict::VerdictRows::of(facts, level_features, &metrics);
     let verdicts: Vec<_> = profiles
         .iter()
         .map(|p| crate::report::verdict::pick(&card, p))
         .collect();
-    extras.verdict = crate::report::verdict::render_verdict_html(&card, &verdicts);
-    extras.verdict_text = super::run::verdict_text(&card, &profiles);
+    extras.verdict = crate::report::verdict::render_verdict_html(
+        &card,
+        &verdicts,
+        &super::run::profile_source(&args.profiles),
+    );
+    extras.verdict_text = super::run::verdict_text(&card, &profiles, &args.profiles);
     let (html, md) = render_report(&h.registry, &metrics, &scenarios, &extras);
     output::write_output(&args.out, output::Kind::Report, args.force, |dir| {
         for (name, text) in [("report.html", &html), ("report.md", &md)] {

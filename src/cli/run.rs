@@ -160,7 +160,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         None => execute(&h.registry, &levels, &configs, args, jobs, None)?,
     };
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
-    out(&verdict_text(&verdict, &profiles));
+    out(&verdict_text(&verdict, &profiles, &args.profiles));
     if args.detail {
         let mut text = summary_table_in(&metrics, &coverage);
         for n in notes {
@@ -205,23 +205,49 @@ pub(crate) fn load_profiles(files: &[PathBuf]) -> Result<Vec<Profile>> {
     if files.is_empty() {
         return Ok(builtin_profiles());
     }
-    files
-        .iter()
-        .map(|f| {
-            let text = crate::limits::read_text_capped(f)
-                .with_context(|| format!("cannot read profile {}", f.display()))?;
-            Ok(parse_profile(&text, &f.display().to_string())?)
-        })
-        .collect()
+    let mut profiles: Vec<Profile> = Vec::new();
+    for f in files {
+        // A profile is a small regular file: a pipe or a device would block or never end.
+        let meta =
+            std::fs::metadata(f).with_context(|| format!("cannot read profile {}", f.display()))?;
+        if !meta.is_file() {
+            bail!(
+                "cannot read profile {}: it is not a regular file; expected a profile file (TOML)",
+                f.display()
+            );
+        }
+        let text = crate::limits::read_text_capped(f)
+            .with_context(|| format!("cannot read profile {}", f.display()))?;
+        let p = parse_profile(&text, &f.display().to_string())?;
+        if profiles.iter().any(|q| q.name == p.name) {
+            bail!(
+                "{}: a profile named {:?} was already given; expected each --profile to have a name of its own",
+                f.display(),
+                p.name
+            );
+        }
+        profiles.push(p);
+    }
+    Ok(profiles)
+}
+
+/// Where the verdict's profiles come from, as it says.
+pub(crate) fn profile_source(files: &[PathBuf]) -> String {
+    if files.is_empty() {
+        "Profiles: compare/profiles/*.toml; `--profile FILE` judges your own.".into()
+    } else {
+        let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+        format!("Profiles: {} (--profile).", names.join(", "))
+    }
 }
 
 /// The verdict of `profiles`, the scorecard and the capability table, as the terminal prints
 /// them.
-pub(crate) fn verdict_text(card: &Scorecard, profiles: &[Profile]) -> String {
+pub(crate) fn verdict_text(card: &Scorecard, profiles: &[Profile], files: &[PathBuf]) -> String {
     let verdicts: Vec<_> = profiles.iter().map(|p| pick(card, p)).collect();
     format!(
         "{}\n{}\n{}",
-        render_verdict(card, &verdicts),
+        render_verdict(card, &verdicts, &profile_source(files)),
         render_scorecard(card),
         render_capabilities(card)
     )
@@ -391,7 +417,13 @@ fn execute<'a>(
     let mut metrics: Vec<MetricRow> = Vec::new();
     let mut kept = SummaryRows::default();
     let mut notes = crate::report::notes::RunNotes::new();
-    let mut verdict = VerdictRows::new(configs.iter().map(|c| facts(c, registry)).collect());
+    let mut verdict = VerdictRows::new(
+        configs.iter().map(|c| facts(c, registry)).collect(),
+        levels
+            .iter()
+            .map(|l| (l.name.clone(), l.features))
+            .collect(),
+    );
     let mut rows_seen = 0usize;
     let (mut done, mut written) = (0usize, 0usize);
     // Refusals on the current level, per configuration: the first is said, the others counted

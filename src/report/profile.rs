@@ -98,7 +98,7 @@ impl Profile {
         // Heaviest first; ties in behaviour order (the sort is stable).
         w.sort_by(|a, b| b.1.total_cmp(&a.1));
         w.iter()
-            .map(|(b, x)| format!("{} {}", b.key(), crate::report::format_value(*x)))
+            .map(|(b, x)| format!("{} {x}", b.key()))
             .collect::<Vec<_>>()
             .join(", ")
     }
@@ -126,7 +126,28 @@ struct File {
     title: toml::Spanned<String>,
     #[serde(default)]
     needs: Vec<toml::Spanned<String>>,
-    weights: toml::Spanned<toml::Table>,
+    weights: toml::Spanned<
+        std::collections::BTreeMap<toml::Spanned<String>, toml::Spanned<toml::Value>>,
+    >,
+}
+
+/// Whether `c` may appear in a name or title: printable, and not a format character that
+/// reorders or hides text (bidirectional controls, zero-width characters, the BOM).
+fn printable(c: char) -> bool {
+    !c.is_control()
+        && !matches!(
+            c,
+            '\u{200B}'..='\u{200F}' | '\u{202A}'..='\u{202E}' | '\u{2060}'..='\u{206F}' | '\u{FEFF}'
+        )
+}
+
+/// At most 40 characters of `s`, for an error message that echoes it.
+fn excerpt(s: &str) -> String {
+    if s.chars().count() <= 40 {
+        s.to_string()
+    } else {
+        format!("{}...", s.chars().take(40).collect::<String>())
+    }
 }
 
 /// Parses a profile file's `text`; `file` names it in errors.
@@ -153,10 +174,7 @@ pub fn parse_profile(text: &str, file: &str) -> Result<Profile, ProfileError> {
         ));
     }
     let title = f.title.get_ref().trim();
-    if title.is_empty()
-        || title.chars().count() > MAX_TITLE
-        || title.chars().any(|c| c.is_control())
-    {
+    if title.is_empty() || title.chars().count() > MAX_TITLE || !title.chars().all(printable) {
         return Err(at(
             f.title.span().start,
             format!("title: expected 1 to {MAX_TITLE} printable characters on one line"),
@@ -173,7 +191,7 @@ pub fn parse_profile(text: &str, file: &str) -> Result<Profile, ProfileError> {
                     n.span().start,
                     format!(
                         "need {:?}: expected one of {}",
-                        n.get_ref(),
+                        excerpt(n.get_ref()),
                         Need::ALL.map(|(s, _)| s).join(", ")
                     ),
                 )
@@ -185,26 +203,29 @@ pub fn parse_profile(text: &str, file: &str) -> Result<Profile, ProfileError> {
     let mut weights = Vec::new();
     let table_at = f.weights.span().start;
     for (key, value) in f.weights.get_ref() {
+        let (key_at, value_at) = (key.span().start, value.span().start);
+        let key = key.get_ref();
         let b = Behaviour::ALL
             .into_iter()
             .find(|b| b.key() == key)
             .ok_or_else(|| {
                 at(
-                    table_at,
+                    key_at,
                     format!(
-                        "[weights] key {key:?}: expected a behaviour, one of {}",
+                        "[weights] key {:?}: expected a behaviour, one of {}",
+                        excerpt(key),
                         Behaviour::ALL.map(|b| b.key()).join(", ")
                     ),
                 )
             })?;
-        let w = match value {
+        let w = match value.get_ref() {
             toml::Value::Integer(i) => *i as f64,
             toml::Value::Float(x) => *x,
             other => {
                 return Err(at(
-                    table_at,
+                    value_at,
                     format!(
-                        "[weights] {key} = {other}: expected a number >= 0 (a {})",
+                        "[weights] {key}: expected a number from 0 to 1000, found a {}",
                         other.type_str()
                     ),
                 ))
@@ -214,8 +235,11 @@ pub fn parse_profile(text: &str, file: &str) -> Result<Profile, ProfileError> {
         // far beyond any ratio a profile needs and keeps sums finite.
         if !(w.is_finite() && (0.0..=1000.0).contains(&w)) {
             return Err(at(
-                table_at,
-                format!("[weights] {key} = {w}: expected a number from 0 to 1000"),
+                value_at,
+                format!(
+                    "[weights] {key} = {}: expected a number from 0 to 1000",
+                    excerpt(&w.to_string())
+                ),
             ));
         }
         if w > 0.0 {
@@ -302,7 +326,8 @@ mod tests {
             "p.toml",
         )
         .unwrap_err();
-        assert!(e.to_string().starts_with("p.toml:3:"), "{e}");
+        // Located at the key, not at the table.
+        assert!(e.to_string().starts_with("p.toml:4:1:"), "{e}");
         assert!(e.message.contains("seams"), "{e}");
         let e = parse_profile(
             "name = \"x\"\ntitle = \"t\"\n[weights]\nseams = -1\n",

@@ -41,7 +41,7 @@ fn no_arguments_prints_the_verdict_first_within_120_columns() {
         last = at(p);
     }
     assert!(at("\nScorecard:") > last);
-    assert!(at("\nDeclared, ") > at("\nScorecard:"));
+    assert!(at("\nDeclared by ") > at("\nScorecard:"));
     assert!(stdout.matches("\n  pick       ").count() == profiles.len());
     // The terminal: 120 columns, in a terminal and a CI log alike.
     for line in stdout.lines() {

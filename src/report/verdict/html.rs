@@ -56,14 +56,14 @@ fn grade_word(g: Option<Grade>) -> &'static str {
 pub const STYLE: &str = "table.verdict,table.scorecard{font-size:12px;margin:0.3em 0}\n.verdict td,.verdict th{vertical-align:top;text-align:left;padding:2px 5px}\n.scorecard td,.scorecard th{padding:1px 5px}\n.scorecard td.design{max-width:420px;white-space:nowrap;overflow:hidden;text-overflow:ellipsis;text-align:left;font-size:11px;color:#555}\n#verdict h2{margin:0.2em 0}\n#verdict h3{margin:0.5em 0 0.2em}\n#verdict p.small{margin:0.2em 0}\n#verdict .small{font-size:12px;color:#555}\ntd.g-ok{background:#e8f5e9}\ntd.g-minor{background:#fff8e1}\ntd.g-fail{background:#ffebee;font-weight:bold}\ntd.g-none{color:#999}\n.scorecard td{text-align:center}\n.scorecard td:first-child{text-align:left}\n.verdict .small{font-size:12px;color:#555}\n";
 
 /// The verdict of every profile, the scorecard and the capabilities.
-pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict]) -> String {
+pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict], source: &str) -> String {
     let mut h = String::new();
-    let label = |c: usize| escape(&card.cards[c].facts.label);
     let _ = write!(
         h,
-        "<h2>Which controller for which game</h2><p class=\"small\">{} scenarios, {} configurations. Each game profile (<code>compare/profiles/*.toml</code>; <code>--profile FILE</code> judges your own) picks the configuration with the lowest weighted error (in brackets: 0 every promise kept, 1 all clearly off; a skipped scenario counts as clearly off).</p>",
+        "<h2>Which controller for which game</h2><p class=\"small\">{} scenarios, {} configurations. Each game profile picks the configuration that fails the least of what it weighs, then has the lowest weighted error (in brackets: the mean over scored metrics of min(1, error / the clearly-wrong size), 0 all exact, 1 all clearly off; a skipped scenario counts as clearly off). {}</p>",
         card.total_scenarios,
-        card.cards.len()
+        card.cards.len(),
+        escape(source)
     );
     h.push_str("<div class=\"wide\"><table class=\"verdict\"><thead><tr><th>game</th><th>pick (runner-up)</th><th>why</th><th>still off</th></tr></thead><tbody>");
     for v in verdicts {
@@ -89,19 +89,14 @@ pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict]) -> Str
                     escape(v.no_pick.as_deref().unwrap_or(""))
                 );
             }
-            Some((c, e)) => {
-                let _ = write!(
-                    h,
-                    "<td><b>{}</b> ({})",
-                    label(c),
-                    super::render::error_text(e)
-                );
-                if let Some((r, e)) = v.runner_up {
+            Some(_) => {
+                let (pick, runner) = super::render::pick_texts(card, v);
+                let _ = write!(h, "<td><b>{}</b>", escape(&pick));
+                if let Some(r) = runner {
                     let _ = write!(
                         h,
-                        "<br><span class=\"small\">runner-up: {} ({})</span>",
-                        label(r),
-                        super::render::error_text(e)
+                        "<br><span class=\"small\">runner-up: {}</span>",
+                        escape(&r)
                     );
                 }
                 h.push_str("</td>");
@@ -158,7 +153,7 @@ pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict]) -> Str
 /// The scorecard: a grade per configuration and behaviour, each grade that is not ok linked to
 /// the replay of its worst scenario at its frame.
 fn scorecard_html(card: &Scorecard) -> String {
-    let mut h = String::from("<h3 id=\"scorecard\">Scorecard</h3><p class=\"small\">Does each configuration keep its own documented promise on each behaviour's scenarios? <b>ok</b>: every scored metric within the clearly-wrong size (0.01 tiles, 0.01 ratio, exact frames and counts); <b>minor</b>: within ten times it (0.1 tiles), 3 frames or 2 counts; <b>FAIL</b>: beyond, or a wrong result; <b>-</b>: not run. Landing includes jumps. A grade that is not ok links to the replay of its worst scenario at its frame; hover it for the value.</p><div class=\"wide\"><table class=\"scorecard\"><thead><tr><th>configuration</th>");
+    let mut h = String::from("<h3 id=\"scorecard\">Scorecard</h3><p class=\"small\">How each configuration does on each behaviour's scenarios, against each metric's reference (rest and penetration against the contact the configuration declares). <b>ok</b>: every scored metric within the clearly-wrong size (0.01 tiles, 0.01 ratio, exact frames and counts); <b>minor</b>: within ten times it (0.1 tiles), 3 frames or 2 counts; <b>FAIL</b>: beyond, or a wrong result; <b>-</b>: not run. A row of a level with moving platforms, ladders, one-way platforms or slopes counts toward that feature. A grade that is not ok links to the replay of its worst scenario at its frame; hover it for the value.</p><div class=\"wide\"><table class=\"scorecard\"><thead><tr><th>configuration</th>");
     for c in Column::ALL {
         let _ = write!(h, "<th>{}</th>", c.header());
     }
@@ -192,7 +187,7 @@ fn scorecard_html(card: &Scorecard) -> String {
 fn capabilities_html(card: &Scorecard) -> String {
     let text = super::render::render_capabilities(card);
     let mut lines = text.lines().filter(|l| l.contains(" | "));
-    let mut h = String::from("<h3 id=\"capabilities\">Declared capabilities</h3><p class=\"small\">From each controller's documentation: slopes to platforms are also measured above; pushes (dynamic bodies), grid (positions on a fixed grid), f64 (world positions) and x-platform (bit-identical results across machines) are not measured.</p><div class=\"wide\"><table>");
+    let mut h = String::from("<h3 id=\"capabilities\">Declared capabilities</h3><p class=\"small\">Declared by each configuration: slopes to platforms are the level features it runs (measured above); pushes (dynamic bodies), grid (positions on a fixed grid), f64 (world positions) and x-platform (bit-identical results across machines, as built here) are not measured.</p><div class=\"wide\"><table>");
     if let Some(head) = lines.next() {
         h.push_str("<thead><tr>");
         for c in head.split(" | ") {

@@ -263,8 +263,8 @@ impl Scorecard {
         Some(((mine / cheapest).max(1.0).log10() / 2.0).min(1.0))
     }
 
-    /// The behaviour grades of a card for the scorecard's landing column: landing and jumping
-    /// together (the worse of the two).
+    /// Card `c`'s grade in a scorecard column (the worst of its behaviours), with the row that
+    /// set it.
     pub fn column_grade(&self, c: usize, col: Column) -> Option<(Grade, Option<&Worst>)> {
         let mut out: Option<(Grade, Option<&Worst>)> = None;
         for b in col.behaviours() {
@@ -290,8 +290,10 @@ impl Scorecard {
 /// A column of the scorecard: one or two behaviours.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Column {
-    /// Landing, resting and jumping.
+    /// Landing and resting.
     Landing,
+    /// Jumping.
+    Jumping,
     /// Walking over seams.
     Seams,
     /// Slopes.
@@ -310,8 +312,9 @@ pub enum Column {
 
 impl Column {
     /// Every column, in print order.
-    pub const ALL: [Column; 8] = [
+    pub const ALL: [Column; 9] = [
         Column::Landing,
+        Column::Jumping,
         Column::Seams,
         Column::Slopes,
         Column::OneWay,
@@ -324,7 +327,8 @@ impl Column {
     /// The behaviours it grades.
     pub fn behaviours(self) -> &'static [Behaviour] {
         match self {
-            Column::Landing => &[Behaviour::Landing, Behaviour::Jumping],
+            Column::Landing => &[Behaviour::Landing],
+            Column::Jumping => &[Behaviour::Jumping],
             Column::Seams => &[Behaviour::Seams],
             Column::Slopes => &[Behaviour::Slopes],
             Column::OneWay => &[Behaviour::OneWay],
@@ -339,6 +343,7 @@ impl Column {
     pub fn header(self) -> &'static str {
         match self {
             Column::Landing => "landing",
+            Column::Jumping => "jumps",
             Column::Seams => "seams",
             Column::Slopes => "slopes",
             Column::OneWay => "oneway",
@@ -350,11 +355,38 @@ impl Column {
     }
 }
 
+/// The behaviour a row of a metric of behaviour `metric` counts toward on a level with
+/// `features`: the metric's own on a level of plain tiles, or when it measures a feature
+/// (slopes, one-way platforms, ladders, moving platforms); else the level's feature, the
+/// platforms first. A character pushed into a wall by a platform, or lifted off by a lift, is
+/// a moving-platform result whichever metric sees it: a landing or standing metric on such a
+/// level is charged to that level's feature for every configuration alike.
+pub fn behaviour_of(metric: Behaviour, features: Features) -> Behaviour {
+    use Behaviour::*;
+    if matches!(metric, Slopes | OneWay | Ladders | Platforms | Cost) {
+        return metric;
+    }
+    if features.moving_platforms {
+        Platforms
+    } else if features.ladders {
+        Ladders
+    } else if features.one_way {
+        OneWay
+    } else if features.slopes {
+        Slopes
+    } else {
+        metric
+    }
+}
+
 /// The rows the verdict needs, gathered run by run.
 #[derive(Clone, Debug)]
 pub struct VerdictRows {
     score: Score,
     facts: Vec<Facts>,
+    /// The features of each level of the run, by name: a row of a level with a feature counts
+    /// toward that feature's behaviour ([`behaviour_of`]).
+    levels: Vec<(String, Features)>,
     cards: Vec<Card>,
     /// Per behaviour: the (level, scenario) pairs any configuration ran.
     scenarios: BTreeMap<Behaviour, BTreeSet<(String, String)>>,
@@ -364,12 +396,13 @@ pub struct VerdictRows {
 
 impl VerdictRows {
     /// Gathers runs of the configurations `facts` declare (a run of another configuration adds
-    /// a card with no declared features).
-    pub fn new(facts: Vec<Facts>) -> Self {
+    /// a card with no declared features) on levels with the features `levels` gives by name.
+    pub fn new(facts: Vec<Facts>, levels: Vec<(String, Features)>) -> Self {
         VerdictRows {
             score: Score::default(),
             cards: Vec::new(),
             facts,
+            levels,
             scenarios: BTreeMap::new(),
             all: BTreeSet::new(),
         }
@@ -410,6 +443,11 @@ impl VerdictRows {
         };
         let key = (first.level.clone(), first.scenario.clone());
         self.all.insert(key.clone());
+        let features = self
+            .levels
+            .iter()
+            .find(|(l, _)| *l == first.level)
+            .map_or(Features::NONE, |(_, f)| *f);
         // The scored rows of each behaviour, a model group's closer model only.
         let mut scored: BTreeMap<Behaviour, Vec<(&MetricRow, f64, f64)>> = BTreeMap::new();
         let mut groups: BTreeMap<&str, (&MetricRow, f64, f64)> = BTreeMap::new();
@@ -435,12 +473,18 @@ impl VerdictRows {
                         *slot = (r, size, w);
                     }
                 }
-                None => scored.entry(def.behaviour).or_default().push((r, size, w)),
+                None => scored
+                    .entry(behaviour_of(def.behaviour, features))
+                    .or_default()
+                    .push((r, size, w)),
             }
         }
         for (r, size, w) in groups.into_values() {
             if let Some(def) = registry::get(r.metric) {
-                scored.entry(def.behaviour).or_default().push((r, size, w));
+                scored
+                    .entry(behaviour_of(def.behaviour, features))
+                    .or_default()
+                    .push((r, size, w));
             }
         }
         for b in scored.keys() {
@@ -490,9 +534,9 @@ impl VerdictRows {
         }
     }
 
-    /// The scorecard of `rows` (every row of a run, in run order).
-    pub fn of(facts: Vec<Facts>, rows: &[MetricRow]) -> Scorecard {
-        let mut v = VerdictRows::new(facts);
+    /// The scorecard of `rows` (every row of a run, in run order) on `levels`.
+    pub fn of(facts: Vec<Facts>, levels: Vec<(String, Features)>, rows: &[MetricRow]) -> Scorecard {
+        let mut v = VerdictRows::new(facts, levels);
         let mut start = 0;
         for i in 1..=rows.len() {
             let split = i == rows.len() || {

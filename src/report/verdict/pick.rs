@@ -45,6 +45,54 @@ pub struct ProfileVerdict {
     pub left_out: Vec<(usize, String)>,
     /// Weighted behaviours no configuration ran (not counted).
     pub unmeasured: Vec<Behaviour>,
+    /// Configurations that tie with the pick (same failed weight, weighted errors within
+    /// 1e-9): nothing this run measures separates them, and the pick is only the first in run
+    /// order.
+    pub tied: Vec<usize>,
+    /// Each ranked configuration's weight of failed behaviours (see `failed_weight`).
+    pub failed: Vec<(usize, f64)>,
+}
+
+/// Configuration `c`'s weighted error over the measured behaviours `profile` weighs.
+pub fn weighted_error(card: &Scorecard, profile: &Profile, c: usize) -> f64 {
+    let (mut sum, mut weights) = (0.0, 0.0);
+    for (b, w) in &profile.weights {
+        let s = match b {
+            Behaviour::Cost => match card.cost_score(c) {
+                Some(s) => s,
+                None => continue,
+            },
+            b => match card.score(c, *b) {
+                Some(s) => s,
+                None => continue,
+            },
+        };
+        sum += w * s;
+        weights += w;
+    }
+    if weights > 0.0 {
+        sum / weights
+    } else {
+        0.0
+    }
+}
+
+/// The weight of the behaviours `profile` weighs that configuration `c` fails, or did not run
+/// where another configuration did (a skipped behaviour is not credited).
+pub fn failed_weight(card: &Scorecard, profile: &Profile, c: usize) -> f64 {
+    profile
+        .weights
+        .iter()
+        .filter(|(b, _)| *b != Behaviour::Cost && card.scenarios.get(b).is_some_and(|n| *n > 0))
+        .filter(|(b, _)| {
+            card.cards[c]
+                .cells
+                .get(b)
+                .and_then(|x| x.grade())
+                .is_none_or(|g| g == Grade::Fails)
+        })
+        .map(|(_, w)| *w)
+        .sum()
 }
 
 /// The verdict of `profile` on `card`.
@@ -58,6 +106,8 @@ pub fn pick(card: &Scorecard, profile: &Profile) -> ProfileVerdict {
         no_pick: None,
         left_out: Vec::new(),
         unmeasured: Vec::new(),
+        tied: Vec::new(),
+        failed: Vec::new(),
     };
     // What the run measured of what the profile weighs.
     let measured = |b: Behaviour| match b {
@@ -69,11 +119,8 @@ pub fn pick(card: &Scorecard, profile: &Profile) -> ProfileVerdict {
             v.unmeasured.push(*b);
         }
     }
-    if v.unmeasured.contains(&Behaviour::Cost) {
-        v.no_pick = Some(
-            "cost decides this profile and this run did not time it: run `platbench run --timing`"
-                .into(),
-        );
+    if v.unmeasured.len() == profile.weights.len() {
+        v.no_pick = Some("nothing this profile weighs was measured by this run".into());
         return v;
     }
     for need in &profile.needs {
@@ -113,44 +160,46 @@ pub fn pick(card: &Scorecard, profile: &Profile) -> ProfileVerdict {
             v.left_out.push((i, missing.join("; ")));
         }
     }
-    // Weighted error over the measured behaviours the profile weighs.
-    let total = |c: usize| -> f64 {
-        let (mut sum, mut weights) = (0.0, 0.0);
-        for (b, w) in &profile.weights {
-            let s = match b {
-                Behaviour::Cost => card.cost_score(c).unwrap_or(1.0),
-                b => match card.score(c, *b) {
-                    Some(s) => s,
-                    None => continue,
-                },
-            };
-            sum += w * s;
-            weights += w;
-        }
-        if weights > 0.0 {
-            sum / weights
-        } else {
-            0.0
-        }
-    };
-    let mut ranked: Vec<(usize, f64)> = eligible.iter().map(|&c| (c, total(c))).collect();
-    // Stable: ties keep run order.
-    ranked.sort_by(|a, b| {
-        if (a.1 - b.1).abs() <= TIE {
-            std::cmp::Ordering::Equal
-        } else {
-            a.1.total_cmp(&b.1)
-        }
-    });
-    let Some(&(p, ps)) = ranked.first() else {
+    if eligible.is_empty() {
         v.no_pick = Some(if profile.needs.contains(&Need::F64Positions) {
             "no configuration of this run meets its needs (`--precision f32,f64` adds the f64 builds; `platbench stress` measures how far from the origin each stays exact)".into()
         } else {
             "no configuration of this run meets its needs".into()
         });
         return v;
-    };
+    }
+    if v.unmeasured.contains(&Behaviour::Cost) {
+        v.no_pick = Some(
+            "cost decides this profile and this run did not time it: run `platbench run --timing`"
+                .into(),
+        );
+        return v;
+    }
+    let mut ranked: Vec<(usize, f64)> = eligible
+        .iter()
+        .map(|&c| (c, weighted_error(card, profile, c)))
+        .collect();
+    // First the weight of the behaviours a configuration fails (or did not run), then the
+    // weighted error: a FAIL on what the profile weighs is not averaged away by many rows that
+    // are right. Stable: ties keep run order, and are said as ties.
+    let failed = |c: usize| failed_weight(card, profile, c);
+    ranked.sort_by(|a, b| {
+        failed(a.0)
+            .total_cmp(&failed(b.0))
+            .then(if (a.1 - b.1).abs() <= TIE {
+                std::cmp::Ordering::Equal
+            } else {
+                a.1.total_cmp(&b.1)
+            })
+    });
+    let (p, ps) = ranked[0];
     v.pick = Some((p, ps));
+    let same = |c: usize, e: f64| failed(c) == failed(p) && (e - ps).abs() <= TIE;
+    v.tied = ranked[1..]
+        .iter()
+        .filter(|(c, e)| same(*c, *e))
+        .map(|(c, _)| *c)
+        .collect();
     let backend = |c: usize| card.cards[c].facts.backend.as_str();
     v.runner_up = ranked
         .iter()
@@ -158,6 +207,7 @@ pub fn pick(card: &Scorecard, profile: &Profile) -> ProfileVerdict {
         .find(|(c, _)| backend(*c) != backend(p))
         .or_else(|| ranked.get(1))
         .copied();
+    v.failed = ranked.iter().map(|(c, _)| (*c, failed(*c))).collect();
     let grade = |c: usize, b: Behaviour| card.cards[c].cells.get(&b).and_then(|x| x.grade());
     let worst = |c: usize, b: Behaviour| {
         card.cards[c]
@@ -166,14 +216,17 @@ pub fn pick(card: &Scorecard, profile: &Profile) -> ProfileVerdict {
             .and_then(|x| x.worst.clone())
             .filter(|w| w.grade != Grade::Keeps)
     };
-    if let Some((r, _)) = v.runner_up {
+    if let Some((r, _)) = v.runner_up.filter(|(r, _)| !v.tied.contains(r)) {
         let mut why: Vec<Reason> = profile
             .weights
             .iter()
             .filter(|(b, _)| *b != Behaviour::Cost)
             .filter_map(|(b, w)| {
                 let d = w * (card.score(r, *b)? - card.score(p, *b)?);
-                (d > TIE).then(|| Reason {
+                // Under the same grade, a difference below 1% of "clearly off" is rounding,
+                // not a reason.
+                let said = grade(p, *b) != grade(r, *b) || d >= 0.01 * w;
+                (d > TIE && said).then(|| Reason {
                     behaviour: *b,
                     pick: grade(p, *b),
                     other: grade(r, *b),
@@ -196,19 +249,10 @@ pub fn pick(card: &Scorecard, profile: &Profile) -> ProfileVerdict {
                 }
             }
         }
-        // Where the grades differ first (what a reader sees in the scorecard), then by weighted
-        // error; a closer value under the same grade is listed only when nothing else decided.
-        why.sort_by(|a, b| {
-            (b.pick != b.other)
-                .cmp(&(a.pick != a.other))
-                .then(b.size.total_cmp(&a.size))
-        });
-        if why
-            .iter()
-            .any(|r| r.pick != r.other || r.behaviour == Behaviour::Cost)
-        {
-            why.retain(|r| r.pick != r.other || r.behaviour == Behaviour::Cost);
-        }
+        // A FAIL the pick avoids first (what ranks it), then by weighted error, same grades
+        // included: the behaviour that moved the error most is said even when both fail it.
+        let fails = |r: &Reason| r.other == Some(Grade::Fails) && r.pick != Some(Grade::Fails);
+        why.sort_by(|a, b| fails(b).cmp(&fails(a)).then(b.size.total_cmp(&a.size)));
         why.truncate(3);
         v.why = why;
     }

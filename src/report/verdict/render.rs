@@ -3,11 +3,31 @@
 
 use std::fmt::Write as _;
 
+use unicode_width::{UnicodeWidthChar as _, UnicodeWidthStr as _};
+
 use super::{Column, Grade, ProfileVerdict, Reason, Scorecard};
 use crate::metrics::registry::Behaviour;
 
 /// The widest line printed.
 pub const WIDTH: usize = 120;
+
+/// The columns `s` takes in a terminal (a wide character takes two).
+pub(crate) fn columns(s: &str) -> usize {
+    s.width()
+}
+
+/// The longest start of `s` that fits `width` columns, and the rest.
+fn split_at_columns(s: &str, width: usize) -> (&str, &str) {
+    let mut used = 0;
+    for (i, c) in s.char_indices() {
+        let w = c.width().unwrap_or(0);
+        if used + w > width {
+            return (&s[..i], &s[i..]);
+        }
+        used += w;
+    }
+    (s, "")
+}
 
 /// `text` wrapped at word boundaries to [`WIDTH`] columns, the first line after `first`, the
 /// others after `indent`.
@@ -16,8 +36,7 @@ fn wrap(first: &str, indent: &str, text: &str) -> String {
     let mut line = first.to_string();
     let mut empty = true;
     for word in text.split(' ').filter(|w| !w.is_empty()) {
-        let len = line.chars().count();
-        if !empty && len + 1 + word.chars().count() > WIDTH {
+        if !empty && columns(&line) + 1 + columns(word) > WIDTH {
             out.push_str(line.trim_end());
             out.push('\n');
             line = indent.to_string();
@@ -29,11 +48,11 @@ fn wrap(first: &str, indent: &str, text: &str) -> String {
         line.push_str(word);
         empty = false;
         // A single word longer than the line is cut, never left to overflow.
-        while line.chars().count() > WIDTH {
-            let cut: String = line.chars().take(WIDTH).collect();
-            out.push_str(&cut);
+        while columns(&line) > WIDTH {
+            let (head, rest) = split_at_columns(&line, WIDTH);
+            out.push_str(head);
             out.push('\n');
-            line = format!("{indent}{}", line.chars().skip(WIDTH).collect::<String>());
+            line = format!("{indent}{rest}");
         }
     }
     out.push_str(line.trim_end());
@@ -74,15 +93,94 @@ pub(crate) fn error_text(e: f64) -> String {
     }
 }
 
+/// Two weighted errors as printed, with as many digits as it takes to tell them apart.
+fn error_pair(a: f64, b: f64) -> (String, String) {
+    let (x, y) = (error_text(a), error_text(b));
+    if x != y || a == b {
+        return (x, y);
+    }
+    for digits in 4..=9 {
+        let (x, y) = (format!("{a:.digits$}"), format!("{b:.digits$}"));
+        if x != y {
+            return (x, y);
+        }
+    }
+    (format!("{a:e}"), format!("{b:e}"))
+}
+
+/// The behaviours of `profile` that configuration `c` fails, as ` FAIL on landing, seams`.
+fn fails_text(card: &Scorecard, v: &ProfileVerdict, c: usize) -> String {
+    let failed: Vec<&str> = v
+        .profile
+        .weights
+        .iter()
+        .filter(|(b, _)| *b != Behaviour::Cost && card.scenarios.get(b).is_some_and(|n| *n > 0))
+        .filter(|(b, _)| {
+            card.cards[c]
+                .cells
+                .get(b)
+                .and_then(|x| x.grade())
+                .is_none_or(|g| g == Grade::Fails)
+        })
+        .map(|(b, _)| b.key())
+        .collect();
+    if failed.is_empty() {
+        String::new()
+    } else {
+        format!("; FAIL on {}", failed.join(", "))
+    }
+}
+
+/// The pick's and the runner-up's lines: `sweep (error 0.001)`, `rapier ... (error 0.007;
+/// FAIL on landing)`, or a tie `tie: a, b (error 0): ...` and no runner-up.
+pub(crate) fn pick_texts(card: &Scorecard, v: &ProfileVerdict) -> (String, Option<String>) {
+    let label = |c: usize| card.cards[c].facts.label.as_str();
+    let Some((c, e)) = v.pick else {
+        return (
+            format!("none: {}", v.no_pick.as_deref().unwrap_or("")),
+            None,
+        );
+    };
+    let runner = v.runner_up.filter(|(r, _)| !v.tied.contains(r));
+    if !v.tied.is_empty() {
+        let mut names = vec![label(c)];
+        names.extend(v.tied.iter().map(|t| label(*t)));
+        return (
+            format!(
+                "tie: {} (error {}{}): nothing this run measures tells them apart; the order is the run's",
+                names.join(", "),
+                error_text(e),
+                fails_text(card, v, c)
+            ),
+            runner.map(|(r, x)| {
+                let (_, re) = error_pair(e, x);
+                format!("{} (error {re}{})", label(r), fails_text(card, v, r))
+            }),
+        );
+    }
+    let re = v.runner_up.map_or(e, |(_, x)| x);
+    let (pe, re) = error_pair(e, re);
+    (
+        format!("{} (error {pe}{})", label(c), fails_text(card, v, c)),
+        v.runner_up
+            .map(|(r, _)| format!("{} (error {re}{})", label(r), fails_text(card, v, r))),
+    )
+}
+
 /// The verdict of every profile: pick, runner-up, why, and what the pick still gets wrong.
-pub fn render_verdict(card: &Scorecard, verdicts: &[ProfileVerdict]) -> String {
+/// `source` says where the profiles come from.
+pub fn render_verdict(card: &Scorecard, verdicts: &[ProfileVerdict], source: &str) -> String {
     let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "Which controller for which game: {} scenarios, {} configurations. Error: 0 every promise kept, 1 all clearly off.\nProfiles are compare/profiles/*.toml; `--profile FILE` judges your own.",
-        card.total_scenarios,
-        card.cards.len()
-    );
+    out.push_str(&wrap(
+        "",
+        "",
+        &format!(
+            "Which controller for which game: {} scenarios, {} configurations. Each profile picks the configuration that fails the least of what it weighs, then has the lowest weighted error (the mean over scored metrics of min(1, error / the clearly-wrong size): 0 all exact, 1 all clearly off).",
+            card.total_scenarios,
+            card.cards.len()
+        ),
+    ));
+    out.push_str(&wrap("", "", source));
     for v in verdicts {
         let p = &v.profile;
         out.push('\n');
@@ -102,18 +200,11 @@ pub fn render_verdict(card: &Scorecard, verdicts: &[ProfileVerdict]) -> String {
                     &format!("none: {}", v.no_pick.as_deref().unwrap_or("")),
                 ));
             }
-            Some((c, e)) => {
-                out.push_str(&wrap(
-                    "  pick       ",
-                    "             ",
-                    &format!("{} (error {})", label(c), error_text(e)),
-                ));
-                if let Some((r, e)) = v.runner_up {
-                    out.push_str(&wrap(
-                        "  runner-up  ",
-                        "             ",
-                        &format!("{} (error {})", label(r), error_text(e)),
-                    ));
+            Some((c, _)) => {
+                let (pick, runner) = pick_texts(card, v);
+                out.push_str(&wrap("  pick       ", "             ", &pick));
+                if let Some(runner) = runner {
+                    out.push_str(&wrap("  runner-up  ", "             ", &runner));
                 }
                 if !v.why.is_empty() {
                     let ratio = |c: usize| {
@@ -124,7 +215,7 @@ pub fn render_verdict(card: &Scorecard, verdicts: &[ProfileVerdict]) -> String {
                             .filter(|x| *x > 0.0)
                             .min_by(f64::total_cmp);
                         match (card.cards[c].median_cost(), cheapest) {
-                            (Some(m), Some(lo)) => format!("{:.1}x", m / lo),
+                            (Some(m), Some(lo)) => format!("{:.2}x", m / lo),
                             _ => "-".into(),
                         }
                     };
@@ -185,7 +276,10 @@ pub fn render_verdict(card: &Scorecard, verdicts: &[ProfileVerdict]) -> String {
             out.push_str(&wrap(
                 "  unmeasured ",
                 "             ",
-                &format!("{} (no scenario of this run measures it)", list.join(", ")),
+                &format!(
+                    "{} (no scenario of this run measures them)",
+                    list.join(", ")
+                ),
             ));
         }
     }
@@ -199,32 +293,25 @@ pub fn render_scorecard(card: &Scorecard) -> String {
     out.push_str(&wrap(
         "",
         "",
-        "Scorecard: does each configuration keep its own documented promise on each behaviour's scenarios? ok: every scored metric within the clearly-wrong size (0.01 tiles, 0.01 ratio, exact frames and counts); minor: within ten times it (0.1 tiles), 3 frames or 2 counts; FAIL: beyond, or a wrong result; -: not run. landing includes jumps. Under a row, its documented design and the scenario and metric behind each grade that is not ok. cost: median time per character step over the cheapest configuration's (run --timing).",
+        "Scorecard: how each configuration does on each behaviour's scenarios, against each metric's reference (rest and penetration against the contact the configuration declares). ok: every scored metric within the clearly-wrong size (0.01 tiles, 0.01 ratio, exact frames and counts); minor: within ten times it (0.1 tiles), 3 frames or 2 counts; FAIL: beyond, or a wrong result; -: not run. A row of a level with moving platforms, ladders, one-way platforms or slopes counts toward that feature. Under a row, its documented design and the scenario and metric behind each grade that is not ok. cost: median time per character step over the cheapest configuration's (run --timing).",
     ));
-    let label_width = card
-        .cards
-        .iter()
-        .map(|c| c.facts.label.chars().count())
-        .chain(["configuration".len()])
-        .max()
-        .unwrap_or(13);
     let widths: Vec<usize> = Column::ALL
         .iter()
         .map(|c| c.header().len().max(5))
         .collect();
-    // The label column gives way to keep a row within the width: 1 space between columns,
-    // 6 for the cost.
+    // The grades take the right of the line (1 space between columns, 7 for the cost); a label
+    // longer than what is left is printed on a line of its own above its grades.
     let cells: usize = widths.iter().map(|w| w + 1).sum::<usize>() + 7;
-    let label_width = label_width.min(WIDTH.saturating_sub(cells));
-    let fit = |s: &str| -> String {
-        if s.chars().count() <= label_width {
-            format!("{s:<label_width$}")
+    let label_width = WIDTH - cells;
+    let pad = |s: &str| -> String {
+        let w = columns(s);
+        if w <= label_width {
+            format!("{s}{}", " ".repeat(label_width - w))
         } else {
-            let cut: String = s.chars().take(label_width.saturating_sub(1)).collect();
-            format!("{cut}~")
+            " ".repeat(label_width)
         }
     };
-    let mut header = fit("configuration");
+    let mut header = pad("configuration");
     for (c, w) in Column::ALL.iter().zip(&widths) {
         let _ = write!(header, " {:>w$}", c.header());
     }
@@ -238,7 +325,10 @@ pub fn render_scorecard(card: &Scorecard) -> String {
         .filter(|x| *x > 0.0)
         .min_by(f64::total_cmp);
     for (i, c) in card.cards.iter().enumerate() {
-        let mut line = fit(&c.facts.label);
+        if columns(&c.facts.label) > label_width {
+            out.push_str(&wrap("", "  ", &c.facts.label));
+        }
+        let mut line = pad(&c.facts.label);
         let mut notes = Vec::new();
         for (col, w) in Column::ALL.iter().zip(&widths) {
             let g = card.column_grade(i, *col);
@@ -286,7 +376,7 @@ pub fn render_capabilities(card: &Scorecard) -> String {
     out.push_str(&wrap(
         "",
         "",
-        "Declared, from each controller's documentation (slopes to platforms are also measured above; the rest are not measured): pushes = pushes dynamic bodies, grid = positions on a fixed grid, f64 = f64 world positions, x-platform = bit-identical results across machines.",
+        "Declared by each configuration: slopes to platforms are the level features it runs (measured above); pushes = pushes dynamic bodies, grid = positions on a fixed grid, f64 = f64 world positions, x-platform = bit-identical results across machines as built here (not measured).",
     ));
     let heads = [
         "slopes",

@@ -68,12 +68,12 @@ fn the_pick_moves_when_the_pick_is_made_worse_on_what_the_profile_weighs() {
     let seams = profile("name = \"s\"\ntitle = \"t\"\n[weights]\nseams = 3\nlanding = 1\n");
     let f = vec![facts("a"), facts("b")];
     // a: no stuck frames, b lands a frame late: a is picked.
-    let card = VerdictRows::of(f.clone(), &rows(0.0, 1.0));
+    let card = VerdictRows::of(f.clone(), Vec::new(), &rows(0.0, 1.0));
     let v = pick(&card, &seams);
     assert_eq!(v.pick.map(|p| p.0), Some(0), "{v:?}");
     assert_eq!(v.runner_up.map(|p| p.0), Some(1));
     // The same rows with a catching on seams (what the profile weighs most): b is picked.
-    let card = VerdictRows::of(f, &rows(9.0, 1.0));
+    let card = VerdictRows::of(f, Vec::new(), &rows(9.0, 1.0));
     let v = pick(&card, &seams);
     assert_eq!(v.pick.map(|p| p.0), Some(1), "{v:?}");
     assert_eq!(v.why[0].behaviour, Behaviour::Seams);
@@ -102,7 +102,7 @@ fn a_configuration_that_skipped_what_a_profile_needs_is_not_picked() {
             ..row("up", "a", "slope_airborne_frames", 0.0, 0.0)
         },
     ];
-    let card = VerdictRows::of(vec![facts("a"), facts("b")], &rows);
+    let card = VerdictRows::of(vec![facts("a"), facts("b")], Vec::new(), &rows);
     let v = pick(&card, &p);
     assert_eq!(v.pick.map(|p| p.0), Some(0), "{v:?}");
     assert_eq!(v.left_out.len(), 1);
@@ -120,7 +120,7 @@ fn a_declared_need_leaves_out_who_does_not_declare_it_and_cost_needs_timing() {
         profile("name = \"s\"\ntitle = \"t\"\nneeds = [\"f64_positions\"]\n[weights]\nseams = 1\n");
     let mut f = vec![facts("a"), facts("b")];
     f[1].precision = Precision::F64;
-    let card = VerdictRows::of(f, &rows(9.0, 0.0));
+    let card = VerdictRows::of(f, Vec::new(), &rows(9.0, 0.0));
     let v = pick(&card, &p);
     assert_eq!(v.pick.map(|p| p.0), Some(1));
     assert!(v.left_out[0].1.contains("does not declare f64_positions"));
@@ -145,16 +145,76 @@ fn every_line_fits_120_columns() {
             r
         })
         .collect();
-    let card = VerdictRows::of(f, &rows);
+    let card = VerdictRows::of(f, Vec::new(), &rows);
     let profiles = crate::report::profile::builtin_profiles();
     let v: Vec<ProfileVerdict> = profiles.iter().map(|p| pick(&card, p)).collect();
     for text in [
-        render_verdict(&card, &v),
+        render_verdict(&card, &v, "Profiles: x."),
         render_scorecard(&card),
         render_capabilities(&card),
     ] {
         for line in text.lines() {
-            assert!(line.chars().count() <= render::WIDTH, "{line}");
+            assert!(render::columns(line) <= render::WIDTH, "{line}");
         }
     }
+}
+
+#[test]
+fn a_tie_is_said_and_nothing_measured_picks_nothing() {
+    let p = profile("name = \"s\"\ntitle = \"t\"\n[weights]\nseams = 1\n");
+    // Both exact on the one scenario: a tie, not a win of the first in run order.
+    let card = VerdictRows::of(vec![facts("a"), facts("b")], Vec::new(), &rows(0.0, 0.0));
+    let v = pick(&card, &p);
+    assert_eq!(v.tied, vec![1], "{v:?}");
+    assert!(v.why.is_empty());
+    let (text, runner) = render::pick_texts(&card, &v);
+    assert!(text.starts_with("tie: a, b (error 0)"), "{text}");
+    // The runner-up (another backend) is in the tie: not said twice.
+    assert_eq!(runner, None);
+    // A profile of what the run did not measure picks nothing.
+    let p = profile("name = \"s\"\ntitle = \"t\"\n[weights]\nladders = 1\n");
+    let v = pick(&card, &p);
+    assert_eq!(v.pick, None);
+    assert!(v.no_pick.unwrap().contains("nothing this profile weighs"));
+}
+
+#[test]
+fn a_fail_ranks_below_a_lower_mean_and_a_platform_level_charges_its_feature() {
+    let p = profile("name = \"s\"\ntitle = \"t\"\n[weights]\nlanding = 1\n");
+    // a: one landing scenario 2 frames late (minor); b: one of ten scenarios clearly wrong
+    // (FAIL), the others exact, so b's mean error (0.1) is below a's (1, capped).
+    let mut r = vec![row("s0", "a", "land_frame_error", 2.0, 0.0)];
+    for i in 0..10 {
+        r.push(row(
+            &format!("s{i}"),
+            "b",
+            "bounce_frames",
+            if i == 0 { 9.0 } else { 0.0 },
+            0.0,
+        ));
+        if i > 0 {
+            r.push(row(&format!("s{i}"), "a", "land_frame_error", 0.0, 0.0));
+        }
+    }
+    r.sort_by(|x, y| (&x.scenario, &x.backend).cmp(&(&y.scenario, &y.backend)));
+    let card = VerdictRows::of(vec![facts("a"), facts("b")], Vec::new(), &r);
+    let v = pick(&card, &p);
+    assert_eq!(v.pick.map(|x| x.0), Some(0), "{v:?}");
+    // On a level with moving platforms, a landing metric counts toward platforms.
+    let plat = Features {
+        moving_platforms: true,
+        ..Features::NONE
+    };
+    assert_eq!(behaviour_of(Behaviour::Landing, plat), Behaviour::Platforms);
+    assert_eq!(
+        behaviour_of(Behaviour::Landing, Features::NONE),
+        Behaviour::Landing
+    );
+    let card = VerdictRows::of(
+        vec![facts("a"), facts("b")],
+        vec![("l".to_string(), plat)],
+        &rows(0.0, 9.0),
+    );
+    assert!(card.cards[1].cells.contains_key(&Behaviour::Platforms));
+    assert!(!card.cards[1].cells.contains_key(&Behaviour::Landing));
 }
