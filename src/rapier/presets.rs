@@ -145,12 +145,13 @@ pub(crate) fn tradeoff_settings() -> Vec<Setting> {
         g.push(Setting::new(name, c, 1, Some(1.0 / 60.0)));
     }
     // How a grounded step is fed (`GroundedMove`): the bevy_rapier example's feed, the variant
-    // that keeps the controller's platform carry, and Rapier's 2D testbed's constant push at
-    // the walking speed.
+    // that feeds gravity on platforms, the advised feed (the built-in advised rows: the
+    // testbed's push on platforms) and Rapier's 2D testbed's push everywhere.
     for grounded_move in [
         GroundedMove::None,
         GroundedMove::NoneExceptOnPlatforms,
-        GroundedMove::Constant(6.0),
+        GroundedMove::NoneExceptTestbedOnPlatforms,
+        GroundedMove::Testbed,
     ] {
         let name = grounded_move.label();
         let c = RapierConfig {
