@@ -90,7 +90,8 @@ fn a_rider_is_carried_sideways_unless_its_platform_descends() {
         assert!((t.x - sideways).abs() < 1e-3, "vy {vy}: {t}");
     }
     // Descending: not carried at all (within the same 1e-3), while every cast after the first
-    // hit is blocked at time 0 (the first reaches the platform, this step's drop away).
+    // hit is blocked at time 0 (the first reaches the platform, this step's drop away): within
+    // 1e-4 tiles, the normal nudge's size (measured: 0 to 3.8e-6).
     let (t, tois) = ride(Vec2::new(-2.0, -2.0));
     println!("vy -2: translation {t}, casts' times of impact {tois:?}");
     assert!(t.x.abs() < 1e-3, "descending: {t}");
