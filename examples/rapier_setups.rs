@@ -1,6 +1,7 @@
 //! Rapier set-ups side by side over the built-in set: the documented remedies for a stuck
-//! character (a larger absolute offset, no vertical move while grounded, a larger normal nudge)
-//! and the platform order, on every shape and collider building. This is the command behind the
+//! character (a larger absolute offset, no vertical move while grounded, a larger normal nudge),
+//! the feed of Rapier's 2D testbed, the advised feed that combines the bevy_rapier example's
+//! and the testbed's, and the platform order, on every shape and collider building. This is the command behind the
 //! docs/rapier.md's choice of the "Rapier as its docs advise for a stuck character" configurations.
 //!
 //! `cargo run --release --example rapier_setups [SHAPE ...]` prints one row per set-up:
@@ -38,9 +39,16 @@ fn setups() -> Vec<(&'static str, RapierConfig)> {
             },
         ),
         (
-            "grounded=push6",
+            "grounded=testbed",
             RapierConfig {
-                grounded_move: GroundedMove::Constant(6.0),
+                grounded_move: GroundedMove::Testbed,
+                ..d()
+            },
+        ),
+        (
+            "grounded=none-but-testbed-on-platforms",
+            RapierConfig {
+                grounded_move: GroundedMove::NoneExceptTestbedOnPlatforms,
                 ..d()
             },
         ),

@@ -325,6 +325,11 @@ impl RapierBackend {
                 GroundedMove::NoneExceptOnPlatforms if c.riding.is_none() => desired.y = 0.0,
                 GroundedMove::NoneExceptOnPlatforms => {}
                 GroundedMove::Constant(speed) => desired.y = s(-speed * dt),
+                GroundedMove::Testbed => desired.y = s(-self.params.run_speed * dt),
+                GroundedMove::NoneExceptTestbedOnPlatforms if c.riding.is_none() => desired.y = 0.0,
+                GroundedMove::NoneExceptTestbedOnPlatforms => {
+                    desired.y = s(-self.params.run_speed * dt)
+                }
             }
         }
         // The carry Rapier users add: the platform's coming displacement, when grounded on it.

@@ -156,10 +156,26 @@ pub enum GroundedMove {
     /// As [`GroundedMove::None`], except on a moving platform (a kinematic body), where
     /// gravity is fed so that the controller's cast hits the platform and its carry runs.
     NoneExceptOnPlatforms,
-    /// A constant push down while grounded, in tiles/s (the step asks for `speed * dt`): Rapier's
-    /// own 2D testbed example (`examples2d/utils/character.rs`) subtracts its walking speed from
-    /// the vertical move every step, its "artificial gravity".
+    /// A constant push down while grounded, in tiles/s (the step asks for `speed * dt`), for
+    /// trying speeds other than [`GroundedMove::Testbed`]'s.
     Constant(f32),
+    /// Rapier's own 2D testbed feed (dimforge/rapier, `examples2d/utils/character.rs`, lines
+    /// 50-85 and 132 at commit ccd01cd2): `character_movement_from_inputs(gfx, speed, true)`
+    /// scales the arrow keys' direction by `speed`, "the speed applied each simulation tick"
+    /// (0.1 per tick by default, `CharacterControlMode::Kinematic(0.1)` in
+    /// `examples2d/character_controller2.rs`), then, its "artificial gravity", subtracts
+    /// `Vector::Y * speed`: every step asks to move down by one walking step. Here, while
+    /// grounded, the step asks for `MotionParams::run_speed * dt` down (6 tiles/s: 0.1 tiles a
+    /// step at 60 Hz, the testbed's 0.1 per tick for its capsule, which is 0.9 tall as this
+    /// character is). Airborne, the shared motion's gravity still applies (the testbed's
+    /// character falls at that constant speed instead). The push reaches any ground within
+    /// one walking step, so the controller's cast hits a descending platform and its carry runs.
+    Testbed,
+    /// As [`GroundedMove::None`] on static ground (the bevy_rapier example's feed), and as
+    /// [`GroundedMove::Testbed`] on a moving platform (a kinematic body): the controller
+    /// carries a rider only after its cast hits the platform, and the testbed's push reaches
+    /// one that descends faster than gravity's `g * dt²` a step does.
+    NoneExceptTestbedOnPlatforms,
 }
 
 impl GroundedMove {
@@ -170,6 +186,8 @@ impl GroundedMove {
             GroundedMove::None => "none".into(),
             GroundedMove::NoneExceptOnPlatforms => "none-but-platforms".into(),
             GroundedMove::Constant(v) => format!("push{v}"),
+            GroundedMove::Testbed => "testbed".into(),
+            GroundedMove::NoneExceptTestbedOnPlatforms => "none-but-testbed-on-platforms".into(),
         }
     }
 }

@@ -8,27 +8,38 @@ use crate::config::RunConfig;
 use crate::config::Setting;
 
 /// Rapier with every character shape its users pick, each on one collider per tile and on
-/// merged colliders; and per shape, Rapier as its docs and examples advise for a character
-/// that gets stuck: no vertical move while grounded except on a moving platform
-/// ([`GroundedMove::NoneExceptOnPlatforms`], the feed of the official bevy_rapier
-/// character example), on per-tile colliders, which `examples/rapier_setups.rs` measured
-/// to leave the fewest stuck frames for every shape. (Rapier's docs also advise a larger
-/// offset; the same command measured it to help no shape as much, and to leave the merged
-/// cuboid stuck.)
+/// merged colliders, fed gravity on every grounded step (the naive feed: what a game that
+/// integrates its own gravity and hands the controller `v * dt` does; the set-up of the
+/// reference figures, docs/rapier-reference.md, and the one that shows rapier #613 and the
+/// ground prediction's threshold on the elevator); then, per shape and
+/// collider building, Rapier fed as its own examples feed it
+/// ([`GroundedMove::NoneExceptTestbedOnPlatforms`]: no vertical move while grounded on static
+/// ground, as the bevy_rapier character example; the 2D testbed's push down on a moving
+/// platform), the advised rows, which `examples/rapier_setups.rs` measured to leave the fewest
+/// stuck frames and no rider lost on the elevator. (Rapier's docs also advise a larger offset;
+/// the same command measured it to help no shape as much, and to leave the merged cuboid
+/// stuck.)
 pub(crate) fn configs() -> Vec<RunConfig> {
     let mut set = Vec::new();
     for shape in CharacterShape::ALL {
         for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
-            set.push(run(building, shape).with_why(WHY_DEFAULT));
+            let why = match (building, shape) {
+                (ColliderBuilding::Merged, CharacterShape::Cuboid) => WHY_NAIVE_STUCK,
+                _ => WHY_DEFAULT,
+            };
+            set.push(run(building, shape).with_why(why));
         }
     }
-    for shape in CharacterShape::ALL {
-        let advised = run_with(RapierConfig {
-            shape,
-            grounded_move: GroundedMove::NoneExceptOnPlatforms,
-            ..Default::default()
-        });
-        set.push(advised.with_why(WHY_ADVISED));
+    for building in [ColliderBuilding::PerTile, ColliderBuilding::Merged] {
+        for shape in CharacterShape::ALL {
+            let advised = run_with(RapierConfig {
+                colliders: building,
+                shape,
+                grounded_move: GroundedMove::NoneExceptTestbedOnPlatforms,
+                ..Default::default()
+            });
+            set.push(advised.with_why(WHY_ADVISED));
+        }
     }
     set
 }
@@ -36,10 +47,13 @@ pub(crate) fn configs() -> Vec<RunConfig> {
 /// The design of Rapier fed gravity every step ([`RunConfig::why`]): its offset (its docs say
 /// it must not be zero), its ground prediction (docs/rapier.md) and its slide, which projects
 /// a horizontal move onto a slope (cos²θ of it horizontally; `KinematicCharacterController`).
-pub(crate) const WHY_DEFAULT: &str = "keeps an offset gap; grounds offset+0.05 tiles early (predict_ground); slides slopes at cos²θ (rapier2d's KCC)";
+pub(crate) const WHY_DEFAULT: &str = "naive feed (gravity each step); grounds offset+0.05 tiles early (predict_ground); slopes at cos²θ (KCC)";
 
-/// The design of Rapier fed as its docs and the bevy_rapier example advise ([`RunConfig::why`]).
-pub(crate) const WHY_ADVISED: &str = "fed no vertical move while grounded off platforms: bevy_rapier example's fix for sticking (docs/rapier.md)";
+/// The merged cuboid fed gravity every step ([`RunConfig::why`]): the set-up of rapier #613.
+pub(crate) const WHY_NAIVE_STUCK: &str = "naive feed (gravity each step): a box on a long merged floor sticks (rapier #613; docs/rapier.md)";
+
+/// The design of Rapier fed as its examples feed it ([`RunConfig::why`]).
+pub(crate) const WHY_ADVISED: &str = "advised: no vertical move grounded (bevy_rapier example); testbed's push on platforms (examples2d)";
 
 /// The capsule on per-tile and merged colliders, and on per-tile colliders fed as Rapier's
 /// docs and examples advise for a character that gets stuck (no vertical move while
@@ -131,12 +145,13 @@ pub(crate) fn tradeoff_settings() -> Vec<Setting> {
         g.push(Setting::new(name, c, 1, Some(1.0 / 60.0)));
     }
     // How a grounded step is fed (`GroundedMove`): the bevy_rapier example's feed, the variant
-    // that keeps the controller's platform carry, and Rapier's 2D testbed's constant push at
-    // the walking speed.
+    // that feeds gravity on platforms, the advised feed (the built-in advised rows: the
+    // testbed's push on platforms) and Rapier's 2D testbed's push everywhere.
     for grounded_move in [
         GroundedMove::None,
         GroundedMove::NoneExceptOnPlatforms,
-        GroundedMove::Constant(6.0),
+        GroundedMove::NoneExceptTestbedOnPlatforms,
+        GroundedMove::Testbed,
     ] {
         let name = grounded_move.label();
         let c = RapierConfig {

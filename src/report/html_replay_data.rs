@@ -3,7 +3,7 @@
 //! normal, ladder and platform, faults) and each moving platform's corner. Numbers are fixed
 //! point, delta and run-length coded ([`pack`]): a run walking at a steady speed or falling
 //! at a steady acceleration codes in a few characters, which keeps the built-in report (64
-//! scenarios of 17 configurations, up to [`super::replay::MAX_DRAWN_FRAMES`] frames each) one
+//! scenarios of 21 configurations, up to [`super::replay::MAX_DRAWN_FRAMES`] frames each) one
 //! file under 10 MB with the state the reader inspects frame by frame.
 
 use std::fmt::Write as _;

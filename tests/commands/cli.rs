@@ -291,9 +291,9 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
         .lines()
         .filter(|l| l.contains(",ns_per_character_step,"))
         .collect();
-    // One scenario on the 17 configurations of the built-in comparison: 3 sweep, 4 Rapier
-    // shapes on 2 collider buildings, 4 Rapier remedy configurations, and Box2D's capsule on
-    // 2 collider buildings (`Box2dKind::builtin_configs`).
+    // One scenario on the 21 configurations of the built-in comparison: 3 sweep, 4 Rapier
+    // shapes on 2 collider buildings fed gravity every step and again fed as Rapier's examples
+    // feed them, and Box2D's capsule on 2 collider buildings (`Box2dKind::builtin_configs`).
     assert_eq!(
         timing.len(),
         platbench::registry::Registry::builtin()
@@ -301,7 +301,7 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
             .len(),
         "{metrics}"
     );
-    assert_eq!(timing.len(), 17);
+    assert_eq!(timing.len(), 21);
     for l in timing {
         let value: f64 = l.split(',').nth(5).unwrap().parse().unwrap();
         assert!(value.is_finite() && value > 0.0, "{l}");
@@ -334,13 +334,13 @@ fn precision_runs_each_configuration_in_every_listed_precision_it_has_a_build_in
             (f[2].to_string(), f[3].to_string())
         })
         .collect();
-    // The 17 built-in configurations in f32, and again in f64 the 12 Rapier ones (every Rapier
+    // The 21 built-in configurations in f32, and again in f64 the 16 Rapier ones (every Rapier
     // configuration has a build on rapier2d-f64) and the 2 float sweeps (the f64 mode); the
     // integer sweep and Box2D have none.
-    assert_eq!(timed.len(), 17 + 14, "{metrics}");
+    assert_eq!(timed.len(), 21 + 18, "{metrics}");
     let f64s: Vec<&(String, String)> = timed.iter().filter(|(_, c)| c.ends_with(" f64")).collect();
-    assert_eq!(f64s.len(), 14);
-    assert_eq!(f64s.iter().filter(|(b, _)| b == "rapier").count(), 12);
+    assert_eq!(f64s.len(), 18);
+    assert_eq!(f64s.iter().filter(|(b, _)| b == "rapier").count(), 16);
     for (backend, config) in f64s {
         let f32_label = config.trim_end_matches(" f64");
         assert!(
@@ -425,13 +425,13 @@ fn a_level_file_placed_1e12_tiles_out_runs_on_the_f64_configurations_and_skips_t
         stderr.contains("skipped rapier per-tile capsule:"),
         "{stderr}"
     );
-    // Only f64 configurations have rows: the two float sweeps' f64 mode and the 12 Rapier ones.
+    // Only f64 configurations have rows: the two float sweeps' f64 mode and the 16 Rapier ones.
     let config = |l: &str| l.split(',').nth(3).unwrap().to_string();
     let mut configs: Vec<String> = far.lines().skip(1).map(config).collect();
     configs.sort();
     configs.dedup();
     assert!(configs.iter().all(|c| c.ends_with(" f64")), "{configs:?}");
-    assert_eq!(configs.len(), 2 + 12, "{configs:?}");
+    assert_eq!(configs.len(), 2 + 16, "{configs:?}");
     // The f64 sweep there carries its rider as at the origin: within sqrt(2) f64 spacings at
     // 1e12 (2^-13 tile) plus the trace's f32 rounding (the bound of tests/behaviour/platforms.rs).
     let (_, near) = run("near", "");

@@ -8,6 +8,8 @@ mod box2d_far;
 mod box_mover;
 mod move_and_slide;
 mod rapier_builtin;
+mod rapier_descending_carry;
+mod rapier_feeds;
 mod rapier_own_tests;
 mod rapier_reference;
 mod rapier_setup;

@@ -72,10 +72,10 @@ fn every_scenario_has_the_same_metrics_on_every_configuration() {
     for (label, set) in &sets[1..] {
         assert_eq!(set, &sets[0].1, "{label} measured different metrics");
     }
-    // sweep, sweep jump=continuous, 4 shapes x 2 collider buildings of Rapier, the 4
-    // shapes fed as Rapier's examples advise for a stuck character, and Box2D's capsule on
-    // 2 collider buildings (`Registry::builtin`).
-    assert_eq!(sets.len(), 16);
+    // sweep, sweep jump=continuous, 4 shapes x 2 collider buildings of Rapier fed gravity
+    // every step and the same fed as Rapier's examples feed them, and Box2D's capsule on 2
+    // collider buildings (`Registry::builtin`).
+    assert_eq!(sets.len(), 20);
 }
 
 #[test]

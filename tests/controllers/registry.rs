@@ -236,13 +236,22 @@ fn the_builtin_registry_is_the_builtin_set() {
         .iter()
         .map(|c| format!("{} {}", c.backend.backend(), c.label))
         .collect();
-    // 3 sweep, 12 Rapier (4 shapes on 2 buildings and 4 remedies), 2 Box2D (the capsule on
-    // per-tile and merged colliders): the 17 configurations of compare/baseline/metrics.csv.
-    assert_eq!(labels.len(), 17);
+    // 3 sweep, 16 Rapier (4 shapes on 2 buildings fed gravity every step, then the same fed
+    // as Rapier's examples feed it), 2 Box2D (the capsule on per-tile and merged colliders):
+    // the 21 configurations of compare/baseline/metrics.csv.
+    assert_eq!(labels.len(), 21);
     assert_eq!(labels[0], "sweep default");
     assert_eq!(labels[3], "rapier per-tile capsule");
-    assert_eq!(labels[15], "box2d per-tile capsule");
-    assert_eq!(labels[16], "box2d merged capsule");
+    assert_eq!(
+        labels[11],
+        "rapier per-tile capsule grounded=none-but-testbed-on-platforms"
+    );
+    assert_eq!(
+        labels[18],
+        "rapier merged round-cuboid grounded=none-but-testbed-on-platforms"
+    );
+    assert_eq!(labels[19], "box2d per-tile capsule");
+    assert_eq!(labels[20], "box2d merged capsule");
 }
 
 #[test]

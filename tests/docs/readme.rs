@@ -299,7 +299,8 @@ fn the_committed_trade_off_scores_the_committed_baseline_with_the_default_score(
         );
     }
     // The sweep's default, jump=continuous and integer/32; Rapier's per-tile capsule, merged
-    // capsule, per-tile and merged cuboid, the grounded feed; Box2D's two buildings.
+    // capsule, per-tile and merged cuboid, the advised feed
+    // (`grounded=none-but-testbed-on-platforms`); Box2D's two buildings.
     assert!(matched >= 10, "{matched} settings matched a configuration");
 }
 
