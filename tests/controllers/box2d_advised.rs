@@ -212,3 +212,34 @@ fn false_grounded_judges_the_segment_pogo_against_its_declared_stance() {
     let (far, _, _) = count(0.19);
     assert_eq!(far, n);
 }
+
+/// The carry reads Box2D's body velocity and moves the mover with its platform: with the level
+/// placed as far out as `platbench stress` places it (1e5 to 1e7 tiles; docs/stability.md),
+/// every moving-platform scenario runs on the advised row without Box2D asserting (an assert
+/// aborts the process), ends in an error exactly where the sample's row does (far out Box2D
+/// refuses a platform whose f32 box collapses, as `Unsupported`), and otherwise reads a finite
+/// position on its last frame.
+#[test]
+fn the_carry_runs_every_platform_scenario_far_from_the_origin() {
+    let advised = run_with(Box2dConfig {
+        carry: GroundCarry::Ground,
+        pogo_hertz: platbench::box2d::advised_pogo_hertz(),
+        ..Default::default()
+    });
+    let sample = run_with(Box2dConfig::default());
+    for name in ["platforms", "elevator", "moving_wall"] {
+        for origin in [1e5, 1e6, 1e7] {
+            let mut l = level(name);
+            l.origin = glam::DVec2::splat(origin);
+            for spec in &l.scenarios {
+                let tag = format!("{name}.{} at {origin}", spec.name);
+                let (a, s) = (evaluate(&l, spec, &advised), evaluate(&l, spec, &sample));
+                assert_eq!(a.is_ok(), s.is_ok(), "{tag}: {:?} / {:?}", a.err(), s.err());
+                if let Ok(e) = a {
+                    let last = e.trace.rows.last().unwrap();
+                    assert!(last.x.is_finite() && last.y.is_finite(), "{tag}: {last:?}");
+                }
+            }
+        }
+    }
+}
