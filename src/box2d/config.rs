@@ -8,6 +8,20 @@ use crate::backend::{invalid, BackendError};
 
 use super::{CharacterShape, ColliderBuilding};
 
+/// The sample's capsule radius, in metres (one tile is one metre, docs/box2d.md): its capsule
+/// `{ { 0.0f, -0.5f }, { 0.0f, 0.5f }, 0.3f }` (`samples/sample_character.cpp`, the same in
+/// Box2D 56edae79 and in the later geometric mover).
+pub const SAMPLE_CAPSULE_RADIUS: f32 = 0.3;
+
+/// The sample's capsule segment, between its two centres, in metres (the capsule above).
+pub const SAMPLE_CAPSULE_SEGMENT: f32 = 1.0;
+
+/// The height of the sample's mover, in metres: its pogo's rest length of 3 capsule radii holds
+/// the lower centre 0.9 above the feet (`leg_fraction`'s source), the segment and a radius
+/// stand on it: `3 r + segment + r` = 2.2.
+pub const SAMPLE_HEIGHT: f32 =
+    3.0 * SAMPLE_CAPSULE_RADIUS + SAMPLE_CAPSULE_SEGMENT + SAMPLE_CAPSULE_RADIUS;
+
 /// The shape the pogo casts down, as the sample offers them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PogoShape {
@@ -17,6 +31,30 @@ pub enum PogoShape {
     Circle,
     /// A horizontal segment 1.5 capsule radii wide: the sample's default.
     Segment,
+}
+
+/// How the mover is carried by the ground its pogo stands on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroundCarry {
+    /// Not carried: the sample's mover. Its ground moves it only through the collision planes
+    /// (a push of at most `platform_push_limit` per solve) and the pogo's spring, so a
+    /// horizontal platform slides out from under it.
+    None,
+    /// The user-side carry Box2D's docs leave to the game (the mover is "a few structures and
+    /// functions you can use to build a character mover", docs/character.md): while grounded,
+    /// the displacement for the step of the body the pogo hit (`b2Body_GetLinearVelocity`
+    /// times the step, after the world step that moved it) is added to the mover's target.
+    Ground,
+}
+
+impl GroundCarry {
+    /// `none` or `ground`, as in configuration labels (`carry=ground`).
+    pub fn label(self) -> &'static str {
+        match self {
+            GroundCarry::None => "none",
+            GroundCarry::Ground => "ground",
+        }
+    }
 }
 
 /// Settings of the Box2D backend: the sample's mover, with the sample's values as defaults.
@@ -51,6 +89,10 @@ pub struct Box2dConfig {
     /// the sample's elevator `maxPush`, 0.1 ("an elevator that could otherwise push the mover
     /// through the floor", Box2D's docs). Level tiles are rigid (`f32::MAX`).
     pub platform_push_limit: f32,
+    /// Whether the ground the pogo stands on carries the mover ([`GroundCarry`]). Default
+    /// [`GroundCarry::None`]: neither revision of the sample carries a rider (56edae79's
+    /// elevator moves only vertically and it reads the hit body only to push it down).
+    pub carry: GroundCarry,
 }
 
 impl Default for Box2dConfig {
@@ -66,14 +108,38 @@ impl Default for Box2dConfig {
             max_iterations: 5,
             tolerance: 0.01,
             platform_push_limit: 0.1,
+            carry: GroundCarry::None,
         }
     }
 }
 
 impl Box2dConfig {
-    /// Short label for tables and file names: the collider building and the shape.
+    /// Short label for tables and file names: the collider building and the shape, then
+    /// `carry=ground` and `pogo=<f>Hz` where they differ from the sample's.
     pub fn label(&self) -> String {
-        format!("{} {}", self.colliders.label(), self.shape.label())
+        let mut label = format!("{} {}", self.colliders.label(), self.shape.label());
+        if self.carry != GroundCarry::None {
+            label += " carry=";
+            label += self.carry.label();
+        }
+        if self.pogo_hertz != Box2dConfig::default().pogo_hertz {
+            // Whole hertz as the trade-off grid writes them (`pogo=20Hz`), else one decimal.
+            let hz = self.pogo_hertz;
+            label += &if hz.fract() == 0.0 {
+                format!(" pogo={hz}Hz")
+            } else {
+                format!(" pogo={hz:.1}Hz")
+            };
+        }
+        label
+    }
+
+    /// The sample's pogo frequency scaled to a character `height` tiles tall, in Hz: under the
+    /// same gravity a dynamically similar spring scales its time by the square root of the
+    /// length ratio, so its frequency by `sqrt(SAMPLE_HEIGHT / height)` ([`SAMPLE_HEIGHT`]);
+    /// 7.82 Hz for the built-in 0.9-tile character.
+    pub fn scaled_pogo_hertz(height: f32) -> f32 {
+        Box2dConfig::default().pogo_hertz * (SAMPLE_HEIGHT / height).sqrt()
     }
 
     /// Checks every field's range.

@@ -34,8 +34,12 @@ use crate::level::{Features, Level};
 use crate::motion::{Input, MotionParams, MotionState};
 pub use crate::shape::CharacterShape;
 pub use bounds::{check_extent, check_radius, LINEAR_SLOP, MAX_LEVEL_EXTENT};
-pub use config::{Box2dConfig, PogoShape};
+pub use config::{
+    Box2dConfig, GroundCarry, PogoShape, SAMPLE_CAPSULE_RADIUS, SAMPLE_CAPSULE_SEGMENT,
+    SAMPLE_HEIGHT,
+};
 pub use mover::ONE_WAY_TOLERANCE;
+pub use presets::{advised_pogo_hertz, GRID_BEST_POGO_HERTZ};
 pub use world::ColliderBuilding;
 pub(crate) use world::{LevelWorld, ShapeTag, ONE_WAY, PLATFORM, SOLID};
 

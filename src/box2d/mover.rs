@@ -10,7 +10,7 @@ use crate::backend::CharacterId;
 use crate::motion::{Contacts, Input};
 use crate::oneway::{drop_over, drop_start, OneWayCheck};
 
-use super::{Box2dBackend, PogoShape, ShapeTag, ONE_WAY, PLATFORM, SOLID};
+use super::{Box2dBackend, GroundCarry, PogoShape, ShapeTag, ONE_WAY, PLATFORM, SOLID};
 
 /// How far below a one-way platform's top the feet may be and still land on it, and how far
 /// from a ladder's top they may be and still stand on it (the shared ladder rules'
@@ -189,9 +189,19 @@ impl Box2dBackend {
             };
             (on_ground, hit)
         };
+        // The user-side carry (`GroundCarry::Ground`): the displacement for this step of the
+        // body the pogo stands on, which the world step has just moved.
+        let carry = match hit.and_then(|h| h.tag?.platform) {
+            Some(i) if on_ground && !on_ladder && self.config.carry == GroundCarry::Ground => {
+                let body = self.world.platforms[i as usize];
+                let v = self.world.world.body(body)?.linear_velocity()?;
+                Vec2::new(v.x, v.y) * dt
+            }
+            _ => Vec2::ZERO,
+        };
         let c = &self.characters[id];
         let start = c.pos;
-        let target = c.pos + desired + Vec2::new(0.0, c.pogo_velocity * dt);
+        let target = c.pos + desired + Vec2::new(0.0, c.pogo_velocity * dt) + carry;
         let (c1, c2, radius) = (
             to_b2(Vec2::new(0.0, c.c1)),
             to_b2(Vec2::new(0.0, c.c2)),

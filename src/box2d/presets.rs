@@ -2,17 +2,37 @@
 //! comparison, the ones `platbench stress` checks, and the grid `platbench sweep` measures.
 
 use super::kind::run_with;
-use super::{Box2dConfig, ColliderBuilding};
+use super::{Box2dConfig, ColliderBuilding, GroundCarry};
 use crate::config::RunConfig;
 use crate::config::Setting;
+use crate::level::DEFAULT_CHARACTER_SIZE;
 
 /// The design of the sample's mover ([`RunConfig::why`]): its pogo, no rider carry, no slope
 /// limit (docs/box2d.md).
 pub(crate) const WHY: &str = "stands on a 5 Hz pogo spring, not a contact; carries no rider; no slope limit (Box2D's Mover sample)";
 
-/// The sample's capsule on one box per tile and on merged chain loops.
+/// The sample's design carried by its ground and on a spring scaled to this character
+/// ([`RunConfig::why`]): the advised set-up (docs/box2d.md).
+pub(crate) const WHY_ADVISED: &str = "adds its ground body's step (user-side carry, Box2D docs); pogo 5·√(2.2/0.9) = 7.8 Hz (sample's, scaled)";
+
+/// The carry with the stiffest spring of the trade-off grid ([`RunConfig::why`]).
+pub(crate) const WHY_STIFF: &str = "adds its ground body's step (user-side carry, Box2D docs); pogo 20 Hz (the trade-off grid's best)";
+
+/// The sample's pogo frequency scaled to the built-in character's height
+/// ([`Box2dConfig::scaled_pogo_hertz`] of [`DEFAULT_CHARACTER_SIZE`]: 7.82 Hz).
+pub fn advised_pogo_hertz() -> f32 {
+    Box2dConfig::scaled_pogo_hertz(DEFAULT_CHARACTER_SIZE.y)
+}
+
+/// The frequency of the trade-off grid's best Box2D setting (`per-tile capsule pogo=20Hz` in
+/// compare/tradeoff/tradeoff.csv, 0.1553 against the sample's 0.1733), in Hz.
+pub const GRID_BEST_POGO_HERTZ: f32 = 20.0;
+
+/// The sample's capsule on one box per tile and on merged chain loops; then, per tile, the
+/// advised set-up (the user-side carry and the spring scaled to the character, docs/box2d.md)
+/// and the carry with the trade-off grid's best spring.
 pub(crate) fn configs() -> Vec<RunConfig> {
-    [ColliderBuilding::PerTile, ColliderBuilding::Merged]
+    let mut set: Vec<RunConfig> = [ColliderBuilding::PerTile, ColliderBuilding::Merged]
         .into_iter()
         .map(|colliders| {
             run_with(Box2dConfig {
@@ -21,11 +41,24 @@ pub(crate) fn configs() -> Vec<RunConfig> {
             })
             .with_why(WHY)
         })
-        .collect()
+        .collect();
+    for (hertz, why) in [
+        (advised_pogo_hertz(), WHY_ADVISED),
+        (GRID_BEST_POGO_HERTZ, WHY_STIFF),
+    ] {
+        let config = Box2dConfig {
+            carry: GroundCarry::Ground,
+            pogo_hertz: hertz,
+            ..Default::default()
+        };
+        set.push(run_with(config).with_why(why));
+    }
+    set
 }
 
+/// The sample's two rows (the carry and the spring change no bound the stress probes).
 pub(crate) fn stress_configs() -> Vec<RunConfig> {
-    configs()
+    configs().into_iter().take(2).collect()
 }
 
 /// dt, substeps, the loop's iterations and tolerance, the pogo spring, collider building.
@@ -72,7 +105,7 @@ pub(crate) fn tradeoff_settings() -> Vec<Setting> {
             Some(1.0 / 60.0),
         ));
     }
-    for hz in [10.0f32, 20.0] {
+    for hz in [10.0f32, GRID_BEST_POGO_HERTZ] {
         let c = Box2dConfig {
             pogo_hertz: hz,
             ..d()

@@ -168,24 +168,39 @@ pub(super) fn gap_beyond_declared(ctx: &Context, g: &Ground, feet: glam::Vec2, g
     // cos(angle) smaller than the drop another controller's lift reads).
     let off = match stance_over_slope(ctx, feet) {
         Some(stance) => (feet.y - stance) as f64,
-        None => match ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5) {
+        None => match flat_foot_stance(ctx, feet) {
             // A flat foot (Box2D's segment pogo) stands on the highest surface under it: the
             // shape's gap with the feet there, plus the declared gap.
-            Some((h, Some(_))) if ctx.declared.stance_half_width > 0.0 => {
-                let w = ctx.declared.stance_half_width;
-                let stance = [feet.x - w, feet.x + w]
-                    .into_iter()
-                    .filter_map(|x| ctx.level.surface_at(x, feet.y + 0.5, 1.5))
-                    .fold(h, |top, (s, _)| top.max(s));
+            Some(stance) => {
                 gap - (g.gap(glam::Vec2::new(feet.x, stance)) as f64 + vertical(ctx.declared.gap)
                     - ctx.declared.stance_sink as f64)
             }
-            _ => gap - (vertical(ctx.declared.gap) - ctx.declared.stance_sink as f64),
+            None => gap - (vertical(ctx.declared.gap) - ctx.declared.stance_sink as f64),
         },
     };
     // Within the declared tolerance of the promise counts as keeping it; beyond, the excess.
     let tolerance = vertical(ctx.declared.gap_tolerance);
     off.signum() * (off.abs() - tolerance).max(0.0)
+}
+
+/// For a controller that declares a flat foot (`stance_half_width > 0`: Box2D's segment pogo),
+/// the height its feet declare they stand at when the ground under their centre (from half a
+/// tile above to one tile below) is a slope: the highest surface under the foot. `None`
+/// otherwise.
+pub(super) fn flat_foot_stance(ctx: &Context, feet: glam::Vec2) -> Option<f32> {
+    let w = ctx.declared.stance_half_width;
+    if w <= 0.0 {
+        return None;
+    }
+    match ctx.level.surface_at(feet.x, feet.y + 0.5, 1.5) {
+        Some((h, Some(_))) => Some(
+            [feet.x - w, feet.x + w]
+                .into_iter()
+                .filter_map(|x| ctx.level.surface_at(x, feet.y + 0.5, 1.5))
+                .fold(h, |top, (s, _)| top.max(s)),
+        ),
+        _ => None,
+    }
 }
 
 /// For a controller that declares the seed's centre-column stance (`slope_overhang > 0`), the
@@ -387,7 +402,16 @@ pub fn supported(ctx: &Context, g: &Ground, r: &TraceRow) -> bool {
             return false;
         }
     }
-    g.gap_at(pos(r), r.t as f64, standing(r)) <= FLICKER_SUPPORT_TOLERANCE
+    let gap = g.gap_at(pos(r), r.t as f64, standing(r));
+    // A flat foot (Box2D's segment pogo) stands on the highest surface under it over a slope,
+    // its shape that far above the ramp under its centre by design: it is judged by its gap
+    // beyond that declared stance (with its declared gap and sink), as `rest_gap_declared`
+    // judges it.
+    if flat_foot_stance(ctx, pos(r)).is_some() {
+        let beyond = gap_beyond_declared(ctx, g, pos(r), gap as f64);
+        return beyond <= FLICKER_SUPPORT_TOLERANCE as f64;
+    }
+    gap <= FLICKER_SUPPORT_TOLERANCE
 }
 
 /// `false_grounded`: frames reported grounded with the ground farther than

@@ -291,9 +291,10 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
         .lines()
         .filter(|l| l.contains(",ns_per_character_step,"))
         .collect();
-    // One scenario on the 21 configurations of the built-in comparison: 3 sweep, 4 Rapier
+    // One scenario on the 23 configurations of the built-in comparison: 3 sweep, 4 Rapier
     // shapes on 2 collider buildings fed gravity every step and again fed as Rapier's examples
-    // feed them, and Box2D's capsule on 2 collider buildings (`Box2dKind::builtin_configs`).
+    // feed them, and Box2D's capsule on 2 collider buildings with its advised and
+    // grid-best-spring rows (`Box2dKind::builtin_configs`).
     assert_eq!(
         timing.len(),
         platbench::registry::Registry::builtin()
@@ -301,7 +302,7 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
             .len(),
         "{metrics}"
     );
-    assert_eq!(timing.len(), 21);
+    assert_eq!(timing.len(), 23);
     for l in timing {
         let value: f64 = l.split(',').nth(5).unwrap().parse().unwrap();
         assert!(value.is_finite() && value > 0.0, "{l}");
@@ -334,10 +335,10 @@ fn precision_runs_each_configuration_in_every_listed_precision_it_has_a_build_in
             (f[2].to_string(), f[3].to_string())
         })
         .collect();
-    // The 21 built-in configurations in f32, and again in f64 the 16 Rapier ones (every Rapier
+    // The 23 built-in configurations in f32, and again in f64 the 16 Rapier ones (every Rapier
     // configuration has a build on rapier2d-f64) and the 2 float sweeps (the f64 mode); the
     // integer sweep and Box2D have none.
-    assert_eq!(timed.len(), 21 + 18, "{metrics}");
+    assert_eq!(timed.len(), 23 + 18, "{metrics}");
     let f64s: Vec<&(String, String)> = timed.iter().filter(|(_, c)| c.ends_with(" f64")).collect();
     assert_eq!(f64s.len(), 18);
     assert_eq!(f64s.iter().filter(|(b, _)| b == "rapier").count(), 16);

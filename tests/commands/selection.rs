@@ -113,7 +113,7 @@ fn a_selection_that_matches_nothing_is_an_error_naming_what_there_is() {
 fn the_header_counts_only_what_runs_and_nothing_runs_twice() {
     let dir = tempfile::tempdir().unwrap();
     // A floor 2^14 + 1 tiles wide: Box2D refuses it as a bound (box2d::MAX_LEVEL_EXTENT) before
-    // building, so its two configurations' runs are not counted; the sweep's three run.
+    // building, so its four configurations' runs are not counted; the sweep's three run.
     let width = (1 << 14) + 1;
     let level = dir.path().join("wide.toml");
     std::fs::write(
@@ -133,7 +133,7 @@ fn the_header_counts_only_what_runs_and_nothing_runs_twice() {
     assert_success(&out);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("1 scenarios on 5 configurations (3 runs, 2 skipped"),
+        err.contains("1 scenarios on 7 configurations (3 runs, 4 skipped"),
         "{err}"
     );
     // A character Box2D refuses (a capsule radius under 0.01 tiles, box2d::check_radius) is
@@ -152,7 +152,7 @@ fn the_header_counts_only_what_runs_and_nothing_runs_twice() {
     assert_success(&out);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("1 scenarios on 5 configurations (3 runs, 2 skipped"),
+        err.contains("1 scenarios on 7 configurations (3 runs, 4 skipped"),
         "{err}"
     );
     assert!(err.contains("[3/3]"), "{err}");

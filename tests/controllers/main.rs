@@ -4,6 +4,7 @@
 mod common;
 
 mod box2d;
+mod box2d_advised;
 mod box2d_far;
 mod box_mover;
 mod move_and_slide;
