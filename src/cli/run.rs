@@ -250,12 +250,15 @@ impl Traces {
 
 /// Whether a run fails: a metric of the default error score (a registry weight above 0) is off
 /// its reference by more than the size that counts as clearly wrong (0.01 tiles, 0.01 for a
-/// ratio or tiles/s, one frame, one count; [`crate::metrics::MetricDef::scale`]), or is not a
-/// number.
+/// ratio or tiles/s, one frame, one count; [`crate::metrics::MetricDef::scale`]) beyond the
+/// error a 16-pixel tile cannot show (one pixel, one pixel per second;
+/// [`crate::metrics::MetricDef::charged`] above 1, as the verdict grades a row not kept), or is
+/// not a number.
 pub(crate) fn failing(metrics: &[MetricRow]) -> bool {
+    use crate::metrics::registry::{get, DEFAULT_PIXELS_PER_TILE};
     metrics.iter().any(|m| {
-        crate::metrics::registry::get(m.metric)
-            .is_some_and(|d| d.weight > 0.0 && (m.error.is_nan() || m.error.abs() > d.scale()))
+        get(m.metric)
+            .is_some_and(|d| d.weight > 0.0 && d.charged(m.error, DEFAULT_PIXELS_PER_TILE) > 1.0)
     })
 }
 
