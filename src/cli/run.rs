@@ -42,7 +42,9 @@ pub(crate) struct RunArgs {
     /// Which traces --out gets: `all` (the default), `none` (metrics.csv only), or `failing`:
     /// the runs of which a metric of the default error score (registry weight above 0) is off
     /// its reference by more than the size that counts as clearly wrong (0.01 tiles, 0.01 for a
-    /// ratio or tiles/s, one frame, one count), or is NaN. A run that errors stops the run.
+    /// ratio or tiles/s, one frame, one count) beyond the pixel a 16-pixel tile cannot show (one
+    /// pixel for a length, one pixel per second for a speed), or is NaN. A run that errors stops
+    /// the run.
     #[arg(long, value_enum, value_name = "WHICH", requires = "out")]
     pub(crate) traces: Option<Traces>,
     /// After the verdict and the scorecard, print the worst value of every metric per
