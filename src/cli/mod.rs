@@ -139,8 +139,16 @@ where
             force,
             levels,
             score,
+            pixels_per_tile,
             select,
-        }) => tradeoff::tradeoff(h, &out, force, &levels, score.as_deref(), &select),
+        }) => tradeoff::tradeoff(
+            h,
+            &out,
+            force,
+            &levels,
+            (score.as_deref(), &pixels_per_tile),
+            &select,
+        ),
         Some(Command::Report(args)) => report::report(h, &args),
         Some(Command::Diff(args)) => return diff::diff(&args),
         Some(Command::Inspect(args)) => inspect::inspect(&args),
@@ -217,6 +225,12 @@ enum Command {
         /// design (Rapier's offset, the sweep's box overhanging a slope).
         #[arg(long)]
         score: Option<String>,
+        /// The game's pixels per tile: the error score does not charge what the game cannot
+        /// show, an error under one pixel for a length or one pixel per second for a speed
+        /// (docs/metrics.md, "The error score"). `run`'s verdict and `--traces failing` use the
+        /// default.
+        #[arg(long, value_name = "N", default_value = "16")]
+        pixels_per_tile: String,
         #[command(flatten)]
         select: select::Selection,
     },

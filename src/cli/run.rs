@@ -42,7 +42,9 @@ pub(crate) struct RunArgs {
     /// Which traces --out gets: `all` (the default), `none` (metrics.csv only), or `failing`:
     /// the runs of which a metric of the default error score (registry weight above 0) is off
     /// its reference by more than the size that counts as clearly wrong (0.01 tiles, 0.01 for a
-    /// ratio or tiles/s, one frame, one count), or is NaN. A run that errors stops the run.
+    /// ratio or tiles/s, one frame, one count) beyond the pixel a 16-pixel tile cannot show (one
+    /// pixel for a length, one pixel per second for a speed), or is NaN. A run that errors stops
+    /// the run.
     #[arg(long, value_enum, value_name = "WHICH", requires = "out")]
     pub(crate) traces: Option<Traces>,
     /// After the verdict and the scorecard, print the worst value of every metric per
@@ -276,12 +278,15 @@ impl Traces {
 
 /// Whether a run fails: a metric of the default error score (a registry weight above 0) is off
 /// its reference by more than the size that counts as clearly wrong (0.01 tiles, 0.01 for a
-/// ratio or tiles/s, one frame, one count; [`crate::metrics::MetricDef::scale`]), or is not a
-/// number.
+/// ratio or tiles/s, one frame, one count; [`crate::metrics::MetricDef::scale`]) beyond the
+/// error a 16-pixel tile cannot show (one pixel, one pixel per second;
+/// [`crate::metrics::MetricDef::charged`] above 1, as the verdict grades a row not kept), or is
+/// not a number.
 pub(crate) fn failing(metrics: &[MetricRow]) -> bool {
+    use crate::metrics::registry::{get, DEFAULT_PIXELS_PER_TILE};
     metrics.iter().any(|m| {
-        crate::metrics::registry::get(m.metric)
-            .is_some_and(|d| d.weight > 0.0 && (m.error.is_nan() || m.error.abs() > d.scale()))
+        get(m.metric)
+            .is_some_and(|d| d.weight > 0.0 && d.charged(m.error, DEFAULT_PIXELS_PER_TILE) > 1.0)
     })
 }
 

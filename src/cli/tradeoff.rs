@@ -15,7 +15,7 @@ pub(crate) fn tradeoff(
     out_dir: &std::path::Path,
     force: bool,
     level_files: &[PathBuf],
-    score: Option<&str>,
+    (score, pixels_per_tile): (Option<&str>, &str),
     select: &Selection,
 ) -> Result<()> {
     use crate::metrics::score::Score;
@@ -24,7 +24,8 @@ pub(crate) fn tradeoff(
     let score = match score {
         Some(s) => Score::parse(s)?,
         None => Score::default(),
-    };
+    }
+    .at_pixels_per_tile(pixels_per_tile)?;
     let levels = select.levels(load_levels(level_files)?)?;
     let settings = selected_settings(h, select)?;
     let jobs = select.jobs();

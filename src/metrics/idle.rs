@@ -1,15 +1,12 @@
 //! Standing still: a character with no input, off ladders and riding no platform, must stay put.
 
 use super::landing::REST_WINDOW;
-use super::platforms::ON_PLATFORM;
+use super::pushers::Pushers;
 use super::reference::Cursor;
 use super::{commanded_steps, pos, Context, Measure};
 use crate::motion::Input;
 use crate::scenario::{input_script, Script};
-use crate::shape::CharacterShape;
 use crate::trace::{Frames, TraceRow};
-use parry2d::bounding_volume::Aabb;
-use parry2d::shape::SharedShape;
 
 /// How much two boxes must overlap across an axis to be side by side along it, in tiles: above
 /// f32 rounding of a flush contact, so a wall sliding flush past a character's side is beside
@@ -18,50 +15,16 @@ pub(crate) const SIDE_OVERLAP: f32 = 1e-4;
 
 /// Whether row `k` stands still of its own: no input on the step that produced it, grounded,
 /// not on a ladder, riding no platform (as the trace says, or standing on one: feet within
-/// [`ON_PLATFORM`] plus the platform's step of its top over it, since not every backend names
-/// the platform it rides), and not pushed (see [`pushed`]).
-fn idle_frame(ctx: &Context, shape: &SharedShape, script: &Script, rows: Frames, k: usize) -> bool {
+/// [`super::platforms::ON_PLATFORM`] plus the platform's step of its top over it, since not every
+/// backend names the platform it rides), and not pushed
+/// ([`super::pushers::Pushers::carried_or_pushed`]).
+fn idle_frame(pushers: &Pushers, script: &Script, rows: Frames, k: usize) -> bool {
     let r = &rows.at(k);
     let idle = script.get(k - 1).is_some_and(|i| *i == Input::default());
     if !idle || !r.is_grounded() || r.ladder != 0 || r.platform.is_some() {
         return false;
     }
-    // The shape's own box (a ball is as wide as it is tall).
-    let shape_box = |feet| shape.compute_aabb(&CharacterShape::pose(feet, ctx.spec.size));
-    let prev = rows.at(k - 1);
-    let before = shape_box(pos(&prev));
-    let half = before.half_extents().x;
-    let dt = ctx.spec.dt as f64;
-    let carried_or_pushed = ctx.level.platforms.iter().any(|p| {
-        let (b0, b1) = (p.aabb((k - 1) as f64 * dt), p.aabb(k as f64 * dt));
-        let step = b1.mins - b0.mins;
-        // Before and after the step: a rider stands on the platform's top at either end.
-        let on = |b: Aabb, feet: &TraceRow| {
-            (feet.y - b.maxs.y).abs() <= ON_PLATFORM + step.length()
-                && feet.x + half > b.mins.x
-                && feet.x - half < b.maxs.x
-        };
-        on(b1, r) || on(b0, &prev) || (!p.one_way && pushed(&before, &b0, step))
-    });
-    !carried_or_pushed
-}
-
-/// Whether a platform of box `plat` moving by `step` pushes a character of box `ch`: along an
-/// axis where the two are side by side (overlapping across it by more than [`SIDE_OVERLAP`]), it
-/// moves toward the character and reaches within [`ON_PLATFORM`] (a contact gap such as Rapier's
-/// offset) of it, or into it. A wall sliding flush past a character's side does not push it.
-fn pushed(ch: &Aabb, plat: &Aabb, step: glam::Vec2) -> bool {
-    let o = ch.maxs.min(plat.maxs) - ch.mins.max(plat.mins);
-    (0..2).any(|a| {
-        let across = o[1 - a] > SIDE_OVERLAP;
-        let toward = if plat.center()[a] < ch.center()[a] {
-            step[a] > 0.0
-        } else {
-            step[a] < 0.0
-        };
-        // o[a] is minus the gap along the axis (positive: overlapping).
-        across && toward && -o[a] <= ON_PLATFORM + step[a].abs()
-    })
+    !pushers.carried_or_pushed(rows, k)
 }
 
 /// Below this commanded step the shared motion model's friction has stopped the character, in
@@ -91,18 +54,19 @@ pub fn idle_drift(ctx: &Context, rows: Frames) -> Option<Measure> {
     ));
     let still = ctx.params.run_speed * ctx.spec.dt * 0.01;
     let settle = (REST_WINDOW / ctx.spec.dt).ceil() as usize;
-    let shape = ctx.shape.build(ctx.spec.size);
+    let ground = super::ground::Ground::new(ctx.level, ctx.shape, ctx.spec.size);
+    let pushers = Pushers::new(ctx, &ground);
     let mut worst: Option<f32> = None;
     let mut frame = None;
     let mut k = 1;
     while k < rows.len() {
-        if !idle_frame(ctx, &shape, &script, rows, k) {
+        if !idle_frame(&pushers, &script, rows, k) {
             k += 1;
             continue;
         }
         let mut glide_end: Option<usize> = None;
         let mut anchor: Option<TraceRow> = None;
-        while k < rows.len() && idle_frame(ctx, &shape, &script, rows, k) {
+        while k < rows.len() && idle_frame(&pushers, &script, rows, k) {
             let r = rows.at(k);
             let moved = (pos(&r) - pos(&rows.at(k - 1))).length();
             // The commanded glide is over when the shared motion model's walk moves it by less

@@ -2,6 +2,7 @@
 //! whether its grounded flag tells the truth.
 
 use super::ground::Ground;
+use super::pushers::Pushers;
 use super::{pos, predicted_landing_frame, standing, Context, Measure, Peak};
 use crate::level::Tile;
 use crate::scenario::input_script;
@@ -336,16 +337,21 @@ fn stance_surface(ctx: &Context, p: glam::Vec2, overhang: f32) -> Option<f32> {
 /// `bounce_frames`: in the final idle span (no input, as [`rest_frames`] finds it), the frames
 /// the character spends airborne after it first touched ground: a landing that bounces or lifts
 /// off again. `rest_jitter` judges only the settled rest and `land_frame_error` only the first
-/// grounded frame, so without this a bounce after landing would be charged nowhere.
+/// grounded frame, so without this a bounce after landing would be charged nowhere. Frames a
+/// moving platform shoves ([`super::pushers::shoved`]: in contact with the character, or airborne
+/// since without having landed) are the platform's doing and are left out: they neither count
+/// nor are the touch it counts from.
 ///
 /// Frame: the first of those airborne frames (`None` if there is none).
-pub(super) fn bounce_frames(ctx: &Context, rows: Frames) -> Measure {
+pub(super) fn bounce_frames(ctx: &Context, pushers: &Pushers, rows: Frames) -> Measure {
     let script = input_script(ctx.spec);
     let idle = crate::motion::Input::default();
     let first_idle_row = script.rposition(|i| *i != idle).map_or(0, |k| k + 1) + 1;
-    let span = rows.slice(first_idle_row.min(rows.len())..rows.len());
+    let span = first_idle_row.min(rows.len())..rows.len();
     let (count, first) = first_and_count(
-        span.iter()
+        super::pushers::shoved(pushers, rows, span)
+            .filter(|(_, shoved)| !shoved)
+            .map(|(r, _)| r)
             .skip_while(|r| !r.is_grounded())
             .filter(|r| !r.is_grounded())
             .map(|r| r.frame),
@@ -366,14 +372,23 @@ pub(super) fn settled(ctx: &Context, rest: std::ops::Range<usize>) -> std::ops::
     rest.start.max(rest.end.saturating_sub(needed))..rest.end
 }
 
-/// `rest_jitter`: max minus min of y over the settled resting frames (see [`settled`]), in
-/// tiles.
+/// `rest_jitter`: max minus min of y over the settled resting frames `settled` (see
+/// [`settled`]), in tiles, leaving out the frames a moving platform shoves
+/// ([`super::pushers::shoved`]): a character a block lifts or drops is not jittering (0 when
+/// every settled frame is shoved).
 ///
 /// Frame: the frame at which the range reached its final width (the later of the lowest and
 /// the highest frame, each the first at its height).
-pub(super) fn rest_jitter(rows: Frames) -> Measure {
+pub(super) fn rest_jitter(
+    pushers: &Pushers,
+    rows: Frames,
+    settled: std::ops::Range<usize>,
+) -> Measure {
     let (mut lo, mut hi, mut frame) = (f32::INFINITY, f32::NEG_INFINITY, None);
-    for r in rows.iter() {
+    for (r, shoved) in super::pushers::shoved(pushers, rows, settled) {
+        if shoved {
+            continue;
+        }
         if r.y < lo || r.y > hi {
             frame = Some(r.frame);
         }
@@ -381,7 +396,7 @@ pub(super) fn rest_jitter(rows: Frames) -> Measure {
     }
     Measure {
         metric: "rest_jitter",
-        value: if rows.is_empty() {
+        value: if frame.is_none() {
             0.0
         } else {
             (hi - lo) as f64

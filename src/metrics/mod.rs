@@ -19,6 +19,7 @@ pub mod ladders;
 pub mod landing;
 pub mod oneway;
 pub mod platforms;
+pub(crate) mod pushers;
 mod reference;
 pub mod registry;
 pub mod score;
@@ -149,11 +150,12 @@ pub(crate) fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
     );
     push(Some(landing::max_penetration(g, rows)));
     push(Some(landing::penetration_beyond_declared(ctx, g, rows)));
+    let pushers = pushers::Pushers::new(ctx, g);
     push(
         rest.clone()
-            .map(|r| landing::rest_jitter(rows.slice(landing::settled(ctx, r)))),
+            .map(|r| landing::rest_jitter(&pushers, rows, landing::settled(ctx, r))),
     );
-    push(rest.map(|_| landing::bounce_frames(ctx, rows)));
+    push(rest.map(|_| landing::bounce_frames(ctx, &pushers, rows)));
     push(Some(landing::grounded_flicker(ctx, g, rows)));
     push(Some(landing::false_grounded(ctx, g, rows)));
     push(jumping::apex_error(ctx, rows));
@@ -177,8 +179,8 @@ pub(crate) fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
         ride.as_ref()
             .map(|r| platforms::carry_airborne_frames(rows, r)),
     );
-    push(platforms::push_penetration(ctx, &ground, rows));
-    push(platforms::crush_count(ctx, &ground, rows));
+    push(platforms::push_penetration(ctx, &ground, &pushers, rows));
+    push(platforms::crush_count(ctx, &ground, &pushers, rows));
     push(Some(walls::tunneled(ctx, rows)));
     push(idle::idle_drift(ctx, rows));
     out
@@ -369,5 +371,7 @@ pub(crate) fn with_context<R>(
 
 #[cfg(test)]
 mod frame_tests;
+#[cfg(test)]
+mod pusher_tests;
 #[cfg(test)]
 mod tests;

@@ -1,6 +1,7 @@
 //! Moving platforms: carrying a rider, and pushing (or crushing) a character.
 
 use super::ground::Ground;
+use super::pushers::{CrushRule, Pushers};
 use super::{pos, Context, Measure, Peak};
 use crate::scenario::input_script;
 use crate::trace::{Frames, TraceRow};
@@ -9,7 +10,11 @@ use crate::trace::{Frames, TraceRow};
 /// rounded to the subpixel grid a configuration on integer positions moves it on
 /// ([`crate::level::Platform::placed_aabb`]), so the carry and push are measured against the
 /// platform the controller really moves, as the character's box is the one it moves.
-fn placed(ctx: &Context, p: &crate::level::Platform, k: usize) -> parry2d::bounding_volume::Aabb {
+pub(super) fn placed(
+    ctx: &Context,
+    p: &crate::level::Platform,
+    k: usize,
+) -> parry2d::bounding_volume::Aabb {
     p.placed_aabb(k as f64 * ctx.spec.dt as f64, ctx.declared.surface_grid)
 }
 
@@ -99,15 +104,27 @@ pub fn carry_airborne_frames(rows: Frames, ride: &std::ops::Range<usize>) -> Mea
 
 /// `push_penetration`: on a level with moving platforms, the deepest overlap of the character's
 /// shape with a platform that is not one-way, over the run, in tiles (parry's penetration depth,
-/// [`Ground::box_penetration`], against the platform where the configuration places it).
+/// [`Ground::box_penetration`], against the platform where the configuration places it). The
+/// frames of a crush by design ([`CrushRule`]: from a frame a platform squeezes the character
+/// against the level while it stays in contact) are left out: there the overlap is the crush,
+/// which `crush_count` judges by its own rule.
 /// Frame: the first frame at the deepest overlap.
-pub fn push_penetration(ctx: &Context, g: &Ground, rows: Frames) -> Option<Measure> {
+pub(crate) fn push_penetration(
+    ctx: &Context,
+    g: &Ground,
+    pushers: &Pushers,
+    rows: Frames,
+) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
     let mut deepest = Peak::new(0.0);
+    let mut rule = CrushRule::new();
     for (k, r) in rows.iter().enumerate() {
-        deepest.push(r.frame, platform_depth(ctx, g, &r, k));
+        rule.push(pushers, rows, k, false);
+        if !rule.crushing {
+            deepest.push(r.frame, platform_depth(ctx, g, &r, k));
+        }
     }
     Some(Measure {
         metric: "push_penetration",
@@ -122,21 +139,41 @@ pub fn push_penetration(ctx: &Context, g: &Ground, rows: Frames) -> Option<Measu
 pub const CRUSH_DEPTH: f32 = 0.25;
 
 /// `crush_count`: on a level with moving platforms, how many times the character's shape ended
-/// up inside a (not one-way) platform by more than [`CRUSH_DEPTH`]: crushed against the level, or
-/// run through by a platform that did not push it. Read from the geometry, so a backend without a
-/// crush event (Rapier) is counted the same way as the sweep, whose trace also flags the crush.
+/// up inside a (not one-way) platform by more than [`CRUSH_DEPTH`] against the crush rule
+/// ([`CrushRule`]): run through by a platform that had room to push it, or squeezed against the
+/// level and left inside with no crush reported (the trace's `crushed` column, on a frame of
+/// the squeeze). A squeeze the controller reports is the crush the scenario designs, not
+/// counted. Read from the geometry, so a backend without a crush event (Rapier) is counted the
+/// same way as the sweep, whose trace also flags the crush; a crush by design it does not flag
+/// counts.
 ///
-/// Frame: the frame of the first crush (`None` if there is none).
-pub fn crush_count(ctx: &Context, g: &Ground, rows: Frames) -> Option<Measure> {
+/// Frame: the frame of the first crush counted (`None` if there is none).
+pub(crate) fn crush_count(
+    ctx: &Context,
+    g: &Ground,
+    pushers: &Pushers,
+    rows: Frames,
+) -> Option<Measure> {
     if ctx.level.platforms.is_empty() {
         return None;
     }
     let inside = |k: usize| platform_depth(ctx, g, &rows.at(k), k) > CRUSH_DEPTH;
-    let (count, first) = super::landing::first_and_count(
-        (1..rows.len())
-            .filter(|&k| inside(k) && !inside(k - 1))
-            .map(|k| rows.at(k).frame),
-    );
+    let mut rule = CrushRule::new();
+    let (mut count, mut first) = (0, None);
+    let mut was_inside = !rows.is_empty() && inside(0);
+    let mut add = |(n, f): (usize, Option<u32>)| {
+        count += n;
+        first = match (first, f) {
+            (Some(a), Some(b)) => Some(std::cmp::min(a, b)),
+            (a, b) => a.or(b),
+        };
+    };
+    for k in 0..rows.len() {
+        let now = inside(k);
+        add(rule.push(pushers, rows, k, k > 0 && now && !was_inside));
+        was_inside = now;
+    }
+    add(rule.end());
     Some(Measure {
         metric: "crush_count",
         value: count as f64,

@@ -129,11 +129,31 @@ pub struct MetricDef {
 
 impl MetricDef {
     /// The size of error that counts as clearly wrong in the error score, in the metric's unit:
-    /// 0.01 tiles, 0.01 for ratios, 0.01 tiles/s, one frame, count or boolean.
+    /// 0.01 tiles, 0.01 for ratios, 0.01 tiles/s, one frame, count or boolean. It is counted
+    /// beyond the error the game cannot show ([`MetricDef::allowance`]).
     pub fn scale(&self) -> f64 {
         unit_scale(self.unit)
     }
+
+    /// The part of an error in this metric's unit that is not charged at `pixels_per_tile`
+    /// pixels per tile: one pixel for a length, one pixel per second for a speed, nothing for
+    /// ratios, frames, counts and booleans (see [`unit_allowance`]).
+    pub fn allowance(&self, pixels_per_tile: f64) -> f64 {
+        unit_allowance(self.unit, pixels_per_tile)
+    }
+
+    /// How many clearly-wrong sizes error `error` is once the allowance is taken off:
+    /// `max(0, |error| - allowance) / scale` (not capped; infinite for a NaN). The error score
+    /// caps it at 1; the verdict grades it (1 or less: kept, 10 or less: minor).
+    pub fn charged(&self, error: f64, pixels_per_tile: f64) -> f64 {
+        charged(self.unit, error, pixels_per_tile)
+    }
 }
+
+/// Pixels per tile the error score, `run --traces failing` and the verdict assume when not told
+/// otherwise (`platbench sweep --pixels-per-tile`): a 16-pixel tile, common in pixel-art
+/// platformers (at 8 pixels per tile the one-pixel allowance doubles in tiles).
+pub const DEFAULT_PIXELS_PER_TILE: f64 = 16.0;
 
 /// The "clearly wrong" size of an error in `unit` (see [`MetricDef::scale`]).
 pub(crate) fn unit_scale(unit: &str) -> f64 {
@@ -141,6 +161,29 @@ pub(crate) fn unit_scale(unit: &str) -> f64 {
         "tiles" | "ratio" | "tiles/s" => 0.01,
         _ => 1.0,
     }
+}
+
+/// The error in `unit` no game at `pixels_per_tile` pixels per tile can show, which the score
+/// does not charge: one pixel (`1 / pixels_per_tile` tiles) for a length in tiles; one pixel per
+/// second for a speed in tiles/s (a climb that far off its speed ends a pixel away from where it
+/// should after a second of climbing: below that no frame shows the difference); 0 for ratios
+/// (a ratio has no length: its error already scales with the distance walked), frames, counts,
+/// booleans and costs. A `pixels_per_tile` that is not a positive number allows nothing.
+pub fn unit_allowance(unit: &str, pixels_per_tile: f64) -> f64 {
+    match unit {
+        "tiles" | "tiles/s" if pixels_per_tile > 0.0 && pixels_per_tile.is_finite() => {
+            1.0 / pixels_per_tile
+        }
+        _ => 0.0,
+    }
+}
+
+/// [`MetricDef::charged`] for a value in `unit` (a metric this version may not define).
+pub fn charged(unit: &str, error: f64, pixels_per_tile: f64) -> f64 {
+    if error.is_nan() {
+        return f64::INFINITY;
+    }
+    (error.abs() - unit_allowance(unit, pixels_per_tile)).max(0.0) / unit_scale(unit)
 }
 
 const fn def(
@@ -220,7 +263,7 @@ pub const METRICS: &[MetricDef] = &[
         "rest_jitter",
         "tiles",
         Landing,
-        "max minus min of the feet's height over the settled rest (its last 0.5 s, as stress judges it)",
+        "max minus min of the feet's height over the settled rest (its last 0.5 s, as stress judges it), leaving out frames a moving platform shoves",
         "scenarios ending with at least 0.5 s of idle input, not riding a platform",
         "a still rest",
         1.0,
@@ -229,7 +272,7 @@ pub const METRICS: &[MetricDef] = &[
         "bounce_frames",
         "frames",
         Landing,
-        "frames airborne after the character first touched ground in its final idle span (a landing that bounces or lifts off again)",
+        "frames airborne after the character first touched ground in its final idle span (a landing that bounces or lifts off again), leaving out frames a moving platform shoves",
         "scenarios ending with at least 0.5 s of idle input, not riding a platform",
         "staying down once landed",
         1.0,
@@ -393,7 +436,7 @@ pub const METRICS: &[MetricDef] = &[
         "push_penetration",
         "tiles",
         Platforms,
-        "deepest overlap of the character's shape with a (not one-way) moving platform",
+        "deepest overlap of the character's shape with a (not one-way) moving platform, outside a crush by design (a platform squeezing it against the level)",
         "levels with moving platforms",
         "no overlap",
         1.0,
@@ -402,9 +445,9 @@ pub const METRICS: &[MetricDef] = &[
         "crush_count",
         "count",
         Platforms,
-        "times the character ended more than 0.25 tiles inside a moving platform",
+        "times the character ended more than 0.25 tiles inside a moving platform against the crush rule: run through with room to be pushed, or squeezed against the level with no crush reported",
         "levels with moving platforms",
-        "never crushed or run through",
+        "never run through; a squeeze against the level reported as a crush (the trace's crushed column)",
         1.0,
     ),
     def(
@@ -479,5 +522,24 @@ mod tests {
             );
             assert!(d.weight >= 0.0 && d.weight.is_finite());
         }
+    }
+
+    #[test]
+    fn errors_under_a_pixel_are_not_charged() {
+        let d = |name| get(name).unwrap();
+        // At 16 px per tile one pixel is 0.0625 tiles: a 0.16-pixel hover (0.01 tiles, the
+        // issue's example) is free; a pixel and a clearly-wrong size (0.0625 + 0.01) is 1.
+        assert_eq!(d("rest_gap_declared").charged(0.01, 16.0), 0.0);
+        assert_eq!(d("rest_gap_declared").charged(-0.0625, 16.0), 0.0);
+        assert!((d("rest_gap_declared").charged(0.0725, 16.0) - 1.0).abs() < 1e-9);
+        // At 32 px per tile the same 0.0725 is 1.15 pixels beyond the pixel (0.04125 tiles).
+        assert!((d("rest_gap_declared").charged(0.0725, 32.0) - 4.125).abs() < 1e-9);
+        // Speeds: one pixel per second (1/16 tiles/s) is free.
+        assert_eq!(d("ladder_speed_error").charged(0.06, 16.0), 0.0);
+        // Ratios, frames, counts and booleans have no pixel allowance.
+        assert_eq!(d("progress_ratio").charged(0.02, 16.0), 2.0);
+        assert_eq!(d("bounce_frames").charged(1.0, 16.0), 1.0);
+        assert_eq!(d("tunneled").charged(1.0, 16.0), 1.0);
+        assert_eq!(d("apex_error").charged(f64::NAN, 16.0), f64::INFINITY);
     }
 }

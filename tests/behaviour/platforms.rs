@@ -78,26 +78,25 @@ fn sweep_pushes_without_overlap_and_reports_a_crush() {
     );
     let eps = SweepConfig::default().epsilon as f64;
     for r in some_rows(&evals, "push_penetration") {
-        if r.scenario != "crushed_against_a_wall" {
-            // A push leaves no overlap beyond the sweep's own tolerance: push_penetration <=
-            // epsilon.
-            assert!(
-                r.value <= eps,
-                "{}: push_penetration {}",
-                r.scenario,
-                r.value
-            );
-        }
+        // A push leaves no overlap beyond the sweep's own tolerance: push_penetration <=
+        // epsilon; the crush's overlap is left to the crush rule.
+        assert!(
+            r.value <= eps,
+            "{}: push_penetration {}",
+            r.scenario,
+            r.value
+        );
     }
     // Pushed along the floor: it moved with the block.
     let pushed = find(&evals, "pushed_across_the_floor");
     let (first, last) = (pushed.trace.rows[0].x, pushed.trace.rows.last().unwrap().x);
     assert!(last - first > 2.0, "pushed {} tiles", last - first);
-    // Crushed against the wall: the trace reports it, once, and the character is never left
+    // Crushed against the wall: the trace reports it, so by the crush rule (docs/metrics.md)
+    // it is the crush the scenario designs and counts 0, and the character is never left
     // inside the static level (it stays against the wall, overlapping the platform).
     let crushed = find(&evals, "crushed_against_a_wall");
     assert!(crushed.trace.rows.iter().any(|r| r.crushed == 1));
-    assert_eq!(value(&evals, "crushed_against_a_wall", "crush_count"), 1.0);
+    assert_eq!(value(&evals, "crushed_against_a_wall", "crush_count"), 0.0);
     assert!(value(&evals, "crushed_against_a_wall", "max_penetration") <= eps);
 }
 
@@ -125,14 +124,20 @@ fn rapier_runs_every_platform_scenario_and_its_carry_is_pinned() {
             );
             // Measured, pinned: on the diagonal path the rider loses the platform (>= 1 airborne
             // frame); and a character that a platform closes on against a wall ends overlapping
-            // the platform (0.8, its depth into it), as the sweep's does (crushed).
+            // the platform (0.89 deep), as the sweep's does, but with no crush reported (the
+            // harness's Rapier rows have no crush event): the crush rule counts it
+            // (docs/metrics.md). The squeeze's overlap is the rule's, not push_penetration's:
+            // what is left is the contact before it, under ON_PLATFORM (0.05 tiles, the
+            // metrics' contact gap; measured 0.009).
             assert!(
                 value(&evals, "diagonal", "carry_airborne_frames") > 0.0,
                 "{}",
                 run.label
             );
+            let crushes = value(&evals, "crushed_against_a_wall", "crush_count");
+            assert!(crushes >= 1.0, "{}: {crushes}", run.label);
             let crush = value(&evals, "crushed_against_a_wall", "push_penetration");
-            assert!(crush > 0.5, "{}: {crush}", run.label);
+            assert!(crush < 0.05, "{}: {crush}", run.label);
             // A block sliding into a character standing clear of the floor pushes it along
             // without overlap: the controller moves a character hit by a kinematic body at the
             // body's velocity (measured 0 on every shape and building).

@@ -82,6 +82,41 @@ fn a_bad_score_is_refused_with_its_reason() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(says), "{score}: {err}");
     }
+    for ppt in ["0", "-16", "inf", "sixteen"] {
+        let out = platbench()
+            .args(["sweep", "--out"])
+            .arg(dir.path())
+            .arg(format!("--pixels-per-tile={ppt}"))
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{ppt}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("is not a finite number > 0"), "{ppt}: {err}");
+    }
+}
+
+#[test]
+fn sweep_charges_at_the_game_s_pixels_per_tile() {
+    // A walk scored on progress alone at 4 pixels per tile: the score says its resolution on
+    // stderr (docs/metrics.md, "The error score and the game's pixel").
+    let dir = tempfile::tempdir().unwrap();
+    let level = dir.path().join("walk.toml");
+    std::fs::write(&level, LEVEL).unwrap();
+    let out_dir = dir.path().join("out");
+    let out = platbench()
+        .args(["sweep", "--backend", "sweep", "--out"])
+        .arg(&out_dir)
+        .args(["--score", "progress_ratio", "--pixels-per-tile", "4"])
+        .arg(&level)
+        .output()
+        .unwrap();
+    assert_success(&out);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("error score: progress_ratio=1 at 4 pixels per tile"),
+        "{err}"
+    );
+    assert!(out_dir.join("tradeoff.csv").exists());
 }
 
 #[test]

@@ -28,10 +28,12 @@ use crate::metrics::MetricRow;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Grade {
     /// Every scored metric within the size that counts as clearly wrong (0.01 tiles, 0.01 for a
-    /// ratio or tiles/s; exactly right for frames, counts and booleans).
+    /// ratio or tiles/s, beyond a pixel of a 16-pixel tile or a pixel per second; exactly right
+    /// for frames, counts and booleans).
     Keeps,
     /// Some metric off, but within ten times that size for lengths, ratios and speeds (0.1
-    /// tiles: 1.6 pixels of a 16-pixel tile) or 3 frames (50 ms at 60 Hz) or 2 counts.
+    /// tiles beyond the pixel: 2.6 pixels of a 16-pixel tile in all) or 3 frames (50 ms at
+    /// 60 Hz) or 2 counts.
     Minor,
     /// Beyond that, a boolean result wrong, or a value that is not a number.
     Fails,
@@ -47,12 +49,17 @@ impl Grade {
         }
     }
 
-    /// The grade of a row whose error is `error` in `unit`.
+    /// The grade of a row whose error is `error` in `unit`, judged as the error score charges
+    /// it: beyond the pixel a 16-pixel tile cannot show (one pixel for a length, one pixel per
+    /// second for a speed, [`registry::unit_allowance`] at
+    /// [`registry::DEFAULT_PIXELS_PER_TILE`]), so kept is a charge of at most 1, minor of at
+    /// most 10.
     pub fn of(unit: &str, error: f64) -> Grade {
-        let e = error.abs();
-        if e.is_nan() {
+        if error.is_nan() {
             return Grade::Fails;
         }
+        let e = (error.abs() - registry::unit_allowance(unit, registry::DEFAULT_PIXELS_PER_TILE))
+            .max(0.0);
         let (keeps, minor) = match unit {
             // The clearly-wrong size of the error score, and ten times it.
             "tiles" | "ratio" | "tiles/s" => {
@@ -464,8 +471,7 @@ impl VerdictRows {
             if w <= 0.0 {
                 continue;
             }
-            let size = r.error.abs() / def.scale();
-            let size = if size.is_nan() { f64::INFINITY } else { size };
+            let size = self.score.charged(r);
             match def.model_group {
                 Some(g) => {
                     let slot = groups.entry(g).or_insert((r, size, w));

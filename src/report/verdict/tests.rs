@@ -51,10 +51,17 @@ fn rows(a_stuck: f64, b_late: f64) -> Vec<MetricRow> {
 
 #[test]
 fn grades_follow_the_clearly_wrong_size_and_ten_times_it() {
-    // 0.01 tiles is the error score's clearly-wrong size for a length, 0.1 ten times it.
+    // 0.01 tiles is the error score's clearly-wrong size for a length, 0.1 ten times it, both
+    // beyond the pixel of a 16-pixel tile (0.0625 tiles) the score does not charge.
     assert_eq!(Grade::of("tiles", 0.009), Grade::Keeps);
-    assert_eq!(Grade::of("tiles", 0.05), Grade::Minor);
-    assert_eq!(Grade::of("tiles", 0.2), Grade::Fails);
+    assert_eq!(Grade::of("tiles", 0.05), Grade::Keeps);
+    assert_eq!(Grade::of("tiles", 0.0725), Grade::Keeps);
+    assert_eq!(Grade::of("tiles", 0.08), Grade::Minor);
+    assert_eq!(Grade::of("tiles", 0.16), Grade::Minor);
+    assert_eq!(Grade::of("tiles", 0.17), Grade::Fails);
+    // A speed: one pixel per second (0.0625 tiles/s) is free; a ratio has no allowance.
+    assert_eq!(Grade::of("tiles/s", 0.07), Grade::Keeps);
+    assert_eq!(Grade::of("ratio", 0.05), Grade::Minor);
     // Frames: exact is kept, up to 3 frames (50 ms at 60 Hz) minor.
     assert_eq!(Grade::of("frames", 0.0), Grade::Keeps);
     assert_eq!(Grade::of("frames", -2.0), Grade::Minor);
