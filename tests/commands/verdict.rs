@@ -1,7 +1,7 @@
 //! The verdict's game profiles from the command line: a user's own profile file is judged, and
 //! a bad one is refused with its file, line and column.
 
-use crate::common::{assert_success, platbench};
+use crate::common::platbench;
 
 // Beside Rapier: its configurations are built with the default features only.
 #[cfg(feature = "rapier")]
@@ -25,7 +25,7 @@ fn a_profile_of_ones_own_is_judged_and_printed_with_its_weights() {
         .arg(&file)
         .output()
         .unwrap();
-    assert_success(&out);
+    crate::common::assert_success(&out);
     let stdout = String::from_utf8_lossy(&out.stdout);
     // Only the given profile, with its weights beside its verdict; the built-in ones are not.
     assert!(stdout.contains("\nmy-game: seams above all\n"), "{stdout}");
