@@ -136,9 +136,9 @@ fn the_readme_trade_figures_are_the_committed_sweep_run() {
         four.cost_us / one.cost_us
     );
     assert!(text.contains(&figure), "docs/speed.md lacks {figure:?}");
-    // "Its most accurate setting is the grounded feed of the bevy_rapier example (..., A,
-    // against B fed gravity every step)".
-    let fed = setting("per-tile capsule grounded=none-but-platforms");
+    // "Its most accurate setting is its advised feed (..., A, against B fed gravity every
+    // step)".
+    let fed = setting("per-tile capsule grounded=none-but-testbed-on-platforms");
     let best = all
         .iter()
         .filter(|r| r.backend == "rapier")
@@ -146,7 +146,7 @@ fn the_readme_trade_figures_are_the_committed_sweep_run() {
         .expect("rapier rows");
     assert_eq!(best.setting, fed.setting);
     let figure = format!(
-        "grounded=none-but-platforms`, {:.4}, against {:.4} fed gravity every step)",
+        "grounded=none-but-testbed-on-platforms`, {:.4}, against {:.4} fed gravity every step)",
         fed.error, one.error
     );
     assert!(text.contains(&figure), "docs/speed.md lacks {figure:?}");

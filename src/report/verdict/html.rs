@@ -60,7 +60,7 @@ pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict], source
     let mut h = String::new();
     let _ = write!(
         h,
-        "<h2>Which controller for which game</h2><p class=\"small\">{} scenarios, {} configurations. Each game profile picks the configuration that fails the least of what it weighs, then has the lowest weighted error (in brackets: the mean over scored metrics of min(1, error / the clearly-wrong size), 0 all exact, 1 all clearly off; a skipped scenario counts as clearly off). {}</p>",
+        "<h2>Which controller for which game</h2><p class=\"small\">{} scenarios, {} configurations. Each game profile picks the configuration that fails the least of what it weighs, then has the lowest weighted error (in brackets: the mean over scored metrics of min(1, error beyond one pixel / the clearly-wrong size), 0 all within a pixel, 1 all clearly off; a skipped scenario counts as clearly off). {}</p>",
         card.total_scenarios,
         card.cards.len(),
         escape(source)
@@ -153,7 +153,7 @@ pub fn render_verdict_html(card: &Scorecard, verdicts: &[ProfileVerdict], source
 /// The scorecard: a grade per configuration and behaviour, each grade that is not ok linked to
 /// the replay of its worst scenario at its frame.
 fn scorecard_html(card: &Scorecard) -> String {
-    let mut h = String::from("<h3 id=\"scorecard\">Scorecard</h3><p class=\"small\">How each configuration does on each behaviour's scenarios, against each metric's reference (rest and penetration against the contact the configuration declares). <b>ok</b>: every scored metric within the clearly-wrong size (0.01 tiles, 0.01 ratio, exact frames and counts); <b>minor</b>: within ten times it (0.1 tiles), 3 frames or 2 counts; <b>FAIL</b>: beyond, or a wrong result; <b>-</b>: not run. A row of a level with moving platforms, ladders, one-way platforms or slopes counts toward that feature. A grade that is not ok links to the replay of its worst scenario at its frame; hover it for the value.</p><div class=\"wide\"><table class=\"scorecard\"><thead><tr><th>configuration</th>");
+    let mut h = String::from("<h3 id=\"scorecard\">Scorecard</h3><p class=\"small\">How each configuration does on each behaviour's scenarios, against each metric's reference (rest and penetration against the contact the configuration declares). <b>ok</b>: every scored metric within the clearly-wrong size beyond the one-pixel allowance (0.01 tiles past 1/16 tile at 16 pixels a tile, 0.01 ratio, exact frames and counts); <b>minor</b>: within ten times it (0.1 tiles past the pixel), 3 frames or 2 counts; <b>FAIL</b>: beyond, or a wrong result; <b>-</b>: not run. A row of a level with moving platforms, ladders, one-way platforms or slopes counts toward that feature. A grade that is not ok links to the replay of its worst scenario at its frame; hover it for the value.</p><div class=\"wide\"><table class=\"scorecard\"><thead><tr><th>configuration</th>");
     for c in Column::ALL {
         let _ = write!(h, "<th>{}</th>", c.header());
     }

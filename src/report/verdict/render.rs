@@ -175,7 +175,7 @@ pub fn render_verdict(card: &Scorecard, verdicts: &[ProfileVerdict], source: &st
         "",
         "",
         &format!(
-            "Which controller for which game: {} scenarios, {} configurations. Each profile picks the configuration that fails the least of what it weighs, then has the lowest weighted error (the mean over scored metrics of min(1, error / the clearly-wrong size): 0 all exact, 1 all clearly off).",
+            "Which controller for which game: {} scenarios, {} configurations. Each profile picks the configuration that fails the least of what it weighs, then has the lowest weighted error (the mean over scored metrics of min(1, error beyond one pixel / the clearly-wrong size): 0 all within a pixel, 1 all clearly off).",
             card.total_scenarios,
             card.cards.len()
         ),
@@ -293,7 +293,7 @@ pub fn render_scorecard(card: &Scorecard) -> String {
     out.push_str(&wrap(
         "",
         "",
-        "Scorecard: how each configuration does on each behaviour's scenarios, against each metric's reference (rest and penetration against the contact the configuration declares). ok: every scored metric within the clearly-wrong size (0.01 tiles, 0.01 ratio, exact frames and counts); minor: within ten times it (0.1 tiles), 3 frames or 2 counts; FAIL: beyond, or a wrong result; -: not run. A row of a level with moving platforms, ladders, one-way platforms or slopes counts toward that feature. Under a row, its documented design and the scenario and metric behind each grade that is not ok. cost: median time per character step over the cheapest configuration's (run --timing).",
+        "Scorecard: how each configuration does on each behaviour's scenarios, against each metric's reference (rest and penetration against the contact the configuration declares). ok: every scored metric within the clearly-wrong size beyond the one-pixel allowance (0.01 tiles past 1/16 tile at 16 pixels a tile, 0.01 ratio, exact frames and counts); minor: within ten times it (0.1 tiles past the pixel), 3 frames or 2 counts; FAIL: beyond, or a wrong result; -: not run. A row of a level with moving platforms, ladders, one-way platforms or slopes counts toward that feature. Under a row, its documented design and the scenario and metric behind each grade that is not ok. cost: median time per character step over the cheapest configuration's (run --timing).",
     ));
     let widths: Vec<usize> = Column::ALL
         .iter()
