@@ -140,12 +140,10 @@ pub const CRUSH_DEPTH: f32 = 0.25;
 
 /// `crush_count`: on a level with moving platforms, how many times the character's shape ended
 /// up inside a (not one-way) platform by more than [`CRUSH_DEPTH`] against the crush rule
-/// ([`CrushRule`]): run through by a platform that had room to push it, or squeezed against the
-/// level and left inside with no crush reported (the trace's `crushed` column, on a frame of
-/// the squeeze). A squeeze the controller reports is the crush the scenario designs, not
-/// counted. Read from the geometry, so a backend without a crush event (Rapier) is counted the
-/// same way as the sweep, whose trace also flags the crush; a crush by design it does not flag
-/// counts.
+/// ([`CrushRule`]): run through by a platform that had room to push it. A squeeze against the
+/// level is the crush the scenario designs, not counted, whether the controller reports it (the
+/// sweep's `crushed` column) or has no crush event (Rapier, Box2D): read from the geometry
+/// alone, alike for every controller.
 ///
 /// Frame: the frame of the first crush counted (`None` if there is none).
 pub(crate) fn crush_count(

@@ -184,29 +184,22 @@ fn room_beyond(
 
 /// The crush rule as the metrics pass over the rows in order: a crush episode starts at a
 /// squeezed frame ([`Pushers::squeezed`]) and lasts while a platform stays in contact with the
-/// character ([`Pushers::contact`]); within it the character may end inside the platform
-/// (that is what a crush is) provided the controller flags it (the trace's `crushed` column, on
-/// any frame of the episode). `push_penetration` leaves the episode's frames out; `crush_count`
-/// counts a deep entry into a platform outside an episode (run through by a platform that did
-/// not push it) or within one that ends unflagged (left inside the level as if nothing
-/// happened).
+/// character ([`Pushers::contact`]); within it the character may end inside the platform:
+/// that is what a crush is, whether or not the controller reports it (the trace's `crushed`
+/// column: only the sweep has a crush event; Rapier and Box2D document none, and a game
+/// detects a crush itself). `push_penetration` leaves the episode's frames out; `crush_count`
+/// counts a deep entry into a platform outside an episode (run through by a platform that had
+/// room to push it); where the character is left against the level is
+/// `penetration_beyond_declared`'s to judge, alike for every controller.
 pub(crate) struct CrushRule {
     /// Within a crush episode.
     pub(crate) crushing: bool,
-    /// The episode's crush was flagged by the controller.
-    flagged: bool,
-    /// Deep entries into a platform in this episode, not yet judged, and the first one's frame.
-    pending: (usize, Option<u32>),
 }
 
 impl CrushRule {
     /// Before the first row.
     pub(crate) fn new() -> Self {
-        CrushRule {
-            crushing: false,
-            flagged: false,
-            pending: (0, None),
-        }
+        CrushRule { crushing: false }
     }
 
     /// Takes in row `k`; returns the deep entries judged wrong at this row (a count and the
@@ -219,36 +212,22 @@ impl CrushRule {
         k: usize,
         deep_entry: bool,
     ) -> (usize, Option<u32>) {
-        let r = rows.at(k);
-        let mut judged = (0, None);
         if pushers.squeezed(rows, k) {
             self.crushing = true;
         } else if self.crushing && !pushers.contact(rows, k) {
-            judged = self.end();
+            self.crushing = false;
         }
-        if self.crushing {
-            self.flagged |= r.crushed != 0;
-            if deep_entry {
-                self.pending.0 += 1;
-                self.pending.1 = self.pending.1.or(Some(r.frame));
-            }
-        } else if deep_entry {
-            judged.0 += 1;
-            judged.1 = judged.1.or(Some(r.frame));
+        if deep_entry && !self.crushing {
+            (1, Some(rows.at(k).frame))
+        } else {
+            (0, None)
         }
-        judged
     }
 
-    /// Ends an episode (at a row out of contact, or the end of the run): its deep entries count
-    /// unless the crush was flagged.
+    /// Ends the run: nothing is left to judge (a crush episode's entries are the crush).
     pub(crate) fn end(&mut self) -> (usize, Option<u32>) {
-        let out = if self.flagged {
-            (0, None)
-        } else {
-            self.pending
-        };
         *self = CrushRule::new();
-        out
+        (0, None)
     }
 }
 
