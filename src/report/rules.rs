@@ -328,7 +328,7 @@ pub const RULES: &[Rule] = &[
         "crush_count",
         Above,
         0.0,
-        "Ends up inside a moving platform against the crush rule (run through with room to be pushed, or squeezed against the level with no crush reported): times, up to",
+        "Ends up inside a moving platform that had room to push it (run through; a squeeze against the level is the crush the scenario designs): times, up to",
     ),
     fault(
         "idle_drift",
