@@ -1,4 +1,4 @@
-//! The README's plug-in example (`examples/box_mover.rs`) as a user's crate runs it: registered
+//! The documented plug-in example (`examples/box_mover.rs`) as a user's crate runs it: registered
 //! with one line beside the built-in controllers, run on every built-in level, skipped by the
 //! harness on the levels whose features it does not model, and scored like any controller.
 
@@ -53,16 +53,17 @@ fn the_readme_box_mover_runs_beside_the_builtin_controllers() {
 }
 
 #[test]
-fn the_readme_plug_in_code_is_the_box_mover_example_verbatim() {
-    // README "Compare your own controller": the code block after "and its `src/main.rs`" is
-    // examples/box_mover.rs, which CI builds (cargo clippy --all-targets) and runs
-    // (the test above), so the README's code compiles as written.
-    let text =
-        std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
-            .expect("README.md");
+fn the_documented_plug_in_code_is_the_box_mover_example_verbatim() {
+    // docs/own-controller.md "A whole controller" (README links there): the code block after
+    // "and its `src/main.rs`" is examples/box_mover.rs, which CI builds (cargo clippy
+    // --all-targets) and runs (the test above), so the documented code compiles as written.
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/own-controller.md"),
+    )
+    .expect("docs/own-controller.md");
     let after = text
         .split_once("and its `src/main.rs`")
-        .expect("README's plug-in section")
+        .expect("the plug-in section")
         .1;
     let block = after
         .split_once("```rust\n")
