@@ -11,7 +11,7 @@
 mod builtin;
 
 use platbench::box2d::kind::run_with;
-use platbench::box2d::{advised_pogo_hertz, Box2dConfig, GroundCarry, GRID_BEST_POGO_HERTZ};
+use platbench::box2d::{advised_pogo_hertz, Box2dConfig, GroundCarry, STIFF_POGO_HERTZ};
 use platbench::level::parse_level;
 use platbench::metrics::{evaluate, score::Score, MetricRow};
 
@@ -22,7 +22,7 @@ fn main() {
         .collect();
     let mut setups = Vec::new();
     for carry in [GroundCarry::None, GroundCarry::Ground] {
-        for hertz in [5.0, advised_pogo_hertz(), GRID_BEST_POGO_HERTZ] {
+        for hertz in [5.0, advised_pogo_hertz(), STIFF_POGO_HERTZ] {
             setups.push(Box2dConfig {
                 carry,
                 pogo_hertz: hertz,

@@ -39,7 +39,7 @@ pub use config::{
     SAMPLE_HEIGHT,
 };
 pub use mover::ONE_WAY_TOLERANCE;
-pub use presets::{advised_pogo_hertz, GRID_BEST_POGO_HERTZ};
+pub use presets::{advised_pogo_hertz, STIFF_POGO_HERTZ};
 pub use world::ColliderBuilding;
 pub(crate) use world::{LevelWorld, ShapeTag, ONE_WAY, PLATFORM, SOLID};
 

@@ -239,7 +239,7 @@ fn rapier_merged_rounded_walkers_stall_1e5_tiles_out() {
 }
 
 #[test]
-fn rapier_fed_as_advised_walks_alone_and_breaks_progress_at_1e4_with_dt_1_240() {
+fn rapier_fed_as_bevy_rapier_walks_alone_and_breaks_progress_at_1e4_with_dt_1_240() {
     use platbench::rapier::kind::run_with;
     use platbench::rapier::{GroundedMove, RapierConfig};
     use platbench::stress::{run_point, Point, BASE};
@@ -272,9 +272,10 @@ fn rapier_fed_as_advised_walks_alone_and_breaks_progress_at_1e4_with_dt_1_240() 
     );
 }
 
-/// The one-dimension offset rows of Rapier's advised set-up (no vertical move while grounded but
-/// on platforms) in `precision`: the rows of its point, one per invariant.
-fn rapier_advised_at(
+/// The one-dimension offset rows of Rapier fed as the bevy_rapier example feeds it (no vertical
+/// move while grounded but on platforms) in `precision`: the rows of its point, one per
+/// invariant.
+fn rapier_bevy_fed_at(
     precision: platbench::backend::Precision,
     offset: f64,
 ) -> Vec<platbench::stress::StressRow> {
@@ -311,14 +312,14 @@ fn rapier_f64_holds_where_f32_breaks_and_breaks_where_its_own_spacing_swallows_a
     // capsule's height takes two values one spacing apart, jitter 0.0625 against the 1e-3 x
     // height tolerance (measured 0.0625 exactly).
     let carry_only = |rows: &[StressRow]| broken(rows).iter().all(|(i, _)| *i == "carry_no_drift");
-    assert!(carry_only(&rapier_advised_at(F32, 1e4)));
-    let f32_1e5 = rapier_advised_at(F32, 1e5);
+    assert!(carry_only(&rapier_bevy_fed_at(F32, 1e4)));
+    let f32_1e5 = rapier_bevy_fed_at(F32, 1e5);
     let b = broken(&f32_1e5);
     assert!(
         b.len() == 2 && b[1].0 == "progress" && (b[1].1 - 13.0 / 12.8).abs() < 0.002,
         "{b:?}"
     );
-    let f32_1e6 = rapier_advised_at(F32, 1e6);
+    let f32_1e6 = rapier_bevy_fed_at(F32, 1e6);
     let rest = f32_1e6
         .iter()
         .find(|r| r.invariant == "stable_rest")
@@ -327,15 +328,15 @@ fn rapier_f64_holds_where_f32_breaks_and_breaks_where_its_own_spacing_swallows_a
     // On rapier2d-f64 the same probes at 1e6, 1e7 (where f32 breaks penetration, rest, progress
     // and the jump) and 1e13 (f64 spacing 1/512) keep every invariant but the carry.
     for offset in [1e6, 1e7, 1e13] {
-        let rows = rapier_advised_at(F64, offset);
+        let rows = rapier_bevy_fed_at(F64, offset);
         assert!(carry_only(&rows), "f64 at {offset}: {:?}", broken(&rows));
     }
-    assert!(!carry_only(&rapier_advised_at(F32, 1e7)));
+    assert!(!carry_only(&rapier_bevy_fed_at(F32, 1e7)));
     // At 1e14 the f64 spacing is 1/64 tile (2^46 <= 1e14 < 2^47): the walk's 0.1-tile step is
     // 6.4 spacings and rounds to 6, so the walk covers 6/6.4 = 0.9375 of its distance, under
     // PROGRESS_MIN (0.99): f64 breaks where its spacing is what f32's is at 1e5 with a
     // 1/240 s step (the sweep's cell above, the same 0.9375).
-    let f64_1e14 = rapier_advised_at(F64, 1e14);
+    let f64_1e14 = rapier_bevy_fed_at(F64, 1e14);
     let p = f64_1e14.iter().find(|r| r.invariant == "progress").unwrap();
     assert!(!p.holds && (p.measured - 0.9375).abs() < 0.005, "{p:?}");
 }

@@ -238,3 +238,57 @@ fn the_diagonal_rider_stops_being_carried_sideways_on_the_platform_s_first_desce
     assert!(x(30) - x(60) > 1.0, "carried left while rising");
     assert!((x(90) - x(60)).abs() < 1e-2, "x {} then {}", x(60), x(90));
 }
+
+#[test]
+fn squeezed_with_no_move_asked_rapier_s_depenetration_pushes_the_rider_into_the_wall() {
+    // `platforms.crushed_against_a_wall`: a block slides right at 2 tiles/s into the wall at
+    // x = 59 with the character between. rapier2d 0.36.1's `move_shape` runs
+    // `check_and_fix_penetrations` only when the desired translation is zero (its step 1, the
+    // fix for rapier #485): it pushes the shape out of each collider it overlaps, at most
+    // `0.25 * height` per call. The advised feed asks no vertical move on static ground, so a
+    // squeezed rider standing still asks nothing: it is pushed out of the block into the wall,
+    // then out of the wall into the block, a quarter height each step. Fed gravity, the move
+    // is never zero, the depenetration never runs, and the shape casts keep it out of both.
+    let mut crush = level("platforms");
+    crush
+        .scenarios
+        .retain(|s| s.name == "crushed_against_a_wall");
+    let height = platbench::level::DEFAULT_CHARACTER_SIZE.y as f64;
+    let mut deepest = Vec::new();
+    for feed in [
+        GroundedMove::Gravity,
+        GroundedMove::NoneExceptTestbedOnPlatforms,
+    ] {
+        let run = run_with(RapierConfig {
+            grounded_move: feed,
+            ..Default::default()
+        });
+        let evals = evaluate_all(std::slice::from_ref(&crush), &run);
+        let rows = &evals[0].1.trace.rows;
+        let jump = rows
+            .windows(2)
+            .map(|w| (w[1].x - w[0].x).abs() as f64)
+            .fold(0.0, f64::max);
+        let depth = value(&evals, "crushed_against_a_wall", "max_penetration");
+        println!(
+            "{}: largest x step {jump}, max_penetration {depth}",
+            feed.label()
+        );
+        deepest.push((feed, jump, depth));
+    }
+    let (_, gravity_jump, gravity_depth) = deepest[0];
+    let (_, none_jump, none_depth) = deepest[1];
+    // Fed gravity: no overlap with the wall beyond 0.01 tiles (docs/scale.md's clearly-wrong
+    // length; measured 0), and no step longer than the block's 2 tiles/s push (0.033 a step).
+    assert!(gravity_depth < 0.01, "gravity-fed: {gravity_depth}");
+    assert!(gravity_jump < 0.05, "gravity-fed: step {gravity_jump}");
+    // Fed nothing: steps of the depenetration's cap, 0.25 * 0.9 = 0.225 tiles (f32 rounding
+    // of positions near x = 59: within 1e-3), and the rider ends more than half a tile inside
+    // the wall (measured 0.786 for the capsule).
+    assert!(
+        (none_jump - 0.25 * height).abs() < 1e-3,
+        "advised feed: step {none_jump}, cap {}",
+        0.25 * height
+    );
+    assert!(none_depth > 0.5, "advised feed: {none_depth}");
+}

@@ -238,7 +238,7 @@ fn the_builtin_registry_is_the_builtin_set() {
         .collect();
     // 3 sweep, 16 Rapier (4 shapes on 2 buildings fed gravity every step, then the same fed
     // as Rapier's examples feed it), 4 Box2D (the sample's capsule on per-tile and merged
-    // colliders, the advised set-up and the carry with the trade-off grid's best spring,
+    // colliders, the advised set-up and the carry with the trade-off grid's stiffest spring,
     // docs/box2d.md): the 23 configurations of compare/baseline/metrics.csv.
     assert_eq!(labels.len(), 23);
     assert_eq!(labels[0], "sweep default");
