@@ -41,7 +41,9 @@ pub(crate) fn outside_level(level: &Level, bottom: f32, size: glam::Vec2, r: &Tr
         || r.y + size.y < 0.0
 }
 
-/// `left_level`: 1 if the character left the level ([`outside_level`]) at any frame, else 0.
+/// `left_level`: 1 if the character left the level at any frame, else 0: its feet below the
+/// level's bottom (the lowest non-empty tile row or platform reach) while falling, or its box
+/// wholly beside or below the map.
 /// Frame: the first frame it was outside (`None` if never).
 pub fn left_level(ctx: &Context, rows: Frames) -> Measure {
     let bottom = level_bottom(ctx.level);
@@ -124,7 +126,7 @@ pub fn expect_stay_in_map(ctx: &Context, rows: Frames) -> Option<Measure> {
 }
 
 /// `expect_land_on`: 1 if the character never stood on the scenario's platform, else 0. Standing
-/// on it, as the carry metrics read it: grounded, feet within [`ON_PLATFORM`] of the top of the
+/// on it, as the carry metrics read it: grounded, feet within 0.05 tiles of the top of the
 /// platform where the configuration places it at that frame, the box overlapping it in x.
 /// Frame: the first frame on it (a pass), or the last frame (a fail). `None` when not stated.
 pub fn expect_land_on(ctx: &Context, rows: Frames) -> Option<Measure> {
