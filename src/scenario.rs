@@ -451,6 +451,7 @@ mod tests {
             motion: Default::default(),
             expect_y: None,
             ride: None,
+            expect: Default::default(),
         }
     }
 

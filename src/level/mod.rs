@@ -34,7 +34,8 @@ pub use model::Level;
 pub use platform::{Platform, PlatformMotion};
 pub use probes::{probe_scenarios, ProbeConfig, SpawnPoint};
 pub use scenario::{
-    valid_name, InputEvent, MotionOverrides, ScenarioSpec, DEFAULT_CHARACTER_SIZE, DEFAULT_DT,
+    valid_name, Deadline, Expectations, InputEvent, MotionOverrides, Reach, ScenarioSpec,
+    DEFAULT_CHARACTER_SIZE, DEFAULT_DT,
 };
 pub use tile::{Slope, Tile};
 #[cfg(feature = "tiled")]

@@ -1,6 +1,7 @@
 //! A scenario as a level states it ([`ScenarioSpec`]): one character, its spawn, its input
 //! script ([`InputEvent`]) and its changes to the motion ([`MotionOverrides`]); the default
-//! character and time step, and which names a level or scenario may have ([`valid_name`]).
+//! character and time step, what it says should happen ([`Expectations`]), and which names a
+//! level or scenario may have ([`valid_name`]).
 
 use glam::Vec2;
 
@@ -58,6 +59,86 @@ pub struct ScenarioSpec {
     /// The moving platform (index in the level's list) this scenario rides, for the carry
     /// metrics.
     pub ride: Option<u32>,
+    /// What the level says should happen (its `[scenario.expect]` table), each checked against
+    /// the trace and reported as an `expect_*` metric row; none by default.
+    pub expect: Expectations,
+}
+
+/// What a scenario says should happen to its character: each stated expectation is checked
+/// against the trace and reported as a pass (0) or fail (1) metric row. Positions are of the
+/// feet (bottom centre of the box), in level tiles.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Expectations {
+    /// A box the feet must be inside at some frame up to a deadline (`expect_reach`).
+    pub reach: Option<Reach>,
+    /// Whether the character must end grounded (`true`) or airborne (`false`), as its
+    /// controller reports it on the last frame (`expect_grounded_at_end`).
+    pub grounded_at_end: Option<bool>,
+    /// The lowest the feet may ever be, in tiles (`expect_min_y`).
+    pub min_y: Option<f32>,
+    /// Whether the feet must stay inside the map, 0 <= x <= width and 0 <= y <= height in tiles,
+    /// on every frame (`expect_stay_in_map`).
+    pub stay_in_map: bool,
+    /// The moving platform (index in the level's list, from 0) the character must stand on at
+    /// some frame (`expect_land_on`).
+    pub land_on: Option<u32>,
+}
+
+impl Expectations {
+    /// Whether the scenario states no expectation.
+    pub fn is_empty(&self) -> bool {
+        *self == Expectations::default()
+    }
+}
+
+/// A region to reach: a box in level tiles (bounds inclusive) and the deadline to reach it by.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reach {
+    /// Lower-left corner of the box, in tiles (`-inf` on an axis the level leaves open).
+    pub min: Vec2,
+    /// Upper-right corner of the box, in tiles (`+inf` on an axis the level leaves open).
+    pub max: Vec2,
+    /// When the feet must be in the box by.
+    pub by: Deadline,
+}
+
+/// The last moment an expectation may be met at.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Deadline {
+    /// The scenario's last frame.
+    End,
+    /// A time, in seconds from the start: the last frame at or before it (`floor(seconds /
+    /// dt)`, a quotient within a thousandth of a frame of a whole number being that frame).
+    Seconds(f32),
+    /// A frame number (the trace's 0-based `frame` column; the last frame if beyond it).
+    Frame(u32),
+}
+
+impl Deadline {
+    /// The deadline's frame in a run of `last` + 1 frames of `dt` seconds.
+    pub fn frame(self, dt: f32, last: u32) -> u32 {
+        match self {
+            Deadline::End => last,
+            Deadline::Seconds(s) => {
+                let f = s as f64 / dt as f64;
+                // A time on a frame's own time is that frame, though f32 time steps make the
+                // quotient a hair off (3 s at 1/60 s is 179.99999): as `round(duration / dt)`
+                // counts a scenario's frames.
+                let near = f.round();
+                let f = if (f - near).abs() <= 1e-3_f64.max(f * 1e-6) {
+                    near
+                } else {
+                    f.floor()
+                };
+                if f.is_finite() && f >= 0.0 {
+                    f.min(last as f64) as u32
+                } else {
+                    last
+                }
+            }
+            Deadline::Frame(f) => f.min(last),
+        }
+    }
 }
 
 impl ScenarioSpec {
@@ -75,6 +156,7 @@ impl ScenarioSpec {
             motion: MotionOverrides::default(),
             expect_y: None,
             ride: None,
+            expect: Expectations::default(),
         }
     }
 }

@@ -122,6 +122,7 @@ mod tests {
             motion: Default::default(),
             expect_y: None,
             ride: None,
+            expect: Default::default(),
         };
         // (x, y, grounded, vy, crushed)
         let pts = [
@@ -204,6 +205,7 @@ mod tests {
             motion: Default::default(),
             expect_y: None,
             ride: None,
+            expect: Default::default(),
         };
         // Feet at x 2.5 (clear), 3.7 (box edge 4.1: 0.1 into the platform), 4.5 (0.5 into it).
         let row = |k: u32, x: f32| TraceRow {

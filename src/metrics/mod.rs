@@ -8,9 +8,11 @@
 //! character dropped with no input until it should land, `apex_error` for a jump with room
 //! above, `progress_ratio` for a walk over flat open ground, `rest_gap` and `rest_jitter` for
 //! scenarios that end with at least [`landing::REST_WINDOW`] seconds of idle input.
-//! `max_penetration`, `grounded_flicker`, `stuck_frames` and `tunneled` apply to every scenario.
+//! `max_penetration`, `grounded_flicker`, `stuck_frames`, `tunneled` and `left_level` apply to
+//! every scenario; the `expect_*` rows to the scenarios that state those expectations.
 //! Only the scenario's character is measured (the trace's first character).
 
+pub mod expect;
 pub mod faults;
 pub mod ground;
 pub mod idle;
@@ -183,6 +185,12 @@ pub(crate) fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
     push(platforms::crush_count(ctx, &ground, &pushers, rows));
     push(Some(walls::tunneled(ctx, rows)));
     push(idle::idle_drift(ctx, rows));
+    push(Some(expect::left_level(ctx, rows)));
+    push(expect::expect_reach(ctx, rows));
+    push(expect::expect_grounded_at_end(ctx, rows));
+    push(expect::expect_min_y(ctx, rows));
+    push(expect::expect_stay_in_map(ctx, rows));
+    push(expect::expect_land_on(ctx, rows));
     out
 }
 

@@ -469,6 +469,60 @@ pub const METRICS: &[MetricDef] = &[
         1.0,
     ),
     def(
+        "left_level",
+        "bool",
+        Landing,
+        "1 if the character left the level: its feet below the lowest thing that could catch it (the bottom of the lowest non-empty tile row or platform reach) while falling, or its box wholly beside or below the map; else 0",
+        "every scenario",
+        "never (above the map is not leaving it)",
+        1.0,
+    ),
+    def(
+        "expect_reach",
+        "bool",
+        Landing,
+        "1 if the feet never entered the scenario's expect.reach region (tiles, bounds inclusive) by its deadline, else 0",
+        "scenarios whose expect table states reach",
+        "the level's stated expectation",
+        1.0,
+    ),
+    def(
+        "expect_grounded_at_end",
+        "bool",
+        Landing,
+        "1 if the controller's grounded flag on the last frame is not the scenario's expect.grounded_at_end, else 0",
+        "scenarios whose expect table states grounded_at_end",
+        "the level's stated expectation",
+        1.0,
+    ),
+    def(
+        "expect_min_y",
+        "bool",
+        Landing,
+        "1 if the feet ever went below the scenario's expect.min_y (tiles), else 0",
+        "scenarios whose expect table states min_y",
+        "the level's stated expectation",
+        1.0,
+    ),
+    def(
+        "expect_stay_in_map",
+        "bool",
+        Landing,
+        "1 if the feet ever left the map (0 <= x <= width, 0 <= y <= height, tiles), else 0",
+        "scenarios whose expect table sets stay_in_map = true",
+        "the level's stated expectation",
+        1.0,
+    ),
+    def(
+        "expect_land_on",
+        "bool",
+        Platforms,
+        "1 if the character never stood on the moving platform expect.land_on names (grounded, feet within 0.05 tiles of its top, overlapping it), else 0",
+        "scenarios whose expect table states land_on",
+        "the level's stated expectation",
+        1.0,
+    ),
+    def(
         "ns_per_character_step",
         "ns",
         Cost,
@@ -503,43 +557,5 @@ pub(crate) fn of_behaviour(b: Behaviour) -> impl Iterator<Item = &'static Metric
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_are_unique_and_units_known() {
-        for (i, d) in METRICS.iter().enumerate() {
-            assert!(
-                METRICS[i + 1..].iter().all(|e| e.name != d.name),
-                "{} twice",
-                d.name
-            );
-            assert!(
-                ["tiles", "ratio", "tiles/s", "frames", "count", "bool", "ns"].contains(&d.unit),
-                "{}: {}",
-                d.name,
-                d.unit
-            );
-            assert!(d.weight >= 0.0 && d.weight.is_finite());
-        }
-    }
-
-    #[test]
-    fn errors_under_a_pixel_are_not_charged() {
-        let d = |name| get(name).unwrap();
-        // At 16 px per tile one pixel is 0.0625 tiles: a 0.16-pixel hover (0.01 tiles, the
-        // issue's example) is free; a pixel and a clearly-wrong size (0.0625 + 0.01) is 1.
-        assert_eq!(d("rest_gap_declared").charged(0.01, 16.0), 0.0);
-        assert_eq!(d("rest_gap_declared").charged(-0.0625, 16.0), 0.0);
-        assert!((d("rest_gap_declared").charged(0.0725, 16.0) - 1.0).abs() < 1e-9);
-        // At 32 px per tile the same 0.0725 is 1.15 pixels beyond the pixel (0.04125 tiles).
-        assert!((d("rest_gap_declared").charged(0.0725, 32.0) - 4.125).abs() < 1e-9);
-        // Speeds: one pixel per second (1/16 tiles/s) is free.
-        assert_eq!(d("ladder_speed_error").charged(0.06, 16.0), 0.0);
-        // Ratios, frames, counts and booleans have no pixel allowance.
-        assert_eq!(d("progress_ratio").charged(0.02, 16.0), 2.0);
-        assert_eq!(d("bounce_frames").charged(1.0, 16.0), 1.0);
-        assert_eq!(d("tunneled").charged(1.0, 16.0), 1.0);
-        assert_eq!(d("apex_error").charged(f64::NAN, 16.0), f64::INFINITY);
-    }
-}
+#[path = "registry_tests.rs"]
+mod tests;

@@ -25,6 +25,7 @@ pub(super) fn spec(spawn: Vec2, inputs: Vec<InputEvent>, duration: f32) -> Scena
         motion: Default::default(),
         expect_y: None,
         ride: None,
+        expect: Default::default(),
     }
 }
 
@@ -94,7 +95,8 @@ fn every_computed_metric_is_in_the_registry() {
             "false_grounded",
             "stuck_frames",
             "tunneled",
-            "idle_drift"
+            "idle_drift",
+            "left_level"
         ]
     );
     for r in &rows {

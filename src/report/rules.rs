@@ -348,6 +348,42 @@ pub const RULES: &[Rule] = &[
         0.0,
         "Tunnels through a wall at speed",
     ),
+    fault(
+        "left_level",
+        Above,
+        0.0,
+        "Leaves the level: falls below everything that could catch it, or walks off the side of the map",
+    ),
+    fault(
+        "expect_reach",
+        Above,
+        0.0,
+        "Misses a region a level says the character reaches by a time (expect.reach)",
+    ),
+    fault(
+        "expect_grounded_at_end",
+        Above,
+        0.0,
+        "Ends grounded or airborne other than a level says (expect.grounded_at_end)",
+    ),
+    fault(
+        "expect_min_y",
+        Above,
+        0.0,
+        "Goes lower than a level allows (expect.min_y)",
+    ),
+    fault(
+        "expect_stay_in_map",
+        Above,
+        0.0,
+        "Leaves the map of a level that says it stays in (expect.stay_in_map)",
+    ),
+    fault(
+        "expect_land_on",
+        Above,
+        0.0,
+        "Never stands on the moving platform a level says it lands on (expect.land_on)",
+    ),
 ];
 
 /// The statements `rules` make on `rows`: for each rule that holds for some configuration, its

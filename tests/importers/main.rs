@@ -4,6 +4,7 @@
 mod common;
 
 mod ldtk;
+mod side_expect;
 mod tiled;
 mod tiled_errors;
 mod tiled_runs;

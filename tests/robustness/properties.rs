@@ -91,6 +91,7 @@ fn scenario(at: Vec2, inputs: Vec<InputEvent>, seconds: f32) -> ScenarioSpec {
         motion: Default::default(),
         expect_y: None,
         ride: None,
+        expect: Default::default(),
     }
 }
 

@@ -5,7 +5,7 @@
 //! `error` (the error and the file:line:column it names), `map` (the map string), `legend`
 //! (the tiles the map's characters stand for, slopes included), `platforms` (moving
 //! platforms), `scenarios` (`[[scenario]]` entries, in a level file or an imported map's side
-//! file) and `numbers` (the checks of numbers against [`crate::limits`]).
+//! file), `expect` (a scenario's expectations) and `numbers` (the checks of numbers against [`crate::limits`]).
 
 use std::collections::BTreeMap;
 
@@ -17,6 +17,9 @@ use crate::limits;
 use super::Level;
 
 mod error;
+mod expect;
+#[cfg(test)]
+mod expect_tests;
 mod legend;
 mod map;
 mod numbers;

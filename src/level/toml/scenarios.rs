@@ -1,6 +1,6 @@
 //! `[[scenario]]` entries, in a level file or in an imported map's side file: name, spawn,
-//! timing, character, input script, motion overrides, expected end and platform ridden, each
-//! checked against the level the scenario runs on.
+//! timing, character, input script, motion overrides, expected end, platform ridden and
+//! expectations (`expect`, in its own file), each checked against the level the scenario runs on.
 
 use std::collections::HashMap;
 use std::ops::Range;
@@ -16,6 +16,7 @@ use crate::level::{
 use crate::limits;
 
 use super::error::{LevelError, Locator};
+use super::expect::{parse_expect, RawExpect};
 use super::numbers::{coord, finite, positive, ranged, vec2};
 
 #[derive(Deserialize)]
@@ -32,6 +33,7 @@ pub(super) struct RawScenario {
     motion: Option<Spanned<RawMotion>>,
     expect_y: Option<Spanned<f64>>,
     ride: Option<Spanned<u32>>,
+    expect: Option<Spanned<RawExpect>>,
 }
 
 #[derive(Deserialize)]
@@ -103,7 +105,10 @@ pub(super) fn scenarios(
     let mut out: Vec<ScenarioSpec> = Vec::with_capacity(raw.len());
     let mut level_frames = 0u64;
     for s in raw {
-        let spec = parse_scenario(loc, s.get_ref())?;
+        let mut spec = parse_scenario(loc, s.get_ref())?;
+        if let Some(e) = &s.get_ref().expect {
+            spec.expect = parse_expect(loc, level, &spec, e)?;
+        }
         if let Some(prev) = seen.insert(spec.name.clone(), s.span()) {
             let first = loc.at(&prev, "");
             return Err(loc.at(
@@ -262,6 +267,7 @@ fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelE
         motion,
         expect_y,
         ride: s.ride.as_ref().map(|r| *r.get_ref()),
+        expect: Default::default(),
     })
 }
 

@@ -115,6 +115,12 @@ const ONE_SIDED: &[&str] = &[
     "crush_count",
     "tunneled",
     "idle_drift",
+    "left_level",
+    "expect_reach",
+    "expect_grounded_at_end",
+    "expect_min_y",
+    "expect_stay_in_map",
+    "expect_land_on",
 ];
 
 #[test]
