@@ -26,8 +26,8 @@ pub fn advised_pogo_hertz() -> f32 {
 }
 
 /// The stiffest spring of the trade-off grid, in Hz: its best Box2D setting without the carry
-/// (`per-tile capsule pogo=20Hz` in compare/tradeoff/tradeoff.csv, 0.1210 against the sample's
-/// 0.1354; with the carry the advised 7.8 Hz scores better, 0.0911 against 0.0983).
+/// (`per-tile capsule pogo=20Hz` in compare/tradeoff/tradeoff.csv, 0.1096 against the sample's
+/// 0.1227; with the carry the advised 7.8 Hz scores better, 0.0825 against 0.0890).
 pub const STIFF_POGO_HERTZ: f32 = 20.0;
 
 /// The sample's capsule on one box per tile and on merged chain loops; then, per tile, the
