@@ -173,3 +173,36 @@ fn a_bad_or_missing_manifest_is_an_error_naming_the_file() {
         "{err}"
     );
 }
+
+#[test]
+fn help_names_the_default_baseline_and_fits_the_terminal() {
+    let out = platbench().arg("--help").output().unwrap();
+    let help = String::from_utf8_lossy(&out.stdout).into_owned();
+    for (cmd, starts) in [
+        ("baseline", "Write a baseline of the selection you choose"),
+        ("check", "For CI: run a baseline's selection again"),
+        ("review", "Review the changes a check found"),
+    ] {
+        let line = help
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("{cmd} ")))
+            .unwrap_or_else(|| panic!("no line for {cmd}:\n{help}"));
+        assert!(line.contains(starts), "{cmd}: {line}");
+        let out = platbench()
+            .env("PLATBENCH_BASELINE", "some/where")
+            .args([cmd, "--help"])
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        let wide: Vec<&str> = text.lines().filter(|l| l.chars().count() > 120).collect();
+        assert!(wide.is_empty(), "`platbench {cmd} --help`: {wide:?}");
+        // The default baseline, and the directory it resolves to from here.
+        let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+        let here = std::env::current_dir().unwrap().join("some/where");
+        assert!(
+            flat.contains("Default: the harness's baseline, some/where (here:")
+                && flat.contains(&here.display().to_string()),
+            "{cmd}: {flat}"
+        );
+    }
+}
