@@ -1,5 +1,6 @@
 //! The `platbench` command-line harness, as a library: [`main_with`] gives a crate the whole
-//! CLI (`run`, `diff`, `report`, `stress`, `sweep`, `levels`, `inspect`) over the backend kinds
+//! CLI (`run`, `diff`, `report`, `stress`, `sweep`, `levels`, `inspect`, `baseline`, `check`,
+//! `review`) over the backend kinds
 //! of a [`Registry`], so a user's controller runs beside ours from one call in their `main`:
 //!
 //! ```no_run
@@ -14,11 +15,15 @@
 //! It only wires the library together: parse levels, run every scenario on every configuration,
 //! write CSV files, print tables. One file per subcommand.
 
+mod baseline;
+mod check;
 mod diff;
 mod inspect;
 mod levels;
 mod output;
 mod report;
+mod review;
+mod review_apply;
 mod run;
 mod select;
 mod stress;
@@ -42,8 +47,8 @@ pub use output::MARKER;
 pub struct Harness {
     /// The backend kinds every command runs, in order.
     pub registry: Registry,
-    /// The baseline directory: the only directory `run --bless` writes, and one every other
-    /// command refuses to replace.
+    /// The baseline directory: what `run --bless` writes, and the default `--baseline` of
+    /// `baseline`, `check` and `review` (every other command refuses to replace a baseline).
     pub baseline: PathBuf,
 }
 
@@ -105,7 +110,22 @@ where
         .mut_subcommand("run", |c| c.mut_arg("backends", backends))
         .mut_subcommand("report", |c| c.mut_arg("backends", backends))
         .mut_subcommand("stress", |c| c.mut_arg("backends", backends))
-        .mut_subcommand("sweep", |c| c.mut_arg("backends", backends));
+        .mut_subcommand("sweep", |c| c.mut_arg("backends", backends))
+        .mut_subcommand("baseline", |c| {
+            c.mut_arg("backends", backends).mut_arg("baseline", |a| {
+                a.help(baseline::baseline_help(harness, "to write"))
+            })
+        })
+        .mut_subcommand("check", |c| {
+            c.mut_arg("baseline", |a| {
+                a.help(baseline::baseline_help(harness, "to compare with"))
+            })
+        })
+        .mut_subcommand("review", |c| {
+            c.mut_arg("baseline", |a| {
+                a.help(baseline::baseline_help(harness, "to update"))
+            })
+        });
     let cli = match command
         .try_get_matches_from(args)
         .and_then(|m| Cli::from_arg_matches(&m))
@@ -151,6 +171,9 @@ where
         ),
         Some(Command::Report(args)) => report::report(h, &args),
         Some(Command::Diff(args)) => return diff::diff(&args),
+        Some(Command::Baseline(args)) => baseline::baseline(h, &args),
+        Some(Command::Check(args)) => return check::check(h, &args),
+        Some(Command::Review(args)) => review::review(h, &args),
         Some(Command::Inspect(args)) => inspect::inspect(&args),
     };
     match result {
@@ -215,7 +238,7 @@ enum Command {
         out: PathBuf,
         /// Replace --out even when it holds something other than an earlier `platbench sweep`
         /// output (a directory of your own files, another command's output). Without it such a
-        /// directory is refused. A baseline is never replaced but by `run --bless`.
+        /// directory is refused. A baseline is never replaced here.
         #[arg(long)]
         force: bool,
         /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
@@ -251,7 +274,7 @@ enum Command {
         out: PathBuf,
         /// Replace --out even when it holds something other than an earlier `platbench stress`
         /// output (a directory of your own files, another command's output). Without it such a
-        /// directory is refused. A baseline is never replaced but by `run --bless`.
+        /// directory is refused. A baseline is never replaced here.
         #[arg(long)]
         force: bool,
         /// Also say which configurations hold in a world this many tiles across (positions up
@@ -276,6 +299,31 @@ enum Command {
     /// --allow-divergence); 2 on an error (a bad option, an unreadable or malformed file).
     /// A NaN where the other run has a number is a difference.
     Diff(diff::DiffArgs),
+    /// Write a baseline of the selection you choose, with a manifest, for `check`.
+    ///
+    /// Runs the selection (`run`'s options: level files, --backend, --shape, --scenario,
+    /// --traces, ...) and writes DIR/metrics.csv, DIR/traces/ and DIR/manifest.toml (the
+    /// selection, the levels with a hash of each file, the configurations, the platbench and
+    /// key dependency versions), replacing DIR as a whole once the run is complete. An existing
+    /// baseline is replaced only with --replace.
+    Baseline(baseline::BaselineArgs),
+    /// For CI: run a baseline's selection again and compare (one line per run, then counts).
+    ///
+    /// Reads DIR/manifest.toml of the baseline, runs the same selection, compares it with the
+    /// baseline by `diff`'s rules, and prints one line per scenario and configuration (pass,
+    /// worse, better, diverged, missing, new) and a closing `N passed, N failed` line; says so
+    /// when the platbench or dependency versions differ from the baseline's. Writes the run to
+    /// --out. Exit status: 0 when every run passes, 1 on a regression (worse, diverged,
+    /// missing), 2 on an error.
+    Check(check::CheckArgs),
+    /// Review the changes a check found, and accept them into the baseline one by one.
+    ///
+    /// For each run `check` found changed: its metrics in the baseline and now, and
+    /// CHECK_DIR/review/<trace>.html replaying both traces side by side. Asks whether to accept
+    /// each (stdin must be a terminal), or decides by --accept-all, --accept PATTERN or
+    /// --reject-all. Accepting replaces only that run's metric rows and trace file in the
+    /// baseline; every other byte stays, and the baseline is swapped in as a whole.
+    Review(review::ReviewArgs),
     /// Show what a Tiled or LDtk map was read as, layer by layer.
     ///
     /// Shows what a Tiled (.tmx) or LDtk (.ldtk) map was read as: each layer with the role it

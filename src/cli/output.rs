@@ -30,15 +30,18 @@ pub(crate) enum Kind {
     Stress,
     /// `platbench sweep --out`.
     Sweep,
+    /// `platbench check --out`.
+    Check,
 }
 
 impl Kind {
-    const ALL: [Kind; 5] = [
+    const ALL: [Kind; 6] = [
         Kind::Run,
         Kind::Baseline,
         Kind::Report,
         Kind::Stress,
         Kind::Sweep,
+        Kind::Check,
     ];
 
     fn name(self) -> &'static str {
@@ -48,6 +51,7 @@ impl Kind {
             Kind::Report => "report",
             Kind::Stress => "stress",
             Kind::Sweep => "sweep",
+            Kind::Check => "check",
         }
     }
 
@@ -58,6 +62,7 @@ impl Kind {
             Kind::Report => "platbench report",
             Kind::Stress => "platbench stress",
             Kind::Sweep => "platbench sweep",
+            Kind::Check => "platbench check",
         }
     }
 
@@ -79,8 +84,8 @@ fn marker_of(dir: &Path) -> Option<Kind> {
 ///
 /// - a missing or empty directory is written;
 /// - a directory holding the same command's output (its marker) is replaced;
-/// - a baseline (marker `platbench baseline`) is replaced only by `run --bless`, whatever else
-///   is asked;
+/// - a baseline (marker `platbench baseline`) is replaced only by `run --bless`, `baseline`
+///   and `review` (their callers ask `Kind::Baseline`), whatever else is asked;
 /// - a file is never replaced;
 /// - anything else (a user's directory, another command's output) only with `force`; the
 ///   filesystem root, the current directory and its ancestors never.
@@ -107,7 +112,7 @@ pub(crate) fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
     let found = marker_of(dir);
     if found == Some(Kind::Baseline) && kind != Kind::Baseline {
         bail!(
-            "--out {} is a platbench baseline (its {MARKER} file says so); a baseline is replaced only on purpose, with `platbench run --bless`",
+            "--out {} is a platbench baseline (its {MARKER} file says so); a baseline is replaced only on purpose, with `platbench run --bless`, `platbench baseline --replace` or `platbench review`",
             dir.display()
         );
     }

@@ -32,7 +32,7 @@ pub(crate) struct RunArgs {
     /// as a whole once the run is complete. It must be missing, empty, or an earlier
     /// `platbench run` output (it holds a .platbench-output marker file); anything else is
     /// refused unless --force. A baseline (its marker says so) is refused even with --force:
-    /// only --bless replaces it.
+    /// only --bless, `platbench baseline --replace` and `platbench review` replace one.
     #[arg(long, value_name = "DIR")]
     pub(crate) out: Option<PathBuf>,
     /// Replace --out even when it is not an earlier run's output (a directory of your own
@@ -58,8 +58,9 @@ pub(crate) struct RunArgs {
     #[arg(long = "profile", value_name = "FILE")]
     pub(crate) profiles: Vec<PathBuf>,
     /// Replace the committed baseline (compare/baseline for platbench itself; the harness's
-    /// baseline directory for a crate calling platbench::cli) with this run: the only way it is
-    /// written. Runs the built-in set with every configuration.
+    /// baseline directory for a crate calling platbench::cli) with this run, and its
+    /// manifest.toml. Runs the built-in set with every configuration (`platbench baseline`
+    /// writes a baseline of a selection of your choosing).
     #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing", "traces", "precisions", "scenarios"])]
     pub(crate) bless: bool,
     /// Also time each scenario on each configuration (in process, minimum of 5 repeats) and
@@ -155,6 +156,10 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
                     jobs,
                     Some((dir, traces)),
                 )?);
+                if args.bless {
+                    // What the baseline holds, for `platbench check`.
+                    super::baseline::manifest_of(args, &levels, &configs)?.write(dir)?;
+                }
                 Ok(())
             })?;
             result.unwrap_or_default()
@@ -329,7 +334,7 @@ type Executed = (
 /// scenario, configuration) whatever the threads. Returns the metric rows the summary needs
 /// (every row with --detail; see [`SummaryRows`]) with the scenarios each configuration ran,
 /// the notes on the rows, the number of rows, and the number of traces written.
-fn execute<'a>(
+pub(crate) fn execute<'a>(
     registry: &crate::registry::Registry,
     levels: &'a [crate::level::Level],
     configs: &[RunConfig],

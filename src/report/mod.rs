@@ -2,15 +2,18 @@
 //! configuration, side by side, with the better one named) and a per-scenario detail table.
 //! Tables are Markdown-style ASCII so they read the same in a terminal, a CI log and a PR.
 
+pub(crate) mod check;
 pub mod diff;
 pub mod html;
 mod html_colours;
 mod html_nav;
 mod html_replay_data;
 mod html_sections;
+pub(crate) mod manifest;
 pub mod notes;
 pub mod profile;
 pub mod replay;
+pub(crate) mod review_page;
 pub mod rules;
 pub mod summary_rows;
 pub mod verdict;

@@ -1,0 +1,195 @@
+//! `platbench check`: the CI command. Reads a baseline's manifest, runs the same selection,
+//! compares the run with the baseline (`platbench diff`'s rules), prints one line per scenario
+//! and configuration and a closing count, and writes the run (metrics, the traces of what
+//! changed, `check.csv`, `summary.md`) to `--out`.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{bail, Context as _, Result};
+use clap::Args;
+
+use super::baseline::{baseline_dir, run_args_of, selection_of};
+use super::{out, output, Harness};
+use crate::report::check::{closing_line, line, summary_markdown, units, Unit};
+use crate::report::diff::{diff_runs, read_metrics, render, DiffFormat, FailOn, Tolerance};
+use crate::report::manifest::Manifest;
+
+/// The file of `check --out` that lists every run with its status.
+pub(crate) const UNITS: &str = "check.csv";
+/// The Markdown summary of `check --out`.
+pub(crate) const SUMMARY: &str = "summary.md";
+
+/// `platbench check`'s options.
+#[derive(Args)]
+#[command(allow_negative_numbers = true)]
+pub(crate) struct CheckArgs {
+    /// The baseline directory (placeholder; the harness sets the real help).
+    #[arg(long = "baseline", value_name = "DIR")]
+    pub(crate) baseline: Option<PathBuf>,
+    /// Where the new run goes: DIR/metrics.csv (every metric), DIR/traces/ (the traces of the
+    /// runs that did not pass), DIR/check.csv (every run's status) and DIR/summary.md (for a
+    /// pull-request comment). Replaced as a whole, as `run --out` is (see --force); relative to
+    /// the current directory.
+    #[arg(long, value_name = "DIR", default_value = "platbench-check")]
+    pub(crate) out: PathBuf,
+    /// Replace --out even when it is not an earlier check's output (everything in it is
+    /// deleted). A baseline is never replaced.
+    #[arg(long)]
+    pub(crate) force: bool,
+    /// Override a metric's tolerance, as `diff --tol`: METRIC=ABS or METRIC=ABS,REL (finite,
+    /// >= 0). Repeatable.
+    #[arg(long = "tol", value_name = "METRIC=ABS[,REL]")]
+    pub(crate) tolerances: Vec<String>,
+    /// Position difference at which a trace diverges, in tiles (finite and >= 0).
+    #[arg(long, default_value_t = 1e-4, value_name = "TILES")]
+    pub(crate) position_tolerance: f32,
+    /// Fail when a timing got worse beyond its tolerance too (a baseline written with
+    /// --timing); by default timings never fail.
+    #[arg(long)]
+    pub(crate) fail_on_timing: bool,
+    /// Threads to run on (default: the cores available); the output is the same whatever the
+    /// number.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub(crate) jobs: Option<u32>,
+}
+
+/// Parses `--tol` values as `diff` does.
+fn tolerances(given: &[String]) -> Result<BTreeMap<String, Tolerance>> {
+    let mut tols = BTreeMap::new();
+    for t in given {
+        let Some((m, v)) = t.split_once('=') else {
+            bail!("--tol {t}: expected METRIC=ABS or METRIC=ABS,REL");
+        };
+        if crate::metrics::registry::get(m).is_none() {
+            let names: Vec<&str> = crate::metrics::registry::METRICS
+                .iter()
+                .map(|d| d.name)
+                .collect();
+            bail!(
+                "--tol {t}: no metric is named {m:?}; expected one of {}",
+                names.join(", ")
+            );
+        }
+        let mut parts = v.split(',').map(|x| x.trim().parse::<f64>());
+        let abs = parts.next().and_then(|r| r.ok());
+        let rel = parts.next().map_or(Some(0.0), |r| r.ok());
+        match (abs, rel) {
+            (Some(abs), Some(rel))
+                if abs.is_finite() && abs >= 0.0 && rel.is_finite() && rel >= 0.0 =>
+            {
+                tols.insert(m.to_string(), Tolerance { abs, rel });
+            }
+            _ => bail!("--tol {t}: expected METRIC=ABS or METRIC=ABS,REL with finite numbers >= 0"),
+        }
+    }
+    Ok(tols)
+}
+
+/// Runs `platbench check`: 0 when every run passes, 1 on a regression, 2 on an error.
+pub(crate) fn check(h: &Harness, args: &CheckArgs) -> ExitCode {
+    match check_inner(h, args) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
+    let p = args.position_tolerance;
+    if !(p.is_finite() && p >= 0.0) {
+        bail!("--position-tolerance {p}: expected a finite number of tiles >= 0");
+    }
+    let tols = tolerances(&args.tolerances)?;
+    let base = baseline_dir(h, args.baseline.as_deref());
+    let manifest = Manifest::read(&base)?;
+    output::check_target(&args.out, output::Kind::Check, args.force)?;
+    let run = run_args_of(&manifest, args.jobs);
+    let (levels, configs, mut notes) = selection_of(h, &manifest, &run)?;
+    for v in manifest.version_changes() {
+        notes.insert(
+            0,
+            format!(
+                "versions differ: {v}; a difference below may come from that, not from your change"
+            ),
+        );
+    }
+    for n in &notes {
+        out(&format!("note: {n}"));
+    }
+    let jobs = if run.timing { 1 } else { run.select.jobs() };
+    let fail_on = FailOn {
+        timing: args.fail_on_timing,
+        ..FailOn::default()
+    };
+    eprintln!(
+        "platbench check: {} scenarios on {} configurations against {}",
+        levels.iter().map(|l| l.scenarios.len()).sum::<usize>(),
+        configs.len(),
+        base.display()
+    );
+    let started = Instant::now();
+    let mut result: Option<(Vec<Unit>, Vec<String>)> = None;
+    output::write_output(&args.out, output::Kind::Check, args.force, |dir| {
+        let traces = run.traces.unwrap_or(super::run::Traces::All);
+        super::run::execute(
+            &h.registry,
+            &levels,
+            &configs,
+            &run,
+            jobs,
+            Some((dir, traces)),
+        )?;
+        let d = diff_runs(&base, dir, &tols, p)
+            .with_context(|| format!("comparing with the baseline {}", base.display()))?;
+        let (b, n) = (read_metrics(&base)?, read_metrics(dir)?);
+        let all = units(&b, &n, &d, fail_on);
+        // Only the traces of what changed stay: what `review` replays and CI uploads.
+        for u in all
+            .iter()
+            .filter(|u| u.status == crate::report::check::Status::Pass)
+        {
+            let t = dir.join("traces").join(&u.trace);
+            if t.exists() {
+                std::fs::remove_file(&t)
+                    .with_context(|| format!("cannot remove {}", t.display()))?;
+            }
+        }
+        super::output::write_csv(&dir.join(UNITS), &all)?;
+        let md = summary_markdown(&all, &notes, &render(&d, DiffFormat::Markdown));
+        output::write_file(&dir.join(SUMMARY), md.as_bytes())?;
+        result = Some((all, d.failures(fail_on)));
+        Ok(())
+    })?;
+    let Some((all, failures)) = result else {
+        bail!("the check wrote nothing");
+    };
+    eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
+    let mut text = String::new();
+    for u in &all {
+        text.push_str(&line(u));
+        text.push('\n');
+    }
+    out(text.trim_end());
+    for f in &failures {
+        eprintln!("regression: {f}");
+    }
+    eprintln!(
+        "wrote {} ({}, {}, the changed traces); `platbench review {}` shows and accepts the changes",
+        args.out.display(),
+        UNITS,
+        SUMMARY,
+        args.out.display()
+    );
+    out(&closing_line(&all));
+    let failed = all.iter().any(|u| u.status.fails());
+    Ok(if failed || !failures.is_empty() {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}

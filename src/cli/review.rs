@@ -1,0 +1,285 @@
+//! `platbench review CHECK_DIR`: each run a check found changed, its metrics in the baseline
+//! and now and a page replaying the two traces side by side; accepted or rejected one by one
+//! at a terminal, or all at once by flags. Accepted runs replace their part of the baseline
+//! (`review_apply`).
+
+use std::io::{BufRead as _, IsTerminal as _, Write as _};
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context as _, Result};
+use clap::Args;
+
+use super::baseline::{baseline_dir, run_args_of, selection_of};
+use super::check::UNITS;
+use super::{out, output, Harness};
+use crate::report::check::{line, Status, Unit};
+use crate::report::diff::{read_metrics, MetricRecord};
+use crate::report::manifest::Manifest;
+use crate::report::review_page::{review_page, MetricLine, ReviewRun};
+use crate::trace::Trace;
+
+/// `platbench review`'s options.
+#[derive(Args)]
+pub(crate) struct ReviewArgs {
+    /// The output of `platbench check --out` to review.
+    #[arg(value_name = "CHECK_DIR", default_value = "platbench-check")]
+    pub(crate) check: PathBuf,
+    /// The baseline directory (placeholder; the harness sets the real help).
+    #[arg(long = "baseline", value_name = "DIR")]
+    pub(crate) baseline: Option<PathBuf>,
+    /// Accept every change without asking.
+    #[arg(long, conflicts_with_all = ["accept", "reject_all"])]
+    pub(crate) accept_all: bool,
+    /// Accept the changes whose `LEVEL.SCENARIO/BACKEND CONFIG` matches PATTERN (a glob with
+    /// `*` and `?` when it has one, else a substring), reject the others, without asking.
+    /// Repeatable.
+    #[arg(long = "accept", value_name = "PATTERN", conflicts_with = "reject_all")]
+    pub(crate) accept: Vec<String>,
+    /// Reject every change without asking: only list them and write their pages.
+    #[arg(long)]
+    pub(crate) reject_all: bool,
+}
+
+/// Whether `text` matches `pattern`: a glob (`*` any run of characters, `?` one) when the
+/// pattern has either, else a substring.
+pub(crate) fn matches(pattern: &str, text: &str) -> bool {
+    if !pattern.contains(['*', '?']) {
+        return text.contains(pattern);
+    }
+    fn glob(p: &[char], t: &[char]) -> bool {
+        match p.split_first() {
+            None => t.is_empty(),
+            Some(('*', rest)) => (0..=t.len()).any(|i| glob(rest, &t[i..])),
+            Some(('?', rest)) => !t.is_empty() && glob(rest, &t[1..]),
+            Some((c, rest)) => t.first() == Some(c) && glob(rest, &t[1..]),
+        }
+    }
+    let (p, t): (Vec<char>, Vec<char>) = (pattern.chars().collect(), text.chars().collect());
+    glob(&p, &t)
+}
+
+/// What to do with the changes still to see.
+#[derive(Clone, Copy, PartialEq)]
+enum Answer {
+    Accept,
+    Reject,
+    AcceptRest,
+    RejectRest,
+    Quit,
+}
+
+fn ask(id: &str) -> Result<Answer> {
+    let stdin = std::io::stdin();
+    loop {
+        print!("accept {id} into the baseline? [y]es [n]o [a]ccept the rest [r]eject the rest [q]uit, changing nothing: ");
+        let _ = std::io::stdout().flush();
+        let mut answer = String::new();
+        if stdin
+            .lock()
+            .read_line(&mut answer)
+            .context("cannot read stdin")?
+            == 0
+        {
+            return Ok(Answer::RejectRest);
+        }
+        match answer.trim() {
+            "y" | "yes" => return Ok(Answer::Accept),
+            "n" | "no" => return Ok(Answer::Reject),
+            "a" => return Ok(Answer::AcceptRest),
+            "r" => return Ok(Answer::RejectRest),
+            "q" => return Ok(Answer::Quit),
+            _ => println!("answer y, n, a, r or q"),
+        }
+    }
+}
+
+/// The rows of `u` in `rows`.
+fn rows_of<'a>(rows: &'a [MetricRecord], u: &Unit) -> Vec<&'a MetricRecord> {
+    rows.iter()
+        .filter(|r| {
+            r.level == u.level
+                && r.scenario == u.scenario
+                && r.backend == u.backend
+                && r.config == u.config
+        })
+        .collect()
+}
+
+/// The metrics of `u`, the baseline's beside the check's, in the baseline's order.
+fn metric_lines(base: &[&MetricRecord], new: &[&MetricRecord]) -> Vec<MetricLine> {
+    let show = |r: Option<&&MetricRecord>| {
+        r.map_or("-".to_string(), |r| crate::report::format_value(r.value))
+    };
+    let mut names: Vec<&str> = base.iter().map(|r| r.metric.as_str()).collect();
+    for r in new {
+        if !names.contains(&r.metric.as_str()) {
+            names.push(&r.metric);
+        }
+    }
+    names
+        .into_iter()
+        .map(|m| {
+            let (b, n) = (
+                base.iter().find(|r| r.metric == m),
+                new.iter().find(|r| r.metric == m),
+            );
+            MetricLine {
+                metric: m.to_string(),
+                base: show(b),
+                new: show(n),
+                changed: b.map(|r| r.value.to_bits()) != n.map(|r| r.value.to_bits()),
+            }
+        })
+        .collect()
+}
+
+/// Reads a trace file, if it is there.
+fn trace_at(path: &Path, u: &Unit) -> Option<Trace> {
+    let file = std::fs::File::open(path).ok()?;
+    Some(Trace {
+        level: u.level.clone(),
+        scenario: u.scenario.clone(),
+        backend: u.backend.clone(),
+        config: u.config.clone(),
+        rows: Trace::read_rows(file).ok()?,
+    })
+}
+
+pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
+    let flags = args.accept_all || args.reject_all || !args.accept.is_empty();
+    if !flags && !std::io::stdin().is_terminal() {
+        bail!("review asks about each change on a terminal, and stdin is not one; pass --accept-all, --accept PATTERN or --reject-all to decide without asking");
+    }
+    let marker = std::fs::read_to_string(args.check.join(output::MARKER)).unwrap_or_default();
+    if marker.lines().next() != Some("platbench check") {
+        bail!(
+            "{} is not the output of `platbench check --out` (its {} file does not say `platbench check`)",
+            args.check.display(),
+            output::MARKER
+        );
+    }
+    let units_path = args.check.join(UNITS);
+    let units: Vec<Unit> = super::read_rows(&units_path)?;
+    let base = baseline_dir(h, args.baseline.as_deref());
+    let manifest = Manifest::read(&base)?;
+    let changed: Vec<&Unit> = units.iter().filter(|u| u.status != Status::Pass).collect();
+    if changed.is_empty() {
+        out(&format!(
+            "nothing to review: every run of {} passed",
+            args.check.display()
+        ));
+        return Ok(());
+    }
+    let (base_rows, new_rows) = (read_metrics(&base)?, read_metrics(&args.check)?);
+    // The levels and configurations draw the pages; without them the pages are left out.
+    let selection = selection_of(h, &manifest, &run_args_of(&manifest, None));
+    if let Err(e) = &selection {
+        eprintln!("warning: no replay pages: {e:#}");
+    }
+    let pages = args.check.join("review");
+    std::fs::create_dir_all(&pages)
+        .with_context(|| format!("cannot create {}", pages.display()))?;
+    let mut accepted: Vec<&Unit> = Vec::new();
+    let mut rest: Option<bool> = None;
+    for u in &changed {
+        let (b, n) = (rows_of(&base_rows, u), rows_of(&new_rows, u));
+        let metrics = metric_lines(&b, &n);
+        let mut table = comfy_table::Table::new();
+        table.load_style(comfy_table::presets::ASCII_MARKDOWN);
+        table.set_header(vec!["metric", "baseline", "new", ""]);
+        for m in &metrics {
+            table.add_row(vec![
+                m.metric.clone(),
+                m.base.clone(),
+                m.new.clone(),
+                if m.changed {
+                    "changed".into()
+                } else {
+                    String::new()
+                },
+            ]);
+        }
+        out(&format!("\n{}\n{table}", line(u)));
+        if let Ok((levels, configs, _)) = &selection {
+            let level = levels.iter().find(|l| l.name == u.level);
+            let spec = level.and_then(|l| l.scenarios.iter().find(|s| s.name == u.scenario));
+            let run = configs
+                .iter()
+                .find(|c| c.backend.backend() == u.backend && c.label == u.config);
+            if let (Some(level), Some(spec), Some(run)) = (level, spec, run) {
+                let page = review_page(
+                    &h.registry,
+                    &ReviewRun {
+                        level,
+                        spec,
+                        run,
+                        id: u.id(),
+                        headline: line(u),
+                        metrics,
+                        base: trace_at(&base.join("traces").join(&u.trace), u),
+                        new: trace_at(&args.check.join("traces").join(&u.trace), u),
+                    },
+                );
+                let path = pages.join(u.trace.replace(".csv", ".html"));
+                output::write_file(&path, page.as_bytes())?;
+                out(&format!("replay: {}", path.display()));
+            }
+        }
+        let yes = if args.accept_all {
+            true
+        } else if args.reject_all {
+            false
+        } else if !args.accept.is_empty() {
+            let id = u.id();
+            args.accept.iter().any(|p| matches(p, &id))
+        } else if let Some(r) = rest {
+            r
+        } else {
+            match ask(&u.id())? {
+                Answer::Accept => true,
+                Answer::Reject => false,
+                Answer::AcceptRest => {
+                    rest = Some(true);
+                    true
+                }
+                Answer::RejectRest => {
+                    rest = Some(false);
+                    false
+                }
+                Answer::Quit => {
+                    out("quit: the baseline is unchanged");
+                    return Ok(());
+                }
+            }
+        };
+        out(if yes { "accepted" } else { "rejected" });
+        if yes {
+            accepted.push(u);
+        }
+    }
+    super::review_apply::accept(&base, &args.check, &accepted)?;
+    out(&format!(
+        "\n{} of {} changes accepted into {}; {} rejected (the baseline keeps them as they were)",
+        accepted.len(),
+        changed.len(),
+        base.display(),
+        changed.len() - accepted.len()
+    ));
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::matches;
+
+    #[test]
+    fn patterns_are_globs_or_substrings() {
+        let id = "plain.drop/toy flush";
+        assert!(matches("plain.drop", id));
+        assert!(matches("plain.*/toy *", id));
+        assert!(matches("*flush", id));
+        assert!(!matches("*walk*", id));
+        assert!(!matches("plain.dro?", id));
+        assert!(matches("plain.dro?/*", id));
+    }
+}

@@ -1,0 +1,215 @@
+//! Accepting reviewed runs into a baseline: each accepted run's rows of `metrics.csv` and its
+//! trace file become the check's, and every other byte of the baseline stays as it was. The
+//! new baseline is written beside the old one and swapped in as a whole (`output::write_output`).
+
+use std::collections::{BTreeSet, HashMap};
+use std::fs;
+use std::ops::Range;
+use std::path::Path;
+
+use anyhow::{bail, Context as _, Result};
+
+use super::output;
+use crate::report::check::Unit;
+
+/// A run's key in `metrics.csv`: level, scenario, backend, configuration.
+type Key = (String, String, String, String);
+
+/// A `metrics.csv` read as bytes: its header's bytes and each record's key and byte range.
+struct Rows {
+    bytes: Vec<u8>,
+    header: Range<usize>,
+    records: Vec<(Key, Range<usize>)>,
+}
+
+/// Reads `path` as [`Rows`], checking that the ranges cover the file exactly.
+fn read_rows(path: &Path) -> Result<Rows> {
+    let bytes = fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .from_reader(bytes.as_slice());
+    let head = r
+        .byte_headers()
+        .with_context(|| format!("{}: no header", path.display()))?
+        .clone();
+    let col = |name: &str| {
+        head.iter()
+            .position(|h| h == name.as_bytes())
+            .with_context(|| format!("{}: no {name} column", path.display()))
+    };
+    let cols = [
+        col("level")?,
+        col("scenario")?,
+        col("backend")?,
+        col("config")?,
+    ];
+    let mut records = Vec::new();
+    let mut rec = csv::ByteRecord::new();
+    let mut start = None;
+    loop {
+        let more = r
+            .read_byte_record(&mut rec)
+            .with_context(|| format!("{}: malformed CSV", path.display()))?;
+        if !more {
+            break;
+        }
+        let from = rec.position().map_or(0, |p| p.byte() as usize);
+        let to = r.position().byte() as usize;
+        start.get_or_insert(from);
+        let field = |i: usize| String::from_utf8_lossy(rec.get(i).unwrap_or_default()).into_owned();
+        records.push((
+            (
+                field(cols[0]),
+                field(cols[1]),
+                field(cols[2]),
+                field(cols[3]),
+            ),
+            from..to,
+        ));
+    }
+    let header = 0..start.unwrap_or(bytes.len());
+    // The ranges must tile the file, or a splice would lose or repeat bytes.
+    let mut at = header.end;
+    for (_, range) in &records {
+        if range.start != at {
+            bail!(
+                "{}: cannot tell its rows apart byte for byte; refusing to edit it",
+                path.display()
+            );
+        }
+        at = range.end;
+    }
+    if at != bytes.len() {
+        bail!(
+            "{}: cannot tell its rows apart byte for byte; refusing to edit it",
+            path.display()
+        );
+    }
+    Ok(Rows {
+        bytes,
+        header,
+        records,
+    })
+}
+
+/// The baseline's `metrics.csv` with the rows of the `accepted` runs taken from the check's
+/// (in the place of the baseline's first row of that run; a run new to the baseline at the
+/// end; a run gone from the check removed). Every other byte is the baseline's.
+fn spliced(base: &Rows, new: &Rows, accepted: &BTreeSet<Key>) -> Result<Vec<u8>> {
+    if base.bytes[base.header.clone()] != new.bytes[new.header.clone()] {
+        bail!("the baseline's metrics.csv and the check's have different columns (a baseline written by another platbench): write the baseline again with `platbench baseline --replace` instead of accepting part of it");
+    }
+    let mut by_key: HashMap<&Key, Vec<&Range<usize>>> = HashMap::new();
+    for (k, r) in &new.records {
+        by_key.entry(k).or_default().push(r);
+    }
+    let mut out = base.bytes[base.header.clone()].to_vec();
+    let mut done: BTreeSet<&Key> = BTreeSet::new();
+    let push = |out: &mut Vec<u8>, bytes: &[u8]| {
+        if !out.is_empty() && !out.ends_with(b"\n") {
+            out.push(b'\n');
+        }
+        out.extend_from_slice(bytes);
+    };
+    for (k, r) in &base.records {
+        if !accepted.contains(k) {
+            push(&mut out, &base.bytes[r.clone()]);
+        } else if done.insert(k) {
+            for nr in by_key.get(k).into_iter().flatten() {
+                push(&mut out, &new.bytes[(*nr).clone()]);
+            }
+        }
+    }
+    for k in accepted.iter().filter(|k| !done.contains(k)) {
+        for nr in by_key.get(k).into_iter().flatten() {
+            push(&mut out, &new.bytes[(*nr).clone()]);
+        }
+    }
+    Ok(out)
+}
+
+/// Puts `from` at `to`: a hard link where the filesystem allows (the old baseline is deleted
+/// after the swap, so nothing stays shared), else a copy.
+fn link_or_copy(from: &Path, to: &Path) -> Result<()> {
+    if fs::hard_link(from, to).is_err() {
+        fs::copy(from, to)
+            .with_context(|| format!("cannot copy {} to {}", from.display(), to.display()))?;
+    }
+    Ok(())
+}
+
+/// Copies the tree `from` into `to` (made already), leaving out the marker file at its top.
+fn copy_tree(from: &Path, to: &Path, top: bool) -> Result<()> {
+    for e in fs::read_dir(from).with_context(|| format!("cannot read {}", from.display()))? {
+        let e = e.with_context(|| format!("cannot read {}", from.display()))?;
+        let (src, dst) = (e.path(), to.join(e.file_name()));
+        if top && e.file_name() == output::MARKER {
+            continue;
+        }
+        let kind = e
+            .file_type()
+            .with_context(|| format!("cannot inspect {}", src.display()))?;
+        if kind.is_dir() {
+            fs::create_dir(&dst).with_context(|| format!("cannot create {}", dst.display()))?;
+            copy_tree(&src, &dst, false)?;
+        } else if kind.is_file() {
+            link_or_copy(&src, &dst)?;
+        } else {
+            bail!(
+                "{}: not a file or directory; a baseline holds only files",
+                src.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Accepts the runs `accepted` of the check output `check` into the baseline `base`: their
+/// metric rows and trace files become the check's; the rest of the baseline is byte-identical.
+/// Written as a whole: a failure leaves the baseline as it was.
+pub(crate) fn accept(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<()> {
+    if accepted.is_empty() {
+        return Ok(());
+    }
+    let keys: BTreeSet<Key> = accepted
+        .iter()
+        .map(|u| {
+            (
+                u.level.clone(),
+                u.scenario.clone(),
+                u.backend.clone(),
+                u.config.clone(),
+            )
+        })
+        .collect();
+    let metrics = spliced(
+        &read_rows(&base.join("metrics.csv"))?,
+        &read_rows(&check.join("metrics.csv"))?,
+        &keys,
+    )?;
+    let marker = fs::read(base.join(output::MARKER))
+        .with_context(|| format!("cannot read {}", base.join(output::MARKER).display()))?;
+    output::write_output(base, output::Kind::Baseline, false, |staging| {
+        copy_tree(base, staging, true)?;
+        output::write_file(&staging.join(output::MARKER), &marker)?;
+        let m = staging.join("metrics.csv");
+        fs::remove_file(&m).with_context(|| format!("cannot replace {}", m.display()))?;
+        output::write_file(&m, &metrics)?;
+        let traces = staging.join("traces");
+        fs::create_dir_all(&traces)
+            .with_context(|| format!("cannot create {}", traces.display()))?;
+        for u in accepted {
+            let (new, old) = (check.join("traces").join(&u.trace), traces.join(&u.trace));
+            if old.exists() {
+                fs::remove_file(&old)
+                    .with_context(|| format!("cannot replace {}", old.display()))?;
+            }
+            if new.exists() {
+                fs::copy(&new, &old).with_context(|| {
+                    format!("cannot copy {} to {}", new.display(), old.display())
+                })?;
+            }
+        }
+        Ok(())
+    })
+}
