@@ -130,6 +130,16 @@ pub enum BackendError {
         /// What was expected.
         expected: &'static str,
     },
+    /// An external controller's process failed before its first step: it could not start, or
+    /// broke the step protocol, crashed or timed out in its handshake or its `run` reply
+    /// (docs/protocol.md). The run ends; the rest of the command's runs go on.
+    #[error("the external controller {backend} failed: {message}")]
+    External {
+        /// Backend name.
+        backend: &'static str,
+        /// What went wrong, with the process's exit status and last stderr lines if it has them.
+        message: String,
+    },
 }
 
 impl From<crate::motion::InvalidParam> for BackendError {
@@ -241,6 +251,19 @@ pub trait Backend {
     fn step(&mut self, inputs: &[Input], dt: f32);
     /// The state of character `id` after the last step.
     fn state(&self, id: CharacterId) -> CharacterState;
+    /// Why the backend stopped, if a step failed (an external controller's process crashed,
+    /// hung, or broke the protocol): the runner ends the run there with this message. Steps
+    /// after a failure do nothing. Default: never fails.
+    fn failure(&self) -> Option<String> {
+        None
+    }
+    /// The time the controller itself reports its steps took since it was built, in
+    /// nanoseconds, if it reports one (an external controller measures its own step; the
+    /// runner's wall clock would also count the pipe). Default: none, the runner times the
+    /// steps itself.
+    fn reported_ns(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// The contact a configuration promises to keep with the level (see

@@ -24,6 +24,7 @@ pub(crate) mod builtin;
 pub mod cli;
 pub mod config;
 pub mod controller;
+pub mod external;
 pub mod ladder;
 pub mod level;
 pub mod limits;

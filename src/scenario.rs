@@ -312,7 +312,9 @@ impl<'a> Runner<'a> {
         sink: &mut dyn FnMut(TraceRow),
     ) -> Result<Trace, RunError> {
         let params = effective_params(&run.params, spec);
-        let backend = self.build(run, &params, &[CharacterSpec::of(spec)])?;
+        let backend = self
+            .build(run, &params, &[CharacterSpec::of(spec)])
+            .map_err(|e| failed_at(e, self.level, spec, run))?;
         drive(&self.level.name, spec, run, backend, sink)
     }
 }
@@ -331,16 +333,23 @@ pub(crate) fn time_scenario(
     let script = input_script(spec);
     let mut best = f64::INFINITY;
     for _ in 0..repeats.max(1) {
-        let mut backend = runner.build(run, &params, &[CharacterSpec::of(spec)])?;
+        let mut backend = runner
+            .build(run, &params, &[CharacterSpec::of(spec)])
+            .map_err(|e| failed_at(e, runner.level(), spec, run))?;
         let mut input = [Input::default()];
         let start = std::time::Instant::now();
-        for i in &script {
+        for (k, i) in script.iter().enumerate() {
             input[0] = *i;
             for _ in 0..run.substeps.max(1) {
                 backend.step(&input, spec.dt / run.substeps.max(1) as f32);
             }
+            if let Some(message) = backend.failure() {
+                return Err(failed(runner.level(), spec, run, Some(k), message));
+            }
         }
-        let ns = start.elapsed().as_nanos() as f64 / script.len().max(1) as f64;
+        let elapsed = start.elapsed().as_nanos() as f64;
+        // A controller that reports its own step time is charged that, not the pipe's.
+        let ns = backend.reported_ns().unwrap_or(elapsed) / script.len().max(1) as f64;
         best = best.min(ns);
     }
     Ok(best)
@@ -379,6 +388,16 @@ fn drive(
         input[0] = *step_input;
         for _ in 0..run.substeps.max(1) {
             backend.step(&input, spec.dt / run.substeps.max(1) as f32);
+        }
+        if let Some(message) = backend.failure() {
+            return Err(RunError::Failed(Box::new(RunFailure {
+                backend: backend.name().to_string(),
+                config: run.label.clone(),
+                level: level.to_string(),
+                scenario: spec.name.clone(),
+                step: Some(k),
+                message,
+            })));
         }
         let frame = (k + 1) as u32;
         sink(TraceRow::from_state(
@@ -423,9 +442,70 @@ pub enum RunError {
     /// The scenario's input is outside the documented ranges.
     #[error(transparent)]
     Input(#[from] InvalidParam),
+    /// The controller failed during the run (an external controller's process crashed, hung,
+    /// printed garbage, replied out of order or with non-finite numbers, or timed out): this
+    /// run ends, and the command's other runs go on.
+    #[error(transparent)]
+    Failed(Box<RunFailure>),
+}
+
+/// A run that a controller's failure ended ([`RunError::Failed`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "{backend}/{config} failed on {level}.{scenario} {}: {message}",
+    step.map_or_else(|| "before its first step".to_string(), |k| format!("at step {k}"))
+)]
+pub struct RunFailure {
+    /// Backend name.
+    pub backend: String,
+    /// Configuration label.
+    pub config: String,
+    /// Level name.
+    pub level: String,
+    /// Scenario name.
+    pub scenario: String,
+    /// The step (frame, from 0) it failed on, or `None` before the first.
+    pub step: Option<usize>,
+    /// What went wrong.
+    pub message: String,
+}
+
+/// A [`RunError::Failed`] of `run` on `spec` of `level`.
+fn failed(
+    level: &Level,
+    spec: &ScenarioSpec,
+    run: &RunConfig,
+    step: Option<usize>,
+    message: String,
+) -> RunError {
+    RunError::Failed(Box::new(RunFailure {
+        backend: run.backend.backend().to_string(),
+        config: run.label.clone(),
+        level: level.name.clone(),
+        scenario: spec.name.clone(),
+        step,
+        message,
+    }))
+}
+
+/// `e`, or for an external controller's failure to start, the [`RunError::Failed`] naming the
+/// scenario.
+fn failed_at(e: RunError, level: &Level, spec: &ScenarioSpec, run: &RunConfig) -> RunError {
+    match e {
+        RunError::Controller(BackendError::External { message, .. }) => {
+            failed(level, spec, run, None, message)
+        }
+        e => e,
+    }
 }
 
 impl RunError {
+    /// Whether the controller failed during the run ([`RunError::Failed`]): the command says so,
+    /// goes on with its other runs, and exits with an error at the end.
+    pub fn is_failure(&self) -> bool {
+        matches!(self, RunError::Failed(_))
+    }
+
     /// Whether the controller does not model something the level has or holds it beyond a
     /// bound it keeps (the run is skipped, not failed).
     pub fn is_unsupported(&self) -> bool {

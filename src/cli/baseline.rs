@@ -102,6 +102,8 @@ pub(crate) fn baseline(h: &Harness, args: &BaselineArgs) -> Result<()> {
             Some((staging, traces)),
         )?;
         done = (e.4, e.5);
+        // A baseline holds every run of its selection: one that failed leaves none written.
+        super::run::failed_runs(&e.6)?;
         manifest.write(staging)?;
         Ok(())
     })?;
@@ -222,6 +224,7 @@ pub(crate) fn run_args_of(m: &Manifest, jobs: Option<u32>) -> RunArgs {
             epsilon: s.epsilon,
             scenarios: s.scenarios.clone(),
             jobs,
+            controllers: Vec::new(),
         },
         import: ImportArgs {
             layers: s.layers.clone(),

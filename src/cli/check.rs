@@ -54,6 +54,10 @@ pub(crate) struct CheckArgs {
     /// number.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub(crate) jobs: Option<u32>,
+    /// An external controller the baseline ran (a controller file, as `run --controller`;
+    /// repeatable): give the same files the baseline was written with.
+    #[arg(long = "controller", value_name = "FILE")]
+    pub(crate) controllers: Vec<PathBuf>,
 }
 
 /// Parses `--tol` values as `diff` does.

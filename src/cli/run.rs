@@ -85,6 +85,12 @@ pub(crate) fn evaluate_or_skip(
 ) -> Result<Option<crate::metrics::Evaluation>> {
     let level = runner.level();
     match evaluate_with(runner, spec, run) {
+        Err(e) if e.is_failure() => {
+            // The run ends alone; the others go on, and the note says it failed.
+            eprintln!("  error: {e}");
+            skipped.push(format!("FAILED: {e}"));
+            Ok(None)
+        }
         Err(e) if e.is_unsupported() => {
             let note = format!("{} {}: {e}", run.backend.backend(), run.label);
             if !skipped.contains(&note) {
@@ -144,7 +150,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         args.traces.unwrap_or(Traces::All)
     };
     let started = Instant::now();
-    let (metrics, coverage, notes, verdict, rows, written) = match &target {
+    let (metrics, coverage, notes, verdict, rows, written, failures) = match &target {
         Some(target) => {
             let mut result = None;
             output::write_output(target, kind, args.force, |dir| {
@@ -193,7 +199,19 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
             target.display()
         );
     }
-    Ok(())
+    failed_runs(&failures)
+}
+
+/// An error when runs failed (each said on stderr as it happened; the others ran).
+pub(crate) fn failed_runs(failures: &[String]) -> Result<()> {
+    match failures {
+        [] => Ok(()),
+        [one] => bail!("a run failed (the others completed): {one}"),
+        [first, ..] => bail!(
+            "{} runs failed (the others completed; each said above), the first: {first}",
+            failures.len()
+        ),
+    }
 }
 
 /// What configuration `run` declares, its why falling back on its controller's description.
@@ -301,6 +319,8 @@ enum Outcome {
     Skipped(String),
     /// Its metric rows (the timing row first, with --timing), and whether its trace was written.
     Ran(Vec<MetricRow>, bool),
+    /// The controller failed during the run (an external controller's process): the message.
+    Failed(String),
 }
 
 /// The (scenario, configuration) runs of `levels` that `configs` make: a configuration that
@@ -327,13 +347,15 @@ type Executed = (
     Scorecard,
     usize,
     usize,
+    Vec<String>,
 );
 
 /// Runs every scenario of `levels` on every configuration on `jobs` threads, writing each trace
 /// `dir` asks for as soon as its run ends and metrics.csv as the rows come, in run order (level,
 /// scenario, configuration) whatever the threads. Returns the metric rows the summary needs
 /// (every row with --detail; see [`SummaryRows`]) with the scenarios each configuration ran,
-/// the notes on the rows, the number of rows, and the number of traces written.
+/// the notes on the rows, the number of rows, the number of traces written, and the runs that
+/// failed (each said on stderr; the others ran).
 pub(crate) fn execute<'a>(
     registry: &crate::registry::Registry,
     levels: &'a [crate::level::Level],
@@ -383,6 +405,9 @@ pub(crate) fn execute<'a>(
             unreachable!("set just above")
         };
         let mut e = match evaluate_recorded(runner, spec, run, RowStore::default()) {
+            Err(RecordError::Run(e)) if e.is_failure() => {
+                return Ok(Outcome::Failed(e.to_string()));
+            }
             Err(RecordError::Run(e)) if e.is_unsupported() => {
                 return Ok(Outcome::Skipped(format!(
                     "{} {}: {e}",
@@ -402,7 +427,10 @@ pub(crate) fn execute<'a>(
         };
         let mut metrics = Vec::with_capacity(e.metrics.len() + 1);
         if args.timing {
-            let ns = crate::scenario::time_scenario(runner, spec, run, 5)?;
+            let ns = match crate::scenario::time_scenario(runner, spec, run, 5) {
+                Err(e) if e.is_failure() => return Ok(Outcome::Failed(e.to_string())),
+                ns => ns?,
+            };
             metrics.push(crate::metrics::timing_row(level, spec, run, ns));
         }
         metrics.extend(std::mem::take(&mut e.metrics));
@@ -435,6 +463,7 @@ pub(crate) fn execute<'a>(
             .collect(),
     );
     let mut rows_seen = 0usize;
+    let mut failures: Vec<String> = Vec::new();
     let (mut done, mut written) = (0usize, 0usize);
     // Refusals on the current level, per configuration: the first is said, the others counted
     // and said as a count when the level ends (nothing grows with the scenarios).
@@ -448,6 +477,10 @@ pub(crate) fn execute<'a>(
             refused.iter_mut().for_each(|n| *n = 0);
         }
         match outcome? {
+            Outcome::Failed(message) => {
+                eprintln!("  error: {message}");
+                failures.push(message);
+            }
             Outcome::Skipped(note) => {
                 refused[ci] += 1;
                 if refused[ci] == 1 {
@@ -506,7 +539,7 @@ pub(crate) fn execute<'a>(
         }
         Ok::<(), anyhow::Error>(())
     })?;
-    if done == 0 {
+    if done == 0 && failures.is_empty() {
         bail!(
             "nothing was measured: every configuration refused every scenario (the skipped lines above say why); choose other configurations (--backend, --shape, --precision) or other levels"
         );
@@ -532,5 +565,6 @@ pub(crate) fn execute<'a>(
         verdict.scorecard(),
         rows_seen,
         written,
+        failures,
     ))
 }

@@ -50,6 +50,12 @@ pub(crate) struct Selection {
     /// whatever the number. Default: the cores available (timing always runs on one thread).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub(crate) jobs: Option<u32>,
+    /// An external controller to run beside the registered ones: a controller file (TOML:
+    /// name, command, args, working_directory, mode, step_timeout_ms; docs/protocol.md) whose
+    /// program speaks the step protocol over stdin/stdout (repeatable). Its name joins the
+    /// --backend values.
+    #[arg(long = "controller", value_name = "FILE")]
+    pub(crate) controllers: Vec<std::path::PathBuf>,
 }
 
 impl Selection {
