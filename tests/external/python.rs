@@ -1,0 +1,180 @@
+//! The Python reference client: protocol conformance, determinism, every built-in scenario it
+//! models, the controller file in the repository, and the pipe's overhead.
+
+use platbench::scenario::run_scenario;
+
+use crate::common;
+use crate::{configs, controller_file, python, root};
+
+/// The reference client's controller file, written for the interpreter found.
+fn client(dir: &std::path::Path, py: &std::path::Path) -> std::path::PathBuf {
+    let script = root().join("controllers/python/client.py");
+    controller_file(dir, "python", py, &script, &[], "collision", 5000)
+}
+
+#[test]
+fn the_python_client_answers_the_handshake_and_lands_on_the_floor() {
+    let Some(py) = python("tests/external/python.rs (the Python reference client)") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let kind = platbench::external::load(&client(dir.path(), &py)).unwrap();
+    assert_eq!(kind.name(), "python");
+    assert!(
+        kind.description().contains("python-aabb"),
+        "{}",
+        kind.description()
+    );
+    assert!(kind.description().contains("collision mode"));
+    let runs = kind.builtin_configs();
+    assert_eq!(runs.len(), 1);
+    assert_eq!(runs[0].label, "aabb");
+    assert_eq!(runs[0].backend.features(), platbench::level::Features::NONE);
+    assert!(runs[0]
+        .why
+        .starts_with("collision mode over the step protocol"));
+    // A drop from half a tile: every row finite, the feet flush on the floor's top (y = 1) and
+    // grounded once landed, as the trace says.
+    let level = common::level("drops");
+    let spec = level
+        .scenarios
+        .iter()
+        .find(|s| s.name == "drop_0_5")
+        .unwrap();
+    let trace = run_scenario(&level, spec, &runs[0]).unwrap();
+    assert_eq!(trace.backend, "python");
+    assert_eq!(trace.config, "aabb");
+    assert_eq!(trace.rows.len(), platbench::scenario::step_count(spec) + 1);
+    assert!(trace
+        .rows
+        .iter()
+        .all(|r| r.x.is_finite() && r.y.is_finite()));
+    let last = trace.rows.last().unwrap();
+    assert_eq!(last.grounded, 1);
+    assert!((last.y - 1.0).abs() < 1e-6, "rests at {}", last.y);
+    assert_eq!((last.vx, last.vy), (0.0, 0.0));
+}
+
+#[test]
+fn the_python_client_gives_the_same_trace_twice() {
+    let Some(py) = python("tests/external/python.rs (determinism)") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let run = &configs(&client(dir.path(), &py))[0];
+    let level = common::level("jumps");
+    let spec = &level.scenarios[0];
+    let a = run_scenario(&level, spec, run).unwrap();
+    let b = run_scenario(&level, spec, run).unwrap();
+    assert_eq!(a, b);
+}
+
+#[test]
+fn the_python_client_runs_every_built_in_scenario_it_models() {
+    let Some(py) = python("tests/external/python.rs (every built-in scenario)") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let run = &configs(&client(dir.path(), &py))[0];
+    let (mut ran, mut skipped) = (0, Vec::new());
+    for level in common::builtin_levels() {
+        for spec in &level.scenarios {
+            match run_scenario(&level, spec, run) {
+                Ok(trace) => {
+                    assert!(
+                        trace
+                            .rows
+                            .iter()
+                            .all(|r| r.x.is_finite() && r.y.is_finite()),
+                        "{}.{}",
+                        level.name,
+                        spec.name
+                    );
+                    ran += 1;
+                }
+                Err(e) if e.is_unsupported() => {
+                    // Skipped for a feature it does not model, said.
+                    assert!(
+                        !level.features.within(platbench::level::Features::NONE),
+                        "{e}"
+                    );
+                    skipped.push(level.name.clone());
+                }
+                Err(e) => panic!("{}.{}: {e}", level.name, spec.name),
+            }
+        }
+    }
+    assert!(ran >= 30, "ran {ran}");
+    assert!(skipped.iter().any(|l| l.starts_with("slope")));
+}
+
+#[test]
+fn the_repository_controller_file_runs_from_the_command_line() {
+    if python("tests/external/python.rs (controllers/python/controller.toml)").is_none() {
+        return;
+    }
+    // The file as committed (python3 on the PATH), beside the sweep; its rows in metrics.csv.
+    let out = tempfile::tempdir().unwrap();
+    let o = common::platbench()
+        .args([
+            "run",
+            "--backend",
+            "python,sweep",
+            "--scenario",
+            "drops",
+            "--out",
+        ])
+        .arg(out.path().join("run"))
+        .arg("--controller")
+        .arg(root().join("controllers/python/controller.toml"))
+        .output()
+        .unwrap();
+    common::assert_success(&o);
+    let metrics = std::fs::read_to_string(out.path().join("run/metrics.csv")).unwrap();
+    assert!(
+        metrics.lines().any(|l| l.contains(",python,aabb,")),
+        "{metrics}"
+    );
+    assert!(out
+        .path()
+        .join("run/traces/drops.drop_1.python.aabb.csv")
+        .exists());
+}
+
+#[test]
+fn pipe_overhead() {
+    let Some(py) = python("tests/external/python.rs (the pipe's overhead)") else {
+        return;
+    };
+    // The wall time of a step minus the time the controller reports for it: what the pipe, the
+    // JSON on both sides and the other process's scheduling cost, per step.
+    let dir = tempfile::tempdir().unwrap();
+    let run = &configs(&client(dir.path(), &py))[0];
+    let level = common::level("long_floor");
+    let spec = &level.scenarios[0];
+    let mut runner = platbench::scenario::Runner::new(&level);
+    let params = platbench::scenario::effective_params(&run.params, spec);
+    let ch = [platbench::backend::CharacterSpec::of(spec)];
+    let mut backend = runner.build(run, &params, &ch).unwrap();
+    let steps = platbench::scenario::step_count(spec);
+    let input = [platbench::motion::Input {
+        right: true,
+        ..Default::default()
+    }];
+    let start = std::time::Instant::now();
+    for _ in 0..steps {
+        backend.step(&input, spec.dt);
+    }
+    let wall = start.elapsed().as_nanos() as f64 / steps as f64;
+    assert_eq!(backend.failure(), None);
+    let own = backend.reported_ns().unwrap() / steps as f64;
+    let overhead = wall - own;
+    use std::io::Write as _;
+    let _ = writeln!(
+        std::io::stderr(),
+        "pipe overhead: {overhead:.0} ns per step ({wall:.0} ns wall, {own:.0} ns the Python client's own, {steps} steps of {}.{})",
+        level.name,
+        spec.name
+    );
+    assert!(overhead.is_finite() && own > 0.0);
+}
