@@ -17,6 +17,7 @@
 
 mod baseline;
 mod check;
+mod controllers;
 mod diff;
 mod inspect;
 mod levels;
@@ -97,7 +98,7 @@ where
     // External controllers join the registry before the options are parsed: their names are
     // --backend values.
     let with_external;
-    let harness = match with_controllers(harness, &args) {
+    let harness = match controllers::with_controllers(harness, &args) {
         Ok(None) => harness,
         Ok(Some(h)) => {
             with_external = h;
@@ -198,42 +199,6 @@ where
             ExitCode::from(2)
         }
     }
-}
-
-/// `harness` with the external controllers of the `--controller FILE` arguments in `args`
-/// registered after its own kinds, or `None` when there is none.
-fn with_controllers(harness: &Harness, args: &[std::ffi::OsString]) -> Result<Option<Harness>> {
-    let mut files: Vec<PathBuf> = Vec::new();
-    let mut it = args.iter().skip(1);
-    while let Some(a) = it.next() {
-        let Some(a) = a.to_str() else { continue };
-        if a == "--" {
-            break;
-        }
-        if a == "--controller" {
-            if let Some(f) = it.next() {
-                files.push(PathBuf::from(f));
-            }
-        } else if let Some(f) = a.strip_prefix("--controller=") {
-            files.push(PathBuf::from(f));
-        }
-    }
-    if files.is_empty() {
-        return Ok(None);
-    }
-    let mut h = harness.clone();
-    for f in &files {
-        let kind = crate::external::load(f)?;
-        if h.registry.get(kind.name()).is_some() {
-            bail!(
-                "{}: a controller named {:?} is already registered; expected a name of its own in the controller file",
-                f.display(),
-                kind.name()
-            );
-        }
-        h.registry.register(kind);
-    }
-    Ok(Some(h))
 }
 
 /// The threads `--jobs` asks for, or the cores available.
