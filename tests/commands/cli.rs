@@ -101,17 +101,20 @@ fn run_writes_traces_and_metrics() {
         .unwrap();
     assert_success(&out);
     let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
-    assert!(metrics
-        .starts_with("level,scenario,backend,config,metric,value,unit,reference,error,frame\n"));
-    // The frame column (the last): a maximum over frames always has one.
+    assert!(metrics.starts_with(
+        "level,scenario,backend,config,metric,value,unit,reference,error,frame,q1,q3\n"
+    ));
+    // The frame column (before the quartiles, empty but for timing rows): a maximum over
+    // frames always has one.
     let deepest: Vec<&str> = metrics
         .lines()
         .filter(|l| l.contains(",max_penetration,"))
         .collect();
     assert!(!deepest.is_empty());
     for l in deepest {
-        let frame = l.rsplit(',').next().unwrap();
-        assert!(frame.parse::<u32>().is_ok(), "{l}");
+        let f: Vec<&str> = l.split(',').collect();
+        assert!(f[9].parse::<u32>().is_ok(), "{l}");
+        assert_eq!((f[10], f[11]), ("", ""), "{l}");
     }
     let trace = out_dir.join("traces/flat_seams.walk_right_10s.sweep.csv");
     let text = std::fs::read_to_string(&trace).unwrap();
@@ -303,10 +306,32 @@ fn timing_adds_a_cost_row_per_scenario_and_configuration() {
         "{metrics}"
     );
     assert_eq!(timing.len(), 23);
+    // The value is the median of the samples, between their quartiles (the last two columns,
+    // after the empty frame).
+    assert!(metrics.starts_with(
+        "level,scenario,backend,config,metric,value,unit,reference,error,frame,q1,q3\n"
+    ));
     for l in timing {
-        let value: f64 = l.split(',').nth(5).unwrap().parse().unwrap();
+        let f: Vec<&str> = l.split(',').collect();
+        let num = |i: usize| f[i].parse::<f64>().unwrap();
+        let (value, q1, q3) = (num(5), num(10), num(11));
         assert!(value.is_finite() && value > 0.0, "{l}");
+        assert!(q1 <= value && value <= q3, "{l}");
     }
+    // The closing lines: the cheapest configuration against each of the 22 others, over the
+    // one scenario.
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let closing: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.contains(" × cheaper than ") || l.contains(" × what "))
+        .collect();
+    assert_eq!(closing.len(), 22, "{stdout}");
+    assert!(
+        closing
+            .iter()
+            .all(|l| l.ends_with("(median over 1 scenario)")),
+        "{stdout}"
+    );
 }
 
 #[test]
