@@ -273,68 +273,6 @@ fn the_baseline_is_written_only_with_bless() {
 }
 
 #[test]
-fn timing_adds_a_cost_row_per_scenario_and_configuration() {
-    let dir = tempfile::tempdir().unwrap();
-    let level = dir.path().join("t.toml");
-    std::fs::write(
-        &level,
-        "name = \"t\"\nmap = \"\"\"\n....\n####\n\"\"\"\n[[scenario]]\nname = \"stand\"\nspawn = [1.5, 1.0]\nduration = 0.5\n",
-    )
-    .unwrap();
-    let out_dir = dir.path().join("out");
-    let out = platbench()
-        .args(["run", "--timing", "--out"])
-        .arg(&out_dir)
-        .arg(&level)
-        .output()
-        .unwrap();
-    assert_success(&out);
-    let metrics = std::fs::read_to_string(out_dir.join("metrics.csv")).unwrap();
-    let timing: Vec<&str> = metrics
-        .lines()
-        .filter(|l| l.contains(",ns_per_character_step,"))
-        .collect();
-    // One scenario on the 23 configurations of the built-in comparison: 3 sweep, 4 Rapier
-    // shapes on 2 collider buildings fed gravity every step and again fed as Rapier's examples
-    // feed them, and Box2D's capsule on 2 collider buildings with its advised and
-    // grid-best-spring rows (`Box2dKind::builtin_configs`).
-    assert_eq!(
-        timing.len(),
-        platbench::registry::Registry::builtin()
-            .builtin_configs()
-            .len(),
-        "{metrics}"
-    );
-    assert_eq!(timing.len(), 23);
-    // The value is the median of the samples, between their quartiles (the last two columns,
-    // after the empty frame).
-    assert!(metrics.starts_with(
-        "level,scenario,backend,config,metric,value,unit,reference,error,frame,q1,q3\n"
-    ));
-    for l in timing {
-        let f: Vec<&str> = l.split(',').collect();
-        let num = |i: usize| f[i].parse::<f64>().unwrap();
-        let (value, q1, q3) = (num(5), num(10), num(11));
-        assert!(value.is_finite() && value > 0.0, "{l}");
-        assert!(q1 <= value && value <= q3, "{l}");
-    }
-    // The closing lines: the cheapest configuration against each of the 22 others, over the
-    // one scenario.
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let closing: Vec<&str> = stdout
-        .lines()
-        .filter(|l| l.contains(" × cheaper than ") || l.contains(" × what "))
-        .collect();
-    assert_eq!(closing.len(), 22, "{stdout}");
-    assert!(
-        closing
-            .iter()
-            .all(|l| l.ends_with("(median over 1 scenario)")),
-        "{stdout}"
-    );
-}
-
-#[test]
 fn precision_runs_each_configuration_in_every_listed_precision_it_has_a_build_in() {
     let dir = tempfile::tempdir().unwrap();
     let level = dir.path().join("t.toml");

@@ -79,6 +79,12 @@ pub fn render(d: &RunDiff, format: DiffFormat) -> String {
         d.traces_compared,
         d.traces.len()
     ));
+    if d.timings_compared > 0 {
+        out.push_str(&format!(
+            "{} timings compared: worse or better only beyond both runs' noise (interquartile ranges apart, and the median moved by more than the timing tolerance)\n",
+            d.timings_compared
+        ));
+    }
     if !d.metrics.is_empty() {
         let mut t = comfy_table::Table::new();
         // Markdown-style ASCII reads the same in a terminal, a CI log and a pull request.
