@@ -13,6 +13,7 @@ use super::{load_levels_with, out, output, Harness, ImportArgs};
 use crate::config::RunConfig;
 use crate::metrics::{evaluate_recorded, evaluate_with, MetricRow, RecordError};
 use crate::parallel;
+use crate::report::cost::CostRows;
 use crate::report::profile::{builtin_profiles, parse_profile, Profile};
 use crate::report::summary_rows::SummaryRows;
 use crate::report::verdict::{
@@ -63,9 +64,12 @@ pub(crate) struct RunArgs {
     /// writes a baseline of a selection of your choosing).
     #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing", "traces", "precisions", "scenarios"])]
     pub(crate) bless: bool,
-    /// Also time each scenario on each configuration (in process, minimum of 5 repeats) and
-    /// add an ns_per_character_step row per scenario and configuration to metrics.csv. Runs
-    /// on one thread whatever --jobs says, so that nothing runs beside a timed step.
+    /// Also time each scenario on each configuration (in process, 11 whole runs after the
+    /// measured one) and add an ns_per_character_step row per scenario and configuration to
+    /// metrics.csv: the median of the runs' ns per step, their quartiles in its q1 and q3
+    /// columns. With several configurations timed, the summary ends with each one's cost
+    /// against the cheapest's. Runs on one thread whatever --jobs says, so that nothing runs
+    /// beside a timed step.
     #[arg(long)]
     pub(crate) timing: bool,
     #[command(flatten)]
@@ -144,7 +148,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         args.traces.unwrap_or(Traces::All)
     };
     let started = Instant::now();
-    let (metrics, coverage, notes, verdict, rows, written) = match &target {
+    let (metrics, coverage, notes, verdict, rows, written, cost) = match &target {
         Some(target) => {
             let mut result = None;
             output::write_output(target, kind, args.force, |dir| {
@@ -185,6 +189,13 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         ));
     } else {
         out("\n(`--detail` prints the worst value of every metric and every scenario's; `--out DIR` writes the CSV files\nand traces; `platbench report` writes the HTML report with replays)");
+    }
+    let lines = cost.closing_lines();
+    if !lines.is_empty() {
+        out(&format!(
+            "\nCost per character step (median of each scenario's ratio of median times, ± half their interquartile range):\n  {}",
+            lines.join("\n  ")
+        ));
     }
     if let Some(target) = &target {
         eprintln!(
@@ -319,7 +330,8 @@ fn modelled_runs(levels: &[crate::level::Level], configs: &[RunConfig]) -> usize
 }
 
 /// What [`execute`] returns: the rows the summary reads, the scenarios each configuration ran,
-/// the notes, the scorecard, the number of metric rows, the number of traces written.
+/// the notes, the scorecard, the number of metric rows, the number of traces written, the
+/// timings.
 type Executed = (
     Vec<MetricRow>,
     Coverage,
@@ -327,6 +339,7 @@ type Executed = (
     Scorecard,
     usize,
     usize,
+    CostRows,
 );
 
 /// Runs every scenario of `levels` on every configuration on `jobs` threads, writing each trace
@@ -371,6 +384,32 @@ pub(crate) fn execute<'a>(
         None => None,
     };
     let mode = dir.map_or(Traces::None, |(_, m)| m);
+    // The timings first, in rounds over every run (each run's samples spread over the whole
+    // timing), on this one thread; the measured runs below take their samples.
+    let timed = if args.timing {
+        let started = Instant::now();
+        let live = std::io::stderr().is_terminal();
+        let t = crate::metrics::timing::time_rounds(levels, configs, |round| {
+            if live {
+                eprint!(
+                    "\r\x1b[K  timing round {}/{}",
+                    round + 1,
+                    crate::metrics::timing::SAMPLES
+                );
+            }
+        });
+        if live {
+            eprint!("\r\x1b[K");
+        }
+        eprintln!(
+            "  timed every run {} times, in rounds, in {:.2} s",
+            crate::metrics::timing::SAMPLES,
+            started.elapsed().as_secs_f64()
+        );
+        t
+    } else {
+        Vec::new()
+    };
     // One runner per thread, kept while its jobs stay on one level (they come in level order).
     let init = || None::<(usize, Runner<'a>)>;
     let work = |cache: &mut Option<(usize, Runner<'a>)>, i: usize| -> Result<Outcome> {
@@ -402,8 +441,17 @@ pub(crate) fn execute<'a>(
         };
         let mut metrics = Vec::with_capacity(e.metrics.len() + 1);
         if args.timing {
-            let ns = crate::scenario::time_scenario(runner, spec, run, 5)?;
-            metrics.push(crate::metrics::timing_row(level, spec, run, ns));
+            let mut samples = timed.get(i).copied().unwrap_or_default();
+            let t = crate::metrics::timing::Timing::of(&mut samples).with_context(|| {
+                format!(
+                    "timing {}.{} on {}/{}: a sample is not a finite number of ns",
+                    level.name,
+                    spec.name,
+                    run.backend.backend(),
+                    run.label
+                )
+            })?;
+            metrics.push(crate::metrics::timing_row(level, spec, run, t));
         }
         metrics.extend(std::mem::take(&mut e.metrics));
         let keep = match mode {
@@ -435,6 +483,7 @@ pub(crate) fn execute<'a>(
             .collect(),
     );
     let mut rows_seen = 0usize;
+    let mut cost = CostRows::default();
     let (mut done, mut written) = (0usize, 0usize);
     // Refusals on the current level, per configuration: the first is said, the others counted
     // and said as a count when the level ends (nothing grows with the scenarios).
@@ -463,6 +512,7 @@ pub(crate) fn execute<'a>(
                 }
                 rows_seen += rows.len();
                 verdict.push_run(&rows);
+                cost.push_run(&rows);
                 if args.detail {
                     metrics.extend(rows);
                 } else {
@@ -532,5 +582,6 @@ pub(crate) fn execute<'a>(
         verdict.scorecard(),
         rows_seen,
         written,
+        cost,
     ))
 }
