@@ -11,6 +11,7 @@ use anyhow::{bail, Context as _, Result};
 
 use super::output;
 use crate::report::check::Unit;
+use crate::report::manifest::{Manifest, FILE};
 
 /// A run's key in `metrics.csv`: level, scenario, backend, configuration.
 type Key = (String, String, String, String);
@@ -164,6 +165,26 @@ fn copy_tree(from: &Path, to: &Path, top: bool) -> Result<()> {
     Ok(())
 }
 
+/// The baseline's manifest with the entry of each level of an `accepted` run (its hash and
+/// scenarios) taken from the manifest of the check's run, so that the baseline records the
+/// level its accepted runs ran on; `None` when that changes nothing.
+fn updated_manifest(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<Option<Manifest>> {
+    let mut m = Manifest::read(base)?;
+    let ran = Manifest::read(check)?;
+    let before = m.clone();
+    let levels: BTreeSet<&str> = accepted.iter().map(|u| u.level.as_str()).collect();
+    for name in levels {
+        let Some(new) = ran.levels.iter().find(|l| l.name == name) else {
+            continue;
+        };
+        match m.levels.iter_mut().find(|l| l.name == name) {
+            Some(old) => *old = new.clone(),
+            None => m.levels.push(new.clone()),
+        }
+    }
+    Ok((m != before).then_some(m))
+}
+
 /// Accepts the runs `accepted` of the check output `check` into the baseline `base`: their
 /// metric rows and trace files become the check's; the rest of the baseline is byte-identical.
 /// Written as a whole: a failure leaves the baseline as it was.
@@ -187,6 +208,7 @@ pub(crate) fn accept(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<()
         &read_rows(&check.join("metrics.csv"))?,
         &keys,
     )?;
+    let manifest = updated_manifest(base, check, accepted)?;
     let marker = fs::read(base.join(output::MARKER))
         .with_context(|| format!("cannot read {}", base.join(output::MARKER).display()))?;
     output::write_output(base, output::Kind::Baseline, false, |staging| {
@@ -195,6 +217,12 @@ pub(crate) fn accept(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<()
         let m = staging.join("metrics.csv");
         fs::remove_file(&m).with_context(|| format!("cannot replace {}", m.display()))?;
         output::write_file(&m, &metrics)?;
+        if let Some(manifest) = &manifest {
+            // A hard link to the old baseline's file: unlinked first, not written through.
+            let f = staging.join(FILE);
+            fs::remove_file(&f).with_context(|| format!("cannot replace {}", f.display()))?;
+            manifest.write(staging)?;
+        }
         let traces = staging.join("traces");
         fs::create_dir_all(&traces)
             .with_context(|| format!("cannot create {}", traces.display()))?;
