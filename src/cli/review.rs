@@ -172,6 +172,9 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
     let units_path = args.check.join(UNITS);
     let units: Vec<Unit> = super::read_rows(&units_path)?;
     let base = baseline_dir(h, args.baseline.as_deref());
+    // Held until the review returns: two reviews at once would each write the baseline they
+    // read, and the later would lose the earlier's acceptances.
+    let _lock = super::review_apply::Lock::take(&base)?;
     let manifest = Manifest::read(&base)?;
     let (ran, now) = (CheckRecord::read(&args.check)?, CheckRecord::of(&base)?);
     if ran.baseline != now.baseline {

@@ -249,3 +249,43 @@ fn accepting_a_run_of_a_changed_level_updates_the_manifest() {
     let md = std::fs::read_to_string(again.join("summary.md")).unwrap();
     assert!(!md.contains("changed since the baseline"), "{md}");
 }
+
+#[test]
+fn a_review_holds_the_baseline_locked() {
+    let (dir, level) = setup();
+    let bl = dir.path().join("baseline");
+    assert_eq!(
+        cli(&harness(false, &bl), &["baseline", path(&level)]),
+        ExitCode::SUCCESS
+    );
+    let after = harness(true, &bl);
+    let ck = dir.path().join("check");
+    assert_eq!(
+        cli(&after, &["check", "--out", path(&ck)]),
+        ExitCode::from(1)
+    );
+    let before = std::fs::read(bl.join("metrics.csv")).unwrap();
+    // Another review holds the lock: this one is refused, the baseline unchanged.
+    let lock = bl.join(".platbench-lock");
+    std::fs::write(&lock, "platbench review, process 1, 0\n").unwrap();
+    assert_eq!(
+        cli(&after, &["review", path(&ck), "--accept-all"]),
+        ExitCode::from(2)
+    );
+    assert_eq!(std::fs::read(bl.join("metrics.csv")).unwrap(), before);
+    assert!(lock.is_file());
+    // A lock older than an hour is taken over; the review leaves no lock behind.
+    let two_hours = std::time::Duration::from_secs(7200);
+    std::fs::File::options()
+        .write(true)
+        .open(&lock)
+        .unwrap()
+        .set_modified(std::time::SystemTime::now() - two_hours)
+        .unwrap();
+    assert_eq!(
+        cli(&after, &["review", path(&ck), "--accept-all"]),
+        ExitCode::SUCCESS
+    );
+    assert_ne!(std::fs::read(bl.join("metrics.csv")).unwrap(), before);
+    assert!(!lock.exists());
+}
