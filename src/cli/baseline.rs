@@ -68,7 +68,7 @@ pub(crate) fn baseline_help(h: &Harness, what: &str) -> String {
 pub(crate) fn baseline(h: &Harness, args: &BaselineArgs) -> Result<()> {
     let dir = baseline_dir(h, args.baseline.as_deref());
     refuse_unless_replacing(&dir, args.replace)?;
-    output::check_target(&dir, output::Kind::Baseline, false)?;
+    output::check_target_as(&dir, output::Kind::Baseline, false, "--baseline")?;
     let run = RunArgs {
         levels: args.levels.clone(),
         traces: Some(args.traces.unwrap_or(Traces::All)),
@@ -103,7 +103,7 @@ pub(crate) fn baseline(h: &Harness, args: &BaselineArgs) -> Result<()> {
         )?;
         done = (e.4, e.5);
         // A baseline holds every run of its selection: one that failed leaves none written.
-        super::run::failed_runs(&e.6)?;
+        super::run::failed_runs(&e.7)?;
         manifest.write(staging)?;
         Ok(())
     })?;

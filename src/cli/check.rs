@@ -4,7 +4,7 @@
 //! changed, `check.csv`, `summary.md`) to `--out`.
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -15,12 +15,59 @@ use super::baseline::{baseline_dir, run_args_of, selection_of};
 use super::{out, output, Harness};
 use crate::report::check::{closing_line, line, summary_markdown, units, Unit};
 use crate::report::diff::{diff_runs, read_metrics, render, DiffFormat, FailOn, Tolerance};
-use crate::report::manifest::Manifest;
+use crate::report::manifest::{content_hash, Manifest};
 
 /// The file of `check --out` that lists every run with its status.
 pub(crate) const UNITS: &str = "check.csv";
 /// The Markdown summary of `check --out`.
 pub(crate) const SUMMARY: &str = "summary.md";
+/// The file of `check --out` naming the baseline the check ran against.
+pub(crate) const RECORD: &str = "check.toml";
+
+/// What `check.toml` records: the baseline a check ran against, so that `review` accepts its
+/// changes into that baseline only.
+#[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CheckRecord {
+    /// The baseline directory, canonical.
+    pub(crate) baseline: String,
+    /// [`content_hash`] of the baseline's `manifest.toml` when the check ran.
+    pub(crate) manifest: String,
+}
+
+impl CheckRecord {
+    /// The record of the baseline `base` as it is now.
+    pub(crate) fn of(base: &Path) -> Result<CheckRecord> {
+        let m = base.join(crate::report::manifest::FILE);
+        let bytes = std::fs::read(&m).with_context(|| format!("cannot read {}", m.display()))?;
+        Ok(CheckRecord {
+            baseline: output::canonical_lenient(base).display().to_string(),
+            manifest: content_hash(&bytes),
+        })
+    }
+
+    /// Reads `CHECK_DIR/check.toml`.
+    pub(crate) fn read(check: &Path) -> Result<CheckRecord> {
+        let p = check.join(RECORD);
+        let text = std::fs::read_to_string(&p).with_context(|| {
+            format!(
+                "cannot read {} (a check by this platbench writes it, naming the baseline it ran against): run `platbench check` again",
+                p.display()
+            )
+        })?;
+        toml::from_str(&text).with_context(|| format!("{} is malformed", p.display()))
+    }
+
+    /// Writes `DIR/check.toml`.
+    pub(crate) fn write(&self, dir: &Path) -> Result<()> {
+        let text = toml::to_string(self).context("cannot serialise check.toml")?;
+        output::write_file(
+            &dir.join(RECORD),
+            format!("# The baseline this check ran against: `platbench review` accepts into it only.\n{text}")
+                .as_bytes(),
+        )
+    }
+}
 
 /// `platbench check`'s options.
 #[derive(Args)]
@@ -36,7 +83,9 @@ pub(crate) struct CheckArgs {
     #[arg(long, value_name = "DIR", default_value = "platbench-check")]
     pub(crate) out: PathBuf,
     /// Replace --out even when it is not an earlier check's output (everything in it is
-    /// deleted). A baseline is never replaced.
+    /// deleted). A baseline is never replaced: not the baseline checked against (nor a
+    /// directory inside it or holding it), nor any directory holding a manifest.toml that is not
+    /// a check's.
     #[arg(long)]
     pub(crate) force: bool,
     /// Override a metric's tolerance, as `diff --tol`: METRIC=ABS or METRIC=ABS,REL (finite,
@@ -50,6 +99,14 @@ pub(crate) struct CheckArgs {
     /// --timing); by default timings never fail.
     #[arg(long)]
     pub(crate) fail_on_timing: bool,
+    /// Do not fail (exit 1) when a metric or trace of the baseline is missing from the new run,
+    /// as `diff --allow-missing`; it is still listed.
+    #[arg(long)]
+    pub(crate) allow_missing: bool,
+    /// Do not fail (exit 1) when a trace diverges beyond --position-tolerance or ends before
+    /// (or runs past) the baseline's, as `diff --allow-divergence`; it is still listed.
+    #[arg(long)]
+    pub(crate) allow_divergence: bool,
     /// Threads to run on (default: the cores available); the output is the same whatever the
     /// number.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
@@ -92,6 +149,34 @@ fn tolerances(given: &[String]) -> Result<BTreeMap<String, Tolerance>> {
     Ok(tols)
 }
 
+/// Refuses an --out that is the baseline `base`, lies inside it or holds it, or holds a
+/// `manifest.toml` without being a check's output: whatever --force says, a baseline is never
+/// replaced (even one whose marker file is gone).
+fn refuse_baseline_as_out(base: &Path, out: &Path) -> Result<()> {
+    let (b, o) = (
+        output::canonical_lenient(base),
+        output::canonical_lenient(out),
+    );
+    if o.starts_with(&b) || b.starts_with(&o) {
+        bail!(
+            "--out {} is the baseline {} checked against, or lies inside it or holds it; a baseline is never replaced: choose another --out",
+            out.display(),
+            base.display()
+        );
+    }
+    let marker = std::fs::read_to_string(out.join(output::MARKER)).unwrap_or_default();
+    if out.join(crate::report::manifest::FILE).exists()
+        && marker.lines().next() != Some("platbench check")
+    {
+        bail!(
+            "--out {} holds a {} and is not a check's output: it looks like a baseline, and a baseline is never replaced (not even with --force): choose another --out",
+            out.display(),
+            crate::report::manifest::FILE
+        );
+    }
+    Ok(())
+}
+
 /// Runs `platbench check`: 0 when every run passes, 1 on a regression, 2 on an error.
 pub(crate) fn check(h: &Harness, args: &CheckArgs) -> ExitCode {
     match check_inner(h, args) {
@@ -111,9 +196,12 @@ fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
     let tols = tolerances(&args.tolerances)?;
     let base = baseline_dir(h, args.baseline.as_deref());
     let manifest = Manifest::read(&base)?;
+    let record = CheckRecord::of(&base)?;
+    refuse_baseline_as_out(&base, &args.out)?;
     output::check_target(&args.out, output::Kind::Check, args.force)?;
     let run = run_args_of(&manifest, args.jobs);
     let (levels, configs, mut notes) = selection_of(h, &manifest, &run)?;
+    let ran = super::baseline::manifest_of(&run, &levels, &configs)?;
     for v in manifest.version_changes() {
         notes.insert(
             0,
@@ -128,7 +216,8 @@ fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
     let jobs = if run.timing { 1 } else { run.select.jobs() };
     let fail_on = FailOn {
         timing: args.fail_on_timing,
-        ..FailOn::default()
+        allow_missing: args.allow_missing,
+        allow_divergence: args.allow_divergence,
     };
     eprintln!(
         "platbench check: {} scenarios on {} configurations against {}",
@@ -164,6 +253,8 @@ fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
             }
         }
         super::output::write_csv(&dir.join(UNITS), &all)?;
+        record.write(dir)?;
+        ran.write(dir)?;
         let md = summary_markdown(&all, &notes, &render(&d, DiffFormat::Markdown));
         output::write_file(&dir.join(SUMMARY), md.as_bytes())?;
         result = Some((all, d.failures(fail_on)));
@@ -183,11 +274,12 @@ fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
         eprintln!("regression: {f}");
     }
     eprintln!(
-        "wrote {} ({}, {}, the changed traces); `platbench review {}` shows and accepts the changes",
+        "wrote {} ({}, {}, the changed traces); `platbench review {} --baseline {}` shows and accepts the changes",
         args.out.display(),
         UNITS,
         SUMMARY,
-        args.out.display()
+        args.out.display(),
+        record.baseline
     );
     out(&closing_line(&all));
     let failed = all.iter().any(|u| u.status.fails());

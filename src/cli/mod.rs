@@ -22,6 +22,7 @@ mod diff;
 mod inspect;
 mod levels;
 mod output;
+mod profiles;
 mod report;
 mod review;
 mod review_apply;
@@ -338,7 +339,11 @@ enum Command {
     /// CHECK_DIR/review/<trace>.html replaying both traces side by side. Asks whether to accept
     /// each (stdin must be a terminal), or decides by --accept-all, --accept PATTERN or
     /// --reject-all. Accepting replaces only that run's metric rows and trace file in the
-    /// baseline; every other byte stays, and the baseline is swapped in as a whole.
+    /// baseline (and its level's entry in manifest.toml); every other byte stays, and the
+    /// baseline is swapped in as a whole. Only the baseline the check ran against is accepted
+    /// into. A review holds DIR/.platbench-lock while it runs: a second review of the same
+    /// baseline is refused until it ends (a lock older than an hour is taken over, with a
+    /// warning).
     Review(review::ReviewArgs),
     /// Show what a Tiled or LDtk map was read as, layer by layer.
     ///

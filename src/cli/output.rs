@@ -90,6 +90,11 @@ fn marker_of(dir: &Path) -> Option<Kind> {
 /// - anything else (a user's directory, another command's output) only with `force`; the
 ///   filesystem root, the current directory and its ancestors never.
 pub(crate) fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
+    check_target_as(dir, kind, force, "--out")
+}
+
+/// [`check_target`], naming the option that gave `dir` as `flag` in its messages.
+pub(crate) fn check_target_as(dir: &Path, kind: Kind, force: bool, flag: &str) -> Result<()> {
     let meta = match fs::symlink_metadata(dir) {
         Ok(m) => m,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
@@ -97,14 +102,14 @@ pub(crate) fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
     };
     if !meta.is_dir() {
         bail!(
-            "--out {} exists and is not a directory; platbench writes a directory there and never replaces a file: remove it or choose another --out",
+            "{flag} {} exists and is not a directory; platbench writes a directory there and never replaces a file: remove it or choose another {flag}",
             dir.display()
         );
     }
     if let (Ok(canon), Ok(cwd)) = (dir.canonicalize(), std::env::current_dir()) {
         if cwd.starts_with(&canon) {
             bail!(
-                "--out {} is the current directory or one of its parents; platbench replaces its output directory as a whole, so it must be a directory of its own",
+                "{flag} {} is the current directory or one of its parents; platbench replaces its output directory as a whole, so it must be a directory of its own",
                 dir.display()
             );
         }
@@ -112,7 +117,7 @@ pub(crate) fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
     let found = marker_of(dir);
     if found == Some(Kind::Baseline) && kind != Kind::Baseline {
         bail!(
-            "--out {} is a platbench baseline (its {MARKER} file says so); a baseline is replaced only on purpose, with `platbench run --bless`, `platbench baseline --replace` or `platbench review`",
+            "{flag} {} is a platbench baseline (its {MARKER} file says so); a baseline is replaced only on purpose, with `platbench run --bless`, `platbench baseline --replace` or `platbench review`",
             dir.display()
         );
     }
@@ -121,7 +126,7 @@ pub(crate) fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
     }
     if let Some(other) = found {
         bail!(
-            "--out {} holds the output of `{}`, not of `{}`; refusing to replace it. Choose another --out, or pass --force to replace it",
+            "{flag} {} holds the output of `{}`, not of `{}`; refusing to replace it. Choose another {flag}, or pass --force to replace it",
             dir.display(),
             other.command(),
             kind.command()
@@ -132,11 +137,38 @@ pub(crate) fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
         .count();
     if entries > 0 {
         bail!(
-            "--out {} already exists, holds {entries} entries and is not a platbench output (it has no {MARKER} file); refusing to replace it. Choose another --out, or pass --force to replace it and everything in it",
+            "{flag} {} already exists, holds {entries} entries and is not a platbench output (it has no {MARKER} file); refusing to replace it. Choose another {flag}, or pass --force to replace it and everything in it",
             dir.display()
         );
     }
     Ok(())
+}
+
+/// `p` made absolute with its symbolic links resolved, as far as it exists: the deepest
+/// existing ancestor canonicalized, the rest appended as given.
+pub(crate) fn canonical_lenient(p: &Path) -> PathBuf {
+    let abs = if p.is_absolute() {
+        p.to_path_buf()
+    } else {
+        std::env::current_dir().map_or_else(|_| p.to_path_buf(), |c| c.join(p))
+    };
+    let mut rest = Vec::new();
+    let mut at = abs.as_path();
+    loop {
+        if let Ok(c) = at.canonicalize() {
+            return rest
+                .iter()
+                .rev()
+                .fold(c, |acc: PathBuf, part| acc.join(part));
+        }
+        match (at.parent(), at.file_name()) {
+            (Some(parent), Some(name)) => {
+                rest.push(name.to_os_string());
+                at = parent;
+            }
+            _ => return abs,
+        }
+    }
 }
 
 /// The directory `dir` sits in (`.` for a bare name).

@@ -79,7 +79,7 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
     use crate::report::html::{render_report, Extras, ReplayRun, ScenarioTraces};
     // The extra files first: a bad one fails before the long run.
     output::check_target(&args.out, output::Kind::Report, args.force)?;
-    let profiles = super::run::load_profiles(&args.profiles)?;
+    let profiles = super::profiles::load_profiles(&args.profiles)?;
     let mut extras = Extras {
         // Filled once the run is in (below).
         verdict: String::new(),
@@ -178,7 +178,7 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
     // configuration), as `run` makes it.
     let facts = configs
         .iter()
-        .map(|c| super::run::facts(c, &h.registry))
+        .map(|c| super::profiles::facts(c, &h.registry))
         .collect();
     let level_features = levels
         .iter()
@@ -192,9 +192,9 @@ pub(crate) fn report(h: &Harness, args: &ReportArgs) -> Result<()> {
     extras.verdict = crate::report::verdict::render_verdict_html(
         &card,
         &verdicts,
-        &super::run::profile_source(&args.profiles),
+        &super::profiles::profile_source(&args.profiles),
     );
-    extras.verdict_text = super::run::verdict_text(&card, &profiles, &args.profiles);
+    extras.verdict_text = super::profiles::verdict_text(&card, &profiles, &args.profiles);
     let (html, md) = render_report(&h.registry, &metrics, &scenarios, &extras);
     output::write_output(&args.out, output::Kind::Report, args.force, |dir| {
         for (name, text) in [("report.html", &html), ("report.md", &md)] {

@@ -10,7 +10,7 @@ use anyhow::{bail, Context as _, Result};
 use clap::Args;
 
 use super::baseline::{baseline_dir, run_args_of, selection_of};
-use super::check::UNITS;
+use super::check::{CheckRecord, UNITS};
 use super::{out, output, Harness};
 use crate::report::check::{line, Status, Unit};
 use crate::report::diff::{read_metrics, MetricRecord};
@@ -24,7 +24,8 @@ pub(crate) struct ReviewArgs {
     /// The output of `platbench check --out` to review.
     #[arg(value_name = "CHECK_DIR", default_value = "platbench-check")]
     pub(crate) check: PathBuf,
-    /// The baseline directory (placeholder; the harness sets the real help).
+    /// The baseline directory (placeholder; the harness sets the real help). It must be the
+    /// baseline the check ran against (its check.toml names it); any other is refused.
     #[arg(long = "baseline", value_name = "DIR")]
     pub(crate) baseline: Option<PathBuf>,
     /// Accept every change without asking.
@@ -32,7 +33,8 @@ pub(crate) struct ReviewArgs {
     pub(crate) accept_all: bool,
     /// Accept the changes whose `LEVEL.SCENARIO/BACKEND CONFIG` matches PATTERN (a glob with
     /// `*` and `?` when it has one, else a substring), reject the others, without asking.
-    /// Repeatable.
+    /// Repeatable. An empty PATTERN is refused; one that matches no change is a warning on
+    /// stderr (the review still succeeds, accepting what the others matched).
     #[arg(long = "accept", value_name = "PATTERN", conflicts_with = "reject_all")]
     pub(crate) accept: Vec<String>,
     /// Reject every change without asking: only list them and write their pages.
@@ -150,6 +152,15 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
     if !flags && !std::io::stdin().is_terminal() {
         bail!("review asks about each change on a terminal, and stdin is not one; pass --accept-all, --accept PATTERN or --reject-all to decide without asking");
     }
+    if args.accept.iter().any(String::is_empty) {
+        bail!("--accept '': an empty pattern would match every change; pass --accept-all to accept them all");
+    }
+    if !args.check.is_dir() {
+        bail!(
+            "{} does not exist (or is not a directory); pass the --out directory of `platbench check`",
+            args.check.display()
+        );
+    }
     let marker = std::fs::read_to_string(args.check.join(output::MARKER)).unwrap_or_default();
     if marker.lines().next() != Some("platbench check") {
         bail!(
@@ -161,7 +172,29 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
     let units_path = args.check.join(UNITS);
     let units: Vec<Unit> = super::read_rows(&units_path)?;
     let base = baseline_dir(h, args.baseline.as_deref());
+    // Held until the review returns: two reviews at once would each write the baseline they
+    // read, and the later would lose the earlier's acceptances.
+    let _lock = super::review_apply::Lock::take(&base)?;
     let manifest = Manifest::read(&base)?;
+    let (ran, now) = (CheckRecord::read(&args.check)?, CheckRecord::of(&base)?);
+    if ran.baseline != now.baseline {
+        bail!(
+            "{} ran against the baseline {}, not {}; its changes are accepted only into the baseline it ran against: pass --baseline {} (or run the check again against {})",
+            args.check.display(),
+            ran.baseline,
+            now.baseline,
+            ran.baseline,
+            now.baseline
+        );
+    }
+    if ran.manifest != now.manifest {
+        bail!(
+            "the baseline {} changed since {} ran against it (its {} is not the one the check saw: the baseline was written again); run the check again",
+            now.baseline,
+            args.check.display(),
+            crate::report::manifest::FILE
+        );
+    }
     let changed: Vec<&Unit> = units.iter().filter(|u| u.status != Status::Pass).collect();
     if changed.is_empty() {
         out(&format!(
@@ -257,7 +290,21 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
             accepted.push(u);
         }
     }
+    for p in &args.accept {
+        if !changed.iter().any(|u| matches(p, &u.id())) {
+            eprintln!(
+                "warning: --accept {p:?} matches no change of {}",
+                args.check.display()
+            );
+        }
+    }
     super::review_apply::accept(&base, &args.check, &accepted)?;
+    // The baseline's manifest may have taken the check's levels: the check still ran against
+    // this baseline, for a later review of the changes rejected now.
+    let after = CheckRecord::of(&base)?;
+    if after != now {
+        after.write(&args.check)?;
+    }
     out(&format!(
         "\n{} of {} changes accepted into {}; {} rejected (the baseline keeps them as they were)",
         accepted.len(),

@@ -11,6 +11,7 @@ use anyhow::{bail, Context as _, Result};
 
 use super::output;
 use crate::report::check::Unit;
+use crate::report::manifest::{Manifest, FILE};
 
 /// A run's key in `metrics.csv`: level, scenario, backend, configuration.
 type Key = (String, String, String, String);
@@ -138,12 +139,98 @@ fn link_or_copy(from: &Path, to: &Path) -> Result<()> {
     Ok(())
 }
 
+/// The lock file a review holds in the baseline directory while it reads and rewrites it.
+pub(crate) const LOCK: &str = ".platbench-lock";
+
+/// A lock older than this is taken to be left by a review that died.
+const STALE: std::time::Duration = std::time::Duration::from_secs(3600);
+
+/// An exclusive lock on a baseline directory: `DIR/.platbench-lock`, made with `create_new`,
+/// holding the process id and a token; removed on drop if it is still this lock's.
+pub(crate) struct Lock {
+    path: std::path::PathBuf,
+    token: String,
+}
+
+impl Lock {
+    /// Takes the lock of `dir`; fails when another review holds it, and takes over (with a
+    /// warning) a lock older than an hour. `None` when `dir` does not exist (nothing to lock:
+    /// reading it fails next, with its own message).
+    pub(crate) fn take(dir: &Path) -> Result<Option<Lock>> {
+        if !dir.is_dir() {
+            return Ok(None);
+        }
+        let path = dir.join(LOCK);
+        let nanos = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_nanos());
+        let token = format!(
+            "platbench review, process {}, {nanos}\n",
+            std::process::id()
+        );
+        for _ in 0..2 {
+            match fs::OpenOptions::new()
+                .write(true)
+                .create_new(true)
+                .open(&path)
+            {
+                Ok(mut f) => {
+                    use std::io::Write as _;
+                    f.write_all(token.as_bytes())
+                        .with_context(|| format!("cannot write {}", path.display()))?;
+                    return Ok(Some(Lock { path, token }));
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    let age = fs::metadata(&path)
+                        .and_then(|m| m.modified())
+                        .ok()
+                        .and_then(|t| t.elapsed().ok());
+                    if age.is_some_and(|a| a > STALE) {
+                        eprintln!(
+                            "warning: taking over {}, older than an hour: left by a review that did not finish ({})",
+                            path.display(),
+                            fs::read_to_string(&path).unwrap_or_default().trim()
+                        );
+                        fs::remove_file(&path).with_context(|| {
+                            format!("cannot remove the stale {}", path.display())
+                        })?;
+                        continue;
+                    }
+                    bail!(
+                        "{} is locked by another review ({}: {}); wait for it to finish (a lock older than an hour is taken over; remove the file if no review is running)",
+                        dir.display(),
+                        path.display(),
+                        fs::read_to_string(&path).unwrap_or_default().trim()
+                    );
+                }
+                Err(e) => {
+                    return Err(e).with_context(|| format!("cannot create {}", path.display()))
+                }
+            }
+        }
+        bail!(
+            "cannot take {}: another review took it over first",
+            path.display()
+        )
+    }
+}
+
+impl Drop for Lock {
+    fn drop(&mut self) {
+        // Only this lock's file: the baseline swapped in has none, and another review may
+        // have taken a new one since.
+        if fs::read_to_string(&self.path).is_ok_and(|t| t == self.token) {
+            let _ = fs::remove_file(&self.path);
+        }
+    }
+}
+
 /// Copies the tree `from` into `to` (made already), leaving out the marker file at its top.
 fn copy_tree(from: &Path, to: &Path, top: bool) -> Result<()> {
     for e in fs::read_dir(from).with_context(|| format!("cannot read {}", from.display()))? {
         let e = e.with_context(|| format!("cannot read {}", from.display()))?;
         let (src, dst) = (e.path(), to.join(e.file_name()));
-        if top && e.file_name() == output::MARKER {
+        if top && (e.file_name() == output::MARKER || e.file_name() == LOCK) {
             continue;
         }
         let kind = e
@@ -162,6 +249,26 @@ fn copy_tree(from: &Path, to: &Path, top: bool) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The baseline's manifest with the entry of each level of an `accepted` run (its hash and
+/// scenarios) taken from the manifest of the check's run, so that the baseline records the
+/// level its accepted runs ran on; `None` when that changes nothing.
+fn updated_manifest(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<Option<Manifest>> {
+    let mut m = Manifest::read(base)?;
+    let ran = Manifest::read(check)?;
+    let before = m.clone();
+    let levels: BTreeSet<&str> = accepted.iter().map(|u| u.level.as_str()).collect();
+    for name in levels {
+        let Some(new) = ran.levels.iter().find(|l| l.name == name) else {
+            continue;
+        };
+        match m.levels.iter_mut().find(|l| l.name == name) {
+            Some(old) => *old = new.clone(),
+            None => m.levels.push(new.clone()),
+        }
+    }
+    Ok((m != before).then_some(m))
 }
 
 /// Accepts the runs `accepted` of the check output `check` into the baseline `base`: their
@@ -187,6 +294,7 @@ pub(crate) fn accept(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<()
         &read_rows(&check.join("metrics.csv"))?,
         &keys,
     )?;
+    let manifest = updated_manifest(base, check, accepted)?;
     let marker = fs::read(base.join(output::MARKER))
         .with_context(|| format!("cannot read {}", base.join(output::MARKER).display()))?;
     output::write_output(base, output::Kind::Baseline, false, |staging| {
@@ -195,6 +303,12 @@ pub(crate) fn accept(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<()
         let m = staging.join("metrics.csv");
         fs::remove_file(&m).with_context(|| format!("cannot replace {}", m.display()))?;
         output::write_file(&m, &metrics)?;
+        if let Some(manifest) = &manifest {
+            // A hard link to the old baseline's file: unlinked first, not written through.
+            let f = staging.join(FILE);
+            fs::remove_file(&f).with_context(|| format!("cannot replace {}", f.display()))?;
+            manifest.write(staging)?;
+        }
         let traces = staging.join("traces");
         fs::create_dir_all(&traces)
             .with_context(|| format!("cannot create {}", traces.display()))?;

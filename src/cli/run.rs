@@ -8,16 +8,15 @@ use std::time::Instant;
 use anyhow::{bail, Context as _, Result};
 use clap::Args;
 
+use super::profiles::{facts, load_profiles, verdict_text};
 use super::select::Selection;
 use super::{load_levels_with, out, output, Harness, ImportArgs};
 use crate::config::RunConfig;
 use crate::metrics::{evaluate_recorded, evaluate_with, MetricRow, RecordError};
 use crate::parallel;
-use crate::report::profile::{builtin_profiles, parse_profile, Profile};
+use crate::report::cost::CostRows;
 use crate::report::summary_rows::SummaryRows;
-use crate::report::verdict::{
-    pick, render_capabilities, render_scorecard, render_verdict, Facts, Scorecard, VerdictRows,
-};
+use crate::report::verdict::{Scorecard, VerdictRows};
 use crate::report::{detail_table, summary_table_in, Coverage};
 use crate::scenario::Runner;
 use crate::trace::RowStore;
@@ -63,9 +62,12 @@ pub(crate) struct RunArgs {
     /// writes a baseline of a selection of your choosing).
     #[arg(long, conflicts_with_all = ["levels", "out", "dt", "epsilon", "backends", "shapes", "timing", "traces", "precisions", "scenarios"])]
     pub(crate) bless: bool,
-    /// Also time each scenario on each configuration (in process, minimum of 5 repeats) and
-    /// add an ns_per_character_step row per scenario and configuration to metrics.csv. Runs
-    /// on one thread whatever --jobs says, so that nothing runs beside a timed step.
+    /// Also time each scenario on each configuration (in process, 11 whole runs after the
+    /// measured one) and add an ns_per_character_step row per scenario and configuration to
+    /// metrics.csv: the median of the runs' ns per step, their quartiles in its q1 and q3
+    /// columns. With several configurations timed, the summary ends with each one's cost
+    /// against the cheapest's. Runs on one thread whatever --jobs says, so that nothing runs
+    /// beside a timed step.
     #[arg(long)]
     pub(crate) timing: bool,
     #[command(flatten)]
@@ -150,7 +152,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         args.traces.unwrap_or(Traces::All)
     };
     let started = Instant::now();
-    let (metrics, coverage, notes, verdict, rows, written, failures) = match &target {
+    let (metrics, coverage, notes, verdict, rows, written, cost, failures) = match &target {
         Some(target) => {
             let mut result = None;
             output::write_output(target, kind, args.force, |dir| {
@@ -192,6 +194,13 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
     } else {
         out("\n(`--detail` prints the worst value of every metric and every scenario's; `--out DIR` writes the CSV files\nand traces; `platbench report` writes the HTML report with replays)");
     }
+    let lines = cost.closing_lines();
+    if !lines.is_empty() {
+        out(&format!(
+            "\nCost per character step (median of each scenario's ratio of median times, ± half their interquartile range):\n  {}",
+            lines.join("\n  ")
+        ));
+    }
     if let Some(target) = &target {
         eprintln!(
             "wrote {written} traces ({}) and {rows} metric rows to {}",
@@ -212,70 +221,6 @@ pub(crate) fn failed_runs(failures: &[String]) -> Result<()> {
             failures.len()
         ),
     }
-}
-
-/// What configuration `run` declares, its why falling back on its controller's description.
-pub(crate) fn facts(run: &RunConfig, registry: &crate::registry::Registry) -> Facts {
-    let mut f = Facts::of(run);
-    if f.why.is_empty() {
-        if let Some(k) = registry.get(&f.backend) {
-            f.why = k.description().to_string();
-        }
-    }
-    f
-}
-
-/// The game profiles of `files`, or the built-in ones when none is given.
-pub(crate) fn load_profiles(files: &[PathBuf]) -> Result<Vec<Profile>> {
-    if files.is_empty() {
-        return Ok(builtin_profiles());
-    }
-    let mut profiles: Vec<Profile> = Vec::new();
-    for f in files {
-        // A profile is a small regular file: a pipe or a device would block or never end.
-        let meta =
-            std::fs::metadata(f).with_context(|| format!("cannot read profile {}", f.display()))?;
-        if !meta.is_file() {
-            bail!(
-                "cannot read profile {}: it is not a regular file; expected a profile file (TOML)",
-                f.display()
-            );
-        }
-        let text = crate::limits::read_text_capped(f)
-            .with_context(|| format!("cannot read profile {}", f.display()))?;
-        let p = parse_profile(&text, &f.display().to_string())?;
-        if profiles.iter().any(|q| q.name == p.name) {
-            bail!(
-                "{}: a profile named {:?} was already given; expected each --profile to have a name of its own",
-                f.display(),
-                p.name
-            );
-        }
-        profiles.push(p);
-    }
-    Ok(profiles)
-}
-
-/// Where the verdict's profiles come from, as it says.
-pub(crate) fn profile_source(files: &[PathBuf]) -> String {
-    if files.is_empty() {
-        "Profiles: compare/profiles/*.toml; `--profile FILE` judges your own.".into()
-    } else {
-        let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-        format!("Profiles: {} (--profile).", names.join(", "))
-    }
-}
-
-/// The verdict of `profiles`, the scorecard and the capability table, as the terminal prints
-/// them.
-pub(crate) fn verdict_text(card: &Scorecard, profiles: &[Profile], files: &[PathBuf]) -> String {
-    let verdicts: Vec<_> = profiles.iter().map(|p| pick(card, p)).collect();
-    format!(
-        "{}\n{}\n{}",
-        render_verdict(card, &verdicts, &profile_source(files)),
-        render_scorecard(card),
-        render_capabilities(card)
-    )
 }
 
 /// Which traces `run --out` writes.
@@ -339,7 +284,8 @@ fn modelled_runs(levels: &[crate::level::Level], configs: &[RunConfig]) -> usize
 }
 
 /// What [`execute`] returns: the rows the summary reads, the scenarios each configuration ran,
-/// the notes, the scorecard, the number of metric rows, the number of traces written.
+/// the notes, the scorecard, the number of metric rows, the number of traces written, the
+/// timings.
 type Executed = (
     Vec<MetricRow>,
     Coverage,
@@ -347,6 +293,7 @@ type Executed = (
     Scorecard,
     usize,
     usize,
+    CostRows,
     Vec<String>,
 );
 
@@ -393,6 +340,32 @@ pub(crate) fn execute<'a>(
         None => None,
     };
     let mode = dir.map_or(Traces::None, |(_, m)| m);
+    // The timings first, in rounds over every run (each run's samples spread over the whole
+    // timing), on this one thread; the measured runs below take their samples.
+    let timed = if args.timing {
+        let started = Instant::now();
+        let live = std::io::stderr().is_terminal();
+        let t = crate::metrics::timing::time_rounds(levels, configs, |round| {
+            if live {
+                eprint!(
+                    "\r\x1b[K  timing round {}/{}",
+                    round + 1,
+                    crate::metrics::timing::SAMPLES
+                );
+            }
+        });
+        if live {
+            eprint!("\r\x1b[K");
+        }
+        eprintln!(
+            "  timed every run {} times, in rounds, in {:.2} s",
+            crate::metrics::timing::SAMPLES,
+            started.elapsed().as_secs_f64()
+        );
+        t
+    } else {
+        Vec::new()
+    };
     // One runner per thread, kept while its jobs stay on one level (they come in level order).
     let init = || None::<(usize, Runner<'a>)>;
     let work = |cache: &mut Option<(usize, Runner<'a>)>, i: usize| -> Result<Outcome> {
@@ -427,11 +400,17 @@ pub(crate) fn execute<'a>(
         };
         let mut metrics = Vec::with_capacity(e.metrics.len() + 1);
         if args.timing {
-            let ns = match crate::scenario::time_scenario(runner, spec, run, 5) {
-                Err(e) if e.is_failure() => return Ok(Outcome::Failed(e.to_string())),
-                ns => ns?,
-            };
-            metrics.push(crate::metrics::timing_row(level, spec, run, ns));
+            let mut samples = timed.get(i).copied().unwrap_or_default();
+            let t = crate::metrics::timing::Timing::of(&mut samples).with_context(|| {
+                format!(
+                    "timing {}.{} on {}/{}: a sample is not a finite number of ns",
+                    level.name,
+                    spec.name,
+                    run.backend.backend(),
+                    run.label
+                )
+            })?;
+            metrics.push(crate::metrics::timing_row(level, spec, run, t));
         }
         metrics.extend(std::mem::take(&mut e.metrics));
         let keep = match mode {
@@ -463,6 +442,7 @@ pub(crate) fn execute<'a>(
             .collect(),
     );
     let mut rows_seen = 0usize;
+    let mut cost = CostRows::default();
     let mut failures: Vec<String> = Vec::new();
     let (mut done, mut written) = (0usize, 0usize);
     // Refusals on the current level, per configuration: the first is said, the others counted
@@ -496,6 +476,7 @@ pub(crate) fn execute<'a>(
                 }
                 rows_seen += rows.len();
                 verdict.push_run(&rows);
+                cost.push_run(&rows);
                 if args.detail {
                     metrics.extend(rows);
                 } else {
@@ -565,6 +546,7 @@ pub(crate) fn execute<'a>(
         verdict.scorecard(),
         rows_seen,
         written,
+        cost,
         failures,
     ))
 }

@@ -313,5 +313,14 @@ fn a_timing_row_has_no_frame() {
     let level = parse_level(LEVEL, "m.toml").unwrap();
     let s = spec(Vec2::new(2.5, 1.0), vec![], 0.1);
     let run = crate::sweep::kind::run_default();
-    assert_eq!(timing_row(&level, &s, &run, 10.0).frame, None);
+    let t = super::timing::Timing {
+        median: 10.0,
+        q1: 9.0,
+        q3: 12.0,
+    };
+    let row = timing_row(&level, &s, &run, t);
+    assert_eq!(
+        (row.frame, row.value, row.q1, row.q3),
+        (None, 10.0, Some(9.0), Some(12.0))
+    );
 }

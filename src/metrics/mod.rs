@@ -27,10 +27,12 @@ pub mod registry;
 pub mod score;
 pub mod seams;
 pub mod slopes;
+pub(crate) mod timing;
 pub mod walls;
 
 pub use reference::{commanded_distance, commanded_steps, predicted_landing_frame};
 pub use registry::{Behaviour, MetricDef, METRICS};
+pub(crate) use timing::timing_row;
 
 use serde::Serialize;
 
@@ -67,9 +69,16 @@ pub struct MetricRow {
     /// or is best shown: the first frame of a maximum, the frame of an event, the first
     /// offending frame of a count, the last frame of an end state (each metric's function says
     /// which). `None` where no frame applies: a count of zero or an event that never happened
-    /// has no offending frame, and a timing row comes from no frame. The last column of
+    /// has no offending frame, and a timing row comes from no frame. A column of
     /// `metrics.csv`, empty when `None` (files written before it have no such column).
     pub frame: Option<u32>,
+    /// For a timing row (`ns_per_character_step`, whose value is the median of its samples),
+    /// the samples' first quartile; `None` for every other metric. A column of `metrics.csv`
+    /// after `frame`, empty when `None`.
+    pub q1: Option<f64>,
+    /// For a timing row, the samples' third quartile (`q3 - q1` is their interquartile range);
+    /// `None` for every other metric. The last column of `metrics.csv`, empty when `None`.
+    pub q3: Option<f64>,
 }
 
 /// A measured metric before it is labelled with its run (its unit is the registry's).
@@ -137,6 +146,8 @@ pub(crate) fn compute_frames(ctx: &Context, rows: Frames) -> Vec<MetricRow> {
                 reference: m.reference,
                 error: m.value - m.reference,
                 frame: m.frame,
+                q1: None,
+                q3: None,
             });
         }
     };
@@ -233,28 +244,6 @@ fn pos(r: &TraceRow) -> Vec2 {
 /// through a ladder top is inside it by right, whatever its grounded flag says).
 fn standing(r: &TraceRow) -> bool {
     r.is_grounded() && r.ladder == 0
-}
-
-/// The `ns_per_character_step` row of a timed scenario (see [`crate::scenario::time_scenario`]).
-pub(crate) fn timing_row(
-    level: &Level,
-    spec: &ScenarioSpec,
-    run: &crate::config::RunConfig,
-    ns: f64,
-) -> MetricRow {
-    MetricRow {
-        level: level.name.clone(),
-        scenario: spec.name.clone(),
-        backend: run.backend.backend().to_string(),
-        config: run.label.clone(),
-        metric: "ns_per_character_step",
-        value: ns,
-        unit: registry::unit("ns_per_character_step"),
-        reference: 0.0,
-        error: ns,
-        // A timing comes from repeated whole runs, no frame.
-        frame: None,
-    }
 }
 
 /// A scenario's trace and its metrics on one configuration.

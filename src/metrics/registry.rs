@@ -526,7 +526,7 @@ pub const METRICS: &[MetricDef] = &[
         "ns_per_character_step",
         "ns",
         Cost,
-        "nanoseconds per character step, minimum of several in-process repeats",
+        "nanoseconds per character step, median of 11 in-process samples on the thread's CPU clock (their quartiles in `q1` and `q3`)",
         "run --timing",
         "none (a cost, not an error)",
         0.0,

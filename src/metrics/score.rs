@@ -223,6 +223,8 @@ mod tests {
             reference,
             error: value - reference,
             frame: None,
+            q1: None,
+            q3: None,
         }
     }
 

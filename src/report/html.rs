@@ -15,7 +15,7 @@ pub(crate) use super::html_sections::{breaks_list, pair_tables};
 use super::html_sections::{stability_section, tradeoff_section};
 use super::replay::{escape, scenario_replay, styles};
 pub use super::replay::{ReplayRun, ScenarioTraces};
-use super::{badness, column, format_value, worst_matrix};
+use super::{badness, column, format_metric, format_value, worst_matrix};
 use crate::metrics::{registry, Behaviour, MetricRow};
 use crate::stress::StressRow;
 use crate::tradeoff::TradeoffRow;
@@ -75,7 +75,7 @@ fn behaviour_tables(
                 }
                 Some((v, best)) => {
                     let class = if *best { " class=\"best\"" } else { "" };
-                    let value = format_value(*v);
+                    let value = format_metric(*v, m.metrics[mi].1);
                     let linked = match worst.get(&(m.metrics[mi].0, m.configs[ci].clone())) {
                         Some(r) => replay_link(r, r.frame, &value),
                         None => value.clone(),
@@ -284,6 +284,8 @@ mod tests {
             reference: 0.0,
             error: value,
             frame: Some(7),
+            q1: None,
+            q3: None,
         }
     }
 

@@ -208,6 +208,8 @@ mod tests {
             reference: 0.0,
             error: 0.5,
             frame: None,
+            q1: None,
+            q3: None,
         };
         assert_eq!(
             replay_link(&row, Some(37), "0.5"),

@@ -3,6 +3,7 @@
 //! Tables are Markdown-style ASCII so they read the same in a terminal, a CI log and a PR.
 
 pub(crate) mod check;
+pub(crate) mod cost;
 pub mod diff;
 pub mod html;
 mod html_colours;
@@ -41,6 +42,16 @@ pub(crate) fn format_value(v: f64) -> String {
         format!("{v:.4}")
     } else {
         format!("{v:.2e}")
+    }
+}
+
+/// Formats a value of a metric in `unit`: a timing (ns) to three significant figures (its
+/// noise makes any more digits meaningless), anything else as [`format_value`].
+pub(crate) fn format_metric(v: f64, unit: &str) -> String {
+    if unit == "ns" {
+        crate::metrics::timing::three_figures(v)
+    } else {
+        format_value(v)
     }
 }
 
@@ -319,18 +330,35 @@ fn group_table(m: &WorstMatrix) -> String {
             .map(|(name, unit, _)| format!("{}\n({unit})", name.replace('_', "\n"))),
     );
     let mut table = new_table(header);
-    let mut ideal = vec!["ideal".to_string()];
-    ideal.extend(m.metrics.iter().map(|(_, _, r)| format_value(*r)));
-    table.add_row(ideal);
+    // A cost has no ideal (its reference 0 is no controller's aim): no ideal row for timings.
+    if m.metrics.iter().any(|(_, unit, _)| *unit != "ns") {
+        let mut ideal = vec!["ideal".to_string()];
+        ideal.extend(m.metrics.iter().map(|(_, unit, r)| {
+            if *unit == "ns" {
+                "-".to_string()
+            } else {
+                format_value(*r)
+            }
+        }));
+        table.add_row(ideal);
+    }
     for (ci, row) in m.cells.iter().enumerate() {
         if row.iter().all(|c| c.is_none()) {
             continue;
         }
         let mut cells = vec![m.label(ci)];
-        cells.extend(row.iter().map(|cell| match cell {
-            None => "-".into(),
-            Some((v, best)) => format!("{}{}", format_value(*v), if *best { "*" } else { "" }),
-        }));
+        cells.extend(
+            row.iter()
+                .zip(&m.metrics)
+                .map(|(cell, (_, unit, _))| match cell {
+                    None => "-".into(),
+                    Some((v, best)) => format!(
+                        "{}{}",
+                        format_metric(*v, unit),
+                        if *best { "*" } else { "" }
+                    ),
+                }),
+        );
         table.add_row(cells);
     }
     let metrics = &m.metrics;
@@ -372,7 +400,7 @@ pub(crate) fn detail_table(rows: &[MetricRow]) -> String {
                     && r.metric == *metric
                     && column(r) == *c
             });
-            cells.push(v.map_or("-".into(), |r| format_value(r.value)));
+            cells.push(v.map_or("-".into(), |r| format_metric(r.value, r.unit)));
         }
         table.add_row(cells);
     }
@@ -395,6 +423,8 @@ mod tests {
             reference: 0.0,
             error: value,
             frame: None,
+            q1: None,
+            q3: None,
         }
     }
 

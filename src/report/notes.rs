@@ -135,6 +135,8 @@ mod tests {
             reference: 0.0,
             error: value,
             frame: None,
+            q1: None,
+            q3: None,
         }
     }
 

@@ -484,6 +484,8 @@ mod tests {
             reference: 0.0,
             error: stuck,
             frame: None,
+            q1: None,
+            q3: None,
         }
     }
 

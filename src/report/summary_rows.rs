@@ -177,6 +177,8 @@ mod tests {
             reference: 0.0,
             error: v,
             frame: None,
+            q1: None,
+            q3: None,
         }
     }
 

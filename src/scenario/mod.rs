@@ -332,16 +332,30 @@ pub(crate) fn time_scenario(
     run: &RunConfig,
     repeats: usize,
 ) -> Result<f64, RunError> {
+    let mut samples = vec![0.0; repeats.max(1)];
+    time_samples(runner, spec, run, &mut samples)?;
+    Ok(samples.iter().copied().fold(f64::INFINITY, f64::min))
+}
+
+/// Times `samples.len()` whole runs of `spec` on `run`, one after the other, writing each run's
+/// nanoseconds per character step (its steps' time on the thread's CPU clock,
+/// [`thread_ns`], over its frames; building the backend is not timed)
+/// into `samples`, in run order.
+pub(crate) fn time_samples(
+    runner: &mut Runner,
+    spec: &ScenarioSpec,
+    run: &RunConfig,
+    samples: &mut [f64],
+) -> Result<(), RunError> {
     check_dt(spec)?;
     let params = effective_params(&run.params, spec);
     let script = input_script(spec);
-    let mut best = f64::INFINITY;
-    for _ in 0..repeats.max(1) {
+    for sample in samples.iter_mut() {
         let mut backend = runner
             .build(run, &params, &[CharacterSpec::of(spec)])
             .map_err(|e| failed_at(e, runner.level(), spec, run))?;
         let mut input = [Input::default()];
-        let start = std::time::Instant::now();
+        let start = thread_ns();
         for (k, i) in script.iter().enumerate() {
             input[0] = *i;
             for _ in 0..run.substeps.max(1) {
@@ -351,12 +365,37 @@ pub(crate) fn time_scenario(
                 return Err(failed(runner.level(), spec, run, Some(k), message));
             }
         }
-        let elapsed = start.elapsed().as_nanos() as f64;
+        let spent = thread_ns().saturating_sub(start) as f64;
         // A controller that reports its own step time is charged that, not the pipe's.
-        let ns = backend.reported_ns().unwrap_or(elapsed) / script.len().max(1) as f64;
-        best = best.min(ns);
+        *sample = backend.reported_ns().unwrap_or(spent) / script.len().max(1) as f64;
     }
-    Ok(best)
+    Ok(())
+}
+
+/// Time spent by this thread, in nanoseconds, on its CPU clock where the system gives one (Unix:
+/// `CLOCK_THREAD_CPUTIME_ID`): what a step costs, without the time the thread waited for a core
+/// while other processes ran (on a loaded machine most of the wall clock's noise). Elsewhere, or
+/// if the clock fails, the wall clock since an arbitrary start.
+pub(crate) fn thread_ns() -> u64 {
+    #[cfg(unix)]
+    {
+        let mut t = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: `t` is a valid, writable timespec for the call's duration, the only memory
+        // clock_gettime touches.
+        if unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) } == 0 {
+            return (t.tv_sec as u64)
+                .saturating_mul(1_000_000_000)
+                .saturating_add(t.tv_nsec as u64);
+        }
+    }
+    static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+    START
+        .get_or_init(std::time::Instant::now)
+        .elapsed()
+        .as_nanos() as u64
 }
 
 /// Runs one scenario on one configuration. Row 0 of the trace is the spawn state; row `k` is

@@ -6,5 +6,6 @@
 mod common;
 
 mod check;
+mod guard;
 mod review;
 mod toy;

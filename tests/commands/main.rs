@@ -9,5 +9,6 @@ mod scale;
 mod selection;
 mod stress;
 mod sweep_cli;
+mod timing;
 mod tradeoff;
 mod verdict;

@@ -244,3 +244,62 @@ fn the_carry_runs_every_platform_scenario_far_from_the_origin() {
         }
     }
 }
+
+/// `platforms.fast_descent` (platform 2 of `compare/levels/platforms.toml`, 8 tiles down from rest
+/// at 20 tiles/s) with the platform's speed set to `speed`: the advised row's airborne frames
+/// and whether it reads grounded on frame 1.
+fn fast_descent_at(speed: f32) -> (f64, bool) {
+    let text = include_str!("../../compare/levels/platforms.toml");
+    assert_eq!(
+        text.matches("speed = 20.0").count(),
+        1,
+        "one 20 tiles/s platform"
+    );
+    let text = text.replace("speed = 20.0", &format!("speed = {speed}"));
+    let l = platbench::level::parse_level(&text, "platforms.toml").expect("the copy parses");
+    let spec = l
+        .scenarios
+        .iter()
+        .find(|s| s.name == "fast_descent")
+        .unwrap();
+    let advised = Box2dConfig {
+        carry: GroundCarry::Ground,
+        pogo_hertz: platbench::box2d::advised_pogo_hertz(),
+        ..Default::default()
+    };
+    let e = evaluate(&l, spec, &run_with(advised)).unwrap();
+    let airborne = e
+        .metrics
+        .iter()
+        .find(|m| m.metric == "carry_airborne_frames")
+        .expect("a ride measures its airborne frames")
+        .value;
+    let first = e.trace.rows.iter().find(|r| r.frame == 1).expect("frame 1");
+    (airborne, first.grounded == 1)
+}
+
+/// The advised row loses the fast descent's rider whether or not the platform's first step
+/// outruns the pogo: at 20 tiles/s the step (0.333 tiles) is past the pogo's reach below the
+/// feet (a capsule radius, 0.327 tiles), a threshold 2% away; a little slower, the pogo finds
+/// the platform on frame 1 and the rider is lost all the same once the platform outruns
+/// gravity's fall. docs/box2d.md states both.
+#[test]
+fn the_fast_descent_rider_is_lost_on_either_side_of_the_pogo_s_reach() {
+    let at20 = fast_descent_at(20.0);
+    let at19 = fast_descent_at(19.0);
+    let at15 = fast_descent_at(15.0);
+    println!("airborne frames, grounded on frame 1: 20 {at20:?}, 19 {at19:?}, 15 {at15:?}");
+    // The threshold: 20 * dt = 0.333 > 0.327 > 19 * dt = 0.317 tiles.
+    assert!(!at20.1, "at 20 tiles/s the first step outruns the pogo");
+    assert!(
+        at19.1,
+        "at 19 tiles/s the pogo reaches the platform on frame 1"
+    );
+    // Lost either side (measured 33, 34 and 26 frames): the count is not the threshold's.
+    for (speed, (airborne, _)) in [(20, at20), (19, at19), (15, at15)] {
+        assert!(
+            airborne > 10.0,
+            "{speed} tiles/s: {airborne} airborne frames"
+        );
+    }
+}

@@ -4,4 +4,5 @@
 mod common;
 
 mod architecture;
+mod ci_recipe;
 mod readme;

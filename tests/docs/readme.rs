@@ -268,6 +268,8 @@ fn the_committed_trade_off_scores_the_committed_baseline_with_the_default_score(
                 reference: r.reference,
                 error: r.error,
                 frame: r.frame,
+                q1: None,
+                q3: None,
             })
         })
         .collect();

@@ -22,11 +22,9 @@ pub fn default_tolerance(unit: &str) -> Tolerance {
             abs: 1e-5,
             rel: 0.01,
         },
-        // Timings are noisy on a shared machine: 5 ns and 25%.
-        "ns" => Tolerance {
-            abs: 5.0,
-            rel: 0.25,
-        },
+        // Timings: the least change that counts beyond their measured spread (see
+        // `timing::TIMING_TOLERANCE`, measured on a loaded machine).
+        "ns" => super::timing::TIMING_TOLERANCE,
         _ => Tolerance { abs: 0.0, rel: 0.0 },
     }
 }
@@ -67,6 +65,14 @@ pub struct MetricDiff {
     pub base_frame: Option<u32>,
     /// The trace frame of the new value, if its `metrics.csv` gives one (shown, never compared).
     pub new_frame: Option<u32>,
+    /// A timing's first quartile in the baseline, if its `metrics.csv` gives one.
+    pub base_q1: Option<f64>,
+    /// A timing's third quartile in the baseline, if its `metrics.csv` gives one.
+    pub base_q3: Option<f64>,
+    /// A timing's first quartile in the new run, if its `metrics.csv` gives one.
+    pub new_q1: Option<f64>,
+    /// A timing's third quartile in the new run, if its `metrics.csv` gives one.
+    pub new_q3: Option<f64>,
 }
 
 /// What happened to one trace.
@@ -110,6 +116,8 @@ pub struct RunDiff {
     pub traces: Vec<TraceDiff>,
     /// How many traces were compared.
     pub traces_compared: usize,
+    /// How many of the metrics compared were timings found in both runs.
+    pub timings_compared: usize,
 }
 
 /// What fails a diff, beyond a metric that got worse (which always does, timings aside).
@@ -316,6 +324,10 @@ mod timing_tests {
                 new: Some(2.0),
                 base_frame: None,
                 new_frame: None,
+                base_q1: None,
+                base_q3: None,
+                new_q1: None,
+                new_q3: None,
                 change,
             }],
             ..Default::default()

@@ -9,6 +9,7 @@
 mod compare;
 mod read;
 mod render;
+mod timing;
 
 pub use compare::{
     default_tolerance, Change, FailOn, MetricDiff, RunDiff, Tolerance, TraceChange, TraceDiff,

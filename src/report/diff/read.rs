@@ -13,6 +13,22 @@ use super::compare::{
     classify, default_tolerance, first_divergence, Change, MetricDiff, RunDiff, Tolerance,
     TraceChange, TraceDiff,
 };
+use super::timing::{classify_timing, Spread};
+
+/// Whether `r` is a timing (its unit is ns): judged against its samples' spread.
+fn is_timing(r: &MetricRecord) -> bool {
+    crate::metrics::registry::get(&r.metric).map_or(r.unit.as_str(), |d| d.unit) == "ns"
+}
+
+/// A timing row's median and quartiles; a row without quartiles (written before them, when the
+/// value was a minimum of repeats) has none: its spread is its value alone.
+fn spread(r: &MetricRecord) -> Spread {
+    Spread {
+        median: r.value,
+        q1: r.q1.unwrap_or(r.value),
+        q3: r.q3.unwrap_or(r.value),
+    }
+}
 
 /// A row of `metrics.csv` as read back (owned strings).
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -40,6 +56,13 @@ pub struct MetricRecord {
     /// as `None`). Never compared: a frame moving is not a regression.
     #[serde(default)]
     pub frame: Option<u32>,
+    /// A timing row's first quartile of its samples (its value is their median); `None` for
+    /// other metrics and for files written before the column (a timing then has no spread).
+    #[serde(default)]
+    pub q1: Option<f64>,
+    /// A timing row's third quartile of its samples; `None` as for `q1`.
+    #[serde(default)]
+    pub q3: Option<f64>,
 }
 
 impl MetricRecord {
@@ -141,19 +164,28 @@ pub fn diff_runs(
         };
         let (scenario, config) = label(br);
         out.compared += 1;
-        let change = match new_by_key.get(&br.key()) {
+        let nr = new_by_key.get(&br.key()).copied();
+        let change = match nr {
             None => Change::Missing,
+            Some(nr) if is_timing(br) => classify_timing(&spread(br), &spread(nr), tol),
             Some(nr) => classify(br.value, nr.value, br.reference, tol),
         };
+        if is_timing(br) {
+            out.timings_compared += nr.is_some() as usize;
+        }
         if change != Change::Same {
             out.metrics.push(MetricDiff {
                 scenario,
                 config,
                 metric: br.metric.clone(),
                 base: Some(br.value),
-                new: new_by_key.get(&br.key()).map(|r| r.value),
+                new: nr.map(|r| r.value),
                 base_frame: br.frame,
-                new_frame: new_by_key.get(&br.key()).and_then(|r| r.frame),
+                new_frame: nr.and_then(|r| r.frame),
+                base_q1: br.q1,
+                base_q3: br.q3,
+                new_q1: nr.and_then(|r| r.q1),
+                new_q3: nr.and_then(|r| r.q3),
                 change,
             });
         }
@@ -167,6 +199,10 @@ pub fn diff_runs(
             new: Some(nr.value),
             base_frame: None,
             new_frame: nr.frame,
+            base_q1: None,
+            base_q3: None,
+            new_q1: nr.q1,
+            new_q3: nr.q3,
             change: Change::Added,
         });
     }

@@ -14,12 +14,24 @@ pub enum DiffFormat {
     Csv,
 }
 
-/// A value, with the trace frame it was reached at when the run's `metrics.csv` gives one.
-fn fmt_opt(v: Option<f64>, frame: Option<u32>) -> String {
-    match (v, frame) {
-        (None, _) => "-".into(),
-        (Some(v), None) => crate::report::format_value(v),
-        (Some(v), Some(f)) => format!("{} (frame {f})", crate::report::format_value(v)),
+/// A value, with the trace frame it was reached at when the run's `metrics.csv` gives one; a
+/// timing (unit ns) to three significant figures with its samples' interquartile range when
+/// the file gives its quartiles.
+fn fmt_opt(
+    metric: &str,
+    v: Option<f64>,
+    frame: Option<u32>,
+    quartiles: (Option<f64>, Option<f64>),
+) -> String {
+    let unit = crate::metrics::registry::get(metric).map_or("", |d| d.unit);
+    let value = |v: f64| crate::report::format_metric(v, unit);
+    match (v, frame, quartiles) {
+        (None, _, _) => "-".into(),
+        (Some(v), _, (Some(q1), Some(q3))) if unit == "ns" => {
+            format!("{} (IQR {}-{})", value(v), value(q1), value(q3))
+        }
+        (Some(v), None, _) => value(v),
+        (Some(v), Some(f), _) => format!("{} (frame {f})", value(v)),
     }
 }
 
@@ -67,6 +79,12 @@ pub fn render(d: &RunDiff, format: DiffFormat) -> String {
         d.traces_compared,
         d.traces.len()
     ));
+    if d.timings_compared > 0 {
+        out.push_str(&format!(
+            "{} timings compared: worse or better only beyond both runs' noise (interquartile ranges apart, and the median moved by more than the timing tolerance)\n",
+            d.timings_compared
+        ));
+    }
     if !d.metrics.is_empty() {
         let mut t = comfy_table::Table::new();
         // Markdown-style ASCII reads the same in a terminal, a CI log and a pull request.
@@ -93,8 +111,8 @@ pub fn render(d: &RunDiff, format: DiffFormat) -> String {
                 m.scenario.clone(),
                 m.config.clone(),
                 m.metric.clone(),
-                fmt_opt(m.base, m.base_frame),
-                fmt_opt(m.new, m.new_frame),
+                fmt_opt(&m.metric, m.base, m.base_frame, (m.base_q1, m.base_q3)),
+                fmt_opt(&m.metric, m.new, m.new_frame, (m.new_q1, m.new_q3)),
             ]);
         }
         out.push('\n');

@@ -15,6 +15,8 @@ fn row(backend: &str, config: &str, metric: &'static str, value: f64) -> MetricR
         reference: 0.0,
         error: value,
         frame: None,
+        q1: None,
+        q3: None,
     }
 }
 

@@ -19,6 +19,8 @@ fn row(
         reference,
         error: value - reference,
         frame: None,
+        q1: None,
+        q3: None,
     }
 }
 
