@@ -70,7 +70,7 @@ class Run:
         ]
 
     def step(self, message):
-        start = time.perf_counter_ns()
+        start = time.thread_time_ns()
         dt = message["dt"]
         out = []
         for char, request in zip(self.chars, message["characters"]):
@@ -92,7 +92,7 @@ class Run:
                 "wall": wall,
                 "ceiling": blocked and vy > 0,
             })
-        ns = time.perf_counter_ns() - start
+        ns = time.thread_time_ns() - start
         return {"type": "state", "step": message["step"], "characters": out, "ns": ns}
 
 

@@ -38,6 +38,15 @@ fn elevator_airborne(speed: f32, feed: GroundedMove, shape: CharacterShape) -> f
     value(&evals, "ride_turning_elevator", "carry_airborne_frames")
 }
 
+/// `level`'s scenarios on Rapier's default capsule per tile, each grounded step fed as `feed`.
+fn fed(level: &Level, feed: GroundedMove) -> Vec<(String, platbench::metrics::Evaluation)> {
+    let run = run_with(RapierConfig {
+        grounded_move: feed,
+        ..Default::default()
+    });
+    evaluate_all(std::slice::from_ref(level), &run)
+}
+
 /// The elevator speeds of the sweep, tiles/s: around 3.0, the built-in level's.
 const SPEEDS: [f32; 5] = [2.9, 2.95, 3.0, 3.05, 3.1];
 
@@ -190,11 +199,7 @@ fn the_diagonal_rider_stops_being_carried_sideways_on_the_platform_s_first_desce
         GroundedMove::Gravity,
         GroundedMove::NoneExceptTestbedOnPlatforms,
     ] {
-        let run = run_with(RapierConfig {
-            grounded_move: feed,
-            ..Default::default()
-        });
-        let evals = evaluate_all(std::slice::from_ref(&diagonal), &run);
+        let evals = fed(&diagonal, feed);
         let rows = &evals[0].1.trace.rows;
         let x = |frame: u32| rows.iter().find(|r| r.frame == frame).expect("frame").x;
         println!(
@@ -259,11 +264,7 @@ fn squeezed_with_no_move_asked_rapier_s_depenetration_pushes_the_rider_into_the_
         GroundedMove::Gravity,
         GroundedMove::NoneExceptTestbedOnPlatforms,
     ] {
-        let run = run_with(RapierConfig {
-            grounded_move: feed,
-            ..Default::default()
-        });
-        let evals = evaluate_all(std::slice::from_ref(&crush), &run);
+        let evals = fed(&crush, feed);
         let rows = &evals[0].1.trace.rows;
         let jump = rows
             .windows(2)
