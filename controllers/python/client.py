@@ -9,10 +9,15 @@ platforms are refused with a reason (platbench skips them and says so).
 
 The shortest complete client, and a template for any language: read one JSON object per line
 on stdin, answer with one JSON object per line on stdout (flushed), exit when stdin closes.
+With `transport = "tcp"` in the controller file, the same lines travel over a TCP connection to
+127.0.0.1 at the port in $PLATBENCH_PORT instead (as Godot's client must), and it exits when the
+connection closes.
 Lengths are in tiles, y up; a character's position is its feet (bottom centre of its box).
 """
 
 import json
+import os
+import socket
 import sys
 import time
 
@@ -20,9 +25,17 @@ PROTOCOL = 1
 EPS = 1e-9  # boxes closer than this along the other axis do not block (touching is not overlap)
 
 
+IN, OUT = sys.stdin, sys.stdout
+if os.environ.get("PLATBENCH_PORT"):
+    _connection = socket.create_connection(("127.0.0.1", int(os.environ["PLATBENCH_PORT"])))
+    _connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+    IN = _connection.makefile("r", encoding="utf-8")
+    OUT = _connection.makefile("w", encoding="utf-8")
+
+
 def send(message):
-    sys.stdout.write(json.dumps(message) + "\n")
-    sys.stdout.flush()
+    OUT.write(json.dumps(message) + "\n")
+    OUT.flush()
 
 
 def hello():
@@ -98,7 +111,7 @@ class Run:
 
 def main():
     run = None
-    for line in iter(sys.stdin.readline, ""):
+    for line in iter(IN.readline, ""):
         message = json.loads(line)
         kind = message["type"]
         if kind == "hello":

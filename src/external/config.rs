@@ -29,6 +29,17 @@ impl Mode {
     }
 }
 
+/// How platbench and the controller exchange their lines.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Transport {
+    /// Over the controller's stdin and stdout (the default).
+    Stdio,
+    /// Over a TCP connection the controller opens to `127.0.0.1` at the port in the environment
+    /// variable `PLATBENCH_PORT`, for a program that cannot read its stdin (Godot 3's headless
+    /// server). Its stdout is then free for logs, as its stderr is.
+    Tcp,
+}
+
 /// A controller file, read and checked.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ControllerFile {
@@ -46,6 +57,8 @@ pub struct ControllerFile {
     pub working_directory: PathBuf,
     /// How platbench drives it.
     pub mode: Mode,
+    /// How the lines travel.
+    pub transport: Transport,
     /// How long platbench waits for each step's reply before it ends the run.
     pub step_timeout: Duration,
     /// How long platbench waits for the program to start and answer the handshake or a `run`.
@@ -61,6 +74,7 @@ struct Raw {
     args: Vec<String>,
     working_directory: Option<Spanned<String>>,
     mode: Spanned<String>,
+    transport: Option<Spanned<String>>,
     step_timeout_ms: Option<Spanned<u64>>,
     start_timeout_ms: Option<Spanned<u64>>,
 }
@@ -129,6 +143,16 @@ pub(crate) fn parse(text: &str, path: &Path) -> Result<ControllerFile, ExternalE
             ))
         }
     };
+    let transport = match raw.transport.as_ref().map(|t| (t, t.get_ref().as_str())) {
+        None | Some((_, "stdio")) => Transport::Stdio,
+        Some((_, "tcp")) => Transport::Tcp,
+        Some((t, other)) => {
+            return Err(at(
+                t.span().start,
+                format!("transport {other:?}: expected \"stdio\" (JSON lines over its stdin and stdout, the default) or \"tcp\" (it connects to 127.0.0.1 at the port in $PLATBENCH_PORT)"),
+            ))
+        }
+    };
     let timeout = |v: &Option<Spanned<u64>>, default: u64, what: &str| match v {
         None => Ok(Duration::from_millis(default)),
         Some(v) if (1..=MAX_TIMEOUT_MS).contains(v.get_ref()) => {
@@ -162,6 +186,7 @@ pub(crate) fn parse(text: &str, path: &Path) -> Result<ControllerFile, ExternalE
             .as_ref()
             .map_or_else(|| dir.to_path_buf(), |w| dir.join(w.get_ref())),
         mode,
+        transport,
         step_timeout: timeout(&raw.step_timeout_ms, STEP_TIMEOUT_MS, "step_timeout_ms")?,
         start_timeout: timeout(&raw.start_timeout_ms, START_TIMEOUT_MS, "start_timeout_ms")?,
     })
@@ -194,6 +219,7 @@ mod tests {
         assert_eq!(c.command, PathBuf::from("python3"));
         assert_eq!(c.working_directory, PathBuf::from("dir"));
         assert_eq!(c.mode, Mode::Collision);
+        assert_eq!(c.transport, Transport::Stdio);
         assert_eq!(c.step_timeout, Duration::from_millis(STEP_TIMEOUT_MS));
         let c = parse_str(
             "name = \"py\"\ncommand = \"./run.sh\"\nmode = \"whole\"\nstep_timeout_ms = 50\n",
@@ -219,6 +245,13 @@ mod tests {
         let e = parse_str("name = \"py\"\ncommand = \"x\"\nmode = \"whole\"\ncolour = 1\n")
             .unwrap_err();
         assert!(e.to_string().starts_with("dir/c.toml:4:1:"), "{e}");
+        let e = parse_str("name = \"g\"\ncommand = \"x\"\nmode = \"whole\"\ntransport = \"udp\"\n")
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("dir/c.toml:4:13: transport \"udp\""),
+            "{e}"
+        );
         let e = parse_str("name = \"py\"\nmode = \"whole\"\n").unwrap_err();
         assert!(e.to_string().contains("command"), "{e}");
     }

@@ -14,7 +14,7 @@ use std::sync::Arc;
 
 use glam::Vec2;
 
-pub use config::{ControllerFile, Mode};
+pub use config::{ControllerFile, Mode, Transport};
 pub use protocol::VERSION;
 
 use crate::backend::{

@@ -141,3 +141,38 @@ fn a_bad_controller_file_names_its_line_and_column() {
         "{stderr}"
     );
 }
+
+#[test]
+fn a_tcp_client_that_never_connects_is_killed_at_its_start_timeout() {
+    let Some(py) = python("tests/external/misbehaving.rs (a TCP client that never connects)")
+    else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("silent.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "name = \"silent\"\ncommand = {:?}\nargs = [\"-c\", \"import time; print('waiting', flush=True); time.sleep(100)\"]\nmode = \"collision\"\ntransport = \"tcp\"\nstart_timeout_ms = 2000\n",
+            py.display().to_string()
+        ),
+    )
+    .unwrap();
+    let start = Instant::now();
+    let Err(e) = platbench::external::load(&file) else {
+        panic!("it never connects, yet it loaded")
+    };
+    // 2 s of start timeout (python3 starts in well under that), and the kill: well under the 100 s it would sleep.
+    assert!(
+        start.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        start.elapsed()
+    );
+    let text = e.to_string();
+    assert!(
+        text.contains("did not connect to port $PLATBENCH_PORT within its start timeout of 2000 ms"),
+        "{text}"
+    );
+    // Over TCP its stdout is free for logs, and quoted as its stderr is.
+    assert!(text.contains("its stdout ended: waiting"), "{text}");
+}

@@ -178,3 +178,22 @@ fn pipe_overhead() {
     );
     assert!(overhead.is_finite() && own > 0.0);
 }
+
+#[test]
+fn the_python_client_over_tcp_gives_the_trace_it_gives_over_stdio() {
+    let Some(py) = python("tests/external/python.rs (the TCP transport)") else {
+        return;
+    };
+    // `transport = "tcp"`: the same client, its lines over a loopback connection to the port in
+    // $PLATBENCH_PORT (Godot's client's transport). The trace must be the pipe's, bit for bit.
+    let dir = tempfile::tempdir().unwrap();
+    let stdio = client(dir.path(), &py);
+    let text = std::fs::read_to_string(&stdio).unwrap();
+    let tcp = dir.path().join("tcp.toml");
+    std::fs::write(&tcp, format!("{text}transport = \"tcp\"\n")).unwrap();
+    let level = common::level("jumps");
+    let spec = &level.scenarios[0];
+    let a = run_scenario(&level, spec, &configs(&stdio)[0]).unwrap();
+    let b = run_scenario(&level, spec, &configs(&tcp)[0]).unwrap();
+    assert_eq!(a, b);
+}
