@@ -1,11 +1,13 @@
 //! `--controller FILE`: external controllers registered before the options are parsed (their
-//! names are `--backend` values).
+//! names are `--backend` values); `--controller godot3` is the built-in Godot 3 client, which the
+//! built-in comparison adds by itself when Godot 3 is installed.
 
 use std::path::PathBuf;
 
 use anyhow::{bail, Result};
 
 use super::Harness;
+use crate::external::godot3;
 
 /// `harness` with the external controllers of the `--controller FILE` arguments in `args`
 /// registered after its own kinds, or `None` when there is none.
@@ -33,7 +35,20 @@ pub(super) fn with_controllers(
     }
     let mut h = harness.clone();
     for f in &files {
-        let kind = crate::external::load(f)?;
+        let kind = if f.as_os_str() == godot3::NAME && !f.exists() {
+            let Some(program) = godot3::program() else {
+                bail!(
+                    "--controller {}: no `{}` on the PATH (nor ${}); install it with `{}`",
+                    godot3::NAME,
+                    godot3::PROGRAM,
+                    godot3::PROGRAM_VARIABLE,
+                    godot3::INSTALL
+                );
+            };
+            godot3::load_with(&program)?
+        } else {
+            crate::external::load(f)?
+        };
         if h.registry.get(kind.name()).is_some() {
             bail!(
                 "{}: a controller named {:?} is already registered; expected a name of its own in the controller file",
@@ -44,4 +59,37 @@ pub(super) fn with_controllers(
         h.registry.register(kind);
     }
     Ok(Some(h))
+}
+
+/// `harness` with the built-in Godot 3 client added for the built-in comparison (`platbench`
+/// with no subcommand) when a Godot 3 server is installed; said on stderr either way. `None`
+/// when it is not added (no server, already registered, or its handshake failed: said).
+pub(super) fn with_builtin_godot3(harness: &Harness) -> Option<Harness> {
+    if harness.registry.get(godot3::NAME).is_some() {
+        return None;
+    }
+    match godot3::load() {
+        None => {
+            eprintln!(
+                "note: no `{}` on the PATH (nor ${}): the comparison leaves out Godot 3's rows; install it with `{}` to compare Godot 3's KinematicBody2D too",
+                godot3::PROGRAM,
+                godot3::PROGRAM_VARIABLE,
+                godot3::INSTALL
+            );
+            None
+        }
+        Some(Err(e)) => {
+            eprintln!("note: the comparison leaves out Godot 3's rows: {e}");
+            None
+        }
+        Some(Ok(kind)) => {
+            eprintln!(
+                "note: with Godot 3's rows ({}; `--controller godot3` adds them to any command)",
+                kind.description()
+            );
+            let mut h = harness.clone();
+            h.registry.register(kind);
+            Some(h)
+        }
+    }
 }

@@ -156,7 +156,7 @@ where
     let h = harness;
     let result = match cli.command {
         None => run::run(
-            h,
+            controllers::with_builtin_godot3(h).as_ref().unwrap_or(h),
             &run::RunArgs {
                 out: cli.out,
                 force: cli.force,
@@ -209,8 +209,8 @@ pub(crate) fn jobs_or_cores(jobs: Option<u32>) -> usize {
 
 /// Compare 2D platformer character controllers on the same levels, side by side.
 ///
-/// With no subcommand, runs every built-in scenario on every configuration and prints a
-/// summary table (the worst case of each metric per configuration); with --out, writes the
+/// With no subcommand, runs every built-in scenario on every configuration (Godot 3's too, when
+/// godot3-server is installed) and prints the verdict and the scorecard; with --out, writes the
 /// traces and metrics too, as `run --out` does.
 #[derive(Parser)]
 #[command(

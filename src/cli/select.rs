@@ -52,8 +52,9 @@ pub(crate) struct Selection {
     pub(crate) jobs: Option<u32>,
     /// An external controller to run beside the registered ones: a controller file (TOML:
     /// name, command, args, working_directory, mode, step_timeout_ms; docs/protocol.md) whose
-    /// program speaks the step protocol over stdin/stdout (repeatable). Its name joins the
-    /// --backend values.
+    /// program speaks the step protocol over stdin/stdout or TCP (repeatable). Its name joins
+    /// the --backend values. `--controller godot3` is the built-in Godot 3 client (needs
+    /// godot3-server; docs/godot3.md).
     #[arg(long = "controller", value_name = "FILE")]
     pub(crate) controllers: Vec<std::path::PathBuf>,
 }

@@ -5,6 +5,7 @@
 //! then starts the program afresh, so a run that fails ends alone.
 
 mod config;
+pub mod godot3;
 mod process;
 mod protocol;
 mod running;
@@ -88,7 +89,12 @@ pub(crate) struct ExternalSettings {
 /// register ([`crate::registry::Registry::register`]). Its name and description are leaked, once
 /// per file (the registry's names are `&'static str`).
 pub fn load(path: &Path) -> Result<Arc<dyn BackendKind>, ExternalError> {
-    let file = Arc::new(config::read(path)?);
+    load_file(config::read(path)?)
+}
+
+/// [`load`] for a controller file already read.
+fn load_file(file: ControllerFile) -> Result<Arc<dyn BackendKind>, ExternalError> {
+    let file = Arc::new(file);
     let fail = |message: String| ExternalError::Handshake {
         file: file.source.clone(),
         name: file.name.clone(),

@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod godot;
 mod misbehaving;
 mod python;
 
@@ -58,4 +59,38 @@ pub(crate) fn configs(path: &Path) -> Vec<RunConfig> {
     platbench::external::load(path)
         .unwrap_or_else(|e| panic!("{e}"))
         .builtin_configs()
+}
+
+/// Prints the wall time of a step of `run` minus the time the controller reports for it: what
+/// the transport, the JSON on both sides and the other process's scheduling cost, per step
+/// (`own` names the controller's reported time in the line).
+pub(crate) fn print_overhead(run: &RunConfig, own_label: &str) {
+    let level = common::level("long_floor");
+    let spec = &level.scenarios[0];
+    let mut runner = platbench::scenario::Runner::new(&level);
+    let params = platbench::scenario::effective_params(&run.params, spec);
+    let ch = [platbench::backend::CharacterSpec::of(spec)];
+    let mut backend = runner.build(run, &params, &ch).unwrap();
+    let steps = platbench::scenario::step_count(spec);
+    let input = [platbench::motion::Input {
+        right: true,
+        ..Default::default()
+    }];
+    let start = std::time::Instant::now();
+    for _ in 0..steps {
+        backend.step(&input, spec.dt);
+    }
+    let wall = start.elapsed().as_nanos() as f64 / steps as f64;
+    assert_eq!(backend.failure(), None);
+    let own = backend.reported_ns().unwrap() / steps as f64;
+    let overhead = wall - own;
+    use std::io::Write as _;
+    let _ = writeln!(
+        std::io::stderr(),
+        "{}: overhead {overhead:.0} ns per step ({wall:.0} ns wall, {own:.0} ns {own_label}, {steps} steps of {}.{})",
+        run.label,
+        level.name,
+        spec.name
+    );
+    assert!(overhead.is_finite() && own > 0.0);
 }

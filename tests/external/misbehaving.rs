@@ -170,7 +170,9 @@ fn a_tcp_client_that_never_connects_is_killed_at_its_start_timeout() {
     );
     let text = e.to_string();
     assert!(
-        text.contains("did not connect to port $PLATBENCH_PORT within its start timeout of 2000 ms"),
+        text.contains(
+            "did not connect to port $PLATBENCH_PORT within its start timeout of 2000 ms"
+        ),
         "{text}"
     );
     // Over TCP its stdout is free for logs, and quoted as its stderr is.

@@ -146,37 +146,11 @@ fn pipe_overhead() {
     let Some(py) = python("tests/external/python.rs (the pipe's overhead)") else {
         return;
     };
-    // The wall time of a step minus the time the controller reports for it: what the pipe, the
-    // JSON on both sides and the other process's scheduling cost, per step.
     let dir = tempfile::tempdir().unwrap();
-    let run = &configs(&client(dir.path(), &py))[0];
-    let level = common::level("long_floor");
-    let spec = &level.scenarios[0];
-    let mut runner = platbench::scenario::Runner::new(&level);
-    let params = platbench::scenario::effective_params(&run.params, spec);
-    let ch = [platbench::backend::CharacterSpec::of(spec)];
-    let mut backend = runner.build(run, &params, &ch).unwrap();
-    let steps = platbench::scenario::step_count(spec);
-    let input = [platbench::motion::Input {
-        right: true,
-        ..Default::default()
-    }];
-    let start = std::time::Instant::now();
-    for _ in 0..steps {
-        backend.step(&input, spec.dt);
-    }
-    let wall = start.elapsed().as_nanos() as f64 / steps as f64;
-    assert_eq!(backend.failure(), None);
-    let own = backend.reported_ns().unwrap() / steps as f64;
-    let overhead = wall - own;
-    use std::io::Write as _;
-    let _ = writeln!(
-        std::io::stderr(),
-        "pipe overhead: {overhead:.0} ns per step ({wall:.0} ns wall, {own:.0} ns the Python client's own, {steps} steps of {}.{})",
-        level.name,
-        spec.name
+    crate::print_overhead(
+        &configs(&client(dir.path(), &py))[0],
+        "the Python client's own",
     );
-    assert!(overhead.is_finite() && own > 0.0);
 }
 
 #[test]
