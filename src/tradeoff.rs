@@ -128,7 +128,26 @@ pub fn run_tradeoff_on(
     settings: &[Setting],
     score: &Score,
     jobs: usize,
+    progress: impl FnMut(usize, usize, &str),
+) -> Result<Vec<TradeoffRow>, RunError> {
+    let mut first = None;
+    let rows = run_tradeoff_reporting(levels, settings, score, jobs, progress, |e| {
+        first.get_or_insert_with(|| e.clone());
+    })?;
+    first.map_or(Ok(rows), Err)
+}
+
+/// [`run_tradeoff_on`] that goes on past a run that failed ([`RunError::is_failure`]: an
+/// external controller that crashed, hung or answered out of protocol): `on_failure` hears each,
+/// the setting it belongs to gets no row (a row over fewer scenarios would compare unlike
+/// sets), and the other settings complete. Other errors end the sweep.
+pub fn run_tradeoff_reporting(
+    levels: &[Level],
+    settings: &[Setting],
+    score: &Score,
+    jobs: usize,
     mut progress: impl FnMut(usize, usize, &str),
+    mut on_failure: impl FnMut(&RunError),
 ) -> Result<Vec<TradeoffRow>, RunError> {
     // Each setting's scenarios, with the setting's time step: (setting, level, scenario).
     let spec_of = |s: &Setting, level: &Level, si: usize| {
@@ -149,6 +168,7 @@ pub fn run_tradeoff_on(
     // The metrics, fanned out: None for a level the setting does not model (left out of its
     // row).
     let mut measured: Vec<Option<Vec<MetricRow>>> = Vec::with_capacity(items.len());
+    let mut failed = vec![false; settings.len()];
     crate::parallel::for_each_ordered(
         jobs,
         items.len(),
@@ -167,8 +187,16 @@ pub fn run_tradeoff_on(
                 e => e.map(|e| Some(e.metrics)),
             }
         },
-        |_, r| {
-            measured.push(r?);
+        |i, r| {
+            match r {
+                Ok(m) => measured.push(m),
+                Err(e) if e.is_failure() => {
+                    on_failure(&e);
+                    failed[items[i].0] = true;
+                    measured.push(None);
+                }
+                Err(e) => return Err(e),
+            }
             Ok::<(), RunError>(())
         },
     )?;
@@ -184,12 +212,25 @@ pub fn run_tradeoff_on(
                 let Some(metrics) = measured.next().flatten() else {
                     continue;
                 };
+                if failed[k] {
+                    continue;
+                }
                 rows.extend(metrics);
                 let spec = spec_of(s, level, si);
                 // ns per frame (its substeps included) over seconds per frame, in microseconds.
-                cost += time_scenario(&mut runner, &spec, &s.run, 3)? / spec.dt as f64 / 1000.0;
+                match time_scenario(&mut runner, &spec, &s.run, 3) {
+                    Ok(ns) => cost += ns / spec.dt as f64 / 1000.0,
+                    Err(e) if e.is_failure() => {
+                        on_failure(&e);
+                        failed[k] = true;
+                    }
+                    Err(e) => return Err(e),
+                }
                 n += 1;
             }
+        }
+        if failed[k] {
+            continue;
         }
         let row = |scope: &str, error: f64| TradeoffRow {
             backend: s.run.backend.backend().to_string(),

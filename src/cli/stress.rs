@@ -15,7 +15,7 @@ pub(crate) fn stress(
     select: &Selection,
 ) -> Result<()> {
     use crate::report::html::breaks_list;
-    use crate::stress::{stress_matrix_with, verdicts, world_verdicts};
+    use crate::stress::{stress_matrix_reporting, verdicts, world_verdicts};
     if !select.scenarios.is_empty() {
         bail!(
             "--scenario {}: stress runs its own probe levels (a fast mover, a seam, a platform, a jump), not level files; drop --scenario",
@@ -43,9 +43,17 @@ pub(crate) fn stress(
         }
     }
     let started = Instant::now();
-    let rows = stress_matrix_with(&runs, select.dt()?, select.jobs(), |what| {
-        eprintln!("  {what}")
-    })?;
+    let mut failures = Vec::new();
+    let rows = stress_matrix_reporting(
+        &runs,
+        select.dt()?,
+        select.jobs(),
+        |what| eprintln!("  {what}"),
+        |e| {
+            eprintln!("  error: {e} (the other probes go on)");
+            failures.push(e.to_string());
+        },
+    )?;
     eprintln!("ran in {:.1} s", started.elapsed().as_secs_f64());
     let table = |header: Vec<String>| {
         let mut t = comfy_table::Table::new();
@@ -127,5 +135,5 @@ pub(crate) fn stress(
         output::write_csv(&dir.join("stability.csv"), &rows)
     })?;
     eprintln!("wrote {}", out_dir.join("stability.csv").display());
-    Ok(())
+    super::run::failed_runs(&failures)
 }

@@ -19,7 +19,7 @@ pub(crate) fn tradeoff(
     select: &Selection,
 ) -> Result<()> {
     use crate::metrics::score::Score;
-    use crate::tradeoff::{chart_svg_scope, run_tradeoff_on, scored_behaviours, ALL};
+    use crate::tradeoff::{chart_svg_scope, run_tradeoff_reporting, scored_behaviours, ALL};
     output::check_target(out_dir, output::Kind::Sweep, force)?;
     let score = match score {
         Some(s) => Score::parse(s)?,
@@ -31,16 +31,27 @@ pub(crate) fn tradeoff(
     let jobs = select.jobs();
     eprintln!("error score: {}", score.describe());
     let started = Instant::now();
-    let rows = run_tradeoff_on(&levels, &settings, &score, jobs, |done, total, label| {
-        let width = 30;
-        let filled = done * width / total.max(1);
-        eprintln!(
-            "  [{}{}] {done}/{total} {label} ({:.0} s)",
-            "#".repeat(filled),
-            ".".repeat(width - filled),
-            started.elapsed().as_secs_f64()
-        );
-    })?;
+    let mut failures = Vec::new();
+    let rows = run_tradeoff_reporting(
+        &levels,
+        &settings,
+        &score,
+        jobs,
+        |done, total, label| {
+            let width = 30;
+            let filled = done * width / total.max(1);
+            eprintln!(
+                "  [{}{}] {done}/{total} {label} ({:.0} s)",
+                "#".repeat(filled),
+                ".".repeat(width - filled),
+                started.elapsed().as_secs_f64()
+            );
+        },
+        |e| {
+            eprintln!("  error: {e} (its setting gets no row; the others go on)");
+            failures.push(e.to_string());
+        },
+    )?;
     let mut t = comfy_table::Table::new();
     t.load_style(comfy_table::presets::ASCII_MARKDOWN);
     t.set_header(vec![
@@ -54,6 +65,9 @@ pub(crate) fn tradeoff(
     // A setting that ran fewer scenarios is measured over another set: said, and never on the
     // front.
     let most = rows.iter().map(|r| r.scenarios).max().unwrap_or(0);
+    if most == 0 && !failures.is_empty() {
+        return super::run::failed_runs(&failures);
+    }
     if most == 0 {
         anyhow::bail!(
             "nothing was measured: no selected setting models a selected scenario (each skipped the levels whose features it does not model; see above); nothing written"
@@ -93,7 +107,7 @@ pub(crate) fn tradeoff(
         "wrote tradeoff.csv, tradeoff.svg and tradeoff.<behaviour>.svg to {}",
         out_dir.display()
     );
-    Ok(())
+    super::run::failed_runs(&failures)
 }
 
 /// The registry's grid of settings cut and set by the selection options: `--dt` replaces the

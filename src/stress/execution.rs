@@ -223,7 +223,24 @@ pub fn stress_matrix_with(
     runs: &[RunConfig],
     dt: Option<f32>,
     jobs: usize,
+    progress: impl FnMut(&str),
+) -> Result<Vec<StressRow>, RunError> {
+    let mut first = None;
+    let rows = stress_matrix_reporting(runs, dt, jobs, progress, |e| {
+        first.get_or_insert_with(|| e.clone());
+    })?;
+    first.map_or(Ok(rows), Err)
+}
+
+/// [`stress_matrix_with`] that goes on past a run that failed ([`RunError::is_failure`]: an
+/// external controller that crashed, hung or answered out of protocol): `on_failure` hears each,
+/// its point gives no rows, and the other points complete. Other errors end the matrix.
+pub fn stress_matrix_reporting(
+    runs: &[RunConfig],
+    dt: Option<f32>,
+    jobs: usize,
     mut progress: impl FnMut(&str),
+    mut on_failure: impl FnMut(&RunError),
 ) -> Result<Vec<StressRow>, RunError> {
     let points = points_with(runs, dt);
     let mut out = Vec::new();
@@ -239,7 +256,11 @@ pub fn stress_matrix_with(
                 progress(&what);
                 last = what;
             }
-            out.extend(rows?);
+            match rows {
+                Ok(rows) => out.extend(rows),
+                Err(e) if e.is_failure() => on_failure(&e),
+                Err(e) => return Err(e),
+            }
             Ok::<(), RunError>(())
         },
     )?;

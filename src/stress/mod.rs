@@ -20,8 +20,8 @@ pub use definition::{
     F64_OFFSETS, INVARIANTS, JUMP_TOLERANCE, PROGRESS_BAND, PROGRESS_MAX, PROGRESS_MIN,
 };
 pub use execution::{
-    points, points_with, run_point, stress_matrix, stress_matrix_on, stress_matrix_with, Point,
-    StressRow,
+    points, points_with, run_point, stress_matrix, stress_matrix_on, stress_matrix_reporting,
+    stress_matrix_with, Point, StressRow,
 };
 pub use probes::check_base_dt;
 pub use probes::ProbeTimingError;

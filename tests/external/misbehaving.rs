@@ -178,3 +178,143 @@ fn a_tcp_client_that_never_connects_is_killed_at_its_start_timeout() {
     // Over TCP its stdout is free for logs, and quoted as its stderr is.
     assert!(text.contains("its stdout ended: waiting"), "{text}");
 }
+
+/// The live (not zombie) processes whose parent is `pid`, from /proc.
+#[cfg(target_os = "linux")]
+pub(crate) fn children(pid: u32) -> Vec<u32> {
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir("/proc").into_iter().flatten().flatten() {
+        let Ok(stat) = std::fs::read_to_string(entry.path().join("stat")) else {
+            continue;
+        };
+        // pid (comm) state ppid ...: the command may hold spaces and parentheses.
+        let Some(after) = stat.rfind(')').map(|i| &stat[i + 1..]) else {
+            continue;
+        };
+        let fields: Vec<&str> = after.split_whitespace().collect();
+        if fields.len() > 1 && fields[0] != "Z" && fields[1] == pid.to_string() {
+            if let Ok(p) = entry.file_name().to_string_lossy().parse() {
+                found.push(p);
+            }
+        }
+    }
+    found
+}
+
+/// Whether process `pid` is gone (or a zombie waiting for its new parent to reap it).
+#[cfg(target_os = "linux")]
+pub(crate) fn gone(pid: u32) -> bool {
+    std::fs::read_to_string(format!("/proc/{pid}/stat")).map_or(true, |s| {
+        s.rfind(')')
+            .and_then(|i| s[i + 1..].split_whitespace().next())
+            .is_some_and(|state| state == "Z")
+    })
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn no_controller_outlives_a_killed_platbench() {
+    let Some(py) = python("tests/external/misbehaving.rs (platbench killed mid-run)") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let script = root().join("controllers/python/client.py");
+    let stdio = controller_file(dir.path(), "python", &py, &script, &[], "collision", 5000);
+    let tcp = dir.path().join("tcp.toml");
+    let text = std::fs::read_to_string(&stdio).unwrap();
+    std::fs::write(
+        &tcp,
+        text.replace("name = \"python\"", "name = \"pytcp\"") + "transport = \"tcp\"\n",
+    )
+    .unwrap();
+    for (file, name) in [(&stdio, "python"), (&tcp, "pytcp")] {
+        // platbench killed with SIGKILL (no handler can run) while a controller runs: the
+        // controller sees its stdin or its connection close and exits, as the protocol asks.
+        let mut platbench = common::platbench()
+            .args([
+                "run",
+                "--backend",
+                name,
+                "--scenario",
+                "long_floor,very_long_floor",
+            ])
+            .arg("--out")
+            .arg(dir.path().join(format!("run-{name}")))
+            .arg("--controller")
+            .arg(file)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        let start = Instant::now();
+        let mut running = Vec::new();
+        // The handshake's process comes and goes first; wait for a run's (20 s: python3
+        // starts in well under a second even on a loaded machine).
+        while running.is_empty() && start.elapsed() < Duration::from_secs(20) {
+            std::thread::sleep(Duration::from_millis(300));
+            running = children(platbench.id());
+        }
+        assert!(!running.is_empty(), "{name}: no controller process seen");
+        platbench.kill().unwrap();
+        platbench.wait().unwrap();
+        let killed = Instant::now();
+        // Gone within 5 s: it needs only to read the end of its input.
+        while !running.iter().all(|&p| gone(p)) && killed.elapsed() < Duration::from_secs(5) {
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        assert!(
+            running.iter().all(|&p| gone(p)),
+            "{name}: controller processes {running:?} outlived platbench"
+        );
+    }
+}
+
+#[test]
+fn stress_and_sweep_go_on_past_a_failed_run() {
+    let Some(py) = python("tests/external/misbehaving.rs (stress and sweep go on)") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let fake = root().join("tests/external/fake.py");
+    let file = controller_file(dir.path(), "fake", &py, &fake, &["crash"], "collision", 300);
+    // stress: every probe point of the crashing client fails, is heard, and the matrix ends
+    // with no error (the library call the CLI makes; the whole stress CLI, with the sweep's
+    // points beside, takes minutes in a debug build).
+    let runs = configs(&file);
+    let mut failures = Vec::new();
+    let rows = platbench::stress::stress_matrix_reporting(
+        &runs[..1],
+        None,
+        2,
+        |_| {},
+        |e| failures.push(e.to_string()),
+    )
+    .unwrap();
+    let points = platbench::stress::points(&runs[..1]).len();
+    assert!(rows.is_empty());
+    assert_eq!(failures.len(), points, "{failures:?}");
+    assert!(
+        failures[0].starts_with("fake/default failed on stress."),
+        "{}",
+        failures[0]
+    );
+    // sweep: the client's setting gets no row, the sweep's settings do, the files are written,
+    // and the command exits 2 naming the failure.
+    let o = common::platbench()
+        .args(["sweep", "--backend", "fake,sweep", "--scenario", "drops"])
+        .arg("--out")
+        .arg(dir.path().join("sweep"))
+        .arg("--controller")
+        .arg(&file)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("error: fake/default failed on drops."),
+        "{stderr}"
+    );
+    let csv = std::fs::read_to_string(dir.path().join("sweep/tradeoff.csv")).unwrap();
+    assert!(csv.lines().any(|l| l.starts_with("sweep,")), "{csv}");
+    assert!(!csv.lines().any(|l| l.starts_with("fake,")), "{csv}");
+}
