@@ -229,47 +229,16 @@ fn godot_overhead() {
 #[cfg(target_os = "linux")]
 #[test]
 fn godot_exits_when_platbench_is_killed() {
-    use std::time::{Duration, Instant};
     if godot("tests/external/godot.rs (platbench killed mid-run)").is_none() {
         return;
     }
     // platbench killed with SIGKILL while Godot runs a scenario: the client's connection closes
     // and it quits (client.gd, read_line), so no Godot outlives platbench.
     let dir = tempfile::tempdir().unwrap();
-    let mut platbench = common::platbench()
-        .args([
-            "run",
-            "--controller",
-            "godot3",
-            "--backend",
-            "godot3",
-            "--scenario",
-            "long_floor",
-        ])
-        .arg("--out")
-        .arg(dir.path().join("run"))
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    let start = Instant::now();
-    let mut running = Vec::new();
-    // Godot starts in a fraction of a second here; 20 s for a loaded machine.
-    while running.is_empty() && start.elapsed() < Duration::from_secs(20) {
-        std::thread::sleep(Duration::from_millis(300));
-        running = crate::misbehaving::children(platbench.id());
-    }
-    assert!(!running.is_empty(), "no Godot process seen");
-    platbench.kill().unwrap();
-    platbench.wait().unwrap();
-    let killed = Instant::now();
-    while !running.iter().all(|&p| crate::misbehaving::gone(p))
-        && killed.elapsed() < Duration::from_secs(5)
-    {
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    assert!(
-        running.iter().all(|&p| crate::misbehaving::gone(p)),
-        "Godot processes {running:?} outlived platbench"
-    );
+    let mut command = common::platbench();
+    command
+        .args(["run", "--controller", "godot3", "--backend", "godot3"])
+        .args(["--scenario", "long_floor", "--out"])
+        .arg(dir.path().join("run"));
+    crate::misbehaving::kill_mid_run(command, "godot3");
 }

@@ -181,7 +181,7 @@ fn a_tcp_client_that_never_connects_is_killed_at_its_start_timeout() {
 
 /// The live (not zombie) processes whose parent is `pid`, from /proc.
 #[cfg(target_os = "linux")]
-pub(crate) fn children(pid: u32) -> Vec<u32> {
+fn children(pid: u32) -> Vec<u32> {
     let mut found = Vec::new();
     for entry in std::fs::read_dir("/proc").into_iter().flatten().flatten() {
         let Ok(stat) = std::fs::read_to_string(entry.path().join("stat")) else {
@@ -203,7 +203,7 @@ pub(crate) fn children(pid: u32) -> Vec<u32> {
 
 /// Whether process `pid` is gone (or a zombie waiting for its new parent to reap it).
 #[cfg(target_os = "linux")]
-pub(crate) fn gone(pid: u32) -> bool {
+fn gone(pid: u32) -> bool {
     std::fs::read_to_string(format!("/proc/{pid}/stat")).map_or(true, |s| {
         s.rfind(')')
             .and_then(|i| s[i + 1..].split_whitespace().next())
@@ -230,7 +230,8 @@ fn no_controller_outlives_a_killed_platbench() {
     for (file, name) in [(&stdio, "python"), (&tcp, "pytcp")] {
         // platbench killed with SIGKILL (no handler can run) while a controller runs: the
         // controller sees its stdin or its connection close and exits, as the protocol asks.
-        let mut platbench = common::platbench()
+        let mut command = common::platbench();
+        command
             .args([
                 "run",
                 "--backend",
@@ -241,31 +242,8 @@ fn no_controller_outlives_a_killed_platbench() {
             .arg("--out")
             .arg(dir.path().join(format!("run-{name}")))
             .arg("--controller")
-            .arg(file)
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::null())
-            .spawn()
-            .unwrap();
-        let start = Instant::now();
-        let mut running = Vec::new();
-        // The handshake's process comes and goes first; wait for a run's (20 s: python3
-        // starts in well under a second even on a loaded machine).
-        while running.is_empty() && start.elapsed() < Duration::from_secs(20) {
-            std::thread::sleep(Duration::from_millis(300));
-            running = children(platbench.id());
-        }
-        assert!(!running.is_empty(), "{name}: no controller process seen");
-        platbench.kill().unwrap();
-        platbench.wait().unwrap();
-        let killed = Instant::now();
-        // Gone within 5 s: it needs only to read the end of its input.
-        while !running.iter().all(|&p| gone(p)) && killed.elapsed() < Duration::from_secs(5) {
-            std::thread::sleep(Duration::from_millis(50));
-        }
-        assert!(
-            running.iter().all(|&p| gone(p)),
-            "{name}: controller processes {running:?} outlived platbench"
-        );
+            .arg(file);
+        kill_mid_run(command, name);
     }
 }
 
@@ -317,4 +295,35 @@ fn stress_and_sweep_go_on_past_a_failed_run() {
     let csv = std::fs::read_to_string(dir.path().join("sweep/tradeoff.csv")).unwrap();
     assert!(csv.lines().any(|l| l.starts_with("sweep,")), "{csv}");
     assert!(!csv.lines().any(|l| l.starts_with("fake,")), "{csv}");
+}
+
+/// Starts `platbench` (a `run` command), waits until it has a controller process (20 s: the
+/// handshake's process comes and goes first, and python3 or Godot start in well under a second
+/// even on a loaded machine), kills platbench with SIGKILL (no handler can run) and asserts
+/// that every controller process it had is gone within 5 s: each needs only to read the end of
+/// its input (its stdin or its connection), as the protocol asks.
+#[cfg(target_os = "linux")]
+pub(crate) fn kill_mid_run(mut platbench: std::process::Command, what: &str) {
+    let mut platbench = platbench
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    let mut running = Vec::new();
+    while running.is_empty() && start.elapsed() < Duration::from_secs(20) {
+        std::thread::sleep(Duration::from_millis(300));
+        running = children(platbench.id());
+    }
+    assert!(!running.is_empty(), "{what}: no controller process seen");
+    platbench.kill().unwrap();
+    platbench.wait().unwrap();
+    let killed = Instant::now();
+    while !running.iter().all(|&p| gone(p)) && killed.elapsed() < Duration::from_secs(5) {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    assert!(
+        running.iter().all(|&p| gone(p)),
+        "{what}: controller processes {running:?} outlived platbench"
+    );
 }
