@@ -42,6 +42,8 @@ var platforms = []
 var one_way_boxes = []
 var dropping = []
 var level_root = null
+var origin_x = 0.0
+var origin_y = 0.0
 var engine_usec = 0
 var frame_end = -1
 
@@ -141,17 +143,32 @@ func json(value):
 	return to_json(value)
 
 
-# Level point (tiles, y up) to Godot (pixels, y down).
+# Level point (tiles, y up, from the level's corner) to Godot (pixels, y down, from the world's
+# origin: the level sits at its `origin`, so a level far from the origin is far in Godot too).
+# (GDScript's scalars are 64-bit; a Vector2 holds 32-bit floats, as Godot's positions do.)
 func px(x, y):
+	return Vector2((origin_x + x) * PIXELS_PER_TILE, -(origin_y + y) * PIXELS_PER_TILE)
+
+
+# A point relative to a body (tiles, y up) to pixels, y down.
+func local_px(x, y):
 	return Vector2(x * PIXELS_PER_TILE, -y * PIXELS_PER_TILE)
 
 
-func box_shape(owner, x0, y0, x1, y1, one_way):
+# Godot position (pixels) back to a level point (tiles).
+func level_point(p):
+	return [p.x / PIXELS_PER_TILE - origin_x, -p.y / PIXELS_PER_TILE - origin_y]
+
+
+# A rectangle [x0, y0, x1, y1] (tiles) as a shape of `owner`: in level coordinates for a body at
+# the world's origin, or relative to `owner` when `local`.
+func box_shape(owner, x0, y0, x1, y1, one_way, local = false):
 	var shape = RectangleShape2D.new()
 	shape.extents = Vector2((x1 - x0), (y1 - y0)) * PIXELS_PER_TILE / 2.0
 	var node = CollisionShape2D.new()
 	node.shape = shape
-	node.position = px((x0 + x1) / 2.0, (y0 + y1) / 2.0)
+	var centre = [(x0 + x1) / 2.0, (y0 + y1) / 2.0]
+	node.position = local_px(centre[0], centre[1]) if local else px(centre[0], centre[1])
 	node.one_way_collision = one_way
 	owner.add_child(node)
 
@@ -167,6 +184,8 @@ func static_body(layer, one_way):
 
 func build(message):
 	var level = message["level"]
+	origin_x = float(level["origin"][0])
+	origin_y = float(level["origin"][1])
 	config = {}
 	for c in configs():
 		if c["label"] == message["config"]:
@@ -181,14 +200,16 @@ func build(message):
 	else:
 		for t in level["solid_tiles"]:
 			box_shape(solid, t[0], t[1], t[0] + 1, t[1] + 1, false)
+	# A sloped tile's solid part, as a CollisionPolygon2D (build mode solids), which splits a
+	# concave outline (a height-array tile's staircase) into convex parts as the editor's node
+	# does.
 	for s in level["slopes"]:
 		var points = PoolVector2Array()
 		for p in s["polygon"]:
 			points.append(px(p[0], p[1]))
-		var shape = ConvexPolygonShape2D.new()
-		shape.set_point_cloud(points)
-		var node = CollisionShape2D.new()
-		node.shape = shape
+		var node = CollisionPolygon2D.new()
+		node.build_mode = CollisionPolygon2D.BUILD_SOLIDS
+		node.polygon = points
 		solid.add_child(node)
 	var one_way = static_body(ONE_WAY_LAYER, true)
 	one_way_boxes = []
@@ -204,7 +225,7 @@ func build(message):
 		body.set_meta("platform", platforms.size())
 		body.set_meta("size", p["size"])
 		body.set_sync_to_physics(true)
-		box_shape(body, 0.0, 0.0, p["size"][0], p["size"][1], p["one_way"])
+		box_shape(body, 0.0, 0.0, p["size"][0], p["size"][1], p["one_way"], true)
 		body.position = px(p["start"][0], p["start"][1])
 		level_root.add_child(body)
 		platforms.append(body)
@@ -217,7 +238,7 @@ func build(message):
 		body.set_safe_margin(SAFE_MARGIN)
 		var w = c["size"][0]
 		var h = c["size"][1]
-		box_shape(body, -w / 2.0, 0.0, w / 2.0, h, false)
+		box_shape(body, -w / 2.0, 0.0, w / 2.0, h, false, true)
 		body.position = px(c["spawn"][0], c["spawn"][1])
 		body.set_meta("size", c["size"])
 		body.set_meta("on_platform", false)
@@ -229,17 +250,17 @@ func build(message):
 # Whether character `body`'s box overlaps a one-way tile or a one-way platform.
 func in_one_way(body):
 	var size = body.get_meta("size")
-	var feet = Vector2(body.position.x, -body.position.y) / PIXELS_PER_TILE
-	var x0 = feet.x - size[0] / 2.0
-	var x1 = feet.x + size[0] / 2.0
+	var feet = level_point(body.position)
+	var x0 = feet[0] - size[0] / 2.0
+	var x1 = feet[0] + size[0] / 2.0
 	var boxes = [] + one_way_boxes
 	for p in platforms:
 		if p.get_meta("one_way"):
-			var at = Vector2(p.position.x, -p.position.y) / PIXELS_PER_TILE
+			var at = level_point(p.position)
 			var s = p.get_meta("size")
-			boxes.append([at.x, at.y, at.x + s[0], at.y + s[1]])
+			boxes.append([at[0], at[1], at[0] + s[0], at[1] + s[1]])
 	for b in boxes:
-		if x0 < b[2] and x1 > b[0] and feet.y < b[3] and feet.y + size[1] > b[1]:
+		if x0 < b[2] and x1 > b[0] and feet[1] < b[3] and feet[1] + size[1] > b[1]:
 			return true
 	return false
 
@@ -303,9 +324,9 @@ func state_of(body, v):
 			platform = floor_body.get_meta("platform")
 	body.set_meta("on_platform", platform != null)
 	var normal = body.get_floor_normal() if grounded else Vector2.ZERO
-	var feet = Vector2(body.position.x, -body.position.y) / PIXELS_PER_TILE
+	var feet = level_point(body.position)
 	return {
-		"position": [feet.x, feet.y],
+		"position": feet,
 		"velocity": [v.x / PIXELS_PER_TILE, -v.y / PIXELS_PER_TILE],
 		"grounded": grounded,
 		"ground_normal": [normal.x, -normal.y],
@@ -321,16 +342,20 @@ func state_of(body, v):
 # and this frame (its physics step, which moves the platforms, and its idle frame) is charged to
 # this step with the script's own.
 func _iteration(_delta):
+	# Godot 3.2's SceneTree ignores what _iteration returns: only quit() ends it.
 	if peer == null:
+		quit()
 		return true
 	if frame_end >= 0:
 		engine_usec = OS.get_ticks_usec() - frame_end
 	var line = read_line()
 	if line == null:
+		quit()
 		return true
 	var parsed = JSON.parse(line)
 	if parsed.error != OK or typeof(parsed.result) != TYPE_DICTIONARY:
 		printerr("client.gd: not a message: ", line)
+		quit(1)
 		return true
 	var message = parsed.result
 	match message.get("type"):
@@ -348,6 +373,7 @@ func _iteration(_delta):
 		"step":
 			send(json(step(message)))
 		"end":
+			quit()
 			return true
 	frame_end = OS.get_ticks_usec()
 	return false

@@ -35,7 +35,8 @@ pub(super) fn with_controllers(
     }
     let mut h = harness.clone();
     for f in &files {
-        let kind = if f.as_os_str() == godot3::NAME && !f.exists() {
+        // `godot3` is the built-in client unless a controller file of that name is there.
+        let kind = if f.as_os_str() == godot3::NAME && !f.is_file() {
             let Some(program) = godot3::program() else {
                 bail!(
                     "--controller {}: no `{}` on the PATH (nor ${}); install it with `{}`",

@@ -29,7 +29,7 @@ const PROJECT: &str = include_str!("../../controllers/godot3/project.godot");
 /// The Godot 3 server to run: `$PLATBENCH_GODOT3`, else `godot3-server` on the PATH, else
 /// `None`.
 pub fn program() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os(PROGRAM_VARIABLE) {
+    if let Some(p) = std::env::var_os(PROGRAM_VARIABLE).filter(|p| !p.is_empty()) {
         return Some(PathBuf::from(p));
     }
     let paths = std::env::var_os("PATH")?;

@@ -10,7 +10,7 @@ use std::collections::VecDeque;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{Shutdown, TcpListener, TcpStream};
 use std::process::{Child, Command, Stdio};
-use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -31,9 +31,11 @@ type Tail = Arc<Mutex<VecDeque<String>>>;
 /// A running controller process.
 pub(crate) struct Process {
     child: Child,
-    writer: Option<std::io::BufWriter<Box<dyn Write + Send>>>,
-    /// The TCP connection, to shut down when platbench has nothing more to say.
-    socket: Option<TcpStream>,
+    /// Lines for the writing thread: a child that stops reading its input blocks that thread,
+    /// never platbench, whose wait for the reply then times out.
+    writer: Option<SyncSender<Vec<u8>>>,
+    /// Whether the lines travel over TCP (for messages).
+    tcp: bool,
     lines: Receiver<std::io::Result<String>>,
     stderr: Tail,
     stdout: Option<Tail>,
@@ -100,11 +102,65 @@ fn keep_tail(from: impl Read + Send + 'static) -> Tail {
     kept
 }
 
-/// Kills and waits for `child`, returning `failure`.
-fn abandon(child: &mut Child, failure: String) -> Failure {
+/// Writes each line it receives to `to`, until the channel closes or a write fails; then closes
+/// its input (drops `to`, and shuts down the sending half of `socket`).
+fn write_lines(mut to: Box<dyn Write + Send>, socket: Option<TcpStream>) -> SyncSender<Vec<u8>> {
+    let (tx, lines) = mpsc::sync_channel::<Vec<u8>>(1);
+    std::thread::spawn(move || {
+        for line in lines {
+            if to.write_all(&line).and_then(|()| to.flush()).is_err() {
+                break;
+            }
+        }
+        drop(to);
+        if let Some(socket) = socket {
+            let _ = socket.shutdown(Shutdown::Write);
+        }
+    });
+    tx
+}
+
+/// Kills `child` and its process group (a wrapper script's own children with it), and waits for
+/// it.
+fn kill_tree(child: &mut Child) {
+    #[cfg(unix)]
+    if let Ok(pid) = i32::try_from(child.id()) {
+        // SAFETY: kill(2) with a negative pid signals the process group the child leads (it was
+        // started in a group of its own, below); it touches no memory of ours.
+        unsafe {
+            libc::kill(-pid, libc::SIGKILL);
+        }
+    }
     let _ = child.kill();
     let _ = child.wait();
+}
+
+/// Kills and waits for `child`, returning `failure`.
+fn abandon(child: &mut Child, failure: String) -> Failure {
+    kill_tree(child);
     failure
+}
+
+/// Starts the child in a process group of its own (so that killing it kills what it started)
+/// and, on Linux, asks the kernel to kill it when platbench dies, however it dies (SIGKILL
+/// included): it never outlives platbench, whether or not it reads the end of its input.
+fn contain(command: &mut Command) {
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::CommandExt;
+        command.process_group(0);
+        #[cfg(target_os = "linux")]
+        // SAFETY: the closure runs in the child between fork and exec and calls only prctl(2),
+        // which is async-signal-safe, allocating nothing.
+        unsafe {
+            command.pre_exec(|| {
+                if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL) == -1 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                Ok(())
+            });
+        }
+    }
 }
 
 impl Process {
@@ -137,13 +193,8 @@ impl Process {
                     .stdin(Stdio::null())
             }
         };
-        let mut child = command.spawn().map_err(|e| {
-            format!(
-                "cannot start `{}` in {}: {e}",
-                file.command.display(),
-                file.working_directory.display()
-            )
-        })?;
+        contain(&mut command);
+        let mut child = command.spawn().map_err(|e| start_failure(file, &e))?;
         let (Some(stdout), Some(stderr)) = (child.stdout.take(), child.stderr.take()) else {
             return Err(abandon(&mut child, "its pipes could not be opened".into()));
         };
@@ -154,8 +205,8 @@ impl Process {
             };
             return Ok(Process {
                 child,
-                writer: Some(std::io::BufWriter::new(Box::new(stdin))),
-                socket: None,
+                writer: Some(write_lines(Box::new(stdin), None)),
+                tcp: false,
                 lines: read_lines(stdout),
                 stderr,
                 stdout: None,
@@ -178,8 +229,8 @@ impl Process {
         };
         Ok(Process {
             child,
-            writer: Some(std::io::BufWriter::new(Box::new(writer))),
-            socket: Some(socket),
+            writer: Some(write_lines(Box::new(writer), Some(socket))),
+            tcp: true,
             lines: read_lines(reader),
             stderr,
             stdout: Some(stdout),
@@ -219,16 +270,26 @@ impl Process {
         }
     }
 
-    /// Writes `message` as one line and flushes it.
+    /// Hands `message`, as one line, to the writing thread. A child that has not read the line
+    /// before (it stopped reading) fails here; one that stops during this line is caught by the
+    /// reply's timeout.
     pub(crate) fn send(&mut self, message: &impl Serialize) -> Result<(), Failure> {
-        let Some(writer) = self.writer.as_mut() else {
+        let Some(writer) = self.writer.as_ref() else {
             return Err("its input is closed".into());
         };
-        let written = serde_json::to_writer(&mut *writer, message)
-            .map_err(std::io::Error::from)
-            .and_then(|()| writer.write_all(b"\n"))
-            .and_then(|()| writer.flush());
-        written.map_err(|e| self.gone(&format!("cannot write to it ({e})")))
+        let mut line = serde_json::to_vec(message).map_err(|e| format!("cannot encode: {e}"))?;
+        line.push(b'\n');
+        match writer.try_send(line) {
+            Ok(()) => Ok(()),
+            Err(TrySendError::Full(_)) => {
+                self.kill();
+                Err(format!(
+                    "it does not read its input: the previous message is still being written (killed){}",
+                    self.tails()
+                ))
+            }
+            Err(TrySendError::Disconnected(_)) => Err(self.gone("cannot write to it")),
+        }
     }
 
     /// The next line it replies, waiting at most `timeout`.
@@ -246,9 +307,10 @@ impl Process {
                     self.tails()
                 ))
             }
-            Err(RecvTimeoutError::Disconnected) => Err(self.gone(match self.socket {
-                None => "its stdout closed",
-                Some(_) => "it closed the connection",
+            Err(RecvTimeoutError::Disconnected) => Err(self.gone(if self.tcp {
+                "it closed the connection"
+            } else {
+                "its stdout closed"
             })),
         }
     }
@@ -267,16 +329,13 @@ impl Process {
         self.kill();
     }
 
+    /// Closes its input once the writing thread has written what it holds.
     fn close_input(&mut self) {
         self.writer = None;
-        if let Some(socket) = &self.socket {
-            let _ = socket.shutdown(Shutdown::Write);
-        }
     }
 
     fn kill(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
+        kill_tree(&mut self.child);
     }
 
     /// The message for a process that stopped answering: its exit status if it exited (given a
@@ -303,7 +362,7 @@ impl Process {
     }
 
     /// `; its stderr ended: ...` with its last lines (and its stdout's, over TCP), or nothing.
-    fn tails(&self) -> String {
+    pub(crate) fn tails(&self) -> String {
         let mut text = String::new();
         if let Some(stdout) = &self.stdout {
             append_tail(&mut text, "stdout", stdout);
@@ -329,4 +388,29 @@ impl Drop for Process {
         self.close_input();
         self.kill();
     }
+}
+
+/// Why `file`'s program did not start, with what to check.
+fn start_failure(file: &ControllerFile, e: &std::io::Error) -> Failure {
+    let dir = &file.working_directory;
+    if !dir.is_dir() {
+        return format!(
+            "cannot start `{}`: its working directory {} is not a directory",
+            file.command.display(),
+            dir.display()
+        );
+    }
+    let mut text = format!(
+        "cannot start `{}` in {}: {e}",
+        file.command.display(),
+        dir.display()
+    );
+    let bare = file.command.components().count() == 1;
+    if e.kind() == std::io::ErrorKind::NotFound && bare && dir.join(&file.command).is_file() {
+        text.push_str(&format!(
+            " (a command without `/` is looked up on the PATH; for the file beside the controller file write \"./{}\")",
+            file.command.display()
+        ));
+    }
+    text
 }

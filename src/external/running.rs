@@ -40,8 +40,13 @@ fn quote(line: &str) -> String {
 /// The next reply, parsed.
 fn reply(process: &mut Process, timeout: Duration) -> Result<Reply, Failure> {
     let line = process.receive(timeout)?;
-    serde_json::from_str(&line)
-        .map_err(|e| format!("it printed {} where a reply was due ({e})", quote(&line)))
+    serde_json::from_str(&line).map_err(|e| {
+        format!(
+            "it printed {} where a reply was due ({e}){}",
+            quote(&line),
+            process.tails()
+        )
+    })
 }
 
 /// Sends `hello` and reads the answer.
@@ -199,7 +204,9 @@ impl Running {
             Reply::State(s) => s,
             other => return Err(format!("it answered a step with {other:?}")),
         };
-        self.check(&state)?;
+        // Its last stderr lines often say why (a script error before a short reply).
+        self.check(&state)
+            .map_err(|e| format!("{e}{}", self.process.tails()))?;
         for (k, ((motion, out), c)) in self
             .characters
             .iter_mut()

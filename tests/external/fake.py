@@ -1,13 +1,18 @@
 #!/usr/bin/env python3
-"""A controller that misbehaves on purpose, at step 2, as its one argument says: crash, hang,
-garbage, order, nan, huge, slow, or well (it does not). Before that it answers as the protocol
-says (standing still at the spawn)."""
+"""A controller that misbehaves on purpose, at step 2, as its first argument says: crash, hang,
+garbage, order, nan, huge, slow, or well (it does not); or deaf: it stops reading its input once
+it has answered `hello`. Before that it answers as the protocol says (standing still at the
+spawn). A second argument names a file it writes its process id to."""
 
 import json
+import os
 import sys
 import time
 
 MODE = sys.argv[1]
+if len(sys.argv) > 2:
+    with open(sys.argv[2], "w") as f:
+        f.write(str(os.getpid()))
 
 
 def send(message):
@@ -20,6 +25,9 @@ for line in iter(sys.stdin.readline, ""):
     m = json.loads(line)
     if m["type"] == "hello":
         send({"type": "hello", "protocol": 1, "name": "fake-" + MODE, "configs": [{"label": "default"}]})
+        if MODE == "deaf":
+            while True:
+                time.sleep(1000)
     elif m["type"] == "run":
         chars = [c["spawn"] for c in m["characters"]]
         send({"type": "ready"})

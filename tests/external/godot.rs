@@ -54,7 +54,15 @@ fn the_godot_client_answers_the_handshake_and_refuses_ladders() {
     let Some(godot) = godot("tests/external/godot.rs (handshake)") else {
         return;
     };
+    let start = std::time::Instant::now();
     let kind = platbench::external::godot3::load_with(&godot).unwrap();
+    // The client quits on `end`: the handshake never waits out its 5 s grace before a kill
+    // (Godot starts in well under a second here; 4 s leaves room for a loaded machine).
+    assert!(
+        start.elapsed() < std::time::Duration::from_secs(4),
+        "the handshake took {:?}",
+        start.elapsed()
+    );
     assert_eq!(kind.name(), "godot3");
     // The version Godot reports of itself, in the description its rows carry.
     assert!(

@@ -327,3 +327,92 @@ pub(crate) fn kill_mid_run(mut platbench: std::process::Command, what: &str) {
         "{what}: controller processes {running:?} outlived platbench"
     );
 }
+
+#[test]
+fn a_client_that_stops_reading_cannot_block_platbench() {
+    let Some(py) = python("tests/external/misbehaving.rs (a client that stops reading)") else {
+        return;
+    };
+    // A level whose `run` message (every solid tile listed) is far more than a pipe holds
+    // (64 KiB on Linux): written to a client that no longer reads, the write blocks; platbench's
+    // wait for the reply must still end at the start timeout.
+    let dir = tempfile::tempdir().unwrap();
+    let fake = root().join("tests/external/fake.py");
+    let file = dir.path().join("deaf.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "name = \"deaf\"\ncommand = {:?}\nargs = [{:?}, \"deaf\"]\nmode = \"collision\"\nstep_timeout_ms = 300\nstart_timeout_ms = 1000\n",
+            py.display().to_string(),
+            fake.display().to_string()
+        ),
+    )
+    .unwrap();
+    let row = "#".repeat(600);
+    let mut map = String::from(&format!("{}\n", ".".repeat(600)));
+    for _ in 0..33 {
+        map.push_str(&row);
+        map.push('\n');
+    }
+    let text = format!(
+        "name = \"big\"\nmap = '''\n{map}'''\n\n[[scenario]]\nname = \"stand\"\nspawn = [1.5, 34.0]\nduration = 1.0\n"
+    );
+    let level = platbench::level::parse_level(&text, "big.toml").unwrap();
+    let run = &configs(&file)[0];
+    let start = Instant::now();
+    let e = run_scenario(&level, &level.scenarios[0], run).expect_err("it never replies");
+    // 1 s of start timeout and the kill: far from forever.
+    assert!(
+        start.elapsed() < Duration::from_secs(10),
+        "{:?}",
+        start.elapsed()
+    );
+    assert!(
+        e.to_string()
+            .contains("no reply within its timeout of 1000 ms"),
+        "{e}"
+    );
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_wrapper_scripts_own_children_are_killed_with_it() {
+    let Some(py) = python("tests/external/misbehaving.rs (a wrapper script)") else {
+        return;
+    };
+    // `sh -c "python3 fake.py hang PIDFILE; :"` keeps the shell as platbench's child and the
+    // client as its child: at the timeout both must go (platbench kills the process group).
+    let dir = tempfile::tempdir().unwrap();
+    let fake = root().join("tests/external/fake.py");
+    let pidfile = dir.path().join("client.pid");
+    let script = format!(
+        "{:?} {:?} hang {:?}; :",
+        py.display().to_string(),
+        fake.display().to_string(),
+        pidfile.display().to_string()
+    );
+    let file = dir.path().join("wrapped.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "name = \"wrapped\"\ncommand = \"sh\"\nargs = [\"-c\", {script:?}]\nmode = \"collision\"\nstep_timeout_ms = 300\n"
+        ),
+    )
+    .unwrap();
+    let run = &configs(&file)[0];
+    let level = common::level("flat_seams");
+    let spec = level.scenarios.iter().find(|s| s.name == "stand").unwrap();
+    let e = run_scenario(&level, spec, run).expect_err("it hangs");
+    assert!(e.to_string().contains("no reply within its timeout"), "{e}");
+    let pid: u32 = std::fs::read_to_string(&pidfile)
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    let killed = Instant::now();
+    // Killed with the group at once; 2 s for the kernel on a loaded machine.
+    while !gone(pid) && killed.elapsed() < Duration::from_secs(2) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert!(gone(pid), "the wrapped client {pid} outlived its run");
+}
