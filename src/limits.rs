@@ -18,6 +18,20 @@ use std::path::Path;
 /// tile map written as Tiled CSV takes about 80 MB. Reading stops here, so a device or pipe
 /// that never ends (`/dev/zero`) is refused after 128 MiB.
 pub(crate) const MAX_INPUT_BYTES: u64 = 128 * 1024 * 1024;
+/// Deepest nesting of group layers in a Tiled map: the `tiled` crate reads a group by
+/// recursion, and 100,000 nested groups overflowed the stack. Tiled's editor makes a group per
+/// folder of layers; 64 is far beyond any map made by hand.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_GROUP_DEPTH: usize = 64;
+/// Deepest nesting of elements in a Tiled map, tileset or template (groups, class properties
+/// within class properties), checked for the same reason.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_XML_DEPTH: usize = 128;
+/// Longest chain of files a Tiled map reaches through references (the map, a tileset, a
+/// template its tile uses, the template's tileset, and so on), the map included. A chain that
+/// comes back to a file it has already passed is refused whatever its length.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_TILED_FILE_CHAIN: usize = 32;
 /// Most tiles a level may have (width x height), TOML or Tiled alike.
 pub(crate) const MAX_TILES: u64 = 16_000_000;
 /// Most frames (duration / dt) one scenario may run.

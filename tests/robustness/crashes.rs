@@ -1,5 +1,6 @@
 //! Hostile input, part three (issue 40): nothing crashes and nothing hangs. One small file
-//! written for each class: a TOML map whose positions once panicked.
+//! written for each class: a TOML map whose positions once panicked, and Tiled templates,
+//! tilesets and groups that recursed until the stack overflowed.
 
 #![cfg(all(
     feature = "rapier",
@@ -12,7 +13,7 @@ use crate::common;
 
 use common::platbench;
 
-use super::hostile::assert_error;
+use super::hostile::{assert_error, output_within};
 
 // ---- a panic: positions in an escaped map string ------------------------------------------
 
@@ -46,4 +47,89 @@ fn a_map_written_with_escapes_is_read_and_its_errors_are_located() {
         .output()
         .unwrap();
     common::assert_success(&out);
+}
+
+// ---- stack overflows: Tiled references that loop back, groups nested without end ----------
+
+/// A 4 x 2 map's opening and its one empty tile layer; the case's elements go after it.
+const MAP_HEAD: &str = "<?xml version=\"1.0\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" width=\"4\" height=\"2\" tilewidth=\"16\" tileheight=\"16\" infinite=\"0\">\n <layer id=\"1\" name=\"ground\" width=\"4\" height=\"2\"><data encoding=\"csv\">0,0,0,0,0,0,0,0</data></layer>\n";
+
+/// A template whose object uses the template `next`.
+fn template(next: &str) -> String {
+    format!("<?xml version=\"1.0\"?>\n<template>\n <object name=\"x\" template=\"{next}\" width=\"16\" height=\"16\"/>\n</template>\n")
+}
+
+/// A map with one object that uses the template `first`.
+fn map_using(first: &str) -> String {
+    format!("{MAP_HEAD} <objectgroup id=\"2\" name=\"o\">\n  <object id=\"1\" template=\"{first}\" x=\"8\" y=\"8\"/>\n </objectgroup>\n</map>\n")
+}
+
+/// `platbench COMMAND MAP --out DIR/o`, ended within 60 s (a refusal takes milliseconds; the
+/// guard only turns a hang into a failure).
+fn on_map(command: &str, map: &std::path::Path) -> std::process::Output {
+    let mut cmd = platbench();
+    cmd.arg(command).arg(map);
+    if command != "inspect" {
+        cmd.arg("--out")
+            .arg(map.with_file_name(format!("out-{command}")));
+    }
+    output_within(cmd, 60)
+}
+
+#[test]
+fn tiled_recursion_is_an_error_naming_the_file_and_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // A template that uses itself.
+    std::fs::write(d.join("self.tx"), template("self.tx")).unwrap();
+    std::fs::write(d.join("self.tmx"), map_using("self.tx")).unwrap();
+    for command in ["run", "inspect", "report", "sweep"] {
+        // Guards the stack overflow (exit 134) in every command that reads a map: the loop
+        // is named where it closes, self.tx line 3, with the chain it went round.
+        assert_error(&on_map(command, &d.join("self.tmx")), "self.tx:3: object template \"self.tx\" refers back to self.tx, which is already being read (self.tx -> self.tx)");
+    }
+    // Two templates that use each other.
+    std::fs::write(d.join("a.tx"), template("b.tx")).unwrap();
+    std::fs::write(d.join("b.tx"), template("a.tx")).unwrap();
+    std::fs::write(d.join("pair.tmx"), map_using("a.tx")).unwrap();
+    // Guards the overflow through a second file: closed in b.tx, both files in the chain.
+    assert_error(
+        &on_map("run", &d.join("pair.tmx")),
+        "b.tx:3: object template \"a.tx\" refers back to a.tx, which is already being read (a.tx -> b.tx -> a.tx)",
+    );
+    // A tileset whose tile's collision object uses a template of that tileset's tile.
+    std::fs::write(
+        d.join("t.tsx"),
+        "<?xml version=\"1.0\"?>\n<tileset version=\"1.10\" name=\"t\" tilewidth=\"16\" tileheight=\"16\" tilecount=\"1\" columns=\"1\">\n <tile id=\"0\">\n  <objectgroup id=\"2\">\n   <object id=\"1\" template=\"t.tx\"/>\n  </objectgroup>\n </tile>\n</tileset>\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("t.tx"),
+        "<?xml version=\"1.0\"?>\n<template>\n <tileset firstgid=\"1\" source=\"t.tsx\"/>\n <object gid=\"1\" width=\"16\" height=\"16\"/>\n</template>\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("ts.tmx"),
+        format!("{MAP_HEAD} <tileset firstgid=\"1\" source=\"t.tsx\"/>\n</map>\n"),
+    )
+    .unwrap();
+    // Guards the overflow through a tileset: the template's reference back to it, at its line.
+    assert_error(
+        &on_map("run", &d.join("ts.tmx")),
+        "t.tx:3: tileset \"t.tsx\" refers back to t.tsx, which is already being read (t.tsx -> t.tx -> t.tsx)",
+    );
+    // Group layers nested 100,000 deep (1.7 MB).
+    let n = 100_000;
+    let groups = format!(
+        "{MAP_HEAD}{}{}</map>\n",
+        "<group name=\"g\">\n".repeat(n),
+        "</group>\n".repeat(n)
+    );
+    std::fs::write(d.join("groups.tmx"), groups).unwrap();
+    // Guards the overflow of nested groups: refused at the 65th group (line 68: two lines of
+    // head, the layer, 64 groups), with the limit.
+    assert_error(
+        &on_map("run", &d.join("groups.tmx")),
+        "groups.tmx:68: group layer \"g\" is nested 65 groups deep; expected group layers nested at most 64 deep",
+    );
 }

@@ -216,7 +216,7 @@ fn outputs_are_readable_by_everyone_the_umask_allows() {
 /// then it is killed. The guards below are not timings: each is many times what the command
 /// takes in a debug build on a loaded 2-core machine, there only so a hang fails the test
 /// instead of stalling it.
-fn output_within(mut cmd: std::process::Command, secs: u64) -> Output {
+pub(super) fn output_within(mut cmd: std::process::Command, secs: u64) -> Output {
     use std::process::Stdio;
     use std::time::{Duration, Instant};
     let mut child = cmd

@@ -7,7 +7,7 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use super::{normalize, scan, Importer, TiledError, TiledImport, TiledWarning};
+use super::{normalize, refs, scan, Importer, TiledError, TiledImport, TiledWarning};
 use crate::level::import::{ImportFailure, ImportOptions};
 
 /// The file a map refers to, found as the `tiled` crate finds it: relative to the map's folder.
@@ -72,6 +72,18 @@ pub fn import_tiled_map_with(
         failed(
             TiledError::Map {
                 file: format!("{file}:{}", e.line),
+                message: e.message,
+            },
+            &notes,
+        )
+    })?;
+    // Templates and tilesets that loop back, and groups nested without end, which the crate
+    // would follow until the stack overflows.
+    let load = |p: &Path| crate_text(p).ok();
+    refs::check_references(path, &text, &load).map_err(|e| {
+        failed(
+            TiledError::Map {
+                file: e.file,
                 message: e.message,
             },
             &notes,
@@ -152,28 +164,7 @@ fn load_error(
     // An external tileset that fails to load on its own is the file at fault.
     for s in sources {
         let p = sibling(path, s);
-        let reader = |q: &Path| -> std::io::Result<std::io::Cursor<Vec<u8>>> {
-            let data = crate::limits::read_capped(q)?;
-            let ext = q
-                .extension()
-                .map(|x| x.to_string_lossy().to_lowercase())
-                .unwrap_or_default();
-            let bad = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
-            let t = String::from_utf8(data).map_err(|e| bad(e.to_string()))?;
-            let t = match ext.as_str() {
-                "tsj" | "json" => {
-                    normalize::json_tileset_to_tsx(&t)
-                        .map_err(|e| bad(e.to_string()))?
-                        .text
-                }
-                _ => {
-                    normalize::normalize_xml(&t)
-                        .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?
-                        .text
-                }
-            };
-            Ok(std::io::Cursor::new(t.into_bytes()))
-        };
+        let reader = |q: &Path| crate_text(q).map(|t| std::io::Cursor::new(t.into_bytes()));
         if let Err(te) = tiled::Loader::with_reader(reader).load_tsx_tileset(&p) {
             let message = match te {
                 tiled::Error::ResourceLoadingError { err, .. } => err.to_string(),
@@ -193,6 +184,31 @@ fn load_error(
         file: format!("{file}{line}"),
         message: explain(&e),
     }
+}
+
+/// A tileset's or template's text as the crate reads it: within the input cap, a JSON tileset
+/// as its TSX twin, XML made readable where Tiled is tolerant and the crate is not.
+fn crate_text(q: &Path) -> std::io::Result<String> {
+    let data = crate::limits::read_capped(q)?;
+    let ext = q
+        .extension()
+        .map(|x| x.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    let bad = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
+    let t = String::from_utf8(data).map_err(|e| bad(e.to_string()))?;
+    let t = match ext.as_str() {
+        "tsj" | "json" => {
+            normalize::json_tileset_to_tsx(&t)
+                .map_err(|e| bad(e.to_string()))?
+                .text
+        }
+        _ => {
+            normalize::normalize_xml(&t)
+                .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?
+                .text
+        }
+    };
+    Ok(t)
 }
 
 /// The crate's message, with what to do where platbench knows it.
