@@ -1,6 +1,6 @@
 //! Hostile input, part three (issue 40): nothing crashes and nothing hangs. One small file
-//! written for each class: a TOML map whose positions once panicked, and Tiled templates,
-//! tilesets and groups that recursed until the stack overflowed.
+//! written for each class: a TOML map whose positions once panicked, Tiled templates, tilesets
+//! and groups that recursed until the stack overflowed, and inputs that are not regular files.
 
 #![cfg(all(
     feature = "rapier",
@@ -132,4 +132,87 @@ fn tiled_recursion_is_an_error_naming_the_file_and_line() {
         &on_map("run", &d.join("groups.tmx")),
         "groups.tmx:68: group layer \"g\" is nested 65 groups deep; expected group layers nested at most 64 deep",
     );
+}
+
+// ---- hangs and endless reads: inputs that are not regular files ---------------------------
+
+/// Makes a named pipe at `path` that no one writes to: opening it to read would block.
+fn fifo(path: &std::path::Path) {
+    let made = std::process::Command::new("mkfifo").arg(path).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo {}", path.display());
+}
+
+#[cfg(unix)]
+#[test]
+fn inputs_that_are_not_regular_files_are_refused_before_they_are_read() {
+    use std::os::unix::fs::symlink;
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let pipe = d.join("pipe.toml");
+    fifo(&pipe);
+    let mut cmd = platbench();
+    cmd.arg("run").arg(&pipe).arg("--out").arg(d.join("o"));
+    // Guards the hang of a FIFO given as a level: refused, named, said what it is.
+    assert_error(
+        &output_within(cmd, 60),
+        "pipe.toml: it is a named pipe (FIFO); expected a regular file",
+    );
+    // A run to compare against, then copies whose metrics file or trace is a pipe or a device.
+    let level = super::hostile::quick_level(d);
+    let base = d.join("base");
+    common::assert_success(&super::hostile::run_quick(&level, &base, &[]));
+    let copy = |name: &str, file: &str| {
+        let new = d.join(name);
+        std::fs::create_dir_all(new.join("traces")).unwrap();
+        for f in ["metrics.csv", "traces/quick.stand.sweep.csv"] {
+            if f != file {
+                std::fs::copy(base.join(f), new.join(f)).unwrap();
+            }
+        }
+        new.join(file)
+    };
+    let piped = copy("piped", "metrics.csv");
+    fifo(&piped);
+    let zero_metrics = copy("zero_metrics", "metrics.csv");
+    symlink("/dev/zero", &zero_metrics).unwrap();
+    let zero_trace = copy("zero_trace", "traces/quick.stand.sweep.csv");
+    symlink("/dev/zero", &zero_trace).unwrap();
+    for (file, kind) in [
+        // Guards the hang of `diff` on a FIFO as NEW's metrics file.
+        (&piped, "a named pipe (FIFO)"),
+        // Guards the 4 GiB allocation of one endless CSV record, as metrics and as a trace.
+        (&zero_metrics, "a character device"),
+        (&zero_trace, "a character device"),
+    ] {
+        let new = file.ancestors().find(|a| a.parent() == Some(d)).unwrap();
+        let mut cmd = platbench();
+        cmd.arg("diff").arg(&base).arg(new);
+        assert_error(
+            &output_within(cmd, 60),
+            &format!("{}: it is {kind}; expected a regular file", file.display()),
+        );
+    }
+    // `report --tradeoff` given a pipe and a device.
+    let trade_pipe = d.join("tradeoff.csv");
+    fifo(&trade_pipe);
+    let trade_zero = d.join("zero.csv");
+    symlink("/dev/zero", &trade_zero).unwrap();
+    for (file, kind) in [
+        // Guards the hang of `report --tradeoff` on a FIFO.
+        (&trade_pipe, "a named pipe (FIFO)"),
+        // Guards the endless read of a device as a trade-off CSV.
+        (&trade_zero, "a character device"),
+    ] {
+        let mut cmd = platbench();
+        cmd.arg("report")
+            .arg(&level)
+            .arg("--tradeoff")
+            .arg(file)
+            .args(["--backend", "sweep", "--out"])
+            .arg(d.join("r"));
+        assert_error(
+            &output_within(cmd, 60),
+            &format!("{}: it is {kind}; expected a regular file", file.display()),
+        );
+    }
 }
