@@ -1,6 +1,7 @@
 //! Hostile input, part three (issue 40): nothing crashes and nothing hangs. One small file
 //! written for each class: a TOML map whose positions once panicked, Tiled templates, tilesets
-//! and groups that recursed until the stack overflowed, and inputs that are not regular files.
+//! and groups that recursed until the stack overflowed, tile data the `tiled` crate refused with
+//! no layer or line, and inputs that are not regular files.
 
 #![cfg(all(
     feature = "rapier",
@@ -13,7 +14,7 @@ use crate::common;
 
 use common::platbench;
 
-use super::hostile::{assert_error, output_within};
+use super::hostile::{assert_error, output_within, stderr};
 
 // ---- a panic: positions in an escaped map string ------------------------------------------
 
@@ -132,6 +133,75 @@ fn tiled_recursion_is_an_error_naming_the_file_and_line() {
         &on_map("run", &d.join("groups.tmx")),
         "groups.tmx:68: group layer \"g\" is nested 65 groups deep; expected group layers nested at most 64 deep",
     );
+}
+
+// ---- unclear errors: what the tiled crate reported with no layer or line ------------------
+
+#[test]
+fn bad_tile_data_is_named_with_its_layer_and_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let head = "<?xml version=\"1.0\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" width=\"4\" height=\"2\" tilewidth=\"16\" tileheight=\"16\" infinite=\"{inf}\">\n <layer id=\"1\" name=\"walls\" width=\"4\" height=\"2\">\n  <data encoding=\"{enc}\">\n";
+    let cases = [
+        // Once "Invalid symbol 64, offset 0.": the layer, the line and the character.
+        (
+            "0",
+            "base64",
+            "@AAAAAEAAAABAAAAAQAAAAEAAAABAAAAAQAAAAEAAAA=",
+            "b64.tmx:5: layer \"walls\": its base64 data holds '@' at character 1",
+        ),
+        // Once "invalid digit found in string": the layer, the line and the cell.
+        (
+            "0",
+            "csv",
+            "0,0,0,0,\n1,x,1,1",
+            "csv.tmx:6: layer \"walls\": cell 6 (x = 1, y = 1) of its CSV data is \"x\"",
+        ),
+        // Once "number too large to fit in target type".
+        (
+            "0",
+            "csv",
+            "0,0,0,0,\n1,1,1,4294967296",
+            "big.tmx:6: layer \"walls\": cell 8 (x = 3, y = 1) of its CSV data is 4294967296, more than 4294967295",
+        ),
+        // Once "Invalid tile found in map being parsed": the chunk, short of its cells.
+        (
+            "1",
+            "csv",
+            "<chunk x=\"0\" y=\"0\" width=\"2\" height=\"2\">1,1,1</chunk>",
+            "chunk.tmx:5: layer \"walls\", chunk at x = 0, y = 0: its data holds 3 comma-separated cells; expected exactly 4 cells",
+        ),
+    ];
+    // A chunk whose zlib data (1.4 kB) inflates to 1 MiB: inflated no further than its 256
+    // cells (a 1 GiB bomb once peaked at 6 GB before any check).
+    let bomb = format!("eNrtwTEBAAAAwqD1T20IX6{}D4DAPAAAQ==", "A".repeat(1355));
+    let bomb = format!("<chunk x=\"0\" y=\"0\" width=\"16\" height=\"16\">{bomb}</chunk>");
+    let cases = cases.into_iter().chain([(
+        "1",
+        "base64\" compression=\"zlib",
+        bomb.as_str(),
+        "bomb.tmx:5: layer \"walls\", chunk at x = 0, y = 0: its data holds more than 1024 bytes (256 cells)",
+    )]);
+    for (infinite, encoding, data, needle) in cases {
+        let name = needle.split(':').next().unwrap();
+        let map = dir.path().join(name);
+        let text = head.replace("{inf}", infinite).replace("{enc}", encoding);
+        std::fs::write(
+            &map,
+            format!("{text}{data}\n  </data>\n </layer>\n</map>\n"),
+        )
+        .unwrap();
+        let out = platbench()
+            .arg("run")
+            .arg(&map)
+            .arg("--out")
+            .arg(dir.path().join("o"))
+            .output()
+            .unwrap();
+        // Guards the crate's bare message: the file, its line and the layer, what was found and
+        // what was expected.
+        assert_error(&out, needle);
+        assert!(stderr(&out).contains("expected"), "{}", stderr(&out));
+    }
 }
 
 // ---- hangs and endless reads: inputs that are not regular files ---------------------------

@@ -219,6 +219,18 @@ fn explain(e: &tiled::Error) -> String {
             encoding.as_deref().unwrap_or("XML (no)"),
             compression.as_deref().unwrap_or("no")
         ),
+        // Found with the layer and line by scan::scan_map before the crate reads the map; these
+        // say at least what was wrong should one get past it.
+        tiled::Error::CsvDecodingError(e) => format!(
+            "a tile layer's CSV data has a cell that is not a tile id ({e}); expected whole numbers from 0 to 4294967295"
+        ),
+        tiled::Error::Base64DecodingError(e) => format!(
+            "a tile layer's base64 data cannot be decoded ({e}); expected standard base64 as Tiled writes it"
+        ),
+        tiled::Error::DecompressingError(e) => format!(
+            "a tile layer's compressed data cannot be inflated ({e}); expected zlib or gzip data as Tiled writes it"
+        ),
+        tiled::Error::InvalidTileFound => "an infinite map's chunk holds fewer cells than its width x height; expected one cell per cell of the chunk".into(),
         tiled::Error::MalformedAttributes(m) => {
             format!("{m} (an attribute the tiled crate requires is missing or not a number)")
         }
