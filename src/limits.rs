@@ -11,13 +11,27 @@
 //! reaches `0.5 * 1e5 * 1e5^2 = 5e14` tiles, within f32 and far within the sweep's integer
 //! positions (`i64` subpixels).
 
-use std::io::Read;
 use std::path::Path;
 
 /// Largest file read as a level, map, tileset or side file, in bytes (128 MiB): a 16-million
-/// tile map written as Tiled CSV takes about 80 MB. Reading stops here, so a device or pipe
-/// that never ends (`/dev/zero`) is refused after 128 MiB.
+/// tile map written as Tiled CSV takes about 80 MB. Only regular files are read
+/// ([`crate::input`]): a device or named pipe (`/dev/zero`, a FIFO) is refused before it is
+/// opened.
 pub(crate) const MAX_INPUT_BYTES: u64 = 128 * 1024 * 1024;
+/// Deepest nesting of group layers in a Tiled map: the `tiled` crate reads a group by
+/// recursion, and 100,000 nested groups overflowed the stack. Tiled's editor makes a group per
+/// folder of layers; 64 is far beyond any map made by hand.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_GROUP_DEPTH: usize = 64;
+/// Deepest nesting of elements in a Tiled map, tileset or template (groups, class properties
+/// within class properties), checked for the same reason.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_XML_DEPTH: usize = 128;
+/// Longest chain of files a Tiled map reaches through references (the map, a tileset, a
+/// template its tile uses, the template's tileset, and so on), the map included. A chain that
+/// comes back to a file it has already passed is refused whatever its length.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_TILED_FILE_CHAIN: usize = 32;
 /// Most tiles a level may have (width x height), TOML or Tiled alike.
 pub(crate) const MAX_TILES: u64 = 16_000_000;
 /// Most frames (duration / dt) one scenario may run.
@@ -146,38 +160,19 @@ pub fn check_timing(duration: f64, dt: f64) -> Result<u64, TimingError> {
     Ok(n as u64)
 }
 
-/// Reads a whole file of at most [`MAX_INPUT_BYTES`]; a larger one (or one that never ends) is
-/// an error that says the cap, read no further than the cap.
+/// Reads a whole regular file of at most [`MAX_INPUT_BYTES`] ([`crate::input::read`]); the
+/// error says why without the file's name, which the caller's own error gives.
 pub(crate) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
-    let file = std::fs::File::open(path)?;
-    if file.metadata().is_ok_and(|m| m.is_dir()) {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "it is a directory; expected a file",
-        ));
-    }
-    let mut bytes = Vec::new();
-    file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > MAX_INPUT_BYTES {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            format!(
-                "it holds more than {} MiB, the most platbench reads from one input file; expected a level, map or tileset file",
-                MAX_INPUT_BYTES / (1024 * 1024)
-            ),
-        ));
-    }
-    Ok(bytes)
+    Ok(crate::input::read(path, MAX_INPUT_BYTES, "input file")?)
 }
 
 /// [`read_capped`] as UTF-8 text.
 pub(crate) fn read_text_capped(path: &Path) -> std::io::Result<String> {
-    String::from_utf8(read_capped(path)?).map_err(|e| {
-        std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            format!("it is not UTF-8 text ({e})"),
-        )
-    })
+    Ok(crate::input::read_text(
+        path,
+        MAX_INPUT_BYTES,
+        "input file",
+    )?)
 }
 
 #[cfg(test)]

@@ -123,7 +123,7 @@ pub(crate) fn baseline(h: &Harness, args: &BaselineArgs) -> Result<()> {
 
 /// Refuses an existing baseline at `dir` unless `replace`.
 fn refuse_unless_replacing(dir: &Path, replace: bool) -> Result<()> {
-    let marker = std::fs::read_to_string(dir.join(output::MARKER)).unwrap_or_default();
+    let marker = output::read_marker(dir);
     if !replace && marker.lines().next() == Some("platbench baseline") {
         bail!(
             "{} already holds a baseline; a baseline is replaced only on purpose: pass --replace to write this run over it (or choose another --baseline DIR)",

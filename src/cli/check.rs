@@ -39,7 +39,8 @@ impl CheckRecord {
     /// The record of the baseline `base` as it is now.
     pub(crate) fn of(base: &Path) -> Result<CheckRecord> {
         let m = base.join(crate::report::manifest::FILE);
-        let bytes = std::fs::read(&m).with_context(|| format!("cannot read {}", m.display()))?;
+        let bytes = crate::limits::read_capped(&m)
+            .with_context(|| format!("cannot read {}", m.display()))?;
         Ok(CheckRecord {
             baseline: output::canonical_lenient(base).display().to_string(),
             manifest: content_hash(&bytes),
@@ -49,7 +50,7 @@ impl CheckRecord {
     /// Reads `CHECK_DIR/check.toml`.
     pub(crate) fn read(check: &Path) -> Result<CheckRecord> {
         let p = check.join(RECORD);
-        let text = std::fs::read_to_string(&p).with_context(|| {
+        let text = crate::limits::read_text_capped(&p).with_context(|| {
             format!(
                 "cannot read {} (a check by this platbench writes it, naming the baseline it ran against): run `platbench check` again",
                 p.display()
@@ -164,7 +165,7 @@ fn refuse_baseline_as_out(base: &Path, out: &Path) -> Result<()> {
             base.display()
         );
     }
-    let marker = std::fs::read_to_string(out.join(output::MARKER)).unwrap_or_default();
+    let marker = output::read_marker(out);
     if out.join(crate::report::manifest::FILE).exists()
         && marker.lines().next() != Some("platbench check")
     {

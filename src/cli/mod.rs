@@ -556,8 +556,8 @@ pub(crate) fn out(text: &str) {
 
 /// Reads every row of a CSV file written by `platbench sweep` or `platbench stress`.
 pub(crate) fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) -> Result<Vec<T>> {
-    let mut r =
-        csv::Reader::from_path(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let file = crate::input::open(path, crate::limits::MAX_INPUT_BYTES, "input file")?;
+    let mut r = csv::Reader::from_reader(file);
     let rows = r
         .deserialize()
         .collect::<Result<Vec<T>, _>>()

@@ -71,9 +71,15 @@ impl Kind {
     }
 }
 
+/// The text of `dir`'s marker file; empty when it has none, or when the marker is not a regular
+/// file (a named pipe there would block the read).
+pub(crate) fn read_marker(dir: &Path) -> String {
+    crate::limits::read_text_capped(&dir.join(MARKER)).unwrap_or_default()
+}
+
 /// The kind named by `dir`'s marker file, if it has one that platbench wrote.
 fn marker_of(dir: &Path) -> Option<Kind> {
-    let text = fs::read_to_string(dir.join(MARKER)).ok()?;
+    let text = read_marker(dir);
     let line = text.lines().next()?.trim();
     Kind::ALL
         .into_iter()

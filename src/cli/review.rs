@@ -137,7 +137,7 @@ fn metric_lines(base: &[&MetricRecord], new: &[&MetricRecord]) -> Vec<MetricLine
 
 /// Reads a trace file, if it is there.
 fn trace_at(path: &Path, u: &Unit) -> Option<Trace> {
-    let file = std::fs::File::open(path).ok()?;
+    let file = crate::input::open(path, u64::MAX, "trace").ok()?;
     Some(Trace {
         level: u.level.clone(),
         scenario: u.scenario.clone(),
@@ -161,7 +161,7 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
             args.check.display()
         );
     }
-    let marker = std::fs::read_to_string(args.check.join(output::MARKER)).unwrap_or_default();
+    let marker = output::read_marker(&args.check);
     if marker.lines().next() != Some("platbench check") {
         bail!(
             "{} is not the output of `platbench check --out` (its {} file does not say `platbench check`)",

@@ -25,7 +25,7 @@ struct Rows {
 
 /// Reads `path` as [`Rows`], checking that the ranges cover the file exactly.
 fn read_rows(path: &Path) -> Result<Rows> {
-    let bytes = fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let bytes = crate::input::read(path, u64::MAX, "metrics file")?;
     let mut r = csv::ReaderBuilder::new()
         .has_headers(true)
         .from_reader(bytes.as_slice());
@@ -189,7 +189,7 @@ impl Lock {
                         eprintln!(
                             "warning: taking over {}, older than an hour: left by a review that did not finish ({})",
                             path.display(),
-                            fs::read_to_string(&path).unwrap_or_default().trim()
+                            lock_text(&path)
                         );
                         fs::remove_file(&path).with_context(|| {
                             format!("cannot remove the stale {}", path.display())
@@ -200,7 +200,7 @@ impl Lock {
                         "{} is locked by another review ({}: {}); wait for it to finish (a lock older than an hour is taken over; remove the file if no review is running)",
                         dir.display(),
                         path.display(),
-                        fs::read_to_string(&path).unwrap_or_default().trim()
+                        lock_text(&path)
                     );
                 }
                 Err(e) => {
@@ -215,11 +215,19 @@ impl Lock {
     }
 }
 
+/// A lock file's text, trimmed (empty when it cannot be read or is not a regular file).
+fn lock_text(path: &Path) -> String {
+    crate::limits::read_text_capped(path)
+        .unwrap_or_default()
+        .trim()
+        .to_string()
+}
+
 impl Drop for Lock {
     fn drop(&mut self) {
         // Only this lock's file: the baseline swapped in has none, and another review may
         // have taken a new one since.
-        if fs::read_to_string(&self.path).is_ok_and(|t| t == self.token) {
+        if crate::limits::read_text_capped(&self.path).is_ok_and(|t| t == self.token) {
             let _ = fs::remove_file(&self.path);
         }
     }
@@ -295,7 +303,7 @@ pub(crate) fn accept(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<()
         &keys,
     )?;
     let manifest = updated_manifest(base, check, accepted)?;
-    let marker = fs::read(base.join(output::MARKER))
+    let marker = crate::limits::read_capped(&base.join(output::MARKER))
         .with_context(|| format!("cannot read {}", base.join(output::MARKER).display()))?;
     output::write_output(base, output::Kind::Baseline, false, |staging| {
         copy_tree(base, staging, true)?;

@@ -3,6 +3,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod crashes;
 mod hostile;
 mod hostile_inputs;
 mod properties;

@@ -6,8 +6,9 @@
 //! `error` (what cannot be imported), `read` (the map read through the `tiled` crate), `map`
 //! (the map's orientation, extent and properties), `layers` (which layer is what, and the tile
 //! layers), `tiles` (what one tile is), `objects` (spawns, collision objects, platforms),
-//! `normalize` (what the `tiled` crate cannot read as Tiled writes it) and `scan` (what it
-//! would allocate without bound). This file holds the entry points and the state of one import.
+//! `normalize` (what the `tiled` crate cannot read as Tiled writes it), `scan` (what it
+//! would allocate without bound) and `refs` (what it would follow by recursion without end:
+//! templates and tilesets that loop back, groups nested too deep). This file holds the entry points and the state of one import.
 //!
 //! Nothing here panics on a map's content: every construct platbench cannot represent is a
 //! [`TiledError`] or a [`TiledWarning`] that names the tile (tileset and local id, and a map
@@ -24,6 +25,7 @@ mod map;
 mod normalize;
 mod objects;
 mod read;
+mod refs;
 mod scan;
 mod tiles;
 

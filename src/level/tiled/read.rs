@@ -7,7 +7,7 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use super::{normalize, scan, Importer, TiledError, TiledImport, TiledWarning};
+use super::{normalize, refs, scan, Importer, TiledError, TiledImport, TiledWarning};
 use crate::level::import::{ImportFailure, ImportOptions};
 
 /// The file a map refers to, found as the `tiled` crate finds it: relative to the map's folder.
@@ -72,6 +72,18 @@ pub fn import_tiled_map_with(
         failed(
             TiledError::Map {
                 file: format!("{file}:{}", e.line),
+                message: e.message,
+            },
+            &notes,
+        )
+    })?;
+    // Templates and tilesets that loop back, and groups nested without end, which the crate
+    // would follow until the stack overflows.
+    let load = |p: &Path| crate_text(p).ok();
+    refs::check_references(path, &text, &load).map_err(|e| {
+        failed(
+            TiledError::Map {
+                file: e.file,
                 message: e.message,
             },
             &notes,
@@ -152,28 +164,7 @@ fn load_error(
     // An external tileset that fails to load on its own is the file at fault.
     for s in sources {
         let p = sibling(path, s);
-        let reader = |q: &Path| -> std::io::Result<std::io::Cursor<Vec<u8>>> {
-            let data = crate::limits::read_capped(q)?;
-            let ext = q
-                .extension()
-                .map(|x| x.to_string_lossy().to_lowercase())
-                .unwrap_or_default();
-            let bad = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
-            let t = String::from_utf8(data).map_err(|e| bad(e.to_string()))?;
-            let t = match ext.as_str() {
-                "tsj" | "json" => {
-                    normalize::json_tileset_to_tsx(&t)
-                        .map_err(|e| bad(e.to_string()))?
-                        .text
-                }
-                _ => {
-                    normalize::normalize_xml(&t)
-                        .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?
-                        .text
-                }
-            };
-            Ok(std::io::Cursor::new(t.into_bytes()))
-        };
+        let reader = |q: &Path| crate_text(q).map(|t| std::io::Cursor::new(t.into_bytes()));
         if let Err(te) = tiled::Loader::with_reader(reader).load_tsx_tileset(&p) {
             let message = match te {
                 tiled::Error::ResourceLoadingError { err, .. } => err.to_string(),
@@ -195,6 +186,31 @@ fn load_error(
     }
 }
 
+/// A tileset's or template's text as the crate reads it: within the input cap, a JSON tileset
+/// as its TSX twin, XML made readable where Tiled is tolerant and the crate is not.
+fn crate_text(q: &Path) -> std::io::Result<String> {
+    let data = crate::limits::read_capped(q)?;
+    let ext = q
+        .extension()
+        .map(|x| x.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    let bad = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
+    let t = String::from_utf8(data).map_err(|e| bad(e.to_string()))?;
+    let t = match ext.as_str() {
+        "tsj" | "json" => {
+            normalize::json_tileset_to_tsx(&t)
+                .map_err(|e| bad(e.to_string()))?
+                .text
+        }
+        _ => {
+            normalize::normalize_xml(&t)
+                .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?
+                .text
+        }
+    };
+    Ok(t)
+}
+
 /// The crate's message, with what to do where platbench knows it.
 fn explain(e: &tiled::Error) -> String {
     match e {
@@ -203,6 +219,18 @@ fn explain(e: &tiled::Error) -> String {
             encoding.as_deref().unwrap_or("XML (no)"),
             compression.as_deref().unwrap_or("no")
         ),
+        // Found with the layer and line by scan::scan_map before the crate reads the map; these
+        // say at least what was wrong should one get past it.
+        tiled::Error::CsvDecodingError(e) => format!(
+            "a tile layer's CSV data has a cell that is not a tile id ({e}); expected whole numbers from 0 to 4294967295"
+        ),
+        tiled::Error::Base64DecodingError(e) => format!(
+            "a tile layer's base64 data cannot be decoded ({e}); expected standard base64 as Tiled writes it"
+        ),
+        tiled::Error::DecompressingError(e) => format!(
+            "a tile layer's compressed data cannot be inflated ({e}); expected zlib or gzip data as Tiled writes it"
+        ),
+        tiled::Error::InvalidTileFound => "an infinite map's chunk holds fewer cells than its width x height; expected one cell per cell of the chunk".into(),
         tiled::Error::MalformedAttributes(m) => {
             format!("{m} (an attribute the tiled crate requires is missing or not a number)")
         }

@@ -1,8 +1,11 @@
 //! A look at a map's XML before the `tiled` crate reads it, for what that crate would turn into
 //! a huge allocation or a panic: the map's declared size (checked against
 //! [`limits::MAX_TILES`] before anything is allocated for it), and each tile layer's data,
-//! which must hold exactly one cell per cell of the layer (the crate indexes a short layer out
-//! of bounds, and inflates a compressed layer without a bound).
+//! and each chunk of an infinite map's layer, which must hold exactly one cell per cell (the
+//! crate indexes a short layer out of bounds, and inflates a compressed layer without a bound),
+//! each cell a tile id and base64 as the crate decodes it: what the crate would report with no
+//! layer or line ("invalid digit found in string", "Invalid symbol 64, offset 0.",
+//! "Invalid tile found in map being parsed") is named here with both.
 
 use std::io::Read;
 
@@ -35,10 +38,16 @@ pub(super) fn line_of(text: &str, pos: usize) -> usize {
         + 1
 }
 
-/// The tile layer whose `<data>` is being read.
+/// The tile layer whose `<data>` is being read, or one chunk of an infinite map's layer.
 struct Data {
-    layer: String,
+    /// `layer "NAME"`, or `layer "NAME", chunk at x = X, y = Y`.
+    place: String,
+    /// `layer` or `chunk`.
+    unit: &'static str,
     cells: u64,
+    /// The layer's or chunk's width, and the Tiled cell of its first cell, to place a cell.
+    width: u64,
+    origin: (i64, i64),
     encoding: Option<String>,
     compression: Option<String>,
     line: usize,
@@ -63,8 +72,9 @@ pub(super) fn xml_error_line(text: &str) -> Option<usize> {
 /// [`xml_error_line`]).
 pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
     let mut reader = quick_xml::Reader::from_str(text);
-    let mut layer: Option<(String, u64)> = None;
+    let mut layer: Option<(String, u64, u64)> = None;
     let mut data: Option<Data> = None;
+    let mut chunk: Option<Data> = None;
     let mut sources = Vec::new();
     loop {
         let pos = reader.buffer_position();
@@ -73,6 +83,7 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
             // Malformed XML: the tiled crate reports it, and xml_error_line finds the line.
             Err(_) => return Ok(sources),
         };
+        let empty = matches!(event, Event::Empty(_));
         match event {
             Event::Eof => return Ok(sources),
             Event::Start(e) | Event::Empty(e) => match e.name().as_ref() {
@@ -108,13 +119,16 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                             ),
                         });
                     }
-                    layer = Some((name, w * h));
+                    layer = Some((name, w * h, w));
                 }
                 b"data" => {
-                    if let Some((name, cells)) = &layer {
+                    if let Some((name, cells, width)) = &layer {
                         data = Some(Data {
-                            layer: name.clone(),
+                            place: format!("layer {name:?}"),
+                            unit: "layer",
                             cells: *cells,
+                            width: *width,
+                            origin: (0, 0),
                             encoding: attr(&e, "encoding"),
                             compression: attr(&e, "compression"),
                             line: line_of(text, pos),
@@ -123,9 +137,20 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                         });
                     }
                 }
-                b"chunk" | b"tile" => {
-                    // Infinite maps' chunks and the old XML cell encoding: the crate checks
-                    // those itself (and platbench refuses infinite maps).
+                b"chunk" => {
+                    // An infinite map's chunk: checked on its own, as the crate reads it.
+                    if let Some(d) = &mut data {
+                        d.chunked = true;
+                        let c = chunk_data(d, &e, line_of(text, pos))?;
+                        if empty {
+                            check_data(&c)?;
+                        } else {
+                            chunk = Some(c);
+                        }
+                    }
+                }
+                b"tile" => {
+                    // The old XML cell encoding: the crate checks it itself.
                     if let Some(d) = &mut data {
                         d.chunked = true;
                     }
@@ -133,14 +158,14 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                 _ => {}
             },
             Event::Text(t) => {
-                if let Some(d) = &mut data {
+                if let Some(d) = chunk.as_mut().or(data.as_mut()) {
                     if let Ok(s) = t.unescape() {
                         d.text.push_str(&s);
                     }
                 }
             }
             Event::CData(c) => {
-                if let Some(d) = &mut data {
+                if let Some(d) = chunk.as_mut().or(data.as_mut()) {
                     d.text.push_str(&String::from_utf8_lossy(&c.into_inner()));
                 }
             }
@@ -148,6 +173,11 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                 b"data" => {
                     if let Some(d) = data.take() {
                         check_data(&d)?;
+                    }
+                }
+                b"chunk" => {
+                    if let Some(c) = chunk.take() {
+                        check_data(&c)?;
                     }
                 }
                 b"layer" => layer = None,
@@ -158,7 +188,40 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
     }
 }
 
-/// Whether a layer's data holds one cell per cell of the layer.
+/// A chunk of the layer whose data is `d`, from its `<chunk>` element at `line`: at most
+/// [`limits::MAX_TILES`] cells, so its data is inflated no further than that.
+fn chunk_data(d: &Data, e: &BytesStart, line: usize) -> Result<Data, ScanError> {
+    let int = |n: &str| attr(e, n).and_then(|v| v.trim().parse::<i64>().ok());
+    let (x, y) = (int("x").unwrap_or(0), int("y").unwrap_or(0));
+    let (w, h) = (
+        int("width").unwrap_or(0).max(0) as u64,
+        int("height").unwrap_or(0).max(0) as u64,
+    );
+    let place = format!("{}, chunk at x = {x}, y = {y}", d.place);
+    if w.saturating_mul(h) > limits::MAX_TILES {
+        return Err(ScanError {
+            line,
+            message: format!(
+                "{place}: the chunk is {w} x {h} tiles; expected at most {} tiles",
+                limits::MAX_TILES
+            ),
+        });
+    }
+    Ok(Data {
+        place,
+        unit: "chunk",
+        cells: w * h,
+        width: w,
+        origin: (x, y),
+        encoding: d.encoding.clone(),
+        compression: d.compression.clone(),
+        line,
+        text: String::new(),
+        chunked: false,
+    })
+}
+
+/// Whether a layer's (or chunk's) data holds one cell per cell of the layer.
 fn check_data(d: &Data) -> Result<(), ScanError> {
     if d.chunked {
         return Ok(());
@@ -167,8 +230,8 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
         ScanError {
         line: d.line,
         message: format!(
-            "layer {:?}: its data holds {found}; expected exactly {} cells, one per cell of the layer (was the file cut short, or the layer resized by hand?)",
-            d.layer, d.cells
+            "{}: its data holds {found}; expected exactly {} cells, one per cell of the {} (was the file cut short, or the {} resized by hand?)",
+            d.place, d.cells, d.unit, d.unit
         ),
     }
     };
@@ -178,11 +241,13 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
             if n != d.cells {
                 return Err(err(format!("{n} comma-separated cells")));
             }
+            csv_cells(d)?;
         }
         (Some("base64"), compression) => {
-            let Some(bytes) = base64_decode(&d.text) else {
-                // Not base64: the crate reports it.
-                return Ok(());
+            // The crate trims the data and reads no whitespace inside it.
+            let inner_space = d.text.trim().contains(|c: char| c.is_ascii_whitespace());
+            let Some(bytes) = base64_decode(&d.text).filter(|_| !inner_space) else {
+                return Err(not_base64(d));
             };
             let expected = d.cells.saturating_mul(4);
             let len = match compression {
@@ -206,13 +271,91 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
     Ok(())
 }
 
+/// Checks that each cell of a CSV layer is a tile id, as the crate parses it (a `u32`), so a
+/// bad cell is named with its layer, line and place instead of the crate's bare "invalid digit
+/// found in string".
+fn csv_cells(d: &Data) -> Result<(), ScanError> {
+    // The data's text starts on the line of its `<data>` element.
+    let mut line = d.line;
+    for (k, cell) in d.text.split(',').enumerate() {
+        let value = cell.trim();
+        if value.parse::<u32>().is_err() {
+            let lead = cell.len() - cell.trim_start().len();
+            line += cell[..lead].matches('\n').count();
+            let found = if value.is_empty() {
+                "empty".to_string()
+            } else if value.bytes().all(|b| b.is_ascii_digit()) {
+                format!("{value}, more than 4294967295")
+            } else {
+                format!("{value:?}")
+            };
+            return Err(ScanError {
+                line,
+                message: format!(
+                    "{}: cell {} (x = {}, y = {}) of its CSV data is {found}; expected a tile id, a whole number from 0 (no tile) to 4294967295 (a global tile id with its flip bits)",
+                    d.place,
+                    k + 1,
+                    d.origin.0 + (k as u64 % d.width.max(1)) as i64,
+                    d.origin.1 + (k as u64 / d.width.max(1)) as i64,
+                ),
+            });
+        }
+        line += cell.matches('\n').count();
+    }
+    Ok(())
+}
+
+/// What is wrong with a layer's base64 data that [`base64_decode`] refused: the first
+/// character outside the alphabet (whitespace inside the data included, which the crate does
+/// not skip), or a length that is not a multiple of 4.
+fn not_base64(d: &Data) -> ScanError {
+    let text = d.text.trim();
+    let lead = d.text.len() - d.text.trim_start().len();
+    let bad = text
+        .char_indices()
+        .find(|&(_, c)| !(c.is_ascii_alphanumeric() || c == '+' || c == '/' || c == '='));
+    let early_pad = text
+        .char_indices()
+        .find(|&(at, c)| c == '=' && !text[at..].trim_start_matches('=').is_empty());
+    let line_at = |at: usize| d.line + d.text[..lead + at].matches('\n').count();
+    let (line, found) = match (bad, early_pad) {
+        (Some((at, c)), _) => (line_at(at), format!("{c:?} at character {}", at + 1)),
+        (None, _) if !text.len().is_multiple_of(4) => (
+            d.line,
+            format!("{} characters, not a multiple of 4", text.len()),
+        ),
+        (None, Some((at, _))) => (
+            line_at(at),
+            format!("'=' padding at character {} before its end", at + 1),
+        ),
+        (None, None) => (
+            d.line,
+            "a last character whose unused bits are not zero".to_string(),
+        ),
+    };
+    ScanError {
+        line,
+        message: format!(
+            "{}: its base64 data holds {found}; expected standard base64 (A-Z, a-z, 0-9, '+', '/', '=' padding) with no space or line break inside, as Tiled writes it",
+            d.place
+        ),
+    }
+}
+
 /// How many bytes `r` inflates to, reading at most one byte more than `expected` (so a small
 /// layer that inflates to gigabytes is found after `expected + 1` bytes). A corrupt stream
 /// counts what it gave; the crate reports the corruption.
 fn inflated_len(r: impl Read, expected: u64) -> u64 {
-    let mut sink = Vec::new();
-    let _ = r.take(expected + 1).read_to_end(&mut sink);
-    sink.len() as u64
+    let mut counted = 0u64;
+    let mut buf = [0u8; 8192];
+    let mut r = r.take(expected + 1);
+    while let Ok(n) = r.read(&mut buf) {
+        if n == 0 {
+            break;
+        }
+        counted += n as u64;
+    }
+    counted
 }
 
 /// Standard base64 with padding, whitespace ignored; `None` if it is not base64.
@@ -243,6 +386,12 @@ fn base64_decode(text: &str) -> Option<Vec<u8>> {
         }
         acc <<= 6 * pad as u32;
         let bytes = acc.to_be_bytes();
+        // Padding only at the end, and no bits left over before it (as the crate decodes).
+        if pad > 0
+            && (out.len() + 3 < clean.len() / 4 * 3 || bytes[4 - pad..].iter().any(|&b| b != 0))
+        {
+            return None;
+        }
         out.extend_from_slice(&bytes[1..4 - pad]);
     }
     Some(out)
@@ -284,6 +433,64 @@ mod tests {
         assert!(scan_map(&ok).is_ok());
         let short = map(2, 2, "AQAAAAEAAAABAAAA", "encoding=\"base64\"");
         assert!(scan_map(&short).is_err());
+        // Cells the crate would refuse with a bare "invalid digit found in string", named.
+        let e = scan_map(&map(2, 2, "1,\n1,x,1", "encoding=\"csv\""))
+            .err()
+            .unwrap();
+        assert_eq!(e.line, 5, "{}", e.message);
+        assert!(
+            e.message
+                .contains("cell 3 (x = 0, y = 1) of its CSV data is \"x\""),
+            "{}",
+            e.message
+        );
+        let e = scan_map(&map(2, 2, "1,1,,1", "encoding=\"csv\""))
+            .err()
+            .unwrap();
+        assert!(
+            e.message
+                .contains("cell 3 (x = 0, y = 1) of its CSV data is empty"),
+            "{}",
+            e.message
+        );
+        let e = scan_map(&map(2, 2, "1,1,1,4294967296", "encoding=\"csv\""))
+            .err()
+            .unwrap();
+        assert!(e.message.contains("more than 4294967295"), "{}", e.message);
+        // Base64 the crate would refuse with "Invalid symbol 64, offset 0.", named.
+        for (data, found) in [
+            ("@QAAAAEAAAABAAAAAQAAAA==", "'@' at character 1"),
+            ("AQAAAAEAAAAB AAAAAQAAAA==", "' ' at character 13"),
+            ("AQAAAAEAAAABAAAAAQAAAA=", "not a multiple of 4"),
+            ("AQ==AAEAAAABAAAAAQAAAA==", "'=' padding at character 3"),
+            ("AQAAAAEAAAABAAAAAQAAAB==", "unused bits"),
+        ] {
+            let e = scan_map(&map(2, 2, data, "encoding=\"base64\""))
+                .err()
+                .unwrap();
+            assert!(e.message.contains(found), "{data}: {}", e.message);
+            assert!(e.message.contains("layer \"ground\""), "{}", e.message);
+        }
+        // An infinite map's chunk short of its cells, and a bad cell in one, placed in Tiled's
+        // cells.
+        let chunk = |data: &str| {
+            map(
+                2,
+                2,
+                &format!("<chunk x=\"-16\" y=\"0\" width=\"2\" height=\"2\">{data}</chunk>"),
+                "encoding=\"csv\"",
+            )
+        };
+        assert!(scan_map(&chunk("1,1,1,1")).is_ok());
+        let e = scan_map(&chunk("1,1,1")).err().unwrap();
+        assert!(
+            e.message
+                .contains("chunk at x = -16, y = 0: its data holds 3"),
+            "{}",
+            e.message
+        );
+        let e = scan_map(&chunk("1,1,1,y")).err().unwrap();
+        assert!(e.message.contains("(x = -15, y = 1)"), "{}", e.message);
         let huge = map(100_000, 100_000, "", "encoding=\"csv\"");
         let e = scan_map(&huge).err().unwrap();
         assert!(e.message.contains("100000 x 100000"), "{}", e.message);

@@ -9,6 +9,7 @@ use crate::level::Tile;
 use crate::limits;
 
 use super::error::{LevelError, Locator};
+use super::strings::value_offsets;
 
 pub(super) fn parse_map(
     loc: &Locator,
@@ -16,48 +17,41 @@ pub(super) fn parse_map(
     legend: &HashMap<char, Tile>,
 ) -> Result<(u32, u32, Vec<Tile>), LevelError> {
     let span = map.span();
-    // Where the string's content starts in the file: after the opening quotes, and after
-    // the newline that TOML trims right after triple quotes.
-    let raw = &loc.text[span.clone()];
-    let mut content_start = span.start;
-    if raw.starts_with("\"\"\"") || raw.starts_with("'''") {
-        content_start += 3;
-        let rest = &loc.text[content_start..];
-        if rest.starts_with("\r\n") {
-            content_start += 2;
-        } else if rest.starts_with('\n') {
-            content_start += 1;
-        }
-    } else {
-        content_start += 1;
-    }
     let body = map.get_ref();
-    let mut rows: Vec<&str> = body.split('\n').map(|r| r.trim_end_matches('\r')).collect();
-    if rows.last() == Some(&"") {
+    // Where each byte of the value sits in the file: escapes in a basic string ("a\nb") make
+    // the value and its text differ, so value offsets are mapped, never added to the start.
+    let offsets = loc
+        .text
+        .get(span.clone())
+        .and_then(|raw| value_offsets(raw, body));
+    let file_offset = |value_offset: usize| {
+        offsets
+            .as_ref()
+            .and_then(|o| o.get(value_offset))
+            .map_or(span.start, |o| span.start + o)
+    };
+    // Each row with the offset in the value where it starts.
+    let mut rows: Vec<(usize, &str)> = Vec::new();
+    let mut row_start = 0;
+    for row in body.split('\n') {
+        rows.push((row_start, row.trim_end_matches('\r')));
+        row_start += row.len() + 1;
+    }
+    if rows.last().is_some_and(|(_, r)| r.is_empty()) {
         rows.pop();
     }
-    if rows.is_empty() || rows.iter().all(|r| r.is_empty()) {
+    if rows.is_empty() || rows.iter().all(|(_, r)| r.is_empty()) {
         return Err(loc.at(
             &span,
             "the map is empty; expected at least one row of tiles",
         ));
     }
-    // Byte offset in the file of each row, for errors.
-    let line_offsets: Vec<usize> = {
-        let mut v = Vec::with_capacity(rows.len());
-        let mut off = content_start;
-        for r in &rows {
-            v.push(off);
-            off += r.len() + 1;
-        }
-        v
-    };
-    let width = rows[0].chars().count();
-    for (r, row) in rows.iter().enumerate() {
+    let width = rows[0].1.chars().count();
+    for (r, (row_start, row)) in rows.iter().enumerate() {
         let n = row.chars().count();
         if n != width {
             return Err(loc.err(
-                line_offsets[r] + row.len(),
+                file_offset(row_start + row.len()),
                 format!("map row {} has {n} tiles, expected {width} like the first row (rows must have equal length)", r + 1),
             ));
         }
@@ -73,13 +67,19 @@ pub(super) fn parse_map(
         ));
     }
     let mut tiles = vec![Tile::Empty; width * height];
-    for (r, row) in rows.iter().enumerate() {
+    for (r, (row_start, row)) in rows.iter().enumerate() {
         let j = height - 1 - r;
         for (i, (byte, c)) in row.char_indices().enumerate() {
             let tile = legend.get(&c).ok_or_else(|| {
+                // Placed at the string's start when its text could not be mapped: the row
+                // and column within the map then say where.
+                let within = match offsets {
+                    Some(_) => String::new(),
+                    None => format!(" at map row {}, column {}", r + 1, i + 1),
+                };
                 loc.err(
-                    line_offsets[r] + byte,
-                    format!("unknown map character {c:?}; expected '#', '.', ' ', '=', 'H', '/', '\\' or a key of [legend]"),
+                    file_offset(row_start + byte),
+                    format!("unknown map character {c:?}{within}; expected '#', '.', ' ', '=', 'H', '/', '\\' or a key of [legend]"),
                 )
             })?;
             tiles[j * width + i] = *tile;

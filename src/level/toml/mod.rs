@@ -2,7 +2,8 @@
 //! `[[scenario]]` entries. Every error names the file, line and column and what was expected.
 //!
 //! This module reads the file's top level ([`parse_level`]); each part has its own file:
-//! `error` (the error and the file:line:column it names), `map` (the map string), `legend`
+//! `error` (the error and the file:line:column it names), `map` (the map string), `strings`
+//! (where each byte of a string's value sits in the file, escapes and all), `legend`
 //! (the tiles the map's characters stand for, slopes included), `platforms` (moving
 //! platforms), `scenarios` (`[[scenario]]` entries, in a level file or an imported map's side
 //! file), `expect` (a scenario's expectations) and `numbers` (the checks of numbers against [`crate::limits`]).
@@ -25,6 +26,7 @@ mod map;
 mod numbers;
 mod platforms;
 mod scenarios;
+mod strings;
 #[cfg(test)]
 mod tests;
 

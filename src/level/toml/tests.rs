@@ -47,6 +47,31 @@ fn unknown_map_character_names_line_and_column() {
 }
 
 #[test]
+fn a_map_written_with_escapes_parses_and_its_errors_point_into_the_string() {
+    // A basic string with `\n` escapes once panicked: positions computed in the value were
+    // used to slice the file's text, landing inside the multi-byte 'é' of the name.
+    let l = parse_level(
+        "name = \"t\"\ndescription = \"é\"\nmap = \"....\\n####\\n\"\n",
+        "t.toml",
+    )
+    .unwrap();
+    assert_eq!((l.width, l.height), (4, 2));
+    assert_eq!(l.tile(0, 0), Tile::Solid);
+    // The 'x' is column 13 of line 1: after `map = "..`, `\n` and `.`.
+    let e = err("map = \"..\\n.x\\n\"\n");
+    assert_eq!((e.line, e.column), (1, 13), "{e}");
+    assert!(e.message.contains("unknown map character 'x'"), "{e}");
+    // A short row: at the end of its text, before the `\n` that ends it.
+    let e = err("map = \"\\u00e9é\\n.\\n\"\n[legend]\n\"é\" = \"solid\"\n");
+    assert_eq!((e.line, e.column), (1, 18), "{e}");
+    assert!(e.message.contains("map row 2 has 1 tiles"), "{e}");
+    // The case that panicked: the end of row 2 computed in the value fell inside the second
+    // 'é' of the text; it is the closing quote.
+    let e = err("map = \"\\néé\"\n");
+    assert_eq!((e.line, e.column), (1, 12), "{e}");
+}
+
+#[test]
 fn ragged_rows_are_an_error() {
     let e = err("map = \"\"\"\n....\n...\n\"\"\"\n");
     assert_eq!(e.line, 3, "{e}");

@@ -88,6 +88,9 @@ pub enum DiffError {
         /// The cause.
         source: std::io::Error,
     },
+    /// A file is not a regular file, or cannot be opened.
+    #[error(transparent)]
+    Input(#[from] crate::input::InputError),
     /// A CSV file is malformed.
     #[error("{path}: {source}")]
     Csv {
@@ -101,10 +104,7 @@ pub enum DiffError {
 /// Reads `DIR/metrics.csv`.
 pub fn read_metrics(dir: &Path) -> Result<Vec<MetricRecord>, DiffError> {
     let path = dir.join("metrics.csv");
-    let file = std::fs::File::open(&path).map_err(|source| DiffError::Io {
-        path: path.clone(),
-        source,
-    })?;
+    let file = crate::input::open(&path, u64::MAX, "metrics file")?;
     csv::Reader::from_reader(file)
         .deserialize()
         .collect::<Result<_, _>>()
@@ -112,10 +112,7 @@ pub fn read_metrics(dir: &Path) -> Result<Vec<MetricRecord>, DiffError> {
 }
 
 fn read_trace(path: &Path) -> Result<Vec<TraceRow>, DiffError> {
-    let file = std::fs::File::open(path).map_err(|source| DiffError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let file = crate::input::open(path, u64::MAX, "trace")?;
     Trace::read_rows(file).map_err(|source| DiffError::Csv {
         path: path.to_path_buf(),
         source,

@@ -1,0 +1,241 @@
+//! Every file platbench reads from the user is opened here: checked to be a regular file before
+//! a byte is read (a named pipe would block the open until a writer came, a device such as
+//! `/dev/zero` never ends), and read no further than the cap of its format, when it has one.
+//! The errors name the file.
+
+use std::fs::File;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+/// An input file that was not read, naming it.
+#[derive(Debug, thiserror::Error)]
+pub enum InputError {
+    /// The file could not be opened or read.
+    #[error("{}: cannot read it: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The path is a directory, a named pipe, a device or a socket.
+    #[error("{}: it is {kind}; expected a regular file", path.display())]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+        /// What it is instead (`a directory`, `a named pipe (FIFO)`, ...).
+        kind: &'static str,
+    },
+    /// The file is larger than its format allows.
+    #[error("{}: it holds more than {} MiB, the most platbench reads from one {what}; expected a smaller file", path.display(), cap / (1024 * 1024))]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The most bytes read from it.
+        cap: u64,
+        /// What the file was read as (`input file`, `trade-off CSV`, ...).
+        what: &'static str,
+    },
+    /// The file is not UTF-8 text.
+    #[error("{}: it is not UTF-8 text ({reason})", path.display())]
+    NotText {
+        /// The file.
+        path: PathBuf,
+        /// Where the first invalid byte is.
+        reason: String,
+    },
+}
+
+impl InputError {
+    /// What is wrong without the file's name, for a caller whose own error names it (and says
+    /// it could not read it).
+    pub fn reason(&self) -> String {
+        if let InputError::Io { source, .. } = self {
+            return source.to_string();
+        }
+        let full = self.to_string();
+        let path = match self {
+            InputError::Io { path, .. }
+            | InputError::NotAFile { path, .. }
+            | InputError::TooLarge { path, .. }
+            | InputError::NotText { path, .. } => path.display().to_string(),
+        };
+        full.strip_prefix(&format!("{path}: "))
+            .map_or_else(|| full.clone(), str::to_string)
+    }
+}
+
+impl From<InputError> for std::io::Error {
+    /// The reason alone (callers of the `std::io` readers name the file themselves).
+    fn from(e: InputError) -> Self {
+        let kind = match &e {
+            InputError::Io { source, .. } => source.kind(),
+            InputError::NotAFile { .. } => std::io::ErrorKind::InvalidInput,
+            InputError::TooLarge { .. } | InputError::NotText { .. } => {
+                std::io::ErrorKind::InvalidData
+            }
+        };
+        std::io::Error::new(kind, e.reason())
+    }
+}
+
+/// What a path that is not a regular file is, for [`InputError::NotAFile`].
+fn kind_of(meta: &std::fs::Metadata) -> &'static str {
+    let t = meta.file_type();
+    if t.is_dir() {
+        return "a directory";
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a named pipe (FIFO)";
+        }
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    "not a regular file"
+}
+
+/// A file opened for reading that yields an error, not a short read, past its cap.
+pub struct Capped {
+    file: File,
+    path: PathBuf,
+    left: u64,
+    cap: u64,
+    what: &'static str,
+}
+
+impl Read for Capped {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        // One byte past the cap is asked for, so a file that grew is caught, not cut.
+        let room = usize::try_from(self.left.saturating_add(1)).unwrap_or(usize::MAX);
+        let n = buf.len().min(room);
+        let got = self.file.read(&mut buf[..n])?;
+        if got as u64 > self.left {
+            return Err(InputError::TooLarge {
+                path: self.path.clone(),
+                cap: self.cap,
+                what: self.what,
+            }
+            .into());
+        }
+        self.left -= got as u64;
+        Ok(got)
+    }
+}
+
+/// Opens `path` for reading: a regular file (symbolic links followed) of at most `cap` bytes
+/// (`u64::MAX` for a format with no cap); `what` names the format in the error.
+pub fn open(path: &Path, cap: u64, what: &'static str) -> Result<Capped, InputError> {
+    let io = |source| InputError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let meta = std::fs::metadata(path).map_err(io)?;
+    let check = |meta: &std::fs::Metadata| {
+        if !meta.is_file() {
+            return Err(InputError::NotAFile {
+                path: path.to_path_buf(),
+                kind: kind_of(meta),
+            });
+        }
+        if meta.len() > cap {
+            return Err(InputError::TooLarge {
+                path: path.to_path_buf(),
+                cap,
+                what,
+            });
+        }
+        Ok(())
+    };
+    check(&meta)?;
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    // Should the path become a named pipe after the check, the open does not wait for a writer;
+    // the check below then refuses it. A regular file reads the same either way.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    let file = options.open(path).map_err(io)?;
+    check(&file.metadata().map_err(io)?)?;
+    Ok(Capped {
+        file,
+        path: path.to_path_buf(),
+        left: cap,
+        cap,
+        what,
+    })
+}
+
+/// Reads a whole regular file of at most `cap` bytes ([`open`]).
+pub fn read(path: &Path, cap: u64, what: &'static str) -> Result<Vec<u8>, InputError> {
+    let mut bytes = Vec::new();
+    open(path, cap, what)?
+        .read_to_end(&mut bytes)
+        .map_err(|source| match source.kind() {
+            std::io::ErrorKind::InvalidData => InputError::TooLarge {
+                path: path.to_path_buf(),
+                cap,
+                what,
+            },
+            _ => InputError::Io {
+                path: path.to_path_buf(),
+                source,
+            },
+        })?;
+    Ok(bytes)
+}
+
+/// [`read`] as UTF-8 text.
+pub fn read_text(path: &Path, cap: u64, what: &'static str) -> Result<String, InputError> {
+    String::from_utf8(read(path, cap, what)?).map_err(|e| InputError::NotText {
+        path: path.to_path_buf(),
+        reason: e.utf8_error().to_string(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_regular_files_within_their_cap_are_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let f = dir.path().join("f.csv");
+        std::fs::write(&f, "abcd").unwrap();
+        assert_eq!(read(&f, 4, "test file").unwrap(), b"abcd");
+        let e = read(&f, 3, "test file").unwrap_err();
+        assert!(matches!(e, InputError::TooLarge { cap: 3, .. }), "{e}");
+        assert!(
+            e.to_string().starts_with(&format!("{}: ", f.display())),
+            "{e}"
+        );
+        let e = read(dir.path(), 4, "test file").unwrap_err();
+        assert!(e.to_string().contains("it is a directory"), "{e}");
+        assert_eq!(e.reason(), "it is a directory; expected a regular file");
+        let e = read(&dir.path().join("none"), 4, "test file").unwrap_err();
+        assert!(e.to_string().contains("none: cannot read it: "), "{e}");
+        assert!(!e.reason().contains("cannot read"), "{e}");
+        #[cfg(unix)]
+        {
+            // A device that never ends, and a named pipe no one writes to (the open would block).
+            let e = read(Path::new("/dev/zero"), 4, "test file").unwrap_err();
+            assert!(e.to_string().contains("a character device"), "{e}");
+            let fifo = dir.path().join("p");
+            let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+            assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+            let e = read(&fifo, 4, "test file").unwrap_err();
+            assert!(e.to_string().contains("a named pipe (FIFO)"), "{e}");
+        }
+    }
+}
