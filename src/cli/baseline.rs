@@ -159,6 +159,11 @@ pub(crate) fn manifest_of(
         spawns: args.import.spawns.clone(),
         intgrid: args.import.intgrid.clone(),
         ldtk_level: args.import.level.clone(),
+        controllers: s
+            .controllers
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect(),
     };
     let mut records = Vec::new();
     for l in levels {
@@ -224,7 +229,7 @@ pub(crate) fn run_args_of(m: &Manifest, jobs: Option<u32>) -> RunArgs {
             epsilon: s.epsilon,
             scenarios: s.scenarios.clone(),
             jobs,
-            controllers: Vec::new(),
+            controllers: s.controllers.iter().map(PathBuf::from).collect(),
         },
         import: ImportArgs {
             layers: s.layers.clone(),

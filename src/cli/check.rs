@@ -200,6 +200,9 @@ fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
     let record = CheckRecord::of(&base)?;
     refuse_baseline_as_out(&base, &args.out)?;
     output::check_target(&args.out, output::Kind::Check, args.force)?;
+    // The external controllers the baseline was written with, loaded again.
+    let recorded = super::controllers::with_recorded(h, &manifest.selection.controllers)?;
+    let h = recorded.as_ref().unwrap_or(h);
     let run = run_args_of(&manifest, args.jobs);
     let (levels, configs, mut notes) = selection_of(h, &manifest, &run)?;
     let ran = super::baseline::manifest_of(&run, &levels, &configs)?;

@@ -35,21 +35,7 @@ pub(super) fn with_controllers(
     }
     let mut h = harness.clone();
     for f in &files {
-        // `godot3` is the built-in client unless a controller file of that name is there.
-        let kind = if f.as_os_str() == godot3::NAME && !f.is_file() {
-            let Some(program) = godot3::program() else {
-                bail!(
-                    "--controller {}: no `{}` on the PATH (nor ${}); install it with `{}`",
-                    godot3::NAME,
-                    godot3::PROGRAM,
-                    godot3::PROGRAM_VARIABLE,
-                    godot3::INSTALL
-                );
-            };
-            godot3::load_with(&program)?
-        } else {
-            crate::external::load(f)?
-        };
+        let kind = load(f)?;
         if h.registry.get(kind.name()).is_some() {
             bail!(
                 "{}: a controller named {:?} is already registered; expected a name of its own in the controller file",
@@ -60,6 +46,45 @@ pub(super) fn with_controllers(
         h.registry.register(kind);
     }
     Ok(Some(h))
+}
+
+/// `harness` with the controller files a baseline recorded (`manifest.toml`'s
+/// `selection.controllers`, as given to `baseline`) registered, those whose controller is not
+/// registered already (by `--controller` on this command line); `None` when none is added.
+pub(super) fn with_recorded(harness: &Harness, files: &[String]) -> Result<Option<Harness>> {
+    let mut h = harness.clone();
+    let mut added = false;
+    for f in files {
+        let kind = load(std::path::Path::new(f)).map_err(|e| {
+            e.context(format!(
+                "the baseline was written with --controller {f}, which check loads again from the directory it runs in"
+            ))
+        })?;
+        if h.registry.get(kind.name()).is_none() {
+            h.registry.register(kind);
+            added = true;
+        }
+    }
+    Ok(added.then_some(h))
+}
+
+/// The controller `--controller f` names: the controller file `f`, or the built-in Godot 3
+/// client for `godot3` when no file of that name is there.
+fn load(f: &std::path::Path) -> Result<std::sync::Arc<dyn crate::controller::BackendKind>> {
+    Ok(if f.as_os_str() == godot3::NAME && !f.is_file() {
+        let Some(program) = godot3::program() else {
+            bail!(
+                "--controller {}: no `{}` on the PATH (nor ${}); install it with `{}`",
+                godot3::NAME,
+                godot3::PROGRAM,
+                godot3::PROGRAM_VARIABLE,
+                godot3::INSTALL
+            );
+        };
+        godot3::load_with(&program)?
+    } else {
+        crate::external::load(f)?
+    })
 }
 
 /// `harness` with the built-in Godot 3 client added for the built-in comparison (`platbench`

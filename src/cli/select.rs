@@ -216,10 +216,17 @@ impl Selection {
             set = self.in_precisions(set)?;
         }
         if set.is_empty() {
+            let or_all = |v: &[String]| {
+                if v.is_empty() {
+                    "all".to_string()
+                } else {
+                    v.join(",")
+                }
+            };
             bail!(
                 "the selection (--backend {}, --shape {}) leaves no configuration to run",
-                self.backends.join(","),
-                self.shapes.join(",")
+                or_all(&self.backends),
+                or_all(&self.shapes)
             );
         }
         Ok(set)

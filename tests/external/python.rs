@@ -171,3 +171,41 @@ fn the_python_client_over_tcp_gives_the_trace_it_gives_over_stdio() {
     let b = run_scenario(&level, spec, &configs(&tcp)[0]).unwrap();
     assert_eq!(a, b);
 }
+
+#[test]
+fn a_baseline_of_an_external_controller_is_checked_without_naming_it_again() {
+    let Some(py) = python("tests/external/python.rs (baseline and check)") else {
+        return;
+    };
+    // The baseline records `--controller FILE`; `check` loads it again, so the same selection
+    // finds nothing missing.
+    let dir = tempfile::tempdir().unwrap();
+    let file = client(dir.path(), &py);
+    let base = dir.path().join("base");
+    let o = common::platbench()
+        .args(["baseline", "--backend", "python", "--scenario", "drops"])
+        .arg("--controller")
+        .arg(&file)
+        .arg("--baseline")
+        .arg(&base)
+        .output()
+        .unwrap();
+    common::assert_success(&o);
+    let manifest = std::fs::read_to_string(base.join("manifest.toml")).unwrap();
+    assert!(manifest.contains("controllers = ["), "{manifest}");
+    let o = common::platbench()
+        .arg("check")
+        .arg("--baseline")
+        .arg(&base)
+        .arg("--out")
+        .arg(dir.path().join("check"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(stdout.contains("0 failed"), "{stdout}");
+}
