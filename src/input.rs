@@ -204,8 +204,51 @@ pub fn read_text(path: &Path, cap: u64, what: &'static str) -> Result<String, In
     })
 }
 
+/// Line and column (both 1-based, the column in characters) of byte `offset` in `text`, for an
+/// error that points into a file. An offset past the end or inside a character names the place
+/// just before it, never panics.
+pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &text[..offset];
+    let line_start = before.rfind('\n').map_or(0, |p| p + 1);
+    (
+        before.matches('\n').count() + 1,
+        before[line_start..].chars().count() + 1,
+    )
+}
+
+/// FNV-1a, 64 bits, of `bytes`: a cheap hash for telling a changed file (a baseline's levels, the
+/// built-in Godot client's copy), not for security.
+pub(crate) fn fnv1a64(bytes: impl IntoIterator<Item = u8>) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in bytes {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn line_column_counts_characters_and_never_lands_inside_one() {
+        assert_eq!(super::line_column("ab\ncd", 4), (2, 2));
+        // Byte 1 is inside the two-byte 'é': the place before it, column 1.
+        assert_eq!(super::line_column("é", 1), (1, 1));
+        // Past the end: the end.
+        assert_eq!(super::line_column("x\n", 99), (2, 1));
+    }
+
+    #[test]
+    fn fnv1a64_is_the_published_function() {
+        // The FNV-1a offset basis for no input, and the published value for "a".
+        assert_eq!(super::fnv1a64([]), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(super::fnv1a64(*b"a"), 0xaf63_dc4c_8601_ec8c);
+    }
+
     use super::*;
 
     #[test]

@@ -73,13 +73,7 @@ pub(super) fn with_recorded(harness: &Harness, files: &[String]) -> Result<Optio
 fn load(f: &std::path::Path) -> Result<std::sync::Arc<dyn crate::controller::BackendKind>> {
     Ok(if f.as_os_str() == godot3::NAME && !f.is_file() {
         let Some(program) = godot3::program() else {
-            bail!(
-                "--controller {}: no `{}` on the PATH (nor ${}); install it with `{}`",
-                godot3::NAME,
-                godot3::PROGRAM,
-                godot3::PROGRAM_VARIABLE,
-                godot3::INSTALL
-            );
+            bail!("--controller {}: {}", godot3::NAME, godot3::missing());
         };
         godot3::load_with(&program)?
     } else {
@@ -97,10 +91,8 @@ pub(super) fn with_builtin_godot3(harness: &Harness) -> Option<Harness> {
     match godot3::load() {
         None => {
             eprintln!(
-                "note: no `{}` on the PATH (nor ${}): the comparison leaves out Godot 3's rows; install it with `{}` to compare Godot 3's KinematicBody2D too",
-                godot3::PROGRAM,
-                godot3::PROGRAM_VARIABLE,
-                godot3::INSTALL
+                "note: the comparison leaves out Godot 3's rows: {}, to compare Godot 3's KinematicBody2D too",
+                godot3::missing()
             );
             None
         }

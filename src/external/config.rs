@@ -86,23 +86,11 @@ const START_TIMEOUT_MS: u64 = 10_000;
 /// The longest timeout a file may ask for, ms (ten minutes).
 const MAX_TIMEOUT_MS: u64 = 600_000;
 
-/// Line and column (1-based, in characters) of byte `offset` in `text`.
-fn line_column(text: &str, offset: usize) -> (usize, usize) {
-    let mut offset = offset.min(text.len());
-    while !text.is_char_boundary(offset) {
-        offset -= 1;
-    }
-    let before = &text[..offset];
-    let line = before.matches('\n').count() + 1;
-    let start = before.rfind('\n').map_or(0, |p| p + 1);
-    (line, before[start..].chars().count() + 1)
-}
-
 /// Reads controller file `text` from `path`.
 pub(crate) fn parse(text: &str, path: &Path) -> Result<ControllerFile, ExternalError> {
     let source = path.display().to_string();
     let at = |offset: usize, message: String| {
-        let (line, column) = line_column(text, offset);
+        let (line, column) = crate::input::line_column(text, offset);
         ExternalError::File {
             file: source.clone(),
             line,

@@ -5,9 +5,8 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::Duration;
 
-use super::config::{ControllerFile, Mode, Transport};
+use super::config::ControllerFile;
 use super::ExternalError;
 use crate::controller::BackendKind;
 
@@ -21,9 +20,10 @@ pub const PROGRAM_VARIABLE: &str = "PLATBENCH_GODOT3";
 /// How to install it, for messages.
 pub const INSTALL: &str = "apt-get install godot3-server";
 
-/// The client's GDScript, as in the repository.
+/// The client's GDScript, its controller file and its project file (which keeps Godot from
+/// writing a log file beside it on every run), as in the repository.
 const CLIENT: &str = include_str!("../../controllers/godot3/client.gd");
-/// Its project file, which keeps Godot from writing a log file beside it on every run.
+const CONTROLLER: &str = include_str!("../../controllers/godot3/controller.toml");
 const PROJECT: &str = include_str!("../../controllers/godot3/project.godot");
 
 /// The Godot 3 server to run: `$PLATBENCH_GODOT3`, else `godot3-server` on the PATH, else
@@ -38,15 +38,12 @@ pub fn program() -> Option<PathBuf> {
         .find(|p| p.is_file())
 }
 
-/// Writes the client and its project file into a directory of its own under the system's temporary directory (named
-/// by its content, so that a changed client never runs an old copy), once: it is written to a
-/// temporary name and renamed into place, so concurrent platbench processes never read half a
-/// file.
+/// Writes the client and its project file into a directory of its own under the system's
+/// temporary directory (named by their content, so that a changed client never runs an old copy),
+/// once: each is written to a temporary name and renamed into place, so concurrent platbench
+/// processes never read half a file.
 fn client_directory() -> Result<PathBuf, String> {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in CLIENT.bytes().chain(PROJECT.bytes()) {
-        hash = (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-    }
+    let hash = crate::input::fnv1a64(CLIENT.bytes().chain(PROJECT.bytes()));
     let dir = std::env::temp_dir().join(format!("platbench-godot3-{hash:016x}"));
     std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     for (name, text) in [("project.godot", PROJECT), ("client.gd", CLIENT)] {
@@ -62,28 +59,24 @@ fn client_directory() -> Result<PathBuf, String> {
     Ok(dir)
 }
 
-/// The controller file of the built-in client, run by `program`.
+/// The repository's controller file (`controllers/godot3/controller.toml`: arguments, transport,
+/// timeouts), run by `program` in the client's directory.
 fn file(program: &Path) -> Result<ControllerFile, ExternalError> {
-    let dir = client_directory().map_err(|message| ExternalError::Handshake {
+    let fail = |message: String| ExternalError::Handshake {
         file: format!("built-in {NAME}"),
         name: NAME.into(),
         message,
-    })?;
-    Ok(ControllerFile {
-        source: format!("built-in {NAME}, controllers/godot3/client.gd"),
-        name: NAME.into(),
-        command: program.to_path_buf(),
-        args: ["--no-window", "--fixed-fps", "60", "-s", "client.gd"]
-            .map(String::from)
-            .to_vec(),
-        working_directory: dir,
-        mode: Mode::Collision,
-        transport: Transport::Tcp,
-        // As controllers/godot3/controller.toml: Godot starts in well under a second here, and
-        // a step takes well under a millisecond; the margins are for a loaded machine.
-        step_timeout: Duration::from_millis(5000),
-        start_timeout: Duration::from_millis(20_000),
-    })
+    };
+    let dir = client_directory().map_err(fail)?;
+    let mut file = super::config::parse(CONTROLLER, &dir.join("controller.toml"))?;
+    file.source = format!("built-in {NAME} (controllers/godot3/controller.toml)");
+    file.command = program.to_path_buf();
+    Ok(file)
+}
+
+/// Why there is no Godot 3 client to run, and how to get one.
+pub fn missing() -> String {
+    format!("no `{PROGRAM}` on the PATH (nor ${PROGRAM_VARIABLE}); install it with `{INSTALL}`")
 }
 
 /// The built-in Godot 3 controller run by `program` (its handshake asked).

@@ -34,6 +34,9 @@ pub(crate) struct Process {
     /// Lines for the writing thread: a child that stops reading its input blocks that thread,
     /// never platbench, whose wait for the reply then times out.
     writer: Option<SyncSender<Vec<u8>>>,
+    /// The writing thread's written lines, handed back to be written into again: no buffer is
+    /// allocated per step once the first few are.
+    spare: Receiver<Vec<u8>>,
     /// Whether the lines travel over TCP (for messages).
     tcp: bool,
     lines: Receiver<std::io::Result<String>>,
@@ -102,22 +105,28 @@ fn keep_tail(from: impl Read + Send + 'static) -> Tail {
     kept
 }
 
-/// Writes each line it receives to `to`, until the channel closes or a write fails; then closes
-/// its input (drops `to`, and shuts down the sending half of `socket`).
-fn write_lines(mut to: Box<dyn Write + Send>, socket: Option<TcpStream>) -> SyncSender<Vec<u8>> {
+/// Writes each line it receives to `to` and hands its buffer back, until the channel closes or
+/// a write fails; then closes its input (drops `to`, and shuts down the sending half of
+/// `socket`).
+fn write_lines(
+    mut to: Box<dyn Write + Send>,
+    socket: Option<TcpStream>,
+) -> (SyncSender<Vec<u8>>, Receiver<Vec<u8>>) {
     let (tx, lines) = mpsc::sync_channel::<Vec<u8>>(1);
+    let (back, spare) = mpsc::sync_channel::<Vec<u8>>(2);
     std::thread::spawn(move || {
         for line in lines {
             if to.write_all(&line).and_then(|()| to.flush()).is_err() {
                 break;
             }
+            let _ = back.try_send(line);
         }
         drop(to);
         if let Some(socket) = socket {
             let _ = socket.shutdown(Shutdown::Write);
         }
     });
-    tx
+    (tx, spare)
 }
 
 /// Kills `child` and its process group (a wrapper script's own children with it), and waits for
@@ -203,9 +212,11 @@ impl Process {
             let Some(stdin) = child.stdin.take() else {
                 return Err(abandon(&mut child, "its stdin could not be opened".into()));
             };
+            let (writer, spare) = write_lines(Box::new(stdin), None);
             return Ok(Process {
                 child,
-                writer: Some(write_lines(Box::new(stdin), None)),
+                writer: Some(writer),
+                spare,
                 tcp: false,
                 lines: read_lines(stdout),
                 stderr,
@@ -214,10 +225,8 @@ impl Process {
         };
         let stdout = keep_tail(stdout);
         let socket = Self::accept(&listener, &mut child, file.start_timeout).map_err(|e| {
-            let mut p = String::new();
-            append_tail(&mut p, "stdout", &stdout);
-            append_tail(&mut p, "stderr", &stderr);
-            abandon(&mut child, format!("{e}{p}"))
+            let tails = tails_of(Some(&stdout), &stderr);
+            abandon(&mut child, format!("{e}{tails}"))
         })?;
         let connection = socket
             .set_nodelay(true)
@@ -227,9 +236,11 @@ impl Process {
             Ok(c) => c,
             Err(e) => return Err(abandon(&mut child, format!("its connection failed: {e}"))),
         };
+        let (writer, spare) = write_lines(Box::new(writer), Some(socket));
         Ok(Process {
             child,
-            writer: Some(write_lines(Box::new(writer), Some(socket))),
+            writer: Some(writer),
+            spare,
             tcp: true,
             lines: read_lines(reader),
             stderr,
@@ -277,7 +288,9 @@ impl Process {
         let Some(writer) = self.writer.as_ref() else {
             return Err("its input is closed".into());
         };
-        let mut line = serde_json::to_vec(message).map_err(|e| format!("cannot encode: {e}"))?;
+        let mut line = self.spare.try_recv().unwrap_or_default();
+        line.clear();
+        serde_json::to_writer(&mut line, message).map_err(|e| format!("cannot encode: {e}"))?;
         line.push(b'\n');
         match writer.try_send(line) {
             Ok(()) => Ok(()),
@@ -363,24 +376,22 @@ impl Process {
 
     /// `; its stderr ended: ...` with its last lines (and its stdout's, over TCP), or nothing.
     pub(crate) fn tails(&self) -> String {
-        let mut text = String::new();
-        if let Some(stdout) = &self.stdout {
-            append_tail(&mut text, "stdout", stdout);
-        }
-        append_tail(&mut text, "stderr", &self.stderr);
-        text
+        tails_of(self.stdout.as_ref(), &self.stderr)
     }
 }
 
-/// Appends `; its {what} ended: ...` with `tail`'s lines, if it has any.
-fn append_tail(text: &mut String, what: &str, tail: &Tail) {
-    let lines: Vec<String> = tail
-        .lock()
-        .map(|q| q.iter().cloned().collect())
-        .unwrap_or_default();
-    if !lines.is_empty() {
-        text.push_str(&format!("; its {what} ended: {}", lines.join(" | ")));
+/// `; its stdout ended: ...; its stderr ended: ...` with the lines each tail kept, or nothing.
+fn tails_of(stdout: Option<&Tail>, stderr: &Tail) -> String {
+    let mut text = String::new();
+    for (what, tail) in [("stdout", stdout), ("stderr", Some(stderr))] {
+        let lines: Vec<String> = tail
+            .and_then(|t| t.lock().ok().map(|q| q.iter().cloned().collect()))
+            .unwrap_or_default();
+        if !lines.is_empty() {
+            text.push_str(&format!("; its {what} ended: {}", lines.join(" | ")));
+        }
     }
+    text
 }
 
 impl Drop for Process {

@@ -248,12 +248,10 @@ impl Manifest {
 
 /// A hash of `bytes` for telling a changed file: FNV-1a, 64 bits, as `fnv1a64:<hex>`.
 pub(crate) fn content_hash(bytes: &[u8]) -> String {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for &b in bytes {
-        h ^= u64::from(b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    format!("fnv1a64:{h:016x}")
+    format!(
+        "fnv1a64:{:016x}",
+        crate::input::fnv1a64(bytes.iter().copied())
+    )
 }
 
 /// The `Cargo.lock` the running program was most likely built from: the nearest one at or

@@ -153,12 +153,11 @@ fn excerpt(s: &str) -> String {
 /// Parses a profile file's `text`; `file` names it in errors.
 pub fn parse_profile(text: &str, file: &str) -> Result<Profile, ProfileError> {
     let at = |offset: usize, message: String| {
-        let before = &text[..offset.min(text.len())];
-        let line_start = before.rfind('\n').map_or(0, |p| p + 1);
+        let (line, column) = crate::input::line_column(text, offset);
         ProfileError {
             file: file.to_string(),
-            line: before.matches('\n').count() + 1,
-            column: before[line_start..].chars().count() + 1,
+            line,
+            column,
             message,
         }
     };

@@ -42,12 +42,32 @@ pub(crate) fn controller_file(
     mode: &str,
     timeout_ms: u64,
 ) -> PathBuf {
-    let mut all = vec![format!("{:?}", script.display().to_string())];
-    all.extend(args.iter().map(|a| format!("{a:?}")));
+    let script = script.display().to_string();
+    let mut all = vec![script.as_str()];
+    all.extend(args);
+    write_controller(
+        dir,
+        name,
+        &python.display().to_string(),
+        &all,
+        &format!("mode = {mode:?}\nstep_timeout_ms = {timeout_ms}\n"),
+    )
+}
+
+/// Writes the controller file `dir/NAME.toml` running `command` with `args`, its other lines
+/// `rest` (TOML, the mode among them); returns its path. Rust's `{:?}` of a string is a valid
+/// TOML basic string for the paths and scripts these tests write.
+pub(crate) fn write_controller(
+    dir: &Path,
+    name: &str,
+    command: &str,
+    args: &[&str],
+    rest: &str,
+) -> PathBuf {
+    let args: Vec<String> = args.iter().map(|a| format!("{a:?}")).collect();
     let text = format!(
-        "name = {name:?}\ncommand = {:?}\nargs = [{}]\nmode = {mode:?}\nstep_timeout_ms = {timeout_ms}\n",
-        python.display().to_string(),
-        all.join(", ")
+        "name = {name:?}\ncommand = {command:?}\nargs = [{}]\n{rest}",
+        args.join(", ")
     );
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use platbench::scenario::{run_scenario, RunError};
 
 use crate::common;
-use crate::{configs, controller_file, python, root};
+use crate::{configs, controller_file, python, root, write_controller};
 
 /// Runs `flat_seams.stand` on the fake client in `mode` and returns the error.
 fn fail(mode: &str) -> Option<RunError> {
@@ -149,15 +149,16 @@ fn a_tcp_client_that_never_connects_is_killed_at_its_start_timeout() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("silent.toml");
-    std::fs::write(
-        &file,
-        format!(
-            "name = \"silent\"\ncommand = {:?}\nargs = [\"-c\", \"import time; print('waiting', flush=True); time.sleep(100)\"]\nmode = \"collision\"\ntransport = \"tcp\"\nstart_timeout_ms = 2000\n",
-            py.display().to_string()
-        ),
-    )
-    .unwrap();
+    let file = write_controller(
+        dir.path(),
+        "silent",
+        &py.display().to_string(),
+        &[
+            "-c",
+            "import time; print('waiting', flush=True); time.sleep(100)",
+        ],
+        "mode = \"collision\"\ntransport = \"tcp\"\nstart_timeout_ms = 2000\n",
+    );
     let start = Instant::now();
     let Err(e) = platbench::external::load(&file) else {
         panic!("it never connects, yet it loaded")
@@ -228,8 +229,8 @@ fn no_controller_outlives_a_killed_platbench() {
     )
     .unwrap();
     for (file, name) in [(&stdio, "python"), (&tcp, "pytcp")] {
-        // platbench killed with SIGKILL (no handler can run) while a controller runs: the
-        // controller sees its stdin or its connection close and exits, as the protocol asks.
+        // platbench killed with SIGKILL (no handler can run) while a controller runs, over
+        // each transport: the controller must not outlive it.
         let mut command = common::platbench();
         command
             .args([
@@ -300,8 +301,9 @@ fn stress_and_sweep_go_on_past_a_failed_run() {
 /// Starts `platbench` (a `run` command), waits until it has a controller process (20 s: the
 /// handshake's process comes and goes first, and python3 or Godot start in well under a second
 /// even on a loaded machine), kills platbench with SIGKILL (no handler can run) and asserts
-/// that every controller process it had is gone within 5 s: each needs only to read the end of
-/// its input (its stdin or its connection), as the protocol asks.
+/// that every controller process it had is gone within 5 s (the kernel's parent-death signal
+/// kills it at once on Linux; a controller also exits at the end of its input, as the protocol
+/// asks).
 #[cfg(target_os = "linux")]
 pub(crate) fn kill_mid_run(mut platbench: std::process::Command, what: &str) {
     let mut platbench = platbench
@@ -318,14 +320,20 @@ pub(crate) fn kill_mid_run(mut platbench: std::process::Command, what: &str) {
     assert!(!running.is_empty(), "{what}: no controller process seen");
     platbench.kill().unwrap();
     platbench.wait().unwrap();
-    let killed = Instant::now();
-    while !running.iter().all(|&p| gone(p)) && killed.elapsed() < Duration::from_secs(5) {
-        std::thread::sleep(Duration::from_millis(50));
-    }
     assert!(
-        running.iter().all(|&p| gone(p)),
+        all_gone_within(&running, Duration::from_secs(5)),
         "{what}: controller processes {running:?} outlived platbench"
     );
+}
+
+/// Whether every process of `pids` is gone within `limit`.
+#[cfg(target_os = "linux")]
+fn all_gone_within(pids: &[u32], limit: Duration) -> bool {
+    let start = Instant::now();
+    while !pids.iter().all(|&p| gone(p)) && start.elapsed() < limit {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    pids.iter().all(|&p| gone(p))
 }
 
 #[test]
@@ -338,16 +346,13 @@ fn a_client_that_stops_reading_cannot_block_platbench() {
     // wait for the reply must still end at the start timeout.
     let dir = tempfile::tempdir().unwrap();
     let fake = root().join("tests/external/fake.py");
-    let file = dir.path().join("deaf.toml");
-    std::fs::write(
-        &file,
-        format!(
-            "name = \"deaf\"\ncommand = {:?}\nargs = [{:?}, \"deaf\"]\nmode = \"collision\"\nstep_timeout_ms = 300\nstart_timeout_ms = 1000\n",
-            py.display().to_string(),
-            fake.display().to_string()
-        ),
-    )
-    .unwrap();
+    let file = write_controller(
+        dir.path(),
+        "deaf",
+        &py.display().to_string(),
+        &[&fake.display().to_string(), "deaf"],
+        "mode = \"collision\"\nstep_timeout_ms = 300\nstart_timeout_ms = 1000\n",
+    );
     let row = "#".repeat(600);
     let mut map = String::from(&format!("{}\n", ".".repeat(600)));
     for _ in 0..33 {
@@ -391,14 +396,13 @@ fn a_wrapper_scripts_own_children_are_killed_with_it() {
         fake.display().to_string(),
         pidfile.display().to_string()
     );
-    let file = dir.path().join("wrapped.toml");
-    std::fs::write(
-        &file,
-        format!(
-            "name = \"wrapped\"\ncommand = \"sh\"\nargs = [\"-c\", {script:?}]\nmode = \"collision\"\nstep_timeout_ms = 300\n"
-        ),
-    )
-    .unwrap();
+    let file = write_controller(
+        dir.path(),
+        "wrapped",
+        "sh",
+        &["-c", &script],
+        "mode = \"collision\"\nstep_timeout_ms = 300\n",
+    );
     let run = &configs(&file)[0];
     let level = common::level("flat_seams");
     let spec = level.scenarios.iter().find(|s| s.name == "stand").unwrap();
@@ -409,10 +413,9 @@ fn a_wrapper_scripts_own_children_are_killed_with_it() {
         .trim()
         .parse()
         .unwrap();
-    let killed = Instant::now();
     // Killed with the group at once; 2 s for the kernel on a loaded machine.
-    while !gone(pid) && killed.elapsed() < Duration::from_secs(2) {
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    assert!(gone(pid), "the wrapped client {pid} outlived its run");
+    assert!(
+        all_gone_within(&[pid], Duration::from_secs(2)),
+        "the wrapped client {pid} outlived its run"
+    );
 }

@@ -26,14 +26,7 @@ pub(super) struct Locator<'a> {
 impl Locator<'_> {
     pub(super) fn err(&self, offset: usize, message: impl Into<String>) -> LevelError {
         // Never inside a character: an offset a caller got wrong still names a place.
-        let mut offset = offset.min(self.text.len());
-        while !self.text.is_char_boundary(offset) {
-            offset -= 1;
-        }
-        let before = &self.text[..offset];
-        let line = before.matches('\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |p| p + 1);
-        let column = before[line_start..].chars().count() + 1;
+        let (line, column) = crate::input::line_column(self.text, offset);
         LevelError {
             file: self.file.to_string(),
             line,
