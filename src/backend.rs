@@ -331,6 +331,14 @@ pub struct Capabilities {
     /// harness itself checks only the same machine: the same inputs give bit-identical
     /// traces). Default: false.
     pub cross_platform_determinism: bool,
+    /// It declares that it carries no rider: a moving platform moves it only through collision
+    /// (Box2D's Mover sample, "carries no rider"), so `platbench hunt` does not hold it to the
+    /// carry invariant. Default: false (a platform carries its rider).
+    pub no_rider_carry: bool,
+    /// It declares no climb limit: it walks up any slope (Box2D's Mover sample, "no slope
+    /// limit"), so `platbench hunt` does not hold it to the climb invariant. Default: false
+    /// (it keeps `max_climb_angle`).
+    pub no_climb_limit: bool,
 }
 
 /// The floating-point type a configuration keeps world positions in: what decides how far from

@@ -25,6 +25,7 @@ pub mod cli;
 pub mod config;
 pub mod controller;
 pub mod external;
+pub mod hunt;
 pub mod input;
 pub mod ladder;
 pub mod level;

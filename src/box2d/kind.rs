@@ -35,6 +35,8 @@ impl Controller for Box2dConfig {
     fn capabilities(&self) -> Capabilities {
         Capabilities {
             cross_platform_determinism: true,
+            no_rider_carry: self.carry == super::GroundCarry::None,
+            no_climb_limit: true,
             ..Capabilities::default()
         }
     }

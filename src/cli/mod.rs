@@ -19,6 +19,7 @@ mod baseline;
 mod check;
 mod controllers;
 mod diff;
+mod hunt;
 mod inspect;
 mod levels;
 mod output;
@@ -128,6 +129,7 @@ where
         .mut_subcommand("report", |c| c.mut_arg("backends", backends))
         .mut_subcommand("stress", |c| c.mut_arg("backends", backends))
         .mut_subcommand("sweep", |c| c.mut_arg("backends", backends))
+        .mut_subcommand("hunt", |c| c.mut_arg("backends", backends))
         .mut_subcommand("baseline", |c| {
             c.mut_arg("backends", backends).mut_arg("baseline", |a| {
                 a.help(baseline::baseline_help(harness, "to write"))
@@ -192,6 +194,7 @@ where
         Some(Command::Check(args)) => return check::check(h, &args),
         Some(Command::Review(args)) => review::review(h, &args),
         Some(Command::Inspect(args)) => inspect::inspect(&args),
+        Some(Command::Hunt(args)) => hunt::hunt(h, &args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -352,6 +355,14 @@ enum Command {
     /// the collision grid in the level format's characters (`#` solid, `=` one-way, `H`
     /// ladder, `/` `\` slopes, `.` empty).
     Inspect(inspect::InspectArgs),
+    /// Search for the level nobody wrote: generated cases, invariants, shrunk failures.
+    ///
+    /// Generates small levels and input scripts from --seed, runs the selected configurations
+    /// on them and checks invariants any controller must keep against its own declared contact
+    /// (docs/hunt.md lists them). Each failure is shrunk to a small level that fails the same
+    /// way, written to DIR with a comment giving the invariant, the configuration, the frame
+    /// and the command that reproduces it; DIR/findings.csv lists them.
+    Hunt(hunt::HuntArgs),
 }
 
 /// Overrides of the map importers' defaults (docs/formats.md, "Tiled maps" and "LDtk maps").

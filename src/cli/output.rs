@@ -32,16 +32,19 @@ pub(crate) enum Kind {
     Sweep,
     /// `platbench check --out`.
     Check,
+    /// `platbench hunt --out`.
+    Hunt,
 }
 
 impl Kind {
-    const ALL: [Kind; 6] = [
+    const ALL: [Kind; 7] = [
         Kind::Run,
         Kind::Baseline,
         Kind::Report,
         Kind::Stress,
         Kind::Sweep,
         Kind::Check,
+        Kind::Hunt,
     ];
 
     fn name(self) -> &'static str {
@@ -52,6 +55,7 @@ impl Kind {
             Kind::Stress => "stress",
             Kind::Sweep => "sweep",
             Kind::Check => "check",
+            Kind::Hunt => "hunt",
         }
     }
 
@@ -63,6 +67,7 @@ impl Kind {
             Kind::Stress => "platbench stress",
             Kind::Sweep => "platbench sweep",
             Kind::Check => "platbench check",
+            Kind::Hunt => "platbench hunt",
         }
     }
 
@@ -101,6 +106,19 @@ pub(crate) fn check_target(dir: &Path, kind: Kind, force: bool) -> Result<()> {
 
 /// [`check_target`], naming the option that gave `dir` as `flag` in its messages.
 pub(crate) fn check_target_as(dir: &Path, kind: Kind, force: bool, flag: &str) -> Result<()> {
+    // A `..` after a name: `ghost/../victim` is checked while `ghost` is missing (so nothing is
+    // there), then names `victim` once the missing folders are created for the output.
+    let mut named = false;
+    for c in dir.components() {
+        match c {
+            std::path::Component::ParentDir if named => bail!(
+                "{flag} {}: a `..` after a folder name; give the path without it (the folders on the way are created, so the path would name another directory once written)",
+                dir.display()
+            ),
+            std::path::Component::Normal(_) => named = true,
+            _ => {}
+        }
+    }
     let meta = match fs::symlink_metadata(dir) {
         Ok(m) => m,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),

@@ -167,6 +167,8 @@ fn load_file(file: ControllerFile) -> Result<Arc<dyn BackendKind>, ExternalError
                 pushes_bodies: c.capabilities.pushes_bodies,
                 integer_positions: c.capabilities.integer_positions,
                 cross_platform_determinism: c.capabilities.cross_platform_determinism,
+                no_rider_carry: c.capabilities.no_rider_carry,
+                no_climb_limit: c.capabilities.no_climb_limit,
             },
             why,
         }));

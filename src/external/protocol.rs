@@ -341,6 +341,8 @@ pub(crate) struct CapabilitiesMessage {
     pub(crate) pushes_bodies: bool,
     pub(crate) integer_positions: bool,
     pub(crate) cross_platform_determinism: bool,
+    pub(crate) no_rider_carry: bool,
+    pub(crate) no_climb_limit: bool,
 }
 
 /// The `state` reply.

@@ -104,18 +104,35 @@ pub fn slope_outlines(level: &Level, building: ColliderBuilding) -> Vec<Vec<Vec2
 /// The ground's top surface over columns `a..=b`, closed down to the lowest slope tile's
 /// bottom at both ends.
 fn ramp_outline(level: &Level, a: i64, b: i64) -> Vec<Vec2> {
-    let top = level.height as f32 + 1.0;
     // The ground's top at x, probed just inside [x0, x1] and evaluated exactly on the tile
-    // found there (a slope's own line, or a solid's top).
+    // found there (a slope's own line, or a solid's top), walking down from the column's
+    // highest slope tile, not from the map's top: a ceiling or a block above the ramp is its
+    // own collider, not the ramp's surface.
     // `left`: the limit from the left, which differs at a height array's column boundary.
-    let ground = |x: f32, probe: f32, left: bool| match level.surface_at(probe, top, top + 1.0) {
-        Some((_, Some((i, j)))) => match level.tile(i, j) {
-            crate::level::Tile::Slope(s) if left => j as f32 + s.height_left_of(x - i as f32),
-            crate::level::Tile::Slope(s) => j as f32 + s.height_at(x - i as f32),
-            _ => 0.0,
-        },
-        Some((h, None)) => h,
-        None => 0.0,
+    let ground = |x: f32, probe: f32, left: bool| {
+        let i = probe.floor() as i64;
+        let highest = level
+            .slopes()
+            .filter(|(c, _, _)| *c == i)
+            .map(|(_, j, _)| j)
+            .max()
+            .unwrap_or(-1);
+        for j in (0..=highest).rev() {
+            match level.tile(i, j) {
+                crate::level::Tile::Slope(s) if s.height_at(probe - i as f32) > 0.0 => {
+                    let u = x - i as f32;
+                    return j as f32
+                        + if left {
+                            s.height_left_of(u)
+                        } else {
+                            s.height_at(u)
+                        };
+                }
+                crate::level::Tile::Solid => return j as f32 + 1.0,
+                _ => {}
+            }
+        }
+        0.0
     };
     let base = |i: i64| {
         level
@@ -187,5 +204,20 @@ mod tests {
         assert_eq!(per_tile.len(), 3);
         // A '/' tile is a triangle.
         assert_eq!(per_tile[0].len(), 3, "{:?}", per_tile[0]);
+    }
+
+    #[test]
+    fn a_ceiling_above_a_ramp_is_not_its_surface() {
+        // The same ramp under a ceiling: the merged outline still follows the ramp (it traced
+        // the ceiling's top when probed from the map's top, and the ramp had no collider).
+        let open = "map = \"\"\"\n.....\n..../\n.../#\n../##\n#####\n\"\"\"\n";
+        let roofed = "map = \"\"\"\n#####\n..../\n.../#\n../##\n#####\n\"\"\"\n";
+        let outline = |text: &str| {
+            slope_outlines(
+                &parse_level(text, "r.toml").unwrap(),
+                ColliderBuilding::Merged,
+            )
+        };
+        assert_eq!(outline(roofed), outline(open));
     }
 }

@@ -278,10 +278,17 @@ impl<'a> Ground<'a> {
     /// Signed gap from the shape down to what can hold it at time `t`: the static ground
     /// ([`Ground::gap`]) and moving platforms under it.
     fn support_gap(&self, feet: Vec2, t: f64) -> f32 {
-        let mut best = self.gap(feet);
+        let best = self.gap(feet);
         if best <= 0.0 {
             return best;
         }
+        best.min(self.platform_gap(feet, t))
+    }
+
+    /// Gap from the shape down to the nearest moving platform under it at time `t`, in tiles
+    /// (infinite if none is within [`GROUND_SEARCH`]).
+    pub(crate) fn platform_gap(&self, feet: Vec2, t: f64) -> f32 {
+        let mut best = f32::INFINITY;
         let pose = CharacterShape::pose(feet, self.size);
         // The shape's own half-width (a ball is as wide as it is tall).
         let half = self.shape.compute_aabb(&pose).half_extents().x;

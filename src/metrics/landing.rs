@@ -409,11 +409,16 @@ pub(super) fn rest_jitter(
 /// Whether the character's shape is within [`FLICKER_SUPPORT_TOLERANCE`] of the ground (or in
 /// it).
 pub fn supported(ctx: &Context, g: &Ground, r: &TraceRow) -> bool {
+    // A moving platform under the shape holds it, whatever slope lies below the platform (the
+    // stances below are of the level's own surface).
+    if g.platform_gap(pos(r), r.t as f64) <= FLICKER_SUPPORT_TOLERANCE {
+        return true;
+    }
     // The seed's box stands by its centre over a slope with its corners inside the ramp, so its
     // shape touches the ramp until it hovers by the overhang: over a slope it is judged by its
     // feet against its declared stance instead, as a touching shape is judged by its gap.
     if let Some(stance) = stance_over_slope(ctx, pos(r)) {
-        if r.y - stance > FLICKER_SUPPORT_TOLERANCE {
+        if r.y - stance > FLICKER_SUPPORT_TOLERANCE && !on_flat_top(ctx, r) {
             return false;
         }
     }
@@ -427,6 +432,26 @@ pub fn supported(ctx: &Context, g: &Ground, r: &TraceRow) -> bool {
         return beyond <= FLICKER_SUPPORT_TOLERANCE as f64;
     }
     gap <= FLICKER_SUPPORT_TOLERANCE
+}
+
+/// Whether the feet stand on the flat top of a solid or one-way tile under the character's box
+/// (within [`FLICKER_SUPPORT_TOLERANCE`]): a box over a slope held up by the tile beside it,
+/// higher than the slope's stance under its centre.
+fn on_flat_top(ctx: &Context, r: &TraceRow) -> bool {
+    let half = ctx.spec.size.x * 0.5;
+    // The row whose top is nearest the feet.
+    let j = r.y.round() as i64 - 1;
+    let top = (j + 1) as f32;
+    (r.y - top).abs() <= FLICKER_SUPPORT_TOLERANCE
+        && ((r.x - half).floor() as i64..(r.x + half).ceil() as i64).any(|i| {
+            let (lo, hi) = (i as f32, i as f32 + 1.0);
+            hi > r.x - half
+                && lo < r.x + half
+                && matches!(
+                    ctx.level.tile(i, j),
+                    crate::level::Tile::Solid | crate::level::Tile::OneWay
+                )
+        })
 }
 
 /// `false_grounded`: frames reported grounded with the ground farther than

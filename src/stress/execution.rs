@@ -48,8 +48,8 @@ pub struct StressRow {
 
 /// How far a rider moved on its platform, and the lag a carry may show without drifting, in tiles.
 ///
-/// The drift is the largest change of the rider's position relative to the platform from the
-/// first step on (the spawn row has no contact yet). A controller that carries its rider with the
+/// The drift is the largest change of the rider's position relative to the platform from row
+/// `from` on (stress: the first step, since the spawn row has no contact yet). A controller that carries its rider with the
 /// platform's velocity of the step before (Rapier's controller does) trails by the difference of
 /// two steps' displacements, which sums to at most twice the platform's largest displacement in
 /// one step, however long the ride: that is the allowance returned, computed from the platform's
@@ -59,12 +59,13 @@ pub struct StressRow {
 /// `grid` subpixels per tile (0 for none) moves the platform along its path rounded to that
 /// grid, in level coordinates whatever the offset; the drift is measured against that platform,
 /// the one it moves.
-fn carry_drift(
+pub(crate) fn carry_drift(
     p: &Platform,
     origin: glam::DVec2,
     (grid, precision): (u32, Precision),
     trace: &crate::trace::Trace,
     dt: f32,
+    from: usize,
 ) -> (f64, f64) {
     // The platform where the backends put it: placed in the world in the configuration's
     // precision (in f32 at 1e6 tiles from the origin, on a grid of 1/16 tile) and brought back
@@ -82,11 +83,11 @@ fn carry_drift(
         glam::DVec2::new(r.x as f64, r.y as f64) - at(k)
     };
     let n = trace.rows.len();
-    if n < 2 {
+    if n < 2 || from >= n {
         return (0.0, 0.0);
     }
-    let first = rel(1);
-    let drift = (1..n)
+    let first = rel(from);
+    let drift = (from..n)
         .map(|k| (rel(k) - first).length())
         .fold(
             0.0,
@@ -350,7 +351,7 @@ pub fn run_point(point: &Point) -> Result<Vec<StressRow>, RunError> {
             // A ride feeds only its own invariant (and `finite`): the others keep the meaning
             // they have on the static floor.
             let placing = (grid, run.backend.precision());
-            let (d, lag) = carry_drift(p, ride_level.origin, placing, &e.trace, case.dt);
+            let (d, lag) = carry_drift(p, ride_level.origin, placing, &e.trace, case.dt, 1);
             let tol = lag + tol_rest;
             if drift_tol == 0.0 || d - tol > drift - drift_tol {
                 (drift, drift_tol) = (d, tol);

@@ -19,6 +19,7 @@ pub use definition::{
     dimensions, format_setting, pair_offsets, pairs, Case, Dimension, BASE, F32_OFFSET_LIMIT,
     F64_OFFSETS, INVARIANTS, JUMP_TOLERANCE, PROGRESS_BAND, PROGRESS_MAX, PROGRESS_MIN,
 };
+pub(crate) use execution::carry_drift;
 pub use execution::{
     points, points_with, run_point, stress_matrix, stress_matrix_on, stress_matrix_reporting,
     stress_matrix_with, Point, StressRow,

@@ -4,6 +4,7 @@
 mod common;
 
 mod cli;
+mod hunt;
 mod report;
 mod scale;
 mod selection;

@@ -286,3 +286,38 @@ fn inputs_that_are_not_regular_files_are_refused_before_they_are_read() {
         );
     }
 }
+
+#[test]
+fn an_out_path_through_a_missing_folder_and_back_is_refused_and_nothing_is_deleted() {
+    // `ghost/../victim` was checked while `ghost` was missing (nothing there), then named
+    // `victim` once the output's folders were created, and `victim` was replaced as a whole.
+    let dir = tempfile::tempdir().unwrap();
+    let victim = dir.path().join("victim");
+    std::fs::create_dir(&victim).unwrap();
+    std::fs::write(victim.join("data.txt"), "precious").unwrap();
+    for command in [
+        &["hunt", "--cases", "8", "--backend", "sweep"][..],
+        &["run", "--backend", "sweep"],
+    ] {
+        let out = platbench()
+            .current_dir(dir.path())
+            .args(command)
+            .args(["--out", "ghost/../victim"])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command:?}: {err}");
+        assert!(
+            err.contains("ghost/../victim") && err.contains("`..`"),
+            "{err}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(victim.join("data.txt")).unwrap(),
+            "precious"
+        );
+        assert!(
+            !dir.path().join("ghost").exists(),
+            "{command:?} created ghost/"
+        );
+    }
+}

@@ -360,13 +360,32 @@ pub fn render_scorecard(card: &Scorecard) -> String {
 /// The capability table: what each configuration declares, beside what the run measured. Rows
 /// group the configurations of one backend that declare the same.
 pub fn render_capabilities(card: &Scorecard) -> String {
+    // The declarations the table shows (what `hunt` alone reads, such as carrying no rider,
+    // does not split a group).
+    let shown = |c: crate::backend::Capabilities| {
+        (
+            c.pushes_bodies,
+            c.integer_positions,
+            c.cross_platform_determinism,
+        )
+    };
     let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
     for (i, c) in card.cards.iter().enumerate() {
         let f = &c.facts;
-        let key = (f.backend.clone(), f.features, f.precision, f.capabilities);
+        let key = (
+            f.backend.clone(),
+            f.features,
+            f.precision,
+            shown(f.capabilities),
+        );
         match groups.iter_mut().find(|(_, v)| {
             let g = &card.cards[v[0]].facts;
-            (g.backend.clone(), g.features, g.precision, g.capabilities) == key
+            (
+                g.backend.clone(),
+                g.features,
+                g.precision,
+                shown(g.capabilities),
+            ) == key
         }) {
             Some((_, v)) => v.push(i),
             None => groups.push((f.backend.clone(), vec![i])),
