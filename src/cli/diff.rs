@@ -69,6 +69,10 @@ pub(crate) fn diff(args: &DiffArgs) -> ExitCode {
                 Some(r) => r.ok()?,
                 None => 0.0,
             };
+            // A third number was ignored: refused, as any other malformed value.
+            if parts.next().is_some() {
+                return None;
+            }
             (abs.is_finite() && abs >= 0.0 && rel.is_finite() && rel >= 0.0)
                 .then(|| (m.to_string(), Tolerance { abs, rel }))
         });

@@ -300,7 +300,7 @@ enum Command {
         /// Also say which configurations hold in a world this many tiles across (positions up
         /// to this far from the origin), from the offsets measured and the combination cells
         /// within it.
-        #[arg(long, value_name = "TILES", value_parser = parse_world_size)]
+        #[arg(long, value_name = "TILES", value_parser = parse_world_size, allow_negative_numbers = true)]
         world_size: Option<f64>,
         #[command(flatten)]
         select: select::Selection,

@@ -321,3 +321,74 @@ fn an_out_path_through_a_missing_folder_and_back_is_refused_and_nothing_is_delet
         );
     }
 }
+
+#[test]
+fn a_negative_world_size_and_a_number_beyond_f32_say_what_is_wrong() {
+    // `--world-size -1` read as an unknown option "-1"; now the value is judged.
+    let out = platbench()
+        .args(["stress", "--world-size", "-1", "--backend", "sweep"])
+        .output()
+        .unwrap();
+    assert_error(&out, "-1");
+    assert!(
+        !stderr(&out).contains("unexpected argument"),
+        "{}",
+        stderr(&out)
+    );
+    // 1e308 is finite: the message says it is beyond what the level's f32 holds.
+    let dir = tempfile::tempdir().unwrap();
+    let level = dir.path().join("far.toml");
+    std::fs::write(
+        &level,
+        "map = \"\"\"\n...\n###\n\"\"\"\n[[scenario]]\nname = \"s\"\nspawn = [1e308, 1.0]\nduration = 1.0\n",
+    )
+    .unwrap();
+    let out = platbench().arg("run").arg(&level).output().unwrap();
+    assert_error(&out, "f32 can hold");
+    assert!(
+        !stderr(&out).contains("expected a finite number"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn diff_fails_on_a_repeated_key_a_nan_reference_and_a_third_tolerance() {
+    let dir = tempfile::tempdir().unwrap();
+    let head = "level,scenario,backend,config,metric,value,unit,reference,error,frame,q1,q3\n";
+    let write = |name: &str, rows: &str| {
+        let d = dir.path().join(name);
+        std::fs::create_dir_all(d.join("traces")).unwrap();
+        std::fs::write(d.join("metrics.csv"), format!("{head}{rows}")).unwrap();
+        d
+    };
+    let good = "l,s,sweep,default,rest_gap,0.0,tiles,0.0,0.0,,,\n";
+    let base = write("base", good);
+    // NEW got worse, then repeats the original row: one of the two went uncompared (exit 0).
+    let repeated = write(
+        "repeated",
+        "l,s,sweep,default,rest_gap,0.5,tiles,0.0,0.5,,,\nl,s,sweep,default,rest_gap,0.0,tiles,0.0,0.0,,,\n",
+    );
+    let diff = |a: &std::path::Path, b: &std::path::Path, extra: &[&str]| {
+        platbench()
+            .arg("diff")
+            .arg(a)
+            .arg(b)
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = diff(&base, &repeated, &[]);
+    assert_error(&out, "line 3 repeats line 2");
+    // BASE's reference is NaN and NEW's value moved far: a difference, exit 1 (it was 0).
+    let nan_base = write(
+        "nan_base",
+        "l,s,sweep,default,rest_gap,0.0,tiles,NaN,NaN,,,\n",
+    );
+    let moved = write("moved", "l,s,sweep,default,rest_gap,5.0,tiles,NaN,NaN,,,\n");
+    let out = diff(&nan_base, &moved, &[]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    // A third number in --tol was ignored; now refused before any work.
+    let out = diff(&base, &base, &["--tol", "rest_gap=1,2,3"]);
+    assert_error(&out, "--tol rest_gap=1,2,3");
+}

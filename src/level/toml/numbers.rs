@@ -17,10 +17,21 @@ pub(super) fn finite(
     what: &str,
     v: f64,
 ) -> Result<f32, LevelError> {
-    if !v.is_finite() || v.abs() > f32::MAX as f64 {
+    if !v.is_finite() {
         return Err(loc.at(
             span,
             format!("{what} is {}; expected a finite number", limits::show(v)),
+        ));
+    }
+    if v.abs() > f32::MAX as f64 {
+        // Finite, but beyond what the f32 the level holds can represent.
+        return Err(loc.at(
+            span,
+            format!(
+                "{what} is {}; expected a number the level's f32 can hold (at most {:e} in size)",
+                limits::show(v),
+                f32::MAX
+            ),
         ));
     }
     Ok(v as f32)

@@ -203,6 +203,16 @@ impl RunDiff {
 
 /// Whether `new` is better, worse or the same as `base`, by distance from `reference`.
 pub(super) fn classify(base: f64, new: f64, reference: f64, tol: Tolerance) -> Change {
+    if reference.is_nan() && !(base.is_nan() && new.is_nan()) {
+        // No reference (a damaged file) cannot say which way is better: a change beyond the
+        // tolerance, or a NaN on one side only, is a difference, and a difference fails.
+        let moved = (new - base).abs();
+        return if base.to_bits() == new.to_bits() || moved <= tol.abs + tol.rel * base.abs() {
+            Change::Same
+        } else {
+            Change::Worse
+        };
+    }
     let (db, dn) = ((base - reference).abs(), (new - reference).abs());
     if base.to_bits() == new.to_bits()
         || (db.is_infinite() && dn.is_infinite())
@@ -287,6 +297,11 @@ mod tests {
         // NaN is a difference, both ways.
         assert_eq!(classify(0.0, f64::NAN, 0.0, loose), Change::Worse);
         assert_eq!(classify(f64::NAN, 0.0, 0.0, loose), Change::Better);
+        // A NaN reference: any move beyond the tolerance is worse, either way.
+        assert_eq!(classify(0.0, 5.0, f64::NAN, loose), Change::Worse);
+        assert_eq!(classify(5.0, 0.0, f64::NAN, loose), Change::Worse);
+        assert_eq!(classify(0.1, 0.1, f64::NAN, loose), Change::Same);
+        assert_eq!(classify(0.1, f64::NAN, f64::NAN, loose), Change::Worse);
         assert_eq!(classify(f64::NAN, f64::NAN, 0.0, loose), Change::Same);
     }
 

@@ -91,6 +91,18 @@ pub enum DiffError {
     /// A file is not a regular file, or cannot be opened.
     #[error(transparent)]
     Input(#[from] crate::input::InputError),
+    /// Two rows of a metrics file share their key.
+    #[error("{path}: line {second} repeats line {first} ({key}); expected one row per level, scenario, backend, configuration and metric")]
+    Duplicate {
+        /// The file.
+        path: PathBuf,
+        /// The line of the first row with the key (the header is line 1).
+        first: usize,
+        /// The line of the repeat.
+        second: usize,
+        /// The key, as `level.scenario backend config metric`.
+        key: String,
+    },
     /// A CSV file is malformed.
     #[error("{path}: {source}")]
     Csv {
@@ -105,10 +117,29 @@ pub enum DiffError {
 pub fn read_metrics(dir: &Path) -> Result<Vec<MetricRecord>, DiffError> {
     let path = dir.join("metrics.csv");
     let file = crate::input::open(&path, u64::MAX, "metrics file")?;
-    csv::Reader::from_reader(file)
+    let rows: Vec<MetricRecord> = csv::Reader::from_reader(file)
         .deserialize()
         .collect::<Result<_, _>>()
-        .map_err(|source| DiffError::Csv { path, source })
+        .map_err(|source| DiffError::Csv {
+            path: path.clone(),
+            source,
+        })?;
+    // A repeated key would let one of its rows go uncompared (the last one read wins).
+    let mut seen: BTreeMap<_, usize> = BTreeMap::new();
+    for (k, r) in rows.iter().enumerate() {
+        if let Some(first) = seen.insert(r.key(), k) {
+            return Err(DiffError::Duplicate {
+                path,
+                first: first + 2,
+                second: k + 2,
+                key: format!(
+                    "{}.{} {} {} {}",
+                    r.level, r.scenario, r.backend, r.config, r.metric
+                ),
+            });
+        }
+    }
+    Ok(rows)
 }
 
 fn read_trace(path: &Path) -> Result<Vec<TraceRow>, DiffError> {
