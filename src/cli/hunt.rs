@@ -17,7 +17,7 @@ use crate::hunt::{hunt as run_hunt, Finding, HuntOptions, INVARIANTS};
 pub(crate) struct HuntArgs {
     /// Output directory: one level file per finding and findings.csv (replaced as a whole at
     /// the end, like every command's output; see --force).
-    #[arg(long, default_value = "platbench-hunt")]
+    #[arg(long, value_name = "DIR", default_value = "platbench-hunt")]
     out: PathBuf,
     /// Replace --out even when it holds something other than an earlier `platbench hunt`
     /// output. A baseline is never replaced here.
