@@ -19,7 +19,7 @@ use crate::report::manifest::{content_hash, ConfigRecord, LevelRecord, Manifest,
 #[derive(Args)]
 #[command(allow_negative_numbers = true)]
 pub(crate) struct BaselineArgs {
-    /// Level files: TOML, Tiled maps (.tmx) or LDtk projects (.ldtk); the built-in set when
+    /// Level files: TOML, Tiled maps (.tmx, .tmj) or LDtk projects (.ldtk), told by content; the built-in set when
     /// none is given. Recorded as given: `check` reads them from the same paths, relative to the
     /// directory it runs in.
     pub(crate) levels: Vec<PathBuf>,
@@ -159,6 +159,7 @@ pub(crate) fn manifest_of(
         spawns: args.import.spawns.clone(),
         intgrid: args.import.intgrid.clone(),
         ldtk_level: args.import.level.clone(),
+        edges: args.import.edges.clone(),
         controllers: s
             .controllers
             .iter()
@@ -237,6 +238,7 @@ pub(crate) fn run_args_of(m: &Manifest, jobs: Option<u32>) -> RunArgs {
             spawns: s.spawns.clone(),
             intgrid: s.intgrid.clone(),
             level: s.ldtk_level.clone(),
+            edges: s.edges.clone(),
         },
         ..RunArgs::default()
     }

@@ -5,11 +5,11 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 
-use super::{has_ext, out, ImportArgs};
+use super::{out, ImportArgs};
 
 #[derive(Args)]
 pub(crate) struct InspectArgs {
-    /// The map file (.tmx or .ldtk).
+    /// The map file: a Tiled map (.tmx, .tmj or .json) or an LDtk project (.ldtk).
     pub(crate) map: PathBuf,
     #[command(flatten)]
     pub(crate) import: ImportArgs,
@@ -20,7 +20,7 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
     use crate::level::import::ascii_map;
     let opts = args.import.options()?;
     let p = &args.map;
-    let r = if has_ext(p, "ldtk") {
+    let r = if crate::level::detect_format(p)? == crate::level::LevelFormat::Ldtk {
         import_ldtk(p, &opts)?
     } else {
         import_tiled(p, &opts)?

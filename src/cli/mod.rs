@@ -22,6 +22,7 @@ mod diff;
 mod hunt;
 mod inspect;
 mod levels;
+mod load;
 mod output;
 mod profiles;
 mod report;
@@ -35,13 +36,15 @@ mod tradeoff;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{bail, Context as _, Result};
+use anyhow::{Context as _, Result};
 use clap::builder::PossibleValuesParser;
-use clap::{Args, CommandFactory as _, FromArgMatches as _, Parser, Subcommand};
+use clap::{CommandFactory as _, FromArgMatches as _, Parser, Subcommand};
 
-use crate::level::{parse_level, Level};
 use crate::registry::Registry;
 
+#[allow(unused_imports)]
+pub(crate) use load::missing_feature;
+pub(crate) use load::{load_levels, load_levels_with, ImportArgs};
 pub use output::MARKER;
 
 /// What a CLI built by [`main_with_harness`] runs on: the backend kinds, and where its committed
@@ -261,7 +264,7 @@ enum Command {
         /// directory is refused. A baseline is never replaced here.
         #[arg(long)]
         force: bool,
-        /// Level files: TOML, or Tiled maps (.tmx); the built-in set when none is given.
+        /// Level files: TOML, Tiled maps (.tmx, .tmj) or LDtk projects (.ldtk), told by content; the built-in set when none is given.
         levels: Vec<PathBuf>,
         /// The error score: METRIC[=WEIGHT],... (weight 1 if omitted; unlisted metrics weigh
         /// 0). Default: the registry's weights, which charge no controller for its declared
@@ -350,7 +353,7 @@ enum Command {
     Review(review::ReviewArgs),
     /// Show what a Tiled or LDtk map was read as, layer by layer.
     ///
-    /// Shows what a Tiled (.tmx) or LDtk (.ldtk) map was read as: each layer with the role it
+    /// Shows what a Tiled (.tmx, .tmj) or LDtk (.ldtk) map was read as: each layer with the role it
     /// was given and why, the spawns, the moving platforms with their paths, the warnings, and
     /// the collision grid in the level format's characters (`#` solid, `=` one-way, `H`
     /// ladder, `/` `\` slopes, `.` empty).
@@ -365,197 +368,7 @@ enum Command {
     Hunt(hunt::HuntArgs),
 }
 
-/// Overrides of the map importers' defaults (docs/formats.md, "Tiled maps" and "LDtk maps").
-#[derive(Args, Default, Clone)]
-#[command(allow_negative_numbers = true)]
-pub(crate) struct ImportArgs {
-    /// Read a map layer as ROLE: collision, solid, one_way, ladder, objects or decoration
-    /// (NAME in any case; repeatable). Overrides the layer's name and properties.
-    #[arg(long = "layer", value_name = "NAME=ROLE")]
-    pub(crate) layers: Vec<String>,
-    /// Read the tile layers no name or property marks as ROLE (collision or decoration).
-    #[arg(long, value_name = "ROLE")]
-    pub(crate) tile_layers: Option<String>,
-    /// Start the probes here instead of the map's spawns: feet position in tiles, y up
-    /// (repeatable).
-    #[arg(long = "spawn", value_name = "X,Y")]
-    pub(crate) spawns: Vec<String>,
-    /// LDtk: make an IntGrid value (its number or name) solid, one_way, ladder or empty
-    /// (repeatable).
-    #[arg(long = "intgrid", value_name = "VALUE=KIND")]
-    pub(crate) intgrid: Vec<String>,
-    /// LDtk: import this one level of the world (its identifier) instead of the whole world.
-    #[arg(long, value_name = "NAME")]
-    pub(crate) level: Option<String>,
-}
-
-impl ImportArgs {
-    pub(crate) fn options(&self) -> Result<crate::level::ImportOptions> {
-        use crate::level::import::parse_tile_kind;
-        use crate::level::{ImportOptions, LayerRole};
-        let mut o = ImportOptions::default();
-        for l in &self.layers {
-            let Some((name, role)) = l.rsplit_once('=') else {
-                bail!("--layer {l}: expected NAME=ROLE");
-            };
-            let Some(r) = LayerRole::parse(role) else {
-                bail!("--layer {l}: {role:?} is no role; expected collision, solid, one_way, ladder, objects or decoration");
-            };
-            o.layer_roles.push((name.to_string(), r));
-        }
-        if let Some(t) = &self.tile_layers {
-            o.tile_layers = Some(LayerRole::parse(t).with_context(|| {
-                format!(
-                    "--tile-layers {t}: expected collision, solid, one_way, ladder or decoration"
-                )
-            })?);
-        }
-        for sp in &self.spawns {
-            let v: Vec<f32> = sp
-                .split(',')
-                .map(|x| x.trim().parse::<f32>())
-                .collect::<Result<_, _>>()
-                .map_err(|_| anyhow::anyhow!("--spawn {sp}: expected X,Y in tiles"))?;
-            match v[..] {
-                [x, y] if x.is_finite() && y.is_finite() => o.spawns.push(glam::Vec2::new(x, y)),
-                _ => bail!("--spawn {sp}: expected X,Y, two finite numbers of tiles"),
-            }
-        }
-        for g in &self.intgrid {
-            let Some((v, kind)) = g.rsplit_once('=') else {
-                bail!("--intgrid {g}: expected VALUE=KIND");
-            };
-            let Some(t) = parse_tile_kind(kind) else {
-                bail!(
-                    "--intgrid {g}: {kind:?} is no kind; expected solid, one_way, ladder or empty"
-                );
-            };
-            o.intgrid.push((v.to_string(), t));
-        }
-        o.level = self.level.clone();
-        Ok(o)
-    }
-}
-
 pub(crate) use crate::suite::builtin_levels;
-
-/// Whether `p` names a map file of `ext` (any case).
-pub(crate) fn has_ext(p: &std::path::Path, ext: &str) -> bool {
-    p.extension().is_some_and(|e| e.eq_ignore_ascii_case(ext))
-}
-
-/// The error for a map whose importer this build left out (its Cargo `feature` is off).
-#[allow(dead_code)]
-pub(crate) fn missing_feature(p: &std::path::Path, feature: &str, what: &str) -> anyhow::Error {
-    anyhow::anyhow!(
-        "{}: reading {what} needs platbench's `{feature}` Cargo feature, which this build leaves out (it is on by default: drop `default-features = false`, or add `features = [\"{feature}\"]`)",
-        p.display()
-    )
-}
-
-/// Loads a Tiled or LDtk map with the import overrides, printing its warnings — those gathered
-/// before a failure too.
-#[cfg_attr(not(all(feature = "tiled", feature = "ldtk")), allow(unused_variables))]
-pub(crate) fn load_map(p: &std::path::Path, opts: &crate::level::ImportOptions) -> Result<Level> {
-    let result = if has_ext(p, "ldtk") {
-        #[cfg(feature = "ldtk")]
-        let r = crate::level::ldtk::load_ldtk_with(p, opts)
-            .map_err(|f| (anyhow::Error::new(f.error), f.warnings));
-        #[cfg(not(feature = "ldtk"))]
-        let r = Err::<(Level, Vec<crate::level::ImportWarning>), _>((
-            missing_feature(p, "ldtk", "LDtk projects"),
-            Vec::<crate::level::ImportWarning>::new(),
-        ));
-        r
-    } else {
-        #[cfg(feature = "tiled")]
-        let r = crate::level::load_tiled_map_with(p, opts)
-            .map_err(|f| (anyhow::Error::new(f.error), f.warnings));
-        #[cfg(not(feature = "tiled"))]
-        let r = Err::<(Level, Vec<crate::level::ImportWarning>), _>((
-            missing_feature(p, "tiled", "Tiled maps"),
-            Vec::<crate::level::ImportWarning>::new(),
-        ));
-        r
-    };
-    match result {
-        Ok((level, warnings)) => {
-            for w in warnings {
-                eprintln!("warning: {w}");
-            }
-            Ok(level)
-        }
-        Err((e, warnings)) => {
-            for w in warnings {
-                eprintln!("warning: {w}");
-            }
-            Err(e)
-        }
-    }
-}
-
-pub(crate) fn load_levels(paths: &[PathBuf]) -> Result<Vec<Level>> {
-    load_levels_with(paths, &ImportArgs::default())
-}
-
-pub(crate) fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result<Vec<Level>> {
-    let maps = paths
-        .iter()
-        .any(|p| has_ext(p, "tmx") || has_ext(p, "ldtk"));
-    if let Some(name) = &import.level {
-        if !paths.iter().any(|p| has_ext(p, "ldtk")) {
-            eprintln!(
-                "warning: --level {name} picks one level of an LDtk project, and no .ldtk file is given, so it changes nothing; to run one level of the set, use --scenario {name}"
-            );
-        }
-    }
-    if !maps
-        && (!import.layers.is_empty()
-            || import.tile_layers.is_some()
-            || !import.spawns.is_empty()
-            || !import.intgrid.is_empty())
-    {
-        eprintln!(
-            "warning: --layer, --tile-layers, --spawn and --intgrid read Tiled (.tmx) and LDtk (.ldtk) maps, and no map file is given, so they change nothing"
-        );
-    }
-    if paths.is_empty() {
-        return builtin_levels().context("a built-in level is invalid");
-    }
-    let opts = import.options()?;
-    let mut levels: Vec<Level> = Vec::new();
-    for p in paths {
-        let level = if has_ext(p, "tmx") || has_ext(p, "ldtk") {
-            load_map(p, &opts)?
-        } else {
-            let text = crate::limits::read_text_capped(p)
-                .with_context(|| format!("cannot read level file {}", p.display()))?;
-            parse_level(&text, &p.display().to_string())?
-        };
-        if level.scenarios.is_empty() {
-            // Nothing would run: a level without scenarios would put a run of zero cost and
-            // zero error into every table and onto the trade-off's front.
-            eprintln!(
-                "warning: {}: the level has no [[scenario]] entries, so nothing runs on it; skipped (add a [[scenario]] with a name, spawn and duration)",
-                level.source
-            );
-            continue;
-        }
-        if let Some(other) = levels.iter().find(|l| l.name == level.name) {
-            bail!(
-                "{} and {} both name their level {:?}; level names must be unique in a run (they name the trace files)",
-                other.source,
-                level.source,
-                level.name
-            );
-        }
-        levels.push(level);
-    }
-    if levels.is_empty() {
-        bail!("none of the level files has a scenario to run");
-    }
-    Ok(levels)
-}
 
 /// Prints a block of text and a newline; a closed pipe (`platbench | head`) ends the output
 /// quietly instead of panicking.

@@ -14,7 +14,7 @@ use crate::trace::Trace;
 
 #[derive(Args)]
 pub(crate) struct ReportArgs {
-    /// Level files: TOML, Tiled maps (.tmx) or LDtk projects (.ldtk); the built-in set when
+    /// Level files: TOML, Tiled maps (.tmx, .tmj) or LDtk projects (.ldtk), told by content; the built-in set when
     /// none is given.
     pub(crate) levels: Vec<PathBuf>,
     /// Directory for report.html and report.md (replaced as a whole; see --force).

@@ -24,7 +24,7 @@ use crate::trace::RowStore;
 #[derive(Args, Default)]
 #[command(allow_negative_numbers = true)]
 pub(crate) struct RunArgs {
-    /// Level files: TOML, Tiled maps (.tmx) or LDtk projects (.ldtk); the built-in set when
+    /// Level files: TOML, Tiled maps (.tmx, .tmj) or LDtk projects (.ldtk), told by content; the built-in set when
     /// none is given.
     pub(crate) levels: Vec<PathBuf>,
     /// Output directory for metrics.csv and the traces; without it nothing is written. Replaced

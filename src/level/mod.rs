@@ -12,6 +12,7 @@
 //! and the standard probes for a map without scenarios in [`probes`].
 
 mod features;
+mod format;
 mod geometry;
 pub mod import;
 #[cfg(feature = "ldtk")]
@@ -28,8 +29,11 @@ mod toml;
 
 pub use self::toml::{parse_level, parse_scenarios, LevelError};
 pub use features::Features;
+pub use format::{detect_format, LevelFormat};
 pub use geometry::{character_box, round_height_up};
-pub use import::{ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport};
+pub use import::{
+    Edges, ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport,
+};
 pub use model::Level;
 pub use platform::{Platform, PlatformMotion};
 pub use probes::{probe_scenarios, ProbeConfig, SpawnPoint};

@@ -121,6 +121,9 @@ pub(crate) struct SelectionRecord {
     /// `--level` (LDtk).
     #[serde(default)]
     pub(crate) ldtk_level: Option<String>,
+    /// `--edges` (map imports).
+    #[serde(default)]
+    pub(crate) edges: Option<String>,
     /// `--controller` (external controllers' files, as given).
     #[serde(default)]
     pub(crate) controllers: Vec<String>,

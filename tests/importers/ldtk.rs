@@ -32,14 +32,20 @@ fn a_gridvania_world_is_one_level_in_world_coordinates() {
     // cell, Platform (2) cells one-way, a Ladder (4); Level_1: a floor of walls and, in the
     // separate IntGrid layer "Platforms", two one-way cells.
     let r = import_ldtk_with(&shipped("world.ldtk"), &ImportOptions::default()).unwrap();
-    assert_eq!(ascii_map(&r.level).0, "........\n.==H.==.\n##.#####\n");
-    // PlayerSpawn: pivot (0.5, 1) at (8, 32) px, 16 x 16: feet at (8, 32) px.
+    // The world's sides are open: a wall outside each (src/level/import/edges.rs), the map
+    // one tile right.
+    assert_eq!(
+        ascii_map(&r.level).0,
+        "#........#\n#.==H.==.#\n###.######\n"
+    );
+    // PlayerSpawn: pivot (0.5, 1) at (8, 32) px, 16 x 16: feet at (8, 32) px, (0.5, 1) tiles of
+    // the map, (1.5, 1) of the level with its left wall.
     let spawns: Vec<(&str, Vec2)> = r
         .spawns
         .iter()
         .map(|s| (s.name.as_str(), s.position))
         .collect();
-    assert_eq!(spawns, [("PlayerSpawn", Vec2::new(0.5, 1.0))]);
+    assert_eq!(spawns, [("PlayerSpawn", Vec2::new(1.5, 1.0))]);
     let text: Vec<String> = r.warnings.iter().map(|w| w.to_string()).collect();
     assert!(
         text.iter().any(|w| w.contains("\"Water\": a hazard")),
@@ -51,7 +57,7 @@ fn a_gridvania_world_is_one_level_in_world_coordinates() {
         ..ImportOptions::default()
     };
     let r = import_ldtk_with(&shipped("world.ldtk"), &opts).unwrap();
-    assert_eq!(ascii_map(&r.level).0, "....\n.==.\n####\n");
+    assert_eq!(ascii_map(&r.level).0, "#....#\n#.==.#\n######\n");
     // No spawn entity there: the fallback spawn, said aloud.
     assert_eq!(r.spawns[0].name, "auto");
     assert!(r
@@ -66,26 +72,27 @@ fn a_linear_world_imports_one_level_and_the_mapping_is_overridable() {
     // spikes (2) on its bottom row; "Second" a floor of two cells.
     let (l, warnings) =
         load_ldtk_with(&shipped("linear_old.ldtk"), &ImportOptions::default()).unwrap();
-    assert_eq!(ascii_map(&l).0, "...\n#.#\n");
+    assert_eq!(ascii_map(&l).0, "#...#\n##.##\n");
     assert!(
         warnings.iter().any(|w| w.message.contains("--level")),
         "{warnings:?}"
     );
-    // Start_Point: pivot (0, 0) at (16, 0) px, 8 x 8: feet at (20, 8) px = (2.5, 1) tiles.
+    // Start_Point: pivot (0, 0) at (16, 0) px, 8 x 8: feet at (20, 8) px = (2.5, 1) tiles of the
+    // map, (3.5, 1) of the level with its left wall.
     assert_eq!(l.scenarios[0].name, "Start_Point-drop");
-    assert_eq!(l.scenarios[0].spawn, Vec2::new(2.5, 1.0));
+    assert_eq!(l.scenarios[0].spawn, Vec2::new(3.5, 1.0));
     let opts = ImportOptions {
         intgrid: vec![("spikes".into(), Tile::Solid)],
         ..ImportOptions::default()
     };
     let r = import_ldtk_with(&shipped("linear_old.ldtk"), &opts).unwrap();
-    assert_eq!(ascii_map(&r.level).0, "...\n###\n");
+    assert_eq!(ascii_map(&r.level).0, "#...#\n#####\n");
     let opts = ImportOptions {
         level: Some("Second".into()),
         ..ImportOptions::default()
     };
     let r = import_ldtk_with(&shipped("linear_old.ldtk"), &opts).unwrap();
-    assert_eq!(ascii_map(&r.level).0, "..\n##\n");
+    assert_eq!(ascii_map(&r.level).0, "#..#\n####\n");
     let opts = ImportOptions {
         level: Some("Third".into()),
         ..ImportOptions::default()
@@ -153,8 +160,10 @@ fn inspect_prints_layers_spawns_and_the_grid() {
     for what in [
         "\"Tile Layer 1\" (tiles): decoration",
         "\"OneWay\" (objects): one_way",
-        "spawn5 at (1.5, 1)",
-        "...==....#\n.........#\n##########",
+        // The map's sides are open: walls outside them, the map one tile right.
+        "spawn5 at (2.5, 1)",
+        "#...==....##\n#.........##\n############",
+        "the map's left and right sides are open",
     ] {
         assert!(stdout.contains(what), "{what}:\n{stdout}");
     }
@@ -164,7 +173,7 @@ fn inspect_prints_layers_spawns_and_the_grid() {
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(stdout.contains("....\n.==.\n####"), "{stdout}");
+    assert!(stdout.contains("#....#\n#.==.#\n######"), "{stdout}");
     // A run of an LDtk world on the sweep: the probes at its spawn.
     let dir = tempfile::tempdir().unwrap();
     let out = common::platbench()

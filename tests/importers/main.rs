@@ -3,9 +3,12 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod edges;
 mod ldtk;
+mod markings;
 mod side_expect;
 mod tiled;
 mod tiled_errors;
+mod tiled_json;
 mod tiled_runs;
 mod validation;

@@ -51,9 +51,9 @@ fn ldtk(dir: &Path, side_text: &str) -> Result<Level, String> {
 #[test]
 fn side_files_carry_expectations_to_the_metrics() {
     // rules.tmx's side file (tests/maps/rules.toml) stands its character on the solid tile at
-    // (0.5, 1).
+    // (1.5, 1) (the map's first column, one tile right of the wall the import adds).
     let dir = tempfile::tempdir().unwrap();
-    let stand = side("[0.5, 1.0]", "min_y = 2.0\ngrounded_at_end = true");
+    let stand = side("[1.5, 1.0]", "min_y = 2.0\ngrounded_at_end = true");
     let t = tiled(dir.path(), &stand).unwrap();
     assert_eq!(t.scenarios[0].expect.min_y, Some(2.0));
     // Standing at y = 1 all along: below min_y = 2 from frame 0, grounded at the end (60).
@@ -65,7 +65,7 @@ fn side_files_carry_expectations_to_the_metrics() {
     assert_eq!(at("expect_min_y"), (1.0, Some(0)));
     assert_eq!(at("expect_grounded_at_end"), (0.0, Some(60)));
     // An unknown key in the side file: refused at its line (7) and column (1).
-    let bad = side("[0.5, 1.0]", "min_y = 2.0\nfloor = 1");
+    let bad = side("[1.5, 1.0]", "min_y = 2.0\nfloor = 1");
     let err = tiled(dir.path(), &bad).unwrap_err();
     assert!(
         err.contains("rules.toml:7:1: unknown field `floor`"),

@@ -13,9 +13,18 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec2;
 use platbench::level::{
-    import_tiled_map, import_tiled_map_with, load_tiled_map, load_tiled_map_with, ImportOptions,
-    LayerRole, PlatformMotion, Slope, Tile, TiledError, TiledImport,
+    import_tiled_map, import_tiled_map_with, load_tiled_map, load_tiled_map_with, Edges,
+    ImportOptions, LayerRole, PlatformMotion, Slope, Tile, TiledError, TiledImport,
 };
+
+/// The default rules with the map's sides left open, for the tests of other rules
+/// (tests/importers/edges.rs tests the walls).
+pub(super) fn open_edges() -> ImportOptions {
+    ImportOptions {
+        edges: Edges::Open,
+        ..ImportOptions::default()
+    }
+}
 
 pub(super) fn shipped(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -76,15 +85,16 @@ impl MapText<'_> {
         )
     }
 
-    fn write(&self, dir: &Path) -> PathBuf {
+    pub(super) fn write(&self, dir: &Path) -> PathBuf {
         let path = dir.join("m.tmx");
         std::fs::write(&path, self.text()).unwrap();
         path
     }
 
+    /// The map imported with its sides open, as the rule tests read it.
     pub(super) fn import(&self) -> Result<TiledImport, TiledError> {
         let dir = tempfile::tempdir().unwrap();
-        import_tiled_map(&self.write(dir.path()))
+        import_tiled_map_with(&self.write(dir.path()), &open_edges()).map_err(|f| f.error)
     }
 
     pub(super) fn error(&self) -> String {
@@ -103,7 +113,7 @@ pub(super) fn row0(l: &platbench::level::Level) -> Vec<Tile> {
 fn every_tile_rule_maps_to_its_tile() {
     // tests/maps/rules.tmx: the bottom row holds tile ids 0..=10 in order, then tile 8 and tile
     // 5 flipped horizontally; the top row is empty except the excluded decoration layer.
-    let r = import_tiled_map(&shipped("rules.tmx")).unwrap();
+    let r = import_tiled_map_with(&shipped("rules.tmx"), &open_edges()).unwrap();
     let line = |left, right| Tile::Slope(Slope::Line { left, right });
     let heights: [u8; 16] = std::array::from_fn(|k| 16 - k as u8);
     assert_eq!(
@@ -143,8 +153,8 @@ fn every_tile_rule_maps_to_its_tile() {
 
 #[test]
 fn base64_zlib_layers_read_like_csv() {
-    let csv = import_tiled_map(&shipped("rules.tmx")).unwrap();
-    let b64 = import_tiled_map(&shipped("rules_base64.tmx")).unwrap();
+    let csv = import_tiled_map_with(&shipped("rules.tmx"), &open_edges()).unwrap();
+    let b64 = import_tiled_map_with(&shipped("rules_base64.tmx"), &open_edges()).unwrap();
     assert_eq!(row0(&b64.level), row0(&csv.level));
     assert_eq!(b64.level.tile(0, 1), Tile::Empty);
 }
@@ -285,7 +295,7 @@ fn a_map_without_spawns_starts_at_a_standable_cell_or_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
     // A floor of 3 tiles: the leftmost standable cell is (0, 1), feet at (0.5, 1).
     let path = MapText::default().write(dir.path());
-    let (l, warnings) = load_tiled_map(&path).unwrap();
+    let (l, warnings) = load_tiled_map_with(&path, &open_edges()).unwrap();
     assert_eq!(l.scenarios[0].name, "auto-drop");
     assert_eq!(l.scenarios[0].spawn, Vec2::new(0.5, 1.0));
     assert!(
@@ -366,7 +376,7 @@ fn collision_rectangles_in_named_object_layers_make_the_grid() {
     // tests/maps/object_collision.tmx: a floor and a wall as rectangles in
     // "Platform-Colliders", a 4 px one-way rectangle at the top of row 2 in "OneWay", a coin
     // in "Coins", one rectangle in "PlayerSpawn"; the tile layers are art.
-    let r = import_tiled_map(&shipped("object_collision.tmx")).unwrap();
+    let r = import_tiled_map_with(&shipped("object_collision.tmx"), &open_edges()).unwrap();
     assert_eq!(
         grid(&r.level),
         "..........\n..........\n...==....#\n.........#\n##########\n"
@@ -393,7 +403,7 @@ fn collision_rectangles_in_named_object_layers_make_the_grid() {
             ("tile layer 1".into(), LayerRole::Collision),
             ("oneway".into(), LayerRole::Decoration),
         ],
-        ..ImportOptions::default()
+        ..open_edges()
     };
     let r = import_tiled_map_with(&shipped("object_collision.tmx"), &opts).unwrap();
     assert_eq!(
@@ -419,7 +429,7 @@ fn tile_layers_are_picked_by_name_and_bool_properties_mark_tiles() {
     // tests/maps/named_tiles.tmx: "Ground" is read; "bg", "Water" and the unmarked
     // "Tile Layer 3" are not. Tiles marked collidable or isSolid are solid, oneway one-way, and
     // the unmarked tile 1 in a tileset that marks with bools is empty.
-    let r = import_tiled_map(&shipped("named_tiles.tmx")).unwrap();
+    let r = import_tiled_map_with(&shipped("named_tiles.tmx"), &open_edges()).unwrap();
     assert_eq!(grid(&r.level), "........\n....==.#\n.......#\n###..###\n");
     // The object named "Player" (no class) is the spawn; the enemy is warned about.
     assert_eq!(spawns_of(&r), [("Player", Vec2::new(1.5, 1.0))]);
@@ -439,7 +449,7 @@ fn the_loader_is_tolerant_where_tiled_is() {
     // image), "ground" is in the XML cell encoding, tolerant.tsj is a JSON tileset (tile 0
     // solid = true, tile 1 a ramp drawn in the collision editor), the 32 x 48 crate of an image
     // collection is one cell, "platforms" is offset by (16, -16) px: one tile right and one up.
-    let r = import_tiled_map(&shipped("tolerant.tmx")).unwrap();
+    let r = import_tiled_map_with(&shipped("tolerant.tmx"), &open_edges()).unwrap();
     assert_eq!(grid(&r.level), "......\n.==...\n.....#\n###/##\n");
     // The tile object of class "spawn" at (32, 48) px, 16 wide: feet at (40, 48) px.
     assert_eq!(spawns_of(&r), [("spawn1", Vec2::new(2.5, 1.0))]);
@@ -459,7 +469,7 @@ fn the_loader_is_tolerant_where_tiled_is() {
 fn an_infinite_map_is_cropped_to_its_chunks() {
     // tests/maps/infinite.tmx: one 16 x 16 chunk at Tiled cell (-16, -16); the floor on its
     // bottom row, a post at each end of the row above; the spawn at (-200, -16) px.
-    let r = import_tiled_map(&shipped("infinite.tmx")).unwrap();
+    let r = import_tiled_map_with(&shipped("infinite.tmx"), &open_edges()).unwrap();
     assert_eq!((r.level.width, r.level.height), (16, 16));
     assert!((0..16).all(|i| r.level.tile(i, 0) == Tile::Solid));
     assert_eq!(r.level.tile(0, 1), Tile::Solid);

@@ -9,9 +9,16 @@ use std::fmt;
 
 use glam::Vec2;
 
+#[cfg(any(feature = "tiled", feature = "ldtk"))]
+pub(crate) use edges::wall_sides;
+pub use edges::Edges;
+
 use super::probes::SpawnPoint;
 use super::{Level, Slope, Tile};
 
+// Edges itself is an option of every build; the walls are the importers'.
+#[cfg_attr(not(any(feature = "tiled", feature = "ldtk")), allow(dead_code))]
+mod edges;
 #[cfg(any(feature = "tiled", feature = "ldtk"))]
 pub(crate) mod names;
 #[cfg(any(feature = "tiled", feature = "ldtk"))]
@@ -163,6 +170,9 @@ pub struct ImportOptions {
     /// LDtk: the one level of a world to import (`--level NAME`); the whole world otherwise
     /// (GridVania and Free layouts) or the first level (linear layouts).
     pub level: Option<String>,
+    /// The map's left and right sides (`--edges`): walls outside the sides the map leaves open
+    /// (the default, as games bound their world), or open.
+    pub edges: Edges,
 }
 
 impl ImportOptions {

@@ -13,6 +13,7 @@ use crate::level::import::names::{
     is_spawn_name, role_from_name, says, HAZARD_WORDS, LADDER_WORDS, ONE_WAY_WORDS,
 };
 use crate::level::import::spawns::{no_solids_warning, safe_name, settle_spawns};
+use crate::level::import::wall_sides;
 use crate::level::import::{
     normalize, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport,
 };
@@ -418,6 +419,9 @@ pub(super) fn import(
     }
     let mut extra = Vec::new();
     if let Some(wn) = no_solids_warning(&level, &file, HOW_TO_COLLIDE) {
+        extra.push(wn);
+    }
+    if let Some(wn) = wall_sides(&mut level, &mut spawns, opts.edges, &file) {
         extra.push(wn);
     }
     if let Some(wn) = settle_spawns(&level, &file, HOW_TO_SPAWN, opts, &mut spawns, &mut sources) {

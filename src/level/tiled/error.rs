@@ -1,7 +1,7 @@
 //! What a Tiled map that cannot be imported is: [`TiledError`], naming the file, and the
 //! layer, tile (tileset, local id, cell) or object at fault; and the reasons the importer's
 //! parts give, whose text a [`TiledError`]'s message carries: `TileKindError` (with
-//! `HeightsError` and `ShapeError`), `FlipError`, `CellError` and `JsonTilesetError`.
+//! `HeightsError` and `ShapeError`), `FlipError`, `CellError` and `JsonError`.
 
 use glam::Vec2;
 
@@ -276,16 +276,44 @@ pub(crate) enum CellError {
     },
 }
 
-/// Why a JSON tileset (`.tsj`) cannot be read as the TSX the `tiled` crate reads
-/// (`normalize::json_tileset_to_tsx`).
+/// Why a Tiled JSON file (a map, a tileset `.tsj` or a template `.tj`) cannot be read as the XML
+/// the `tiled` crate reads (`json`).
 #[derive(Debug, thiserror::Error)]
-pub(crate) enum JsonTilesetError {
+pub(crate) enum JsonError {
     /// Not JSON: the parser's error, with its line and column.
-    #[error("line {}, column {}: not a JSON tileset: {}", .0.line(), .0.column(), .0)]
+    #[error("line {}, column {}: not Tiled JSON: {}", .0.line(), .0.column(), .0)]
     Syntax(#[source] serde_json::Error),
     /// JSON, but not an object at the top.
-    #[error("not a JSON tileset: expected an object at the top")]
+    #[error("not Tiled JSON: expected an object at the top")]
     NotObject,
+    /// A JSON object that is not a Tiled map (a tileset, a template, another program's file).
+    #[error("not a Tiled map: {}; expected a map (type \"map\", with layers, width, height, tilewidth, tileheight)", if .kind == "map" { format!("it has no layers (its keys: {})", .keys) } else { format!("it is a Tiled {} (type {:?})", .kind, .kind) })]
+    NotAMap {
+        /// The `type` the file gives (`map` when it gives none).
+        kind: String,
+        /// Some of the keys it has, to recognise it by.
+        keys: String,
+    },
+    /// A cell of a tile layer that is not a tile id.
+    #[error("layer {layer:?}: cell {index} is {found}; expected a tile id, a whole number from 0 to 4294967295")]
+    BadCell {
+        /// The layer's name.
+        layer: String,
+        /// The cell's index in the layer's (or chunk's) data, from 0.
+        index: usize,
+        /// The value found.
+        found: String,
+    },
+    /// A layer type Tiled does not write.
+    #[error(
+        "layer {layer:?} has type {found:?}; expected tilelayer, objectgroup, imagelayer or group"
+    )]
+    LayerType {
+        /// The layer's name.
+        layer: String,
+        /// The type found.
+        found: String,
+    },
     /// More tiles than platbench reads.
     #[error("it has {count} tiles; expected at most {max}")]
     TooManyTiles {

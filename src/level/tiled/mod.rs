@@ -20,6 +20,7 @@ use std::path::Path;
 use tiled::{ObjectShape, PropertyValue};
 
 mod error;
+mod json;
 mod layers;
 mod map;
 mod normalize;
@@ -36,6 +37,7 @@ pub use read::import_tiled_map_with;
 pub(crate) use tiles::ramp;
 
 use super::import::spawns::{no_solids_warning, settle_spawns};
+use super::import::wall_sides;
 use super::import::{ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole};
 use super::probes::{probe_scenarios, ProbeConfig, SpawnPoint};
 use super::{parse_scenarios, Level, LevelError};
@@ -271,6 +273,9 @@ impl<'m> Importer<'m> {
         let (mut spawns, mut sources) = self.objects(&mut level)?;
         level.features.moving_platforms = !level.platforms.is_empty();
         if let Some(w) = no_solids_warning(&level, &self.file, HOW_TO_COLLIDE) {
+            self.warnings.push(w);
+        }
+        if let Some(w) = wall_sides(&mut level, &mut spawns, self.opts.edges, &self.file) {
             self.warnings.push(w);
         }
         if let Some(w) = settle_spawns(

@@ -1,13 +1,11 @@
 //! Where Tiled itself is tolerant and the `tiled` crate is not, the map and tileset text is made
 //! into what the crate reads before it reads it: a tileset without `tilecount` (older Tiled
 //! versions) gets one computed from its image or its tiles, a tile layer in the old XML cell
-//! encoding (`<tile gid=".."/>` per cell) becomes CSV, and a JSON tileset (`.tsj`, `.json`)
-//! becomes its TSX twin. Each change is a note the import passes on as a warning.
+//! encoding (`<tile gid=".."/>` per cell) becomes CSV, and a JSON map, tileset or template
+//! becomes its XML twin ([`super::json`]). Each change is a note the import passes on as a warning.
 
 use quick_xml::events::Event;
-use serde_json::Value;
 
-use super::error::JsonTilesetError;
 use super::scan::{attr, line_of, ScanError};
 use crate::limits;
 
@@ -20,24 +18,24 @@ pub(super) struct Normalized {
 }
 
 /// A tileset element being read: what a missing `tilecount` is computed from.
-struct TilesetInfo {
-    name: String,
+pub(super) struct TilesetInfo {
+    pub(super) name: String,
     /// Byte offset just after `<tileset`, where a computed attribute goes.
-    insert_at: usize,
-    tilecount: Option<u64>,
-    tile_width: u64,
-    tile_height: u64,
-    spacing: u64,
-    margin: u64,
-    image: Option<(u64, u64)>,
-    max_id: Option<u64>,
-    line: usize,
-    depth: usize,
+    pub(super) insert_at: usize,
+    pub(super) tilecount: Option<u64>,
+    pub(super) tile_width: u64,
+    pub(super) tile_height: u64,
+    pub(super) spacing: u64,
+    pub(super) margin: u64,
+    pub(super) image: Option<(u64, u64)>,
+    pub(super) max_id: Option<u64>,
+    pub(super) line: usize,
+    pub(super) depth: usize,
 }
 
 /// The number of tiles of an image tileset (columns x rows that fit, as Tiled counts them), or
 /// of an image collection (highest tile id + 1).
-fn count_tiles(t: &TilesetInfo) -> u64 {
+pub(super) fn count_tiles(t: &TilesetInfo) -> u64 {
     match t.image {
         Some((w, h)) => {
             let fit = |size: u64, tile: u64| {
@@ -208,234 +206,6 @@ fn close_tileset(
         });
     }
     Ok(())
-}
-
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-fn scalar(v: &Value) -> String {
-    match v {
-        Value::String(s) => s.clone(),
-        Value::Null => String::new(),
-        other => other.to_string(),
-    }
-}
-
-/// `<properties>` of a JSON properties list (`[{name, type, value}]`, Tiled 1.2+) or object
-/// (older: `{name: value}`).
-fn properties_xml(v: Option<&Value>) -> String {
-    let mut out = String::new();
-    let mut push = |name: &str, ty: &str, value: &Value| {
-        let ty = match ty {
-            "" => match value {
-                Value::Bool(_) => "bool",
-                Value::Number(n) if n.is_i64() || n.is_u64() => "int",
-                Value::Number(_) => "float",
-                _ => "string",
-            },
-            t => t,
-        };
-        if ty == "class" {
-            return;
-        }
-        out.push_str(&format!(
-            "<property name=\"{}\" type=\"{}\" value=\"{}\"/>",
-            esc(name),
-            esc(ty),
-            esc(&scalar(value))
-        ));
-    };
-    match v {
-        Some(Value::Array(list)) => {
-            for p in list {
-                let name = p.get("name").and_then(Value::as_str).unwrap_or_default();
-                let ty = p.get("type").and_then(Value::as_str).unwrap_or("");
-                push(name, ty, p.get("value").unwrap_or(&Value::Null));
-            }
-        }
-        Some(Value::Object(map)) => {
-            for (k, value) in map {
-                push(k, "", value);
-            }
-        }
-        _ => {}
-    }
-    if out.is_empty() {
-        out
-    } else {
-        format!("<properties>{out}</properties>")
-    }
-}
-
-fn num_attr(v: &Value, key: &str) -> Option<f64> {
-    v.get(key).and_then(Value::as_f64)
-}
-
-/// One collision object of a JSON tile as TSX.
-fn object_xml(o: &Value) -> String {
-    let n = |k: &str| num_attr(o, k).unwrap_or(0.0);
-    let mut attrs = format!(
-        "id=\"{}\" x=\"{}\" y=\"{}\"",
-        n("id") as i64,
-        n("x"),
-        n("y")
-    );
-    if n("width") != 0.0 || n("height") != 0.0 {
-        attrs.push_str(&format!(
-            " width=\"{}\" height=\"{}\"",
-            n("width"),
-            n("height")
-        ));
-    }
-    if n("rotation") != 0.0 {
-        attrs.push_str(&format!(" rotation=\"{}\"", n("rotation")));
-    }
-    let points = |key: &str| -> Option<String> {
-        let list = o.get(key)?.as_array()?;
-        let p: Vec<String> = list
-            .iter()
-            .map(|p| {
-                format!(
-                    "{},{}",
-                    num_attr(p, "x").unwrap_or(0.0),
-                    num_attr(p, "y").unwrap_or(0.0)
-                )
-            })
-            .collect();
-        Some(p.join(" "))
-    };
-    let inner = if let Some(p) = points("polygon") {
-        format!("<polygon points=\"{p}\"/>")
-    } else if let Some(p) = points("polyline") {
-        format!("<polyline points=\"{p}\"/>")
-    } else if o.get("ellipse").and_then(Value::as_bool) == Some(true) {
-        "<ellipse/>".into()
-    } else if o.get("point").and_then(Value::as_bool) == Some(true) {
-        "<point/>".into()
-    } else {
-        String::new()
-    };
-    format!(
-        "<object {attrs}>{}{inner}</object>",
-        properties_xml(o.get("properties"))
-    )
-}
-
-/// A JSON tileset (Tiled's `.tsj`, or `.json` from older versions) as the TSX the crate reads.
-/// `Err` says what is wrong, with the line and column of a JSON syntax error.
-pub(super) fn json_tileset_to_tsx(text: &str) -> Result<Normalized, JsonTilesetError> {
-    let v: Value = serde_json::from_str(text).map_err(JsonTilesetError::Syntax)?;
-    if !v.is_object() {
-        return Err(JsonTilesetError::NotObject);
-    }
-    let mut notes = vec!["a JSON tileset; read through its TSX equivalent".to_string()];
-    let n = |k: &str| num_attr(&v, k).map(|x| x.max(0.0) as u64);
-    let name = v.get("name").and_then(Value::as_str).unwrap_or_default();
-    let (tw, th) = (n("tilewidth").unwrap_or(0), n("tileheight").unwrap_or(0));
-    let image = v.get("image").and_then(Value::as_str);
-    let mut tiles: Vec<(u64, &Value)> = Vec::new();
-    match v.get("tiles") {
-        Some(Value::Array(list)) => {
-            for t in list {
-                if let Some(id) = num_attr(t, "id") {
-                    tiles.push((id.max(0.0) as u64, t));
-                }
-            }
-        }
-        Some(Value::Object(map)) => {
-            for (k, t) in map {
-                if let Ok(id) = k.parse::<u64>() {
-                    tiles.push((id, t));
-                }
-            }
-        }
-        _ => {}
-    }
-    let info = TilesetInfo {
-        name: name.to_string(),
-        insert_at: 0,
-        tilecount: n("tilecount"),
-        tile_width: tw,
-        tile_height: th,
-        spacing: n("spacing").unwrap_or(0),
-        margin: n("margin").unwrap_or(0),
-        image: image.map(|_| (n("imagewidth").unwrap_or(0), n("imageheight").unwrap_or(0))),
-        max_id: tiles.iter().map(|t| t.0).max(),
-        line: 1,
-        depth: 0,
-    };
-    let count = match info.tilecount {
-        Some(c) => c,
-        None => {
-            let c = count_tiles(&info);
-            notes.push(format!("it has no tilecount; {c} computed"));
-            c
-        }
-    };
-    if count > limits::MAX_TILES {
-        return Err(JsonTilesetError::TooManyTiles {
-            count,
-            max: limits::MAX_TILES,
-        });
-    }
-    let mut out = format!(
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<tileset name=\"{}\" tilewidth=\"{tw}\" tileheight=\"{th}\" tilecount=\"{count}\" spacing=\"{}\" margin=\"{}\"",
-        esc(name),
-        info.spacing,
-        info.margin
-    );
-    if let Some(c) = n("columns") {
-        out.push_str(&format!(" columns=\"{c}\""));
-    }
-    out.push('>');
-    out.push_str(&properties_xml(v.get("properties")));
-    if let Some(img) = image {
-        out.push_str(&format!(
-            "<image source=\"{}\" width=\"{}\" height=\"{}\"/>",
-            esc(img),
-            info.image.map_or(0, |i| i.0),
-            info.image.map_or(0, |i| i.1)
-        ));
-    }
-    for (id, t) in tiles {
-        let class = t
-            .get("class")
-            .or_else(|| t.get("type"))
-            .and_then(Value::as_str)
-            .unwrap_or_default();
-        out.push_str(&format!("<tile id=\"{id}\""));
-        if !class.is_empty() {
-            out.push_str(&format!(" type=\"{}\"", esc(class)));
-        }
-        out.push('>');
-        out.push_str(&properties_xml(t.get("properties")));
-        if let Some(img) = t.get("image").and_then(Value::as_str) {
-            out.push_str(&format!(
-                "<image source=\"{}\" width=\"{}\" height=\"{}\"/>",
-                esc(img),
-                num_attr(t, "imagewidth").unwrap_or(0.0) as u64,
-                num_attr(t, "imageheight").unwrap_or(0.0) as u64
-            ));
-        }
-        if let Some(objs) = t
-            .get("objectgroup")
-            .and_then(|g| g.get("objects"))
-            .and_then(Value::as_array)
-        {
-            out.push_str("<objectgroup>");
-            for o in objs {
-                out.push_str(&object_xml(o));
-            }
-            out.push_str("</objectgroup>");
-        }
-        out.push_str("</tile>");
-    }
-    out.push_str("</tileset>\n");
-    Ok(Normalized { text: out, notes })
 }
 
 #[cfg(test)]

@@ -83,6 +83,16 @@ impl<'m> Importer<'m> {
                     continue;
                 }
                 let subject = format!("object {} {:?}", o.id(), o.name);
+                // The object's own bool marks: one-way (`isOneWay`), a hazard or `collides =
+                // false` (not solid).
+                let tile = match object_mark(o) {
+                    Some((k, Tile::Empty)) => {
+                        self.warn(subject, format!("its property {k:?} marks it as not solid (a hazard or no collision); left out"));
+                        continue;
+                    }
+                    Some((_, Tile::OneWay)) if tile == Tile::Solid => Tile::OneWay,
+                    _ => tile,
+                };
                 if o.rotation != 0.0 {
                     self.warn(subject, format!("a collision shape rotated by {} degrees; platbench reads axis-aligned rectangles and ramps only; ignored", o.rotation));
                     continue;
@@ -520,4 +530,27 @@ impl<'m> Importer<'m> {
             one_way,
         })
     }
+}
+
+/// What an object's own bool properties make it (with the property that says so): one-way
+/// (the bools of [`super::tiles::ONE_WAY_BOOLS`]), not solid (a hazard bool true, or a solid
+/// bool false), or nothing said.
+fn object_mark(o: &tiled::Object<'_>) -> Option<(String, Tile)> {
+    use super::tiles::{HAZARD_BOOLS, ONE_WAY_BOOLS, SOLID_BOOLS};
+    let mut sorted: Vec<_> = o.properties.iter().collect();
+    sorted.sort_by(|a, b| a.0.cmp(b.0));
+    for (k, v) in sorted {
+        let PropertyValue::BoolValue(b) = v else {
+            continue;
+        };
+        let lower = k.to_lowercase();
+        let l = lower.as_str();
+        if *b && ONE_WAY_BOOLS.contains(&l) {
+            return Some((k.clone(), Tile::OneWay));
+        }
+        if (*b && HAZARD_BOOLS.contains(&l)) || (!*b && SOLID_BOOLS.contains(&l)) {
+            return Some((k.clone(), Tile::Empty));
+        }
+    }
+    None
 }

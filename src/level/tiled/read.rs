@@ -7,7 +7,7 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use super::{normalize, refs, scan, Importer, TiledError, TiledImport, TiledWarning};
+use super::{json, normalize, refs, scan, Importer, TiledError, TiledImport, TiledWarning};
 use crate::level::import::{ImportFailure, ImportOptions};
 
 /// The file a map refers to, found as the `tiled` crate finds it: relative to the map's folder.
@@ -28,18 +28,6 @@ pub fn import_tiled_map_with(
         error,
         warnings: notes.borrow().clone(),
     };
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("tmj") || e.eq_ignore_ascii_case("json"))
-    {
-        return Err(failed(
-            TiledError::Map {
-                file,
-                message: "a JSON map (.tmj/.json): the tiled crate platbench reads maps with reads TMX only; save it as .tmx in Tiled (File > Save As, \"Tiled map files (*.tmx)\"); JSON tilesets (.tsj) are read".into(),
-            },
-            &notes,
-        ));
-    }
     // Read once, within the input cap, made readable by the crate where Tiled is tolerant and
     // the crate is not, and looked at for what the crate would allocate or index before it does.
     let text = crate::limits::read_text_capped(path).map_err(|e| {
@@ -51,10 +39,43 @@ pub fn import_tiled_map_with(
             &notes,
         )
     })?;
+    // A JSON map (told by its content, whatever its extension) is read as its TMX twin; a line
+    // of that twin is shown as the JSON layer it came from.
+    let json = if crate::level::format::looks_like_json(&text) {
+        let j = json::json_map_to_tmx(&text).map_err(|e| {
+            failed(
+                TiledError::Map {
+                    file: file.clone(),
+                    message: e.to_string(),
+                },
+                &notes,
+            )
+        })?;
+        Some(j)
+    } else {
+        None
+    };
+    let at = |line: usize| match &json {
+        Some(j) => format!("{file} ({})", j.layer_at(line)),
+        None => format!("{file}:{line}"),
+    };
+    let text = match &json {
+        Some(j) => {
+            for n in &j.tmx.notes {
+                notes.borrow_mut().push(TiledWarning {
+                    file: file.clone(),
+                    subject: "map".into(),
+                    message: n.clone(),
+                });
+            }
+            j.tmx.text.clone()
+        }
+        None => text,
+    };
     let norm = normalize::normalize_xml(&text).map_err(|e| {
         failed(
             TiledError::Map {
-                file: format!("{file}:{}", e.line),
+                file: at(e.line),
                 message: e.message,
             },
             &notes,
@@ -71,7 +92,7 @@ pub fn import_tiled_map_with(
     let sources = scan::scan_map(&text).map_err(|e| {
         failed(
             TiledError::Map {
-                file: format!("{file}:{}", e.line),
+                file: at(e.line),
                 message: e.message,
             },
             &notes,
@@ -81,9 +102,14 @@ pub fn import_tiled_map_with(
     // would follow until the stack overflows.
     let load = |p: &Path| crate_text(p).ok();
     refs::check_references(path, &text, &load).map_err(|e| {
+        // A reference in the map itself is shown at the map's line, or its JSON layer.
+        let in_map = e
+            .file
+            .strip_prefix(&format!("{file}:"))
+            .and_then(|l| l.parse::<usize>().ok());
         failed(
             TiledError::Map {
-                file: e.file,
+                file: in_map.map_or(e.file, at),
                 message: e.message,
             },
             &notes,
@@ -108,7 +134,11 @@ pub fn import_tiled_map_with(
         let text = String::from_utf8(data.clone());
         let out = match (ext.as_str(), text) {
             ("tsj" | "json", Ok(t)) => {
-                let n = normalize::json_tileset_to_tsx(&t).map_err(|e| bad(e.to_string()))?;
+                let n = json::json_tileset_to_tsx(&t).map_err(|e| bad(e.to_string()))?;
+                (n.text, n.notes)
+            }
+            ("tj", Ok(t)) => {
+                let n = json::json_template_to_tx(&t).map_err(|e| bad(e.to_string()))?;
                 (n.text, n.notes)
             }
             ("tsx", Ok(t)) => {
@@ -130,7 +160,7 @@ pub fn import_tiled_map_with(
     let map = match tiled::Loader::with_reader(reader).load_tmx_map(path) {
         Ok(m) => m,
         Err(e) => {
-            let error = load_error(path, &text, &sources, e, &notes);
+            let error = load_error(path, &text, &sources, e, &at);
             return Err(failed(error, &notes));
         }
     };
@@ -152,7 +182,7 @@ fn load_error(
     text: &str,
     sources: &[String],
     e: tiled::Error,
-    notes: &Rc<RefCell<Vec<TiledWarning>>>,
+    at: &dyn Fn(usize) -> String,
 ) -> TiledError {
     let file = path.display().to_string();
     if let tiled::Error::ResourceLoadingError { path: p, err } = &e {
@@ -176,12 +206,8 @@ fn load_error(
             };
         }
     }
-    let _ = notes;
-    let line = scan::xml_error_line(text)
-        .map(|l| format!(":{l}"))
-        .unwrap_or_default();
     TiledError::Load {
-        file: format!("{file}{line}"),
+        file: scan::xml_error_line(text).map_or(file, at),
         message: explain(&e),
     }
 }
@@ -198,7 +224,12 @@ fn crate_text(q: &Path) -> std::io::Result<String> {
     let t = String::from_utf8(data).map_err(|e| bad(e.to_string()))?;
     let t = match ext.as_str() {
         "tsj" | "json" => {
-            normalize::json_tileset_to_tsx(&t)
+            json::json_tileset_to_tsx(&t)
+                .map_err(|e| bad(e.to_string()))?
+                .text
+        }
+        "tj" => {
+            json::json_template_to_tx(&t)
                 .map_err(|e| bad(e.to_string()))?
                 .text
         }

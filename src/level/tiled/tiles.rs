@@ -22,10 +22,29 @@ pub(crate) const SOLID_BOOLS: &[&str] = &[
     "collides",
     "blocked",
     "wall",
+    "collide",
+    "estsolide",
 ];
 /// Bool tile properties that make a tile a one-way platform when true.
-pub(crate) const ONE_WAY_BOOLS: &[&str] =
-    &["one_way", "oneway", "isoneway", "jumpthrough", "platform"];
+pub(crate) const ONE_WAY_BOOLS: &[&str] = &[
+    "one_way",
+    "oneway",
+    "isoneway",
+    "jumpthrough",
+    "jumpthru",
+    "platform",
+    "unisolid",
+    "semisolid",
+    "passthrough",
+];
+/// Bool tile properties that mark a hazard (spikes, lava, a kill zone): not solid when true,
+/// unless a solid mark of the same tile says otherwise.
+pub(crate) const HAZARD_BOOLS: &[&str] = &[
+    "hazard", "kill", "kills", "deadly", "lethal", "death", "damage", "spike", "spikes",
+];
+/// String tile properties a game may name a tile's kind with, as Tiled's own class does
+/// (`class = one_way`); read when the value is a kind.
+const KIND_STRINGS: &[&str] = &["class", "type", "kind"];
 /// Bool tile properties that make a tile a ladder when true.
 pub(crate) const LADDER_BOOLS: &[&str] = &["ladder", "isladder", "climbable"];
 
@@ -68,12 +87,15 @@ pub(crate) fn tile_kind(
                 b.then_some(Tile::OneWay)
             } else if LADDER_BOOLS.contains(&lower.as_str()) {
                 b.then_some(Tile::Ladder)
+            } else if HAZARD_BOOLS.contains(&lower.as_str()) {
+                b.then_some(Tile::Empty)
             } else {
                 None
             };
             let known = SOLID_BOOLS.contains(&lower.as_str())
                 || ONE_WAY_BOOLS.contains(&lower.as_str())
-                || LADDER_BOOLS.contains(&lower.as_str());
+                || LADDER_BOOLS.contains(&lower.as_str())
+                || HAZARD_BOOLS.contains(&lower.as_str());
             if known {
                 match (&marked, t) {
                     (_, None) => {}
@@ -89,6 +111,14 @@ pub(crate) fn tile_kind(
                         })
                     }
                     _ => {}
+                }
+                continue;
+            }
+        }
+        if let PropertyValue::StringValue(v) = value {
+            if KIND_STRINGS.contains(&lower.as_str()) && parse_tile_kind(v).is_some() {
+                if collision.is_none() {
+                    collision = Some(v.clone());
                 }
                 continue;
             }
@@ -120,7 +150,7 @@ pub(crate) fn tile_kind(
                 other => return Err(TileKindError::HeightsType { kind: kind_of(other) }),
             },
             _ => notes.push(format!(
-                "property {key:?} is not one platbench reads (it reads collision, slope_left, slope_right, heights, and the bools collidable, isSolid, solid, collides, blocked, one_way, ladder); ignored"
+                "property {key:?} is not one platbench reads (it reads collision, slope_left, slope_right, heights, class = solid/one_way/ladder/empty, and bools such as collidable, isSolid, solid, collides, blocked, one_way, unisolid, ladder, hazard; docs/formats.md lists them); ignored"
             )),
         }
     }

@@ -1,0 +1,150 @@
+//! The map's sides as games have them: most platformers stop the player at the map's left and
+//! right edges (Phaser's `setCollideWorldBounds`, a clamp to the map's width, a frame of
+//! colliders), so an imported map gets a wall outside each side that its own tiles leave open.
+//! The wall is one tile wide and as tall as the map; the bottom stays open, so a pit still
+//! kills. `--edges open` (or a side file's `edges = "open"`) leaves the sides open.
+
+use super::ImportWarning;
+use crate::level::{Level, PlatformMotion, SpawnPoint, Tile};
+
+/// What the map's sides are (`--edges`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Edges {
+    /// A wall outside each side the map leaves open (the default).
+    #[default]
+    Walls,
+    /// The sides as the map draws them: a character may walk off into the void.
+    Open,
+}
+
+impl Edges {
+    /// The value as a user writes it, any case: `walls` or `open`.
+    pub fn parse(s: &str) -> Option<Edges> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "walls" | "wall" | "closed" => Some(Edges::Walls),
+            "open" => Some(Edges::Open),
+            _ => None,
+        }
+    }
+}
+
+/// Whether column `i` is solid from the bottom row to the top.
+fn walled(level: &Level, i: i64) -> bool {
+    (0..level.height as i64).all(|j| level.tile(i, j) == Tile::Solid)
+}
+
+/// Adds the side walls `edges` asks for where the map's own edge column does not already block
+/// the whole height, moving the map's cells, platforms and `spawns` right when a wall goes on
+/// the left. Returns the note that says what was added, `None` when nothing was.
+pub(crate) fn wall_sides(
+    level: &mut Level,
+    spawns: &mut [SpawnPoint],
+    edges: Edges,
+    file: &str,
+) -> Option<ImportWarning> {
+    if edges == Edges::Open || level.width == 0 || level.height == 0 {
+        return None;
+    }
+    let left = !walled(level, 0);
+    let right = !walled(level, level.width as i64 - 1);
+    if !left && !right {
+        return None;
+    }
+    let shift = u32::from(left);
+    let width = level.width + shift + u32::from(right);
+    let mut tiles = Vec::with_capacity(width as usize * level.height as usize);
+    for j in 0..level.height as i64 {
+        if left {
+            tiles.push(Tile::Solid);
+        }
+        tiles.extend((0..level.width as i64).map(|i| level.tile(i, j)));
+        if right {
+            tiles.push(Tile::Solid);
+        }
+    }
+    level.tiles = tiles;
+    level.width = width;
+    let dx = shift as f32;
+    for p in &mut level.platforms {
+        p.start.x += dx;
+        if let PlatformMotion::Waypoints { points, .. } = &mut p.motion {
+            for q in points {
+                q.x += dx;
+            }
+        }
+    }
+    for s in spawns {
+        s.position.x += dx;
+    }
+    let sides = match (left, right) {
+        (true, true) => "left and right sides are",
+        (true, false) => "left side is",
+        _ => "right side is",
+    };
+    Some(ImportWarning {
+        file: file.into(),
+        subject: "map".into(),
+        message: format!(
+            "the map's {sides} open, so a wall one tile wide and as tall as the map is added outside {}, as games stop the player at the map's sides (world bounds){}; the bottom stays open, so pits still kill; pass --edges open to leave the sides open",
+            if left && right { "each" } else { "it" },
+            if left {
+                "; the map's cells are one tile to the right in the level"
+            } else {
+                ""
+            }
+        ),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec2;
+
+    use super::*;
+
+    fn level(rows_bottom_first: &[&str]) -> Level {
+        let w = rows_bottom_first[0].len() as u32;
+        let tiles = rows_bottom_first
+            .iter()
+            .flat_map(|r| {
+                r.chars().map(|c| match c {
+                    '#' => Tile::Solid,
+                    _ => Tile::Empty,
+                })
+            })
+            .collect();
+        Level::from_tiles("t", w, rows_bottom_first.len() as u32, tiles)
+    }
+
+    #[test]
+    fn open_sides_get_walls_and_the_map_moves_right() {
+        let mut l = level(&["####", "...."]);
+        let mut spawns = [SpawnPoint {
+            name: "s".into(),
+            position: Vec2::new(1.5, 1.0),
+        }];
+        let note = wall_sides(&mut l, &mut spawns, Edges::Walls, "m").unwrap();
+        assert!(note.message.contains("left and right sides"), "{note}");
+        assert_eq!((l.width, l.height), (6, 2));
+        for j in 0..2 {
+            assert_eq!(l.tile(0, j), Tile::Solid);
+            assert_eq!(l.tile(5, j), Tile::Solid);
+        }
+        assert_eq!(l.tile(1, 1), Tile::Empty);
+        assert_eq!(spawns[0].position, Vec2::new(2.5, 1.0));
+    }
+
+    #[test]
+    fn a_side_the_map_walls_itself_or_open_edges_change_nothing() {
+        let mut l = level(&["####", "#..#"]);
+        assert!(wall_sides(&mut l, &mut [], Edges::Walls, "m").is_none());
+        assert_eq!(l.width, 4);
+        let mut l = level(&["####", "#..."]);
+        let note = wall_sides(&mut l, &mut [], Edges::Walls, "m").unwrap();
+        assert!(note.message.contains("right side is"), "{note}");
+        assert_eq!((l.width, l.tile(1, 1)), (5, Tile::Empty));
+        let mut l = level(&["####", "...."]);
+        assert!(wall_sides(&mut l, &mut [], Edges::Open, "m").is_none());
+        assert_eq!(l.width, 4);
+    }
+}

@@ -1,0 +1,94 @@
+//! The map's sides (src/level/import/edges.rs): walls outside the sides a map leaves open, as
+//! games stop their player at the world's bounds, so the `walk_left` probe meets a wall instead
+//! of walking into the void; `--edges open` keeps the map as drawn.
+#![cfg(all(feature = "tiled", feature = "ldtk"))]
+
+use glam::Vec2;
+use platbench::level::{load_tiled_map_with, Edges, ImportOptions, Tile};
+use platbench::metrics::evaluate;
+
+use super::common::platbench;
+use super::tiled::MapText;
+
+/// A floor of 6 tiles under 3 empty rows, a spawn at map cell (1, 2): written for this test.
+fn open_sided() -> MapText<'static> {
+    MapText {
+        rows: &["0,0,0,0,0,0", "0,0,0,0,0,0", "0,0,0,0,0,0", "1,1,1,1,1,1"],
+        objects: r#"<object id="1" name="spawn" x="24" y="48"><point/></object>"#,
+        ..MapText::default()
+    }
+}
+
+/// The `left_level` value of the scenario ending in `probe`, run on the sweep.
+fn left_level(level: &platbench::level::Level, probe: &str) -> f64 {
+    let spec = level
+        .scenarios
+        .iter()
+        .find(|s| s.name.ends_with(probe))
+        .unwrap();
+    let e = evaluate(level, spec, &platbench::sweep::kind::run_default()).unwrap();
+    e.metrics
+        .iter()
+        .find(|m| m.metric == "left_level")
+        .map(|m| m.value)
+        .unwrap()
+}
+
+#[test]
+fn open_sides_get_walls_and_the_walk_left_probe_stays_in() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("m.tmx");
+    std::fs::write(&path, open_sided().text()).unwrap();
+    let (l, warnings) = load_tiled_map_with(&path, &ImportOptions::default()).unwrap();
+    // One wall column each side, as tall as the map; the bottom stays open.
+    assert_eq!((l.width, l.height), (8, 4));
+    for j in 0..4 {
+        assert_eq!((l.tile(0, j), l.tile(7, j)), (Tile::Solid, Tile::Solid));
+    }
+    assert_eq!(l.tile(1, 1), Tile::Empty);
+    // The map moved one tile right: the spawn at map x 1.5 is at 2.5.
+    assert_eq!(l.scenarios[0].spawn, Vec2::new(2.5, 1.0));
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.message.contains("left and right sides are open")),
+        "{warnings:?}"
+    );
+    // walk_left runs into the wall (3 s at run speed is farther than the 2.5 tiles to the edge).
+    assert_eq!(left_level(&l, "walk_left"), 0.0);
+    // Left open, the same probe walks off the map's left edge and falls out of it.
+    let open = ImportOptions {
+        edges: Edges::Open,
+        ..ImportOptions::default()
+    };
+    let (l, warnings) = load_tiled_map_with(&path, &open).unwrap();
+    assert_eq!((l.width, l.scenarios[0].spawn), (6, Vec2::new(1.5, 1.0)));
+    assert!(!warnings.iter().any(|w| w.message.contains("sides")));
+    assert_eq!(left_level(&l, "walk_left"), 1.0);
+}
+
+#[test]
+fn the_edges_option_is_checked_and_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("m.tmx");
+    std::fs::write(&path, open_sided().text()).unwrap();
+    let out = platbench()
+        .args(["inspect", "--edges", "open"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("6 x 4 tiles"), "{text}");
+    let out = platbench()
+        .args(["inspect", "--edges", "sideways"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        e.contains("--edges sideways: expected walls or open"),
+        "{e}"
+    );
+}

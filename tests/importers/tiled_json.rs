@@ -1,0 +1,126 @@
+//! Tiled JSON maps (`.tmj`, `.json`): read as their TMX twins, so they import to the same level
+//! with the same rules, and fail with errors that name the JSON layer; a file's format is told
+//! by its content, and every error names the format it was read as.
+#![cfg(all(feature = "tiled", feature = "ldtk"))]
+
+use std::path::Path;
+
+use platbench::level::{detect_format, import_tiled_map, LevelFormat, TiledImport};
+
+use super::common::platbench;
+use super::tiled::shipped;
+
+/// The level of an import, with the fields that name the file or its layers' paths cleared:
+/// what a game would play.
+fn played(mut r: TiledImport) -> (platbench::level::Level, Vec<String>) {
+    r.level.source.clear();
+    let spawns = r
+        .spawns
+        .iter()
+        .map(|s| format!("{} {:?}", s.name, s.position))
+        .collect();
+    (r.level, spawns)
+}
+
+#[test]
+fn a_json_map_imports_as_its_tmx_twin() {
+    // tests/maps/showcase.tmj is showcase.tmx saved as JSON, its tile layers in a group.
+    let tmx = played(import_tiled_map(&shipped("showcase.tmx")).unwrap());
+    let json = import_tiled_map(&shipped("showcase.tmj")).unwrap();
+    let roles: Vec<_> = json.layers.iter().map(|l| l.name.clone()).collect();
+    assert!(roles.contains(&"level/ground".to_string()), "{roles:?}");
+    assert!(
+        json.warnings.is_empty(),
+        "a JSON map is a format, not a warning: {:?}",
+        json.warnings
+    );
+    assert_eq!(played(json), tmx);
+    // An infinite map with a zlib-compressed base64 chunk and an embedded tileset.
+    let tmx = played(import_tiled_map(&shipped("infinite.tmx")).unwrap());
+    assert_eq!(
+        played(import_tiled_map(&shipped("infinite.json")).unwrap()),
+        tmx
+    );
+}
+
+#[test]
+fn the_format_is_told_by_the_content() {
+    let dir = tempfile::tempdir().unwrap();
+    let copy = |from: &str, to: &str| {
+        let p = dir.path().join(to);
+        std::fs::copy(shipped(from), &p).unwrap();
+        p
+    };
+    assert_eq!(
+        detect_format(&copy("showcase.tmj", "a.json")).unwrap(),
+        LevelFormat::TiledJson
+    );
+    assert_eq!(
+        detect_format(&copy("linear_old.ldtk", "b.json")).unwrap(),
+        LevelFormat::Ldtk
+    );
+    assert_eq!(
+        detect_format(&copy("showcase.tmx", "c.map")).unwrap(),
+        LevelFormat::Tmx
+    );
+    // A map renamed by a build step runs as the map it is.
+    copy("terrain.tsx", "terrain.tsx");
+    let renamed = copy("showcase.tmj", "level1.json");
+    let out = platbench()
+        .args(["inspect"])
+        .arg(&renamed)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let ldtk = copy("linear_old.ldtk", "old.json");
+    let out = platbench().args(["inspect"]).arg(&ldtk).output().unwrap();
+    assert!(out.status.success(), "{out:?}");
+}
+
+/// `platbench run FILE`'s stderr, which must fail with exit 2.
+fn run_error(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    let out = platbench().arg("run").arg(&p).output().unwrap();
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+#[test]
+fn errors_name_the_json_layer_and_the_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // JSON syntax: the line and column.
+    let e = run_error(d, "broken.tmj", "{\n \"layers\": [,]\n}");
+    assert!(
+        e.contains("broken.tmj") && e.contains("line 2, column"),
+        "{e}"
+    );
+    // A cell that is not a tile id: the layer and the cell.
+    let e = run_error(
+        d,
+        "cell.tmj",
+        r#"{"type":"map","width":2,"height":1,"tilewidth":16,"tileheight":16,"orientation":"orthogonal",
+            "layers":[{"type":"tilelayer","name":"floor","width":2,"height":1,"data":[1,"x"]}]}"#,
+    );
+    assert!(e.contains("layer \"floor\": cell 1 is \"x\""), "{e}");
+    // A tileset given where a map is expected.
+    let e = run_error(
+        d,
+        "ts.json",
+        r#"{"type":"tileset","name":"t","tilewidth":16}"#,
+    );
+    assert!(e.contains("it is a Tiled tileset"), "{e}");
+    // A check of the TMX twin (a layer larger than its map allows) names the JSON layer, not a
+    // line of a file the user never saw.
+    let e = run_error(
+        d,
+        "big.tmj",
+        r#"{"type":"map","width":2,"height":1,"tilewidth":16,"tileheight":16,"orientation":"orthogonal",
+            "layers":[{"type":"tilelayer","name":"wide","width":100000,"height":100000,"data":[0]}]}"#,
+    );
+    assert!(e.contains("big.tmj (layer \"wide\")"), "{e}");
+    // A file that is neither: read as a level, and said so.
+    let e = run_error(d, "level1.tmj", "hello world\n");
+    assert!(e.contains("read as a platbench level (TOML)"), "{e}");
+}
