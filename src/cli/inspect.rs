@@ -48,6 +48,17 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
             layer.why
         ));
     }
+    // Where a convention or a default decided, the line that says what the game means.
+    let guessed: Vec<_> = r.layers.iter().filter(|l| l.is_guess()).collect();
+    if !guessed.is_empty() {
+        let entries: Vec<String> = guessed.iter().map(|l| l.side_file_entry()).collect();
+        text.push_str(&format!(
+            "\nguessed: {} layer(s), by name or by default; to make them certain, or to say what your game reads instead, edit and put in {}:\n  [import]\n  layers = {{ {} }}\n",
+            guessed.len(),
+            p.with_extension("toml").display(),
+            entries.join(", ")
+        ));
+    }
     text.push_str("\nspawns (feet, tiles, y up):\n");
     if r.spawns.is_empty() {
         text.push_str("  none\n");

@@ -82,8 +82,10 @@ impl ImportArgs {
         }
         o.level = self.level.clone();
         if let Some(e) = &self.edges {
-            o.edges = crate::level::import::Edges::parse(e)
-                .with_context(|| format!("--edges {e}: expected walls or open"))?;
+            o.edges = Some(
+                crate::level::import::Edges::parse(e)
+                    .with_context(|| format!("--edges {e}: expected walls or open"))?,
+            );
         }
         Ok(o)
     }

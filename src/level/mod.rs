@@ -27,7 +27,7 @@ mod tile;
 pub mod tiled;
 mod toml;
 
-pub use self::toml::{parse_level, parse_scenarios, LevelError};
+pub use self::toml::{parse_level, parse_scenarios, side_import_options, LevelError};
 pub use features::Features;
 pub use format::{detect_format, LevelFormat};
 pub use geometry::{character_box, round_height_up};

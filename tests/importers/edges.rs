@@ -58,7 +58,7 @@ fn open_sides_get_walls_and_the_walk_left_probe_stays_in() {
     assert_eq!(left_level(&l, "walk_left"), 0.0);
     // Left open, the same probe walks off the map's left edge and falls out of it.
     let open = ImportOptions {
-        edges: Edges::Open,
+        edges: Some(Edges::Open),
         ..ImportOptions::default()
     };
     let (l, warnings) = load_tiled_map_with(&path, &open).unwrap();

@@ -7,6 +7,7 @@ mod edges;
 mod ldtk;
 mod markings;
 mod side_expect;
+mod side_import;
 mod tiled;
 mod tiled_errors;
 mod tiled_json;

@@ -21,7 +21,7 @@ use platbench::level::{
 /// (tests/importers/edges.rs tests the walls).
 pub(super) fn open_edges() -> ImportOptions {
     ImportOptions {
-        edges: Edges::Open,
+        edges: Some(Edges::Open),
         ..ImportOptions::default()
     }
 }

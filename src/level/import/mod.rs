@@ -152,6 +152,41 @@ pub struct LayerReport {
     pub why: String,
 }
 
+impl LayerReport {
+    /// Whether the role is a guess: a naming convention or a default decided it, not the map's
+    /// own property, the layer's kind or the user (a side file or the command line).
+    pub fn is_guess(&self) -> bool {
+        const CERTAIN: &[&str] = &[
+            GIVEN,
+            "its property",
+            "an image layer",
+            "entities:",
+            "a Tiles layer",
+            "a AutoLayer layer",
+        ];
+        !CERTAIN.iter().any(|c| self.why.starts_with(c))
+    }
+
+    /// The side-file entry that would make the role certain, for the `layers` table of the
+    /// `[import]` table: `"NAME" = "ROLE"` (a group's child by its own name).
+    pub fn side_file_entry(&self) -> String {
+        let name = self.name.rsplit('/').next().unwrap_or(&self.name);
+        format!("{name:?} = {:?}", self.role.name())
+    }
+}
+
+/// How a role the user gave is said (its `why` starts with this).
+const GIVEN: &str = "given:";
+
+/// The `why` of a role the user gave a layer: in a side file's `[import] layers`, or `--layer`.
+#[cfg(any(feature = "tiled", feature = "ldtk"))]
+pub(crate) fn given(name: &str, role: LayerRole) -> String {
+    format!(
+        "{GIVEN} {name} = {} (the side file's [import] layers, or --layer)",
+        role.name()
+    )
+}
+
 /// Overrides of the import's defaults, from the command line. Each default is documented in the
 /// "Tiled maps" and "LDtk maps" sections of docs/formats.md; the map's own properties override the
 /// defaults, and these override both.
@@ -171,8 +206,11 @@ pub struct ImportOptions {
     /// (GridVania and Free layouts) or the first level (linear layouts).
     pub level: Option<String>,
     /// The map's left and right sides (`--edges`): walls outside the sides the map leaves open
-    /// (the default, as games bound their world), or open.
-    pub edges: Edges,
+    /// (`None`: the default, as games bound their world), or open.
+    pub edges: Option<Edges>,
+    /// Tiled: tile properties that make a tile a kind whatever else it says (a side file's
+    /// `tile_properties`): a tile with the property (any value but `false`) is that kind.
+    pub tile_properties: Vec<(String, Tile)>,
 }
 
 impl ImportOptions {

@@ -3,6 +3,7 @@
 //! bounds, each IntGrid layer's cells by its role and its values' names, the entities that are
 //! spawns, and the spawn rules (`--spawn`, the fallback spawn).
 
+use crate::level::import::given;
 use std::path::Path;
 
 use glam::Vec2;
@@ -185,7 +186,7 @@ pub(super) fn import(
                     let by_name = role_from_name(&layer.identifier);
                     let named_platforms = says(&layer.identifier, &["platform", "platforms"]);
                     let (role, why) = if let Some(r) = opts.role_of(&layer.identifier) {
-                        (r, format!("--layer {}={}", layer.identifier, r.name()))
+                        (r, given(&layer.identifier, r))
                     } else if int_layers > 1 && named_platforms {
                         (
                             LayerRole::OneWay,
@@ -421,7 +422,12 @@ pub(super) fn import(
     if let Some(wn) = no_solids_warning(&level, &file, HOW_TO_COLLIDE) {
         extra.push(wn);
     }
-    if let Some(wn) = wall_sides(&mut level, &mut spawns, opts.edges, &file) {
+    if let Some(wn) = wall_sides(
+        &mut level,
+        &mut spawns,
+        opts.edges.unwrap_or_default(),
+        &file,
+    ) {
         extra.push(wn);
     }
     if let Some(wn) = settle_spawns(&level, &file, HOW_TO_SPAWN, opts, &mut spawns, &mut sources) {

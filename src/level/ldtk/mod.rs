@@ -23,6 +23,7 @@ mod json;
 
 use super::import::{ImportFailure, ImportOptions, ImportWarning, MapImport};
 use super::probes::{probe_scenarios, ProbeConfig};
+use super::toml::{options_beside, SideFailure};
 use super::{parse_scenarios, Level, LevelError};
 use convert::import;
 
@@ -148,7 +149,15 @@ pub fn import_ldtk_with(
     opts: &ImportOptions,
 ) -> Result<MapImport, ImportFailure<LdtkError>> {
     let mut warnings = Vec::new();
-    match import(path, opts, &mut warnings) {
+    // The side file's [import] table, under the command line's flags.
+    let merged = options_beside(path, opts).map_err(|e| ImportFailure {
+        error: match e {
+            SideFailure::Read { file, message } => LdtkError::Read { file, message },
+            SideFailure::Level(e) => LdtkError::SideFile(e),
+        },
+        warnings: Vec::new(),
+    })?;
+    match import(path, &merged, &mut warnings) {
         Ok(mut m) => {
             warnings.append(&mut m.warnings);
             m.warnings = warnings;

@@ -5,6 +5,7 @@
 //! holds collision shapes or another tile layer is named for collision (then decoration), or
 //! as the map property `tile_layers` or `--tile-layers` say.
 
+use crate::level::import::given;
 use std::collections::BTreeMap;
 
 use glam::Vec2;
@@ -146,7 +147,7 @@ impl<'m> Importer<'m> {
             }
         }
         let role = if let Some(r) = self.opts.role_of(&layer.name) {
-            Some((r, format!("--layer {}={}", layer.name, r.name())))
+            Some((r, given(&layer.name, r)))
         } else if let Some(r) = from_prop {
             Some(r)
         } else if matches!(inherited, Some((LayerRole::Decoration, _))) {
@@ -481,7 +482,24 @@ impl<'m> Importer<'m> {
                 .iter()
                 .any(|(k, v)| is_bool_mark(k, v) && matches!(v, PropertyValue::BoolValue(true)))
         });
+        // A tile property the side file (or a library caller) gives a kind decides first.
+        let given = data.as_ref().and_then(|d| {
+            self.opts
+                .tile_properties
+                .iter()
+                .rev()
+                .find_map(|(name, t)| {
+                    d.properties
+                        .iter()
+                        .any(|(k, v)| {
+                            k.eq_ignore_ascii_case(name)
+                                && !matches!(v, PropertyValue::BoolValue(false))
+                        })
+                        .then_some(*t)
+                })
+        });
         let (base, notes) = match &data {
+            _ if given.is_some() => (given, Vec::new()),
             None => (None, Vec::new()),
             Some(d) => tile_kind(&d.properties, &d.user_type, d.collision.as_ref(), tw, th)
                 .map_err(|e| err(e.to_string()))?,

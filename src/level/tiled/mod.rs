@@ -275,7 +275,12 @@ impl<'m> Importer<'m> {
         if let Some(w) = no_solids_warning(&level, &self.file, HOW_TO_COLLIDE) {
             self.warnings.push(w);
         }
-        if let Some(w) = wall_sides(&mut level, &mut spawns, self.opts.edges, &self.file) {
+        if let Some(w) = wall_sides(
+            &mut level,
+            &mut spawns,
+            self.opts.edges.unwrap_or_default(),
+            &self.file,
+        ) {
             self.warnings.push(w);
         }
         if let Some(w) = settle_spawns(

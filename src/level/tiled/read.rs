@@ -9,6 +9,7 @@ use std::rc::Rc;
 
 use super::{json, normalize, refs, scan, Importer, TiledError, TiledImport, TiledWarning};
 use crate::level::import::{ImportFailure, ImportOptions};
+use crate::level::toml::{options_beside, SideFailure};
 
 /// The file a map refers to, found as the `tiled` crate finds it: relative to the map's folder.
 fn sibling(map: &Path, source: &str) -> PathBuf {
@@ -28,6 +29,17 @@ pub fn import_tiled_map_with(
         error,
         warnings: notes.borrow().clone(),
     };
+    // The side file's [import] table, under the command line's flags.
+    let merged = options_beside(path, opts).map_err(|e| {
+        failed(
+            match e {
+                SideFailure::Read { file, message } => TiledError::SideFileRead { file, message },
+                SideFailure::Level(e) => TiledError::SideFile(e),
+            },
+            &notes,
+        )
+    })?;
+    let opts = &merged;
     // Read once, within the input cap, made readable by the crate where Tiled is tolerant and
     // the crate is not, and looked at for what the crate would allocate or index before it does.
     let text = crate::limits::read_text_capped(path).map_err(|e| {

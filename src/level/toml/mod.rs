@@ -26,12 +26,16 @@ mod map;
 mod numbers;
 mod platforms;
 mod scenarios;
+mod side;
 mod strings;
 #[cfg(test)]
 mod tests;
 
 pub use error::LevelError;
 pub use scenarios::parse_scenarios;
+pub use side::side_import_options;
+#[cfg(any(feature = "tiled", feature = "ldtk"))]
+pub(crate) use side::{options_beside, SideFailure};
 
 use error::Locator;
 use legend::parse_legend;

@@ -62,6 +62,10 @@ struct RawMotion {
 struct RawScenarioFile {
     #[serde(default)]
     scenario: Vec<Spanned<RawScenario>>,
+    /// A side file's `[import]` table, read before the import (`side`).
+    #[serde(default)]
+    #[allow(dead_code)]
+    import: Option<toml::Value>,
 }
 
 /// Parses the `[[scenario]]` entries of a TOML text against `level` (an imported map's side
