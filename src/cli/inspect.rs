@@ -94,6 +94,26 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
             if pl.one_way { ", one-way" } else { "" }
         ));
     }
+    // The probes `run` makes from these spawns, and those the map makes impossible.
+    let cfg = crate::level::ProbeConfig::default();
+    let (probes, notes) = crate::level::probe_scenarios(l, &r.spawns, &cfg);
+    text.push_str(&format!("\nprobes: {}\n", probes.len()));
+    for s in &r.spawns {
+        let prefix = format!("{}-", s.name);
+        let run: Vec<&str> = probes
+            .iter()
+            .filter_map(|p| p.name.strip_prefix(&prefix))
+            .collect();
+        let run = if run.is_empty() {
+            "none".to_string()
+        } else {
+            run.join(", ")
+        };
+        text.push_str(&format!("  {}: {run}\n", s.name));
+    }
+    for (subject, note) in &notes {
+        text.push_str(&format!("  {subject}: {note}\n"));
+    }
     text.push_str(&format!("\nwarnings: {}\n", r.warnings.len()));
     for w in &r.warnings {
         text.push_str(&format!("  {}: {}\n", w.subject, w.message));

@@ -196,8 +196,13 @@ pub(crate) fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result
         if level.scenarios.is_empty() {
             // Nothing would run: a level without scenarios would put a run of zero cost and
             // zero error into every table and onto the trade-off's front.
+            let fix = if format.is_map() {
+                "every probe is a map problem (the warnings above say why); --spawn X,Y, or a side file beside the map with spawns or [[scenario]] entries, gives it one"
+            } else {
+                "add a [[scenario]] with a name, spawn and duration"
+            };
             eprintln!(
-                "warning: {}: the level has no [[scenario]] entries, so nothing runs on it; skipped (add a [[scenario]] with a name, spawn and duration)",
+                "warning: {}: the level has no scenario, so nothing runs on it; skipped ({fix})",
                 level.source
             );
             continue;

@@ -5,6 +5,7 @@ mod common;
 
 mod edges;
 mod ldtk;
+mod map_problems;
 mod markings;
 mod side_expect;
 mod side_import;

@@ -58,12 +58,6 @@ fn platform_and_spawn_errors_name_the_object() {
             "a spawn point is an ellipse",
         ),
         (
-            // Feet at (8, 32) px: inside the bottom row of solid tiles.
-            r#"<object id="4" name="s" class="spawn" x="8" y="24"><point/></object>"#.to_string(),
-            "object 4 \"s\"",
-            "inside the solid tile",
-        ),
-        (
             format!(
                 r#"{SPAWN}<object id="4" name="s" class="spawn" x="40" y="16"><point/></object>"#
             ),

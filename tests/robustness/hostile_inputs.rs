@@ -219,7 +219,7 @@ fn silently_accepted_levels_are_errors_or_warnings_that_say_what_to_do() {
         .unwrap();
     assert_success(&out);
     assert!(
-        stderr(&out).contains("empty.toml: the level has no [[scenario]] entries"),
+        stderr(&out).contains("empty.toml: the level has no scenario"),
         "{}",
         stderr(&out)
     );

@@ -7,6 +7,37 @@ use glam::Vec2;
 use super::{ImportOptions, ImportWarning};
 use crate::level::{character_box, Level, SpawnPoint, Tile, DEFAULT_CHARACTER_SIZE};
 
+/// How far a spawn's feet may sit inside the ground and still be read as standing on it, in
+/// tiles: a spawn box or a sprite's anchor drawn a little into the floor (an LDtk entity box
+/// overlapping the floor's top, a 35 px sprite on 70 px tiles).
+pub(crate) const SINK_TOLERANCE: f32 = 0.25;
+
+/// Feet inside the ground by at most [`SINK_TOLERANCE`], lifted onto the top of what they are
+/// in when the default character fits there; `None` otherwise (the spawn is inside a solid).
+pub(crate) fn lift_onto_ground(level: &Level, feet: Vec2) -> Option<Vec2> {
+    let b = character_box(feet, DEFAULT_CHARACTER_SIZE);
+    let top = level
+        .solids_overlapping(&b)
+        .map(|t| t.maxs.y)
+        .fold(f32::NEG_INFINITY, f32::max);
+    let lifted = Vec2::new(feet.x, top);
+    (top - feet.y <= SINK_TOLERANCE
+        && level
+            .solids_overlapping(&character_box(lifted, DEFAULT_CHARACTER_SIZE))
+            .next()
+            .is_none())
+    .then_some(lifted)
+}
+
+/// The note for a spawn inside a solid that cannot be lifted out: a map problem, its probes
+/// not run.
+pub(crate) fn inside_solid_note(feet: Vec2, tile: Vec2) -> String {
+    format!(
+        "map problem: the spawn at ({}, {}) puts the {} x {} character inside the solid tile at ({}, {}), deeper than {SINK_TOLERANCE} tile, so no probe starts there (whatever the controller); the other spawns, or the fallback spawn, run instead (--spawn X,Y or a side file's spawns place one)",
+        feet.x, feet.y, DEFAULT_CHARACTER_SIZE.x, DEFAULT_CHARACTER_SIZE.y, tile.x, tile.y
+    )
+}
+
 /// A place to start when a map marks none: the lowest cell of the leftmost column where the
 /// default character stands on a solid or one-way tile with room above. `None` when no cell
 /// qualifies.

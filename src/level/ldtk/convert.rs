@@ -13,7 +13,9 @@ use super::{parse_json, read, LdtkError, HOW_TO_COLLIDE, HOW_TO_SPAWN};
 use crate::level::import::names::{
     is_spawn_name, role_from_name, says, HAZARD_WORDS, LADDER_WORDS, ONE_WAY_WORDS,
 };
-use crate::level::import::spawns::{no_solids_warning, safe_name, settle_spawns};
+use crate::level::import::spawns::{
+    inside_solid_note, lift_onto_ground, no_solids_warning, safe_name, settle_spawns,
+};
 use crate::level::import::wall_sides;
 use crate::level::import::{
     normalize, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport,
@@ -377,6 +379,23 @@ pub(super) fn import(
     let mut spawns = Vec::new();
     let mut sources = Vec::new();
     for (k, (id, feet, why)) in raw_spawns.into_iter().enumerate() {
+        // An entity box drawn a little into the floor stands on it.
+        let sunk = level
+            .solids_overlapping(&character_box(feet, DEFAULT_CHARACTER_SIZE))
+            .next();
+        let feet = match sunk.and_then(|_| lift_onto_ground(&level, feet)) {
+            Some(lifted) => {
+                warn(
+                    &format!("entity {id:?}"),
+                    format!(
+                        "the spawn's feet at ({}, {}) are {} tiles inside the ground; lifted onto its top at y = {}",
+                        feet.x, feet.y, lifted.y - feet.y, lifted.y
+                    ),
+                );
+                lifted
+            }
+            None => feet,
+        };
         let inside = feet.is_finite()
             && feet.x >= 0.0
             && feet.y >= 0.0
@@ -387,19 +406,14 @@ pub(super) fn import(
             .next()
             .is_some();
         if !inside || in_solid {
-            warn(
-                &format!("entity {id:?}"),
-                format!(
-                    "its feet at ({}, {}) tiles are {}; not a spawn",
-                    feet.x,
-                    feet.y,
-                    if inside {
-                        "inside a solid cell"
-                    } else {
-                        "outside the level"
-                    }
+            let note = match in_solid.then_some(()).and(sunk) {
+                Some(t) if inside => inside_solid_note(feet, Vec2::new(t.mins.x, t.mins.y)),
+                _ => format!(
+                    "its feet at ({}, {}) tiles are outside the level; not a spawn",
+                    feet.x, feet.y
                 ),
-            );
+            };
+            warn(&format!("entity {id:?}"), note);
             continue;
         }
         let base = if valid_name(&id) {

@@ -10,6 +10,7 @@ use tiled::{ObjectShape, PropertyValue};
 
 use super::{kind_of, names, ramp, shape_name, Importer, TiledError, SHAPE_TOLERANCE_PX};
 use crate::level::import::names::is_spawn_name;
+use crate::level::import::spawns::{inside_solid_note, lift_onto_ground};
 use crate::level::import::LayerRole;
 use crate::level::probes::SpawnPoint;
 use crate::level::DEFAULT_CHARACTER_SIZE;
@@ -267,7 +268,9 @@ impl<'m> Importer<'m> {
                             l.name
                         )
                     };
-                    let s = self.spawn(o, l.offset, level)?;
+                    let Some(s) = self.spawn(o, l.offset, level)? else {
+                        continue;
+                    };
                     // Several objects named "Player" are each a spawn, named by id after the first.
                     let unique = spawns.iter().all(|(s, _, _)| s.name != o.name);
                     let name = if valid_name(&o.name) && (!by_name || unique) {
@@ -337,7 +340,14 @@ impl<'m> Importer<'m> {
 
     /// Where a spawn object puts the character's feet: a point is the feet; a rectangle's or
     /// tile object's bottom centre is (a tile object's position is its bottom-left corner).
-    fn spawn(&self, o: &tiled::Object, offset: Vec2, level: &Level) -> Result<Vec2, TiledError> {
+    /// Feet a little inside the ground are lifted onto it; `None` (with a note) for a spawn
+    /// deeper inside a solid, whose probes could measure no controller.
+    fn spawn(
+        &mut self,
+        o: &tiled::Object,
+        offset: Vec2,
+        level: &Level,
+    ) -> Result<Option<Vec2>, TiledError> {
         if o.rotation != 0.0 {
             return Err(self.obj_err(
                 o,
@@ -372,13 +382,20 @@ impl<'m> Importer<'m> {
             )));
         }
         let b = character_box(feet, DEFAULT_CHARACTER_SIZE);
+        let subject = format!("object {} {:?}", o.id(), o.name);
         if let Some(t) = level.solids_overlapping(&b).next() {
-            return Err(self.obj_err(o, format!(
-                "the spawn point at ({}, {}) puts the {} x {} character inside the solid tile at ({}, {}); expected empty space (the point is the feet)",
-                feet.x, feet.y, DEFAULT_CHARACTER_SIZE.x, DEFAULT_CHARACTER_SIZE.y, t.mins.x, t.mins.y
-            )));
+            // A spawn drawn a little into the floor stands on it; deeper, it is the map's problem.
+            if let Some(lifted) = lift_onto_ground(level, feet) {
+                self.warn(subject, format!("the spawn's feet at ({}, {}) are {} tiles inside the ground; lifted onto its top at y = {}", feet.x, feet.y, lifted.y - feet.y, lifted.y));
+                return Ok(Some(lifted));
+            }
+            self.warn(
+                subject,
+                inside_solid_note(feet, Vec2::new(t.mins.x, t.mins.y)),
+            );
+            return Ok(None);
         }
-        Ok(feet)
+        Ok(Some(feet))
     }
 
     /// A moving platform from a rectangle with `path` and `speed`.

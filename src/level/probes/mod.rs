@@ -5,6 +5,8 @@
 
 use glam::Vec2;
 
+mod map_problems;
+
 use super::DEFAULT_CHARACTER_SIZE;
 use super::{character_box, InputEvent, Level, PlatformMotion, ScenarioSpec};
 
@@ -38,6 +40,12 @@ pub struct ProbeConfig {
     /// Longest ride, in seconds (a ride lasts one round trip of the platform's path within
     /// these bounds).
     pub ride_max: f32,
+    /// How far every controller certainly walks in a walk probe, in tiles: a walk that meets
+    /// a bottomless column or an open side of the map within it, on flat ground, measures the
+    /// map, so it is not run (`map_problems`). Default: half the default run speed (6 tiles/s,
+    /// [`crate::motion::MotionParams`]) times the walk time, leaving the controllers'
+    /// acceleration its margin.
+    pub certain_reach: f32,
 }
 
 impl Default for ProbeConfig {
@@ -51,6 +59,7 @@ impl Default for ProbeConfig {
             jump_time: 2.0,
             ride_min: 2.0,
             ride_max: 12.0,
+            certain_reach: 0.5 * 6.0 * 3.0,
         }
     }
 }
@@ -69,6 +78,19 @@ pub fn probe_scenarios(
     for s in spawns {
         let at = s.position;
         let n = &s.name;
+        let size = DEFAULT_CHARACTER_SIZE;
+        // A probe the map makes impossible is the map's problem: said, not run.
+        let mut map_problem = |probe: &str, why: String| {
+            notes.push((
+                format!("spawn {n:?}"),
+                format!("map problem: probe {n}-{probe} is not run: {why}"),
+            ))
+        };
+        if let Some(why) = map_problems::drop_problem(level, at, size) {
+            // Every probe from this spawn falls first.
+            map_problem("drop (and every other probe from this spawn)", why);
+            continue;
+        }
         out.push(ScenarioSpec::new(
             format!("{n}-drop"),
             at,
@@ -83,6 +105,11 @@ pub fn probe_scenarios(
                 right: (!left).then_some(on),
                 ..InputEvent::default()
             };
+            if let Some(why) = map_problems::walk_problem(level, at, size, left, cfg.certain_reach)
+            {
+                map_problem(&format!("walk_{dir}"), why);
+                continue;
+            }
             out.push(ScenarioSpec::new(
                 format!("{n}-walk_{dir}"),
                 at,
@@ -178,9 +205,10 @@ mod tests {
 
     #[test]
     fn five_probes_per_spawn_and_the_ride_starts_on_the_nearest_platform() {
-        let mut l = Level::from_tiles("t", 20, 10, {
-            let mut t = vec![Tile::Solid; 20];
-            t.extend(vec![Tile::Empty; 180]);
+        // Wide enough that no walk reaches an open side within the certain reach (9 tiles).
+        let mut l = Level::from_tiles("t", 30, 10, {
+            let mut t = vec![Tile::Solid; 30];
+            t.extend(vec![Tile::Empty; 270]);
             t
         });
         for x in [2.0, 12.0] {
