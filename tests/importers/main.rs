@@ -7,6 +7,7 @@ mod edges;
 mod ldtk;
 mod map_problems;
 mod markings;
+mod shapes;
 mod side_expect;
 mod side_import;
 mod tiled;

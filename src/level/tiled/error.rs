@@ -3,9 +3,7 @@
 //! parts give, whose text a [`TiledError`]'s message carries: `TileKindError` (with
 //! `HeightsError` and `ShapeError`), `FlipError`, `CellError` and `JsonError`.
 
-use glam::Vec2;
-
-use super::{tile_name, LevelError, Tile, SHAPE_TOLERANCE_PX};
+use super::{tile_name, LevelError, Tile};
 
 /// A Tiled map that platbench cannot run as it is, with what was found and what was expected.
 #[derive(Debug, thiserror::Error)]
@@ -169,15 +167,9 @@ pub(crate) enum TileKindError {
         /// What the bool property makes the tile.
         tile: Tile,
     },
-    /// The single collision object is not a full-tile rectangle or a ramp.
+    /// A collision object platbench cannot place on the grid.
     #[error(transparent)]
     Shape(#[from] ShapeError),
-    /// More than one collision object.
-    #[error("its collision shape has {count} objects; expected one: a rectangle covering the tile (solid) or a ramp polygon (slope)")]
-    ManyShapes {
-        /// How many objects the collision shape has.
-        count: usize,
-    },
 }
 
 /// Why a tile's `heights` property is not 16 sixteenths of a tile (`tiles::parse_heights`).
@@ -207,8 +199,8 @@ pub(crate) enum HeightsError {
 const HEIGHTS_EXPECTED: &str =
     "expected 16 comma-separated integers 0..16 (sixteenths of a tile, left to right)";
 
-/// Why a tile's single collision object is neither a full-tile rectangle nor a ramp polygon
-/// (`tiles::shape_kind`). Positions and sizes are the tile's pixels, y down.
+/// Why a tile's collision shape cannot be read or approximated (`tiles::tile_kind`; partial
+/// and compound shapes are approximated, `approx`).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub(crate) enum ShapeError {
     /// The object is rotated.
@@ -217,39 +209,6 @@ pub(crate) enum ShapeError {
         /// The rotation, degrees.
         degrees: f32,
     },
-    /// A rectangle that does not cover the tile.
-    #[error("its collision shape is a rectangle at ({x}, {y}) of {width} x {height} pixels, which does not cover the {tile_width} x {tile_height} tile; expected a full-tile rectangle (solid) or a ramp polygon (slope)")]
-    PartialRect {
-        /// The rectangle's left edge.
-        x: f32,
-        /// The rectangle's top edge.
-        y: f32,
-        /// The rectangle's width.
-        width: f32,
-        /// The rectangle's height.
-        height: f32,
-        /// The tile's width.
-        tile_width: f32,
-        /// The tile's height.
-        tile_height: f32,
-    },
-    /// A polygon that is not a ramp.
-    #[error("its collision shape is a polygon {} that is not a ramp; expected the tile's bottom edge, its two sides and one straight top line from the left side to the right side (within {SHAPE_TOLERANCE_PX} pixel)", points_text(.points))]
-    NotRamp {
-        /// The polygon's points.
-        points: Vec<Vec2>,
-    },
-    /// An ellipse, polyline, point or other shape.
-    #[error("its collision shape is {shape}; expected a full-tile rectangle (solid) or a ramp polygon (slope)")]
-    Unsupported {
-        /// The shape, with its article ("an ellipse").
-        shape: &'static str,
-    },
-}
-
-fn points_text(pts: &[Vec2]) -> String {
-    let p: Vec<String> = pts.iter().map(|p| format!("({}, {})", p.x, p.y)).collect();
-    format!("[{}]", p.join(", "))
 }
 
 /// Why a flipped tile has no meaning platbench can represent (`tiles::apply_flips`).

@@ -19,6 +19,7 @@ use std::path::Path;
 
 use tiled::{ObjectShape, PropertyValue};
 
+mod approx;
 mod error;
 mod json;
 mod layers;

@@ -8,7 +8,7 @@ use glam::Vec2;
 use tiled::{ObjectShape, PropertyValue};
 
 use super::error::{FlipError, HeightsError, ShapeError, TileKindError};
-use super::{kind_of, names, number, shape_name, SHAPE_TOLERANCE_PX};
+use super::{approx, kind_of, names, number, SHAPE_TOLERANCE_PX};
 use crate::level::import::parse_tile_kind;
 use crate::level::{Slope, Tile};
 
@@ -202,10 +202,19 @@ pub(crate) fn tile_kind(
             return Ok((Some(t), notes));
         }
     }
+    if let Some(o) = objects.iter().find(|o| o.rotation != 0.0) {
+        return Err(ShapeError::Rotated {
+            degrees: o.rotation,
+        }
+        .into());
+    }
     let t = match objects {
         [] => None,
-        [o] => Some(shape_kind(o, tw, th)?),
-        many => return Err(TileKindError::ManyShapes { count: many.len() }),
+        [o] => match exact_kind(o, tw, th) {
+            Some(t) => Some(t),
+            None => Some(approximated(objects, tw, th, &mut notes)),
+        },
+        many => Some(approximated(many, tw, th, &mut notes)),
     };
     Ok((t, notes))
 }
@@ -234,47 +243,34 @@ fn parse_heights(s: &str) -> Result<[u8; 16], HeightsError> {
     Ok(out)
 }
 
-/// The meaning of a tile's single collision object: a rectangle over the whole tile is solid,
-/// a ramp polygon is a line slope.
-fn shape_kind(o: &tiled::ObjectData, tw: f32, th: f32) -> Result<Tile, ShapeError> {
-    if o.rotation != 0.0 {
-        return Err(ShapeError::Rotated {
-            degrees: o.rotation,
-        });
-    }
-    let (tol_x, tol_y) = (SHAPE_TOLERANCE_PX, SHAPE_TOLERANCE_PX);
+/// A partial or compound collision shape's nearest tile ([`approx::approximate`]), its note
+/// added to the tile's.
+fn approximated(objects: &[tiled::ObjectData], tw: f32, th: f32, notes: &mut Vec<String>) -> Tile {
+    let (t, note) = approx::approximate(objects, tw, th);
+    notes.push(note);
+    t
+}
+
+/// The meaning of a tile's single, unrotated collision object when it is exact: a rectangle
+/// over the whole tile is solid, a ramp polygon is a line slope; `None` for anything else.
+fn exact_kind(o: &tiled::ObjectData, tw: f32, th: f32) -> Option<Tile> {
+    let tol = SHAPE_TOLERANCE_PX;
     match &o.shape {
         ObjectShape::Rect { width, height } => {
-            let full = o.x.abs() <= tol_x
-                && o.y.abs() <= tol_y
-                && (o.x + width - tw).abs() <= tol_x
-                && (o.y + height - th).abs() <= tol_y;
-            if full {
-                Ok(Tile::Solid)
-            } else {
-                Err(ShapeError::PartialRect {
-                    x: o.x,
-                    y: o.y,
-                    width: *width,
-                    height: *height,
-                    tile_width: tw,
-                    tile_height: th,
-                })
-            }
+            let full = o.x.abs() <= tol
+                && o.y.abs() <= tol
+                && (o.x + width - tw).abs() <= tol
+                && (o.y + height - th).abs() <= tol;
+            full.then_some(Tile::Solid)
         }
         ObjectShape::Polygon { points } => {
             let pts: Vec<Vec2> = points
                 .iter()
                 .map(|&(x, y)| Vec2::new(o.x + x, o.y + y))
                 .collect();
-            match ramp(&pts, tw, th) {
-                Some(s) => Ok(Tile::Slope(s)),
-                None => Err(ShapeError::NotRamp { points: pts }),
-            }
+            ramp(&pts, tw, th).map(Tile::Slope)
         }
-        other => Err(ShapeError::Unsupported {
-            shape: shape_name(other),
-        }),
+        _ => None,
     }
 }
 
