@@ -4,6 +4,7 @@
 mod common;
 
 mod edges;
+mod evident_roles;
 mod ldtk;
 mod map_problems;
 mod markings;

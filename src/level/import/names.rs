@@ -73,6 +73,36 @@ pub(crate) const COLLISION_WORDS: &[&str] = &[
     "hitbox",
     "hitboxes",
 ];
+/// The collision words only a collision layer's name uses: unlike `ground` or `world`, which
+/// name art as often, they say the layer is the collision source.
+pub(crate) const STRONG_COLLISION_WORDS: &[&str] = &[
+    "collision",
+    "collisions",
+    "collide",
+    "collides",
+    "collider",
+    "colliders",
+    "solid",
+    "solids",
+    "physics",
+    "hitbox",
+    "hitboxes",
+];
+/// Decoration words for art drawn where the player is (in front, or details of the scene): a
+/// game that marks its tiles for collision may collide with such a layer, unlike a background,
+/// water, coins or enemies.
+pub(crate) const ART_WORDS: &[&str] = &[
+    "foreground",
+    "fg",
+    "decor",
+    "decoration",
+    "decorations",
+    "deco",
+    "detail",
+    "details",
+    "scenery",
+    "props",
+];
 /// Words that make a layer decoration.
 pub(crate) const DECORATION_WORDS: &[&str] = &[
     "background",

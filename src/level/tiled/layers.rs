@@ -23,11 +23,11 @@ type Cell = (i64, i64);
 
 /// One layer of the map, flattened out of its groups.
 pub(super) struct Entry<'m> {
-    layer: tiled::Layer<'m>,
+    pub(super) layer: tiled::Layer<'m>,
     /// `group/child` path of names.
-    path: String,
+    pub(super) path: String,
     /// The role a flag, property, name or group gives it, and why.
-    role: Option<(LayerRole, String)>,
+    pub(super) role: Option<(LayerRole, String)>,
     /// Offset in pixels, its groups' included.
     offset: Vec2,
 }
@@ -187,7 +187,7 @@ impl<'m> Importer<'m> {
 
     /// Whether an object is a collision shape in a layer of `role`: a rectangle or polygon
     /// that is neither a spawn nor a moving platform.
-    fn is_collision_shape(o: &tiled::Object, role: LayerRole) -> bool {
+    pub(super) fn is_collision_shape(o: &tiled::Object, role: LayerRole) -> bool {
         matches!(
             role,
             LayerRole::Collision | LayerRole::Solid | LayerRole::OneWay | LayerRole::Ladder
@@ -207,6 +207,7 @@ impl<'m> Importer<'m> {
         entries: Vec<Entry<'m>>,
         tile_default: Option<(LayerRole, String)>,
     ) -> Result<(), TiledError> {
+        let entries = self.evident_roles(entries);
         // Object layers that hold collision shapes, and tile layers a rule names: these make
         // the unmarked tile layers decoration.
         let object_collision = entries

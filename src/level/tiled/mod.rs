@@ -28,6 +28,7 @@ mod normalize;
 mod objects;
 mod read;
 mod refs;
+mod roles;
 mod scan;
 mod tiles;
 

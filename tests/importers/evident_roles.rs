@@ -1,0 +1,90 @@
+//! Where the map overrules a layer's name (src/level/tiled/roles.rs): a tile layer named like
+//! decoration whose tiles carry a collision mark is collision; a tile layer named like ground
+//! beside an object layer named for collision is that layer's art. Maps written for the rules.
+#![cfg(all(feature = "tiled", feature = "ldtk"))]
+
+use platbench::level::{import_tiled_map_with, LayerRole, Tile, TiledImport};
+
+use super::tiled::{open_edges, row0};
+
+/// A 3 x 2 map of 16 px tiles: tile layers (name, bottom row CSV) over a tileset whose tile 0
+/// carries `tile_props`, then `objects` in an object layer named `object_layer`.
+fn map(
+    tile_props: &str,
+    layers: &[(&str, &str)],
+    object_layer: &str,
+    objects: &str,
+) -> TiledImport {
+    let layers: String = layers
+        .iter()
+        .enumerate()
+        .map(|(k, (name, row))| {
+            format!(
+                r#"<layer id="{}" name="{name}" width="3" height="2"><data encoding="csv">0,0,0,
+{row}</data></layer>"#,
+                k + 1
+            )
+        })
+        .collect();
+    let text = format!(
+        r#"<?xml version="1.0" encoding="UTF-8"?>
+<map version="1.10" orientation="orthogonal" renderorder="right-down" width="3" height="2" tilewidth="16" tileheight="16" infinite="0" nextlayerid="9" nextobjectid="9">
+ <tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="4" columns="4">
+  <image source="t.png" width="64" height="16"/>
+  <tile id="0"><properties>{tile_props}</properties></tile>
+ </tileset>
+ {layers}
+ <objectgroup id="8" name="{object_layer}">{objects}</objectgroup>
+</map>
+"#
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("m.tmx");
+    std::fs::write(&path, text).unwrap();
+    import_tiled_map_with(&path, &open_edges()).unwrap()
+}
+
+fn role(i: &TiledImport, name: &str) -> (LayerRole, String) {
+    let l = i.layers.iter().find(|l| l.name == name).unwrap();
+    (l.role, l.why.clone())
+}
+
+#[test]
+fn tiles_marked_for_collision_win_over_a_decoration_name() {
+    // "Foreground" names decoration; its tile 0 says collide = true, tile 1 says nothing.
+    let i = map(
+        r#"<property name="collide" type="bool" value="true"/>"#,
+        &[("Background", "1,1,1"), ("Foreground", "1,2,0")],
+        "spawns",
+        "",
+    );
+    let (r, why) = role(&i, "Foreground");
+    assert_eq!(r, LayerRole::Collision, "{why}");
+    assert!(why.contains("collide = true"), "{why}");
+    // Its marked tile is solid; the unmarked one is empty, as in a tileset that marks its
+    // solid tiles. The background, though it draws the marked tile, is behind the player:
+    // its name keeps it decoration.
+    assert_eq!(row0(&i.level), [Tile::Solid, Tile::Empty, Tile::Empty]);
+    assert_eq!(role(&i, "Background").0, LayerRole::Decoration);
+}
+
+#[test]
+fn a_ground_layer_beside_collision_objects_is_their_art() {
+    let rect = r#"<object id="1" x="0" y="16" width="32" height="16"/>"#;
+    let i = map(
+        "",
+        &[("Ground", "1,1,1"), ("Solids", "0,0,0")],
+        "Collision",
+        rect,
+    );
+    let (r, why) = role(&i, "Ground");
+    assert_eq!(r, LayerRole::Decoration, "{why}");
+    assert!(why.contains("object layer \"Collision\""), "{why}");
+    // A tile layer with a collision name of its own stays a collision source.
+    assert_eq!(role(&i, "Solids").0, LayerRole::Collision);
+    // Only the rectangle's two cells are solid: the third ground tile was art.
+    assert_eq!(row0(&i.level), [Tile::Solid, Tile::Solid, Tile::Empty]);
+    // Without the collision object layer, the ground layer is collision as before.
+    let i = map("", &[("Ground", "1,1,1")], "objects", "");
+    assert_eq!(role(&i, "Ground").0, LayerRole::Collision);
+}
