@@ -103,3 +103,31 @@ fn the_edges_option_is_checked_and_said() {
         "{e}"
     );
 }
+
+#[test]
+fn a_boundary_drawn_outside_the_map_is_said_and_the_side_walled() {
+    // A collision rectangle one tile outside the map's left side, as tall as the map, beside a
+    // floor of rectangles: written for this test.
+    let text = r#"<?xml version="1.0" encoding="UTF-8"?>
+<map version="1.10" orientation="orthogonal" renderorder="right-down" width="4" height="3" tilewidth="16" tileheight="16" infinite="0" nextlayerid="3" nextobjectid="4">
+ <objectgroup id="1" name="collision">
+  <object id="1" x="-16" y="0" width="16" height="48"/>
+  <object id="2" x="0" y="32" width="64" height="16"/>
+ </objectgroup>
+ <objectgroup id="2" name="spawns"><object id="3" name="spawn" x="24" y="32"><point/></object></objectgroup>
+</map>
+"#;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("m.tmx");
+    std::fs::write(&path, text).unwrap();
+    let (l, warnings) = load_tiled_map_with(&path, &ImportOptions::default()).unwrap();
+    // The 3 cells of the boundary are dropped, and said.
+    assert!(
+        warnings.iter().any(|w| w.subject == "layer \"collision\""
+            && w.message
+                .starts_with("3 cell(s) of its collision rectangles lie outside the map")),
+        "{warnings:?}"
+    );
+    // The default walls stand for it: column 0 is solid from bottom to top.
+    assert!((0..3).all(|j| l.tile(0, j) == Tile::Solid));
+}

@@ -79,6 +79,7 @@ impl<'m> Importer<'m> {
                 _ => continue,
             };
             let mut snapped = 0;
+            let mut outside = 0u64;
             for o in &l.objects {
                 if !Self::is_collision_object(o) {
                     continue;
@@ -120,6 +121,11 @@ impl<'m> Importer<'m> {
                         {
                             snapped += 1;
                         }
+                        // Cells of the rectangle beyond the map (a boundary drawn outside it).
+                        let all = (i1 - i0).max(0) as u64 * (j1 - j0).max(0) as u64;
+                        let kept = (i1.min(self.grid.w as i64) - i0.max(0)).max(0) as u64
+                            * (j1.min(self.grid.h as i64) - j0.max(0)).max(0) as u64;
+                        outside = outside.saturating_add(all - kept);
                         let mut v = Vec::new();
                         for j in j0.max(0)..j1.min(self.grid.h as i64) {
                             for i in i0.max(0)..i1.min(self.grid.w as i64) {
@@ -149,6 +155,12 @@ impl<'m> Importer<'m> {
                         return Err(self.obj_err(o, format!("at cell i = {i}, j = {j}: {m}")));
                     }
                 }
+            }
+            if outside > 0 {
+                self.warn(
+                    format!("layer {:?}", l.name),
+                    format!("{outside} cell(s) of its collision rectangles lie outside the map and are dropped; a boundary a game draws outside its map stops the player at the map's sides, which the walls of --edges walls (the default) stand for"),
+                );
             }
             if snapped > 0 {
                 self.warn(
