@@ -51,7 +51,13 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
     // Where a convention or a default decided, the line that says what the game means.
     let guessed: Vec<_> = r.layers.iter().filter(|l| l.is_guess()).collect();
     if !guessed.is_empty() {
-        let entries: Vec<String> = guessed.iter().map(|l| l.side_file_entry()).collect();
+        // A world's levels repeat their layers' names: one entry per name.
+        let mut entries: Vec<String> = Vec::new();
+        for e in guessed.iter().map(|l| l.side_file_entry()) {
+            if !entries.contains(&e) {
+                entries.push(e);
+            }
+        }
         text.push_str(&format!(
             "\nguessed: {} layer(s), by name or by default; to make them certain, or to say what your game reads instead, edit and put in {}:\n  [import]\n  layers = {{ {} }}\n",
             guessed.len(),

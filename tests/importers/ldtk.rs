@@ -221,3 +221,43 @@ fn a_side_file_without_scenarios_is_refused_as_for_a_tiled_map() {
         load_ldtk_with(&path, &ImportOptions::default()).unwrap_or_else(|e| panic!("{}", e.error));
     assert!(!level.scenarios.is_empty());
 }
+
+#[test]
+fn an_intgrid_layer_named_for_collision_leaves_the_unnamed_ones_out() {
+    // Two IntGrid layers of one 2 x 1 level: "Collisions" (1, 0) and "Pipes" (0, 1), written
+    // for this test: the game collides with the named one only.
+    let layer = |name: &str, csv: &str| {
+        format!(
+            r#"{{"__identifier":"{name}","__type":"IntGrid","__cWid":2,"__cHei":1,"__gridSize":16,"intGridCsv":[{csv}]}}"#
+        )
+    };
+    let text = format!(
+        r#"{{"worldLayout":"Free","levels":[{{"identifier":"a","worldX":0,"worldY":0,"pxWid":32,"pxHei":16,"layerInstances":[{},{}]}}]}}"#,
+        layer("Collisions", "1,0"),
+        layer("Pipes", "0,1")
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("two.ldtk");
+    std::fs::write(&p, text).unwrap();
+    let open = ImportOptions {
+        edges: Some(platbench::level::Edges::Open),
+        ..ImportOptions::default()
+    };
+    let r = import_ldtk_with(&p, &open).unwrap();
+    let pipes = r.layers.iter().find(|l| l.name == "Pipes").unwrap();
+    assert_eq!(
+        pipes.role,
+        platbench::level::LayerRole::Decoration,
+        "{}",
+        pipes.why
+    );
+    assert!(
+        pipes.why.contains("\"Collisions\" is named for collision"),
+        "{}",
+        pipes.why
+    );
+    assert_eq!(
+        (r.level.tile(0, 0), r.level.tile(1, 0)),
+        (Tile::Solid, Tile::Empty)
+    );
+}

@@ -42,6 +42,8 @@ pub(crate) const ONE_WAY_WORDS: &[&str] = &[
     "passthrough",
     "dropthrough",
     "thru",
+    "shelf",
+    "shelves",
 ];
 /// Words that make a layer (or IntGrid value) ladders.
 pub(crate) const LADDER_WORDS: &[&str] =

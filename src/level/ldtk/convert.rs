@@ -167,6 +167,20 @@ pub(super) fn import(
         }
         seen.len()
     };
+    // An IntGrid layer named for collision makes the unnamed ones something else (pipes,
+    // properties, regions), as a tile layer so named does in a Tiled map.
+    let named_collision: Option<String> = picked
+        .iter()
+        .flat_map(|&k| levels[k].layer_instances.iter().flatten())
+        .find(|l| {
+            l.kind == "IntGrid"
+                && matches!(
+                    role_from_name(&l.identifier),
+                    Some((LayerRole::Collision, _))
+                )
+                && !(int_layers > 1 && says(&l.identifier, &["platform", "platforms"]))
+        })
+        .map(|l| l.identifier.clone());
     for &k in &picked {
         let lvl = &levels[k];
         let (ox, oy) = origin(lvl);
@@ -197,6 +211,10 @@ pub(super) fn import(
                     } else {
                         match by_name {
                             Some((r @ (LayerRole::OneWay | LayerRole::Ladder | LayerRole::Decoration), w)) => (r, format!("its name says {w:?}")),
+                            None if named_collision.is_some() => (
+                                LayerRole::Decoration,
+                                format!("no rule marks it, and IntGrid layer {:?} is named for collision (--layer NAME=collision reads it too)", named_collision.as_deref().unwrap_or_default()),
+                            ),
                             _ => (LayerRole::Collision, "an IntGrid layer: non-zero cells are solid unless the value's name says one-way, ladder or hazard".into()),
                         }
                     };
