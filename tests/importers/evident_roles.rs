@@ -88,3 +88,32 @@ fn a_ground_layer_beside_collision_objects_is_their_art() {
     let i = map("", &[("Ground", "1,1,1")], "objects", "");
     assert_eq!(role(&i, "Ground").0, LayerRole::Collision);
 }
+
+#[test]
+fn an_object_layer_of_plain_boxes_is_the_collision_source_when_none_is_named() {
+    let rects = r#"<object id="1" x="0" y="16" width="32" height="16"/>
+<object id="2" x="32" y="0" width="16" height="16"><properties><property name="color" value="red"/></properties></object>"#;
+    // "geom" holds two unnamed rectangles; "Terrain" is named only like ground, "tiles" not at all.
+    let i = map(
+        "",
+        &[("Terrain", "1,1,1"), ("tiles", "1,0,0")],
+        "geom",
+        rects,
+    );
+    let (r, why) = role(&i, "geom");
+    assert_eq!(r, LayerRole::Collision, "{why}");
+    assert!(why.contains("plain rectangles or polygons"), "{why}");
+    assert_eq!(role(&i, "Terrain").0, LayerRole::Decoration);
+    assert_eq!(role(&i, "tiles").0, LayerRole::Decoration);
+    assert_eq!(row0(&i.level), [Tile::Solid, Tile::Solid, Tile::Empty]);
+    // Named objects (coins) are not boxes to stand on: the layer stays objects, and the tile
+    // layers collide as before.
+    let coins = r#"<object id="1" name="coin" x="0" y="0" width="16" height="16"/>
+<object id="2" name="coin" x="16" y="0" width="16" height="16"/>"#;
+    let i = map("", &[("Terrain", "1,1,1")], "geom", coins);
+    assert_eq!(role(&i, "geom").0, LayerRole::Objects);
+    assert_eq!(role(&i, "Terrain").0, LayerRole::Collision);
+    // A layer named with a collision-only word is certain: the boxes beside it are not read.
+    let i = map("", &[("Solids", "1,1,1")], "geom", rects);
+    assert_eq!(role(&i, "geom").0, LayerRole::Objects);
+}

@@ -2,14 +2,19 @@
 //! is (`Foreground`, `Details`; not `Background`, `Water` or `Coins`) whose tiles carry a
 //! collision mark (`collide = true`) is collision, as the game that marks its tiles reads them; a tile layer named like ground (`Ground`, `World`) beside an object layer
 //! named for collision that holds the collision shapes is that layer's art, not a second
-//! collision source. The user's `--layer` and side file still decide over both.
+//! collision source; when no layer is named for collision, an object layer of plain boxes
+//! (rectangles and polygons, most with neither name nor class) is the collision source, as the games that
+//! build their colliders from `geom` or `Object Layer 1` read it. The user's `--layer` and
+//! side file still decide over all three.
 
 use tiled::{LayerType, PropertyValue, TileLayer};
 
 use super::layers::Entry;
 use super::tiles::is_bool_mark;
 use super::Importer;
-use crate::level::import::names::{says, ART_WORDS, STRONG_COLLISION_WORDS};
+use crate::level::import::names::{
+    is_spawn_name, role_from_name, says, ART_WORDS, STRONG_COLLISION_WORDS,
+};
 use crate::level::import::LayerRole;
 
 /// The first collision mark (a solid or one-way bool property set true, `key = true`) on a tile
@@ -36,21 +41,81 @@ fn marked(t: &TileLayer) -> Option<String> {
     }
 }
 
+/// Why an object layer no rule marks is evidently collision: at least two objects, every one an
+/// unrotated rectangle or polygon, no tile object and no moving platform, none named like a
+/// spawn or decoration, and at least half with neither name nor class (a trigger, a coin or a
+/// camera bound carries one). Games build their collision boxes from such layers whatever
+/// their name (`geom`, `Unmovable`, `Object Layer 1`).
+fn plain_boxes(objects: &[tiled::Object]) -> Option<String> {
+    let shaped = |o: &tiled::Object| {
+        matches!(
+            o.shape,
+            tiled::ObjectShape::Rect { .. } | tiled::ObjectShape::Polygon { .. }
+        ) && o.rotation == 0.0
+            && !o.properties.contains_key(super::names::PATH)
+            && o.tile_data().is_none()
+    };
+    let named_away = |s: &str| {
+        !s.is_empty()
+            && (is_spawn_name(s)
+                || matches!(role_from_name(s), Some((r, _)) if r != LayerRole::Collision))
+    };
+    let plain = objects
+        .iter()
+        .filter(|o| o.name.is_empty() && o.user_type.is_empty())
+        .count();
+    (objects.len() >= 2
+        && objects.iter().all(shaped)
+        && !objects.iter().any(|o| named_away(&o.name) || named_away(&o.user_type))
+        && plain * 2 >= objects.len())
+    .then(|| {
+        format!(
+            "no rule marks it, and its {} objects are plain rectangles or polygons ({plain} with neither name nor class), which games build collision boxes from (--layer NAME=objects leaves them out)",
+            objects.len()
+        )
+    })
+}
+
 impl<'m> Importer<'m> {
     /// The entries with the roles their names gave corrected where the map says otherwise
     /// (see the module's comment). Roles from flags, properties and groups are kept.
     pub(super) fn evident_roles(&self, mut entries: Vec<Entry<'m>>) -> Vec<Entry<'m>> {
-        let named_objects = entries
-            .iter()
-            .find_map(|e| match (e.layer.layer_type(), &e.role) {
-                (LayerType::Objects(o), Some((r, _)))
-                    if says(&e.layer.name, STRONG_COLLISION_WORDS)
-                        && o.objects().any(|ob| Self::is_collision_shape(&ob, *r)) =>
-                {
-                    Some(e.path.clone())
-                }
-                _ => None,
-            });
+        // Object layers of plain boxes are collision when no layer is certainly one: marked by
+        // the user or a property, or named with a word only collision layers use (a layer
+        // named `Terrain` or `Ground` may be art).
+        let any_named = entries.iter().any(|e| match &e.role {
+            Some((LayerRole::Collision | LayerRole::Solid | LayerRole::OneWay, why)) => {
+                !why.starts_with("its name says") || says(&e.layer.name, STRONG_COLLISION_WORDS)
+            }
+            _ => false,
+        });
+        let mut evident = None;
+        for e in entries.iter_mut().filter(|_| !any_named) {
+            let LayerType::Objects(o) = e.layer.layer_type() else {
+                continue;
+            };
+            if e.role.is_some() || is_spawn_name(&e.layer.name) {
+                continue;
+            }
+            let objects: Vec<tiled::Object> = o.objects().collect();
+            if let Some(why) = plain_boxes(&objects) {
+                e.role = Some((LayerRole::Collision, why));
+                evident.get_or_insert_with(|| e.path.clone());
+            }
+        }
+        let named_objects = evident.or_else(|| {
+            entries
+                .iter()
+                .find_map(|e| match (e.layer.layer_type(), &e.role) {
+                    (LayerType::Objects(o), Some((r, _)))
+                        if says(&e.layer.name, STRONG_COLLISION_WORDS)
+                            && o.objects().any(|ob| Self::is_collision_shape(&ob, *r)) =>
+                    {
+                        Some(e.path.clone())
+                    }
+                    _ => None,
+                })
+        });
         for e in &mut entries {
             let LayerType::Tiles(t) = e.layer.layer_type() else {
                 continue;
@@ -70,7 +135,7 @@ impl<'m> Importer<'m> {
                 (LayerRole::Collision, None) if !strong => named_objects.as_ref().map(|o| {
                     (
                         LayerRole::Decoration,
-                        format!("{why}, but object layer {o:?}, named for collision, holds the collision shapes, so this layer is their art (--layer NAME=collision reads it too)"),
+                        format!("{why}, but object layer {o:?}, named for collision or made of plain boxes, holds the collision shapes, so this layer is their art (--layer NAME=collision reads it too)"),
                     )
                 }),
                 _ => None,
