@@ -1,15 +1,19 @@
 //! Cost of one character step for each configuration of the built-in comparison on every
-//! built-in scenario (criterion; `-- LEVEL` filters, e.g. `cargo bench --bench step -- ladders`). Benches measure; no test asserts a time.
+//! built-in scenario, and of the bound (a direct tile-grid sweep on a floor, [`bound`]); the
+//! run ends with the sweep's cost on each scenario as a ratio to the bound's (criterion; `--
+//! LEVEL` filters, e.g. `cargo bench --bench step -- ladders`). Benches measure; no test asserts
+//! a time.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, Criterion};
 use platbench::backend::{Backend, CharacterSpec};
 use platbench::config::RunConfig;
 use platbench::level::{parse_level, Level, ScenarioSpec};
 use platbench::scenario::{effective_params, input_script};
 
+mod bound;
 #[path = "../compare/builtin.rs"]
 mod builtin;
 
@@ -68,5 +72,10 @@ fn step_cost(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, step_cost);
-criterion_main!(benches);
+criterion_group!(benches, bound::bench, step_cost);
+
+fn main() {
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+    bound::ratios::print();
+}
