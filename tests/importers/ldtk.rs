@@ -261,3 +261,43 @@ fn an_intgrid_layer_named_for_collision_leaves_the_unnamed_ones_out() {
         (Tile::Solid, Tile::Empty)
     );
 }
+
+#[test]
+fn one_level_of_a_spatial_world_stays_open_where_it_joins_a_neighbour() {
+    // world.ldtk with the neighbours LDtk 1.x writes (`__neighbours`, dir "e"/"w"): Level_1 sits
+    // right of Level_0. Picked alone, Level_1's left side is where the game goes on into
+    // Level_0, so it gets no wall; its right side, with no neighbour, still does.
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(shipped("world.ldtk")).unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let levels = json["levels"].as_array_mut().unwrap();
+    levels[0]["__neighbours"] = serde_json::json!([{ "levelIid": "b", "dir": "e" }]);
+    levels[1]["__neighbours"] = serde_json::json!([{ "levelIid": "a", "dir": "w" }]);
+    std::fs::write(dir.path().join("world.ldtk"), json.to_string()).unwrap();
+    std::fs::create_dir(dir.path().join("world")).unwrap();
+    std::fs::copy(
+        shipped("world/Level_1.ldtkl"),
+        dir.path().join("world/Level_1.ldtkl"),
+    )
+    .unwrap();
+    let opts = ImportOptions {
+        level: Some("level_1".into()),
+        ..ImportOptions::default()
+    };
+    let r = import_ldtk_with(&dir.path().join("world.ldtk"), &opts).unwrap();
+    // Level_1 is 4 x 3 with a floor of walls (the test above): a wall on the right only.
+    assert_eq!(ascii_map(&r.level).0, "....#\n.==.#\n#####\n");
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.message.contains("left side joins another level")),
+        "{:#?}",
+        r.warnings
+    );
+    // The whole world, read together, is walled on both outer sides as before.
+    let r = import_ldtk_with(&dir.path().join("world.ldtk"), &ImportOptions::default()).unwrap();
+    assert_eq!(
+        ascii_map(&r.level).0,
+        "#........#\n#.==H.==.#\n###.######\n"
+    );
+}

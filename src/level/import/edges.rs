@@ -35,18 +35,21 @@ fn walled(level: &Level, i: i64) -> bool {
 
 /// Adds the side walls `edges` asks for where the map's own edge column does not already block
 /// the whole height, moving the map's cells, platforms and `spawns` right when a wall goes on
-/// the left. Returns the note that says what was added, `None` when nothing was.
+/// the left. `continues` names the sides `[left, right]` where the game goes on into another
+/// level (an LDtk level with a neighbour there): those stay open. Returns the note that says
+/// what was added, `None` when nothing was.
 pub(crate) fn wall_sides(
     level: &mut Level,
     spawns: &mut [SpawnPoint],
     edges: Edges,
+    continues: [bool; 2],
     file: &str,
 ) -> Option<ImportWarning> {
     if edges == Edges::Open || level.width == 0 || level.height == 0 {
         return None;
     }
-    let left = !walled(level, 0);
-    let right = !walled(level, level.width as i64 - 1);
+    let left = !continues[0] && !walled(level, 0);
+    let right = !continues[1] && !walled(level, level.width as i64 - 1);
     if !left && !right {
         return None;
     }
@@ -123,7 +126,7 @@ mod tests {
             name: "s".into(),
             position: Vec2::new(1.5, 1.0),
         }];
-        let note = wall_sides(&mut l, &mut spawns, Edges::Walls, "m").unwrap();
+        let note = wall_sides(&mut l, &mut spawns, Edges::Walls, [false; 2], "m").unwrap();
         assert!(note.message.contains("left and right sides"), "{note}");
         assert_eq!((l.width, l.height), (6, 2));
         for j in 0..2 {
@@ -137,14 +140,14 @@ mod tests {
     #[test]
     fn a_side_the_map_walls_itself_or_open_edges_change_nothing() {
         let mut l = level(&["####", "#..#"]);
-        assert!(wall_sides(&mut l, &mut [], Edges::Walls, "m").is_none());
+        assert!(wall_sides(&mut l, &mut [], Edges::Walls, [false; 2], "m").is_none());
         assert_eq!(l.width, 4);
         let mut l = level(&["####", "#..."]);
-        let note = wall_sides(&mut l, &mut [], Edges::Walls, "m").unwrap();
+        let note = wall_sides(&mut l, &mut [], Edges::Walls, [false; 2], "m").unwrap();
         assert!(note.message.contains("right side is"), "{note}");
         assert_eq!((l.width, l.tile(1, 1)), (5, Tile::Empty));
         let mut l = level(&["####", "...."]);
-        assert!(wall_sides(&mut l, &mut [], Edges::Open, "m").is_none());
+        assert!(wall_sides(&mut l, &mut [], Edges::Open, [false; 2], "m").is_none());
         assert_eq!(l.width, 4);
     }
 }

@@ -16,10 +16,10 @@ use crate::level::import::names::{
 use crate::level::import::spawns::{
     inside_solid_note, lift_onto_ground, no_solids_warning, safe_name, settle_spawns,
 };
-use crate::level::import::wall_sides;
 use crate::level::import::{
     normalize, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport,
 };
+use crate::level::import::{wall_sides, Edges};
 use crate::level::probes::SpawnPoint;
 use crate::level::{character_box, valid_name, Level, Tile, DEFAULT_CHARACTER_SIZE};
 
@@ -454,10 +454,34 @@ pub(super) fn import(
     if let Some(wn) = no_solids_warning(&level, &file, HOW_TO_COLLIDE) {
         extra.push(wn);
     }
+    // One level of a world laid out in space: a side where another level touches it is where
+    // the game goes on (the player walks into the next level), so it gets no wall.
+    let continues = if single && spatial {
+        let l = &levels[picked[0]];
+        let joins = |d: &str| l.neighbours.iter().any(|n| n.dir == d);
+        [joins("w"), joins("e")]
+    } else {
+        [false; 2]
+    };
+    if continues.contains(&true) && opts.edges.unwrap_or_default() == Edges::Walls {
+        let sides = match continues {
+            [true, true] => "left and right sides join",
+            [true, false] => "left side joins",
+            _ => "right side joins",
+        };
+        extra.push(ImportWarning {
+            file: file.clone(),
+            subject: "map".into(),
+            message: format!(
+                "the level's {sides} another level of the world, where the game goes on: left open (a probe that walks off it is a map problem); import the world without --level to read them together"
+            ),
+        });
+    }
     if let Some(wn) = wall_sides(
         &mut level,
         &mut spawns,
         opts.edges.unwrap_or_default(),
+        continues,
         &file,
     ) {
         extra.push(wn);

@@ -99,6 +99,17 @@ pub(super) struct LdLevel {
     pub(super) layer_instances: Option<Vec<LayerInstance>>,
     #[serde(rename = "externalRelPath", default)]
     pub(super) external_rel_path: Option<String>,
+    /// The levels this one touches (LDtk's `__neighbours`): `dir` is `w` or `e` for a level
+    /// beside it, among others (`n`, `s`, `<`, `>`, `o`, corners).
+    #[serde(rename = "__neighbours", default)]
+    pub(super) neighbours: Vec<Neighbour>,
+}
+
+/// One entry of a level's `__neighbours`.
+#[derive(Deserialize)]
+pub(super) struct Neighbour {
+    #[serde(default)]
+    pub(super) dir: String,
 }
 
 #[derive(Deserialize)]

@@ -281,6 +281,7 @@ impl<'m> Importer<'m> {
             &mut level,
             &mut spawns,
             self.opts.edges.unwrap_or_default(),
+            [false; 2],
             &self.file,
         ) {
             self.warnings.push(w);
