@@ -117,3 +117,33 @@ fn an_object_layer_of_plain_boxes_is_the_collision_source_when_none_is_named() {
     let i = map("", &[("Solids", "1,1,1")], "geom", rects);
     assert_eq!(role(&i, "geom").0, LayerRole::Objects);
 }
+
+#[test]
+fn platforms_beside_a_collision_layer_are_one_way_and_alone_stay_solid() {
+    // "collision" holds the walls, "platform" the platforms: one-way, as games that keep them
+    // apart mean them (src/level/tiled/roles.rs, `separate_platforms`).
+    let i = map(
+        "",
+        &[("collision", "1,0,0"), ("platform", "0,1,0")],
+        "spawns",
+        "",
+    );
+    assert_eq!(
+        role(&i, "platform").0,
+        LayerRole::OneWay,
+        "{:?}",
+        role(&i, "platform")
+    );
+    assert_eq!(row0(&i.level), [Tile::Solid, Tile::OneWay, Tile::Empty]);
+    // Beside "Ground" (a name art layers use as often) or alone, "platforms" stays solid.
+    let i = map(
+        "",
+        &[("Ground", "1,0,0"), ("platforms", "0,1,0")],
+        "spawns",
+        "",
+    );
+    assert_eq!(role(&i, "platforms").0, LayerRole::Collision);
+    assert_eq!(row0(&i.level), [Tile::Solid, Tile::Solid, Tile::Empty]);
+    let i = map("", &[("Platforms", "1,1,0")], "spawns", "");
+    assert_eq!(role(&i, "Platforms").0, LayerRole::Collision);
+}

@@ -4,8 +4,9 @@
 //! named for collision that holds the collision shapes is that layer's art, not a second
 //! collision source; when no layer is named for collision, an object layer of plain boxes
 //! (rectangles and polygons, most with neither name nor class) is the collision source, as the games that
-//! build their colliders from `geom` or `Object Layer 1` read it. The user's `--layer` and
-//! side file still decide over all three.
+//! build their colliders from `geom` or `Object Layer 1` read it; a tile layer named
+//! `platforms` beside one named `collision` is one-way. The user's `--layer` and side file
+//! still decide over all of these.
 
 use tiled::{LayerType, PropertyValue, TileLayer};
 
@@ -144,6 +145,37 @@ impl<'m> Importer<'m> {
                 e.role = new;
             }
         }
+        self.separate_platforms(&mut entries);
         entries
+    }
+
+    /// A tile layer named just `platform` or `platforms` beside a tile layer named only for
+    /// collision (`collision`, `solid`, …) is one-way: a game that keeps its platforms apart from
+    /// its collision layer does so because they differ, and the difference platformers make is
+    /// that a platform is jumped through from below. Beside a `Ground` or `Walls` layer, or
+    /// alone, `platforms` stays solid, as most games mean it.
+    fn separate_platforms(&self, entries: &mut [Entry<'m>]) {
+        let is_tiles = |e: &Entry| matches!(e.layer.layer_type(), LayerType::Tiles(_));
+        let Some(walls) = entries
+            .iter()
+            .find(|e| {
+                is_tiles(e)
+                    && matches!(e.role, Some((LayerRole::Collision | LayerRole::Solid, _)))
+                    && says(&e.layer.name, STRONG_COLLISION_WORDS)
+            })
+            .map(|e| e.layer.name.clone())
+        else {
+            return;
+        };
+        for e in entries.iter_mut().filter(|e| is_tiles(e)) {
+            let n = crate::level::import::normalize(&e.layer.name);
+            let by_name = matches!(&e.role, Some((LayerRole::Collision, why)) if why.starts_with("its name says"));
+            if by_name && (n == "platform" || n == "platforms") {
+                e.role = Some((
+                    LayerRole::OneWay,
+                    format!("its name says \"{n}\", and tile layer {walls:?} holds the walls: platforms kept apart from the collision layer are one-way (--layer NAME=collision reads them solid)"),
+                ));
+            }
+        }
     }
 }
