@@ -26,8 +26,9 @@ ACCEPT = {
     "solid": {"collision", "solid"},
     "one_way": {"one_way"},
     "ladder": {"ladder"},
-    # platbench has no hurting tiles: a hazard is read right when nothing stands on it.
-    "hazard": {"decoration"},
+    # platbench has no hurting tiles: a hazard is read right when nothing stands on it (an
+    # object layer read as `objects` keeps only spawns and platforms, so nothing stands on it).
+    "hazard": {"decoration", "objects"},
     "none": {"decoration", "objects"},
 }
 
