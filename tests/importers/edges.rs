@@ -124,8 +124,9 @@ fn a_boundary_drawn_outside_the_map_is_said_and_the_side_walled() {
     // The 3 cells of the boundary are dropped, and said.
     assert!(
         warnings.iter().any(|w| w.subject == "layer \"collision\""
-            && w.message
-                .starts_with("3 cell(s) of its collision rectangles lie outside the map")),
+            && w.message.starts_with(
+                "3 cell(s) of its collision rectangles and polylines lie outside the map"
+            )),
         "{warnings:?}"
     );
     // The default walls stand for it: column 0 is solid from bottom to top.

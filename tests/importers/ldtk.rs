@@ -350,3 +350,38 @@ fn entities_named_for_collision_are_solid_boxes_and_the_intgrid_beside_them_art(
     let r = import_ldtk_with(&p, &given).unwrap();
     assert_eq!(ascii_map(&r.level).0, "....\n####\n");
 }
+
+#[test]
+fn the_collision_layer_with_the_largest_painted_area_sets_the_grid_and_coarser_cells_are_split() {
+    // A 96 x 32 px level whose three IntGrid layers are all named for collision:
+    // "SpikeCollisions" of 8 px cells paints one cell (64 px²), "GroundCollisions" of 16 px
+    // cells the whole bottom row (6 cells, 1536 px², the largest: the grid is 16 px),
+    // "BlockCollisions" of 32 px cells its right-hand cell (1024 px², 2 x 2 of the grid's
+    // cells). The 8 px layer, finer than the grid, is left out with a warning.
+    let dir = tempfile::tempdir().unwrap();
+    let spikes = format!("{}1{}", "0,".repeat(36), ",0".repeat(11));
+    let text = format!(
+        r#"{{"worldLayout":"Free","levels":[{{"identifier":"a","worldX":0,"worldY":0,"pxWid":96,"pxHei":32,"layerInstances":[
+{{"__identifier":"SpikeCollisions","__type":"IntGrid","__cWid":12,"__cHei":4,"__gridSize":8,"intGridCsv":[{spikes}]}},
+{{"__identifier":"GroundCollisions","__type":"IntGrid","__cWid":6,"__cHei":2,"__gridSize":16,"intGridCsv":[0,0,0,0,0,0,1,1,1,1,1,1]}},
+{{"__identifier":"BlockCollisions","__type":"IntGrid","__cWid":3,"__cHei":1,"__gridSize":32,"intGridCsv":[0,0,1]}}]}}]}}"#
+    );
+    let p = dir.path().join("grids.ldtk");
+    std::fs::write(&p, text).unwrap();
+    let r = import_ldtk_with(&p, &ImportOptions::default()).unwrap();
+    assert_eq!(ascii_map(&r.level).0, "....##\n######\n");
+    let spikes = r
+        .layers
+        .iter()
+        .find(|l| l.name == "SpikeCollisions")
+        .unwrap();
+    assert_eq!(spikes.role, platbench::level::LayerRole::Decoration);
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.subject == "layer \"SpikeCollisions\""
+                && w.message.contains("not a whole multiple")),
+        "{:?}",
+        r.warnings
+    );
+}

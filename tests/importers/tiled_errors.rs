@@ -41,7 +41,7 @@ fn platform_and_spawn_errors_name_the_object() {
                 r#"<object id="3" name="p" x="0" y="0" width="8" height="8"><ellipse/></object>"#,
             ),
             "object 2 \"lift\"",
-            "which is an ellipse; expected a polyline",
+            "which is an ellipse; expected a polyline (the path",
         ),
         (
             platform(
@@ -184,10 +184,14 @@ fn unsupported_maps_and_layers_are_errors() {
     );
     let path = dir.path().join("m.tmx");
     std::fs::write(&path, text).unwrap();
-    let e = import_tiled_map(&path).unwrap_err().to_string();
+    // The solid stops from more sides than the ladder: it is kept, and the meeting warned.
+    let met = import_tiled_map(&path).unwrap();
+    assert_eq!(met.level.tile(0, 0), Tile::Solid);
     assert!(
-        e.contains("tile 1 (at cell i = 0, j = 0)") && e.contains("already holds solid"),
-        "{e}"
+        met.warnings.iter().any(|w| w.subject == "layer \"more walls\""
+            && w.message.starts_with("1 cell(s) (the first at i = 0, j = 0) where its ladder tiles meet layer \"collision\"'s solid tiles")),
+        "{:?}",
+        met.warnings
     );
     // Layer data shorter than the layer (4 cells of 6, base64): an error, not a panic.
     let short = MapText::default().text().replace(

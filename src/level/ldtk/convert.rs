@@ -106,11 +106,13 @@ pub(super) fn import(
         }
     }
     let single = picked.len() == 1;
-    // The grid: the first IntGrid layer's cell size.
-    let grid = picked
-        .iter()
-        .flat_map(|&k| levels[k].layer_instances.iter().flatten())
-        .find(|l| l.kind == "IntGrid")
+    // The grid: the cell size of the layer that most surely holds the collision.
+    let grid = super::grid::collision_layer(
+        picked
+            .iter()
+            .flat_map(|&k| levels[k].layer_instances.iter().flatten()),
+        opts,
+    )
         .map(|l| l.grid_size)
         .ok_or_else(|| perr(format!("no IntGrid layer in {}; platbench reads collision from IntGrid layers (paint the walls in one)", if single { format!("level {:?}", levels[picked[0]].identifier) } else { "the world".into() })))?;
     if grid <= 0 {
@@ -245,17 +247,23 @@ pub(super) fn import(
                             _ => (LayerRole::Collision, "an IntGrid layer: non-zero cells are solid unless the value's name says one-way, ladder or hazard".into()),
                         }
                     };
-                    if layer.grid_size != grid {
+                    // Cells a whole multiple of the grid's size, read onto it.
+                    let scale = if layer.grid_size >= grid && layer.grid_size % grid == 0 {
+                        layer.grid_size / grid
+                    } else {
+                        0
+                    };
+                    if scale == 0 {
                         warn(
                             &format!("layer {lname:?}"),
                             format!(
-                                "cells of {} pixels, not the collision grid's {grid}; left out",
+                                "cells of {} pixels, not a whole multiple of the collision grid's {grid}; left out",
                                 layer.grid_size
                             ),
                         );
                         reports.push(report(
                             LayerRole::Decoration,
-                            "its cell size differs from the collision grid's".into(),
+                            "its cells are not a whole multiple of the collision grid's".into(),
                         ));
                         continue;
                     }
@@ -336,19 +344,26 @@ pub(super) fn import(
                                 warn(&format!("layer {lname:?}"), n);
                             }
                         }
-                        let cx = (ox + layer.px_offset_x).div_euclid(grid) + idx % cw - x0;
-                        let cy = (oy + layer.px_offset_y).div_euclid(grid) + idx / cw - y0;
-                        if cx < 0 || cy < 0 || cx >= w as i64 || cy >= h as i64 {
-                            continue;
+                        let cx0 =
+                            (ox + layer.px_offset_x).div_euclid(grid) + (idx % cw) * scale - x0;
+                        let cy0 =
+                            (oy + layer.px_offset_y).div_euclid(grid) + (idx / cw) * scale - y0;
+                        // Clipped to the level first: a layer's cells do not overlap, so a
+                        // layer costs at most the level's cells, whatever its cell size.
+                        let (xs, ys) = (
+                            cx0.max(0)..(cx0 + scale).min(w as i64),
+                            cy0.max(0)..(cy0 + scale).min(h as i64),
+                        );
+                        for (cx, cy) in ys.flat_map(|cy| xs.clone().map(move |cx| (cx, cy))) {
+                            let j = h as i64 - 1 - cy;
+                            let cell = &mut tiles[(j as u64 * w + cx as u64) as usize];
+                            *cell = match (*cell, t) {
+                                (Tile::Empty, t) => t,
+                                (_, Tile::Solid) => Tile::Solid,
+                                (Tile::OneWay, Tile::Ladder) => Tile::Ladder,
+                                (c, _) => c,
+                            };
                         }
-                        let j = h as i64 - 1 - cy;
-                        let cell = &mut tiles[(j as u64 * w + cx as u64) as usize];
-                        *cell = match (*cell, t) {
-                            (Tile::Empty, t) => t,
-                            (_, Tile::Solid) => Tile::Solid,
-                            (Tile::OneWay, Tile::Ladder) => Tile::Ladder,
-                            (c, _) => c,
-                        };
                     }
                 }
                 "Entities" => {

@@ -19,6 +19,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 mod convert;
+mod grid;
 mod json;
 
 use super::import::{ImportFailure, ImportOptions, ImportWarning, MapImport};

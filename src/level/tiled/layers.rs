@@ -6,7 +6,7 @@
 //! as the map property `tile_layers` or `--tile-layers` say.
 
 use crate::level::import::given;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 use glam::Vec2;
 use tiled::{LayerType, ObjectShape, PropertyValue, TileLayer};
@@ -377,6 +377,8 @@ impl<'m> Importer<'m> {
             }
         }
         let mut dropped = 0u64;
+        // Each tile's source, interned once for the layer.
+        let mut sources: HashMap<(usize, u32), u32> = HashMap::new();
         // Every cell of the level, read from the layer's cell it shows (the tiled crate indexes
         // a finite layer's cells without a bounds check; a layer whose data holds fewer cells
         // than width x height was refused by `scan::scan_map` before loading).
@@ -418,12 +420,17 @@ impl<'m> Importer<'m> {
                     }
                 };
                 let k = j as usize * g.w as usize + i as usize;
-                let this = format!(
-                    "tileset {:?} tile {} in layer {lname:?}",
-                    lt.get_tileset().name,
-                    lt.id()
-                );
-                if let Err(e) = self.set_cell(k, tile, this) {
+                let key = (lt.tileset_index(), lt.id());
+                let this = match sources.get(&key) {
+                    Some(&id) => id,
+                    None => {
+                        let what = format!("tileset {:?} tile {}", lt.get_tileset().name, lt.id());
+                        let id = self.cells.source(what, lname);
+                        sources.insert(key, id);
+                        id
+                    }
+                };
+                if let Err(e) = self.cells.set(k, tile, this) {
                     return Err(TiledError::Tile {
                         file: self.file.clone(),
                         tileset: lt.get_tileset().name.clone(),

@@ -20,6 +20,7 @@ use std::path::Path;
 use tiled::{ObjectShape, PropertyValue};
 
 mod approx;
+mod cells;
 mod error;
 mod json;
 mod layers;
@@ -30,9 +31,9 @@ mod read;
 mod refs;
 mod roles;
 mod scan;
+mod shapes;
 mod tiles;
 
-use error::CellError;
 pub use error::TiledError;
 pub use read::import_tiled_map_with;
 
@@ -233,7 +234,7 @@ struct Importer<'m> {
     opts: &'m ImportOptions,
     grid: Grid,
     /// The level's cells so far (row 0 at the bottom), with what set each.
-    tiles: Vec<Option<(Tile, String)>>,
+    cells: cells::Cells,
     /// Each used tile's meaning, computed once.
     kinds: HashMap<TileKey, Tile>,
     /// Tiles already warned about, so a tile used many times warns once.
@@ -259,7 +260,7 @@ impl<'m> Importer<'m> {
                 w: map.width,
                 h: map.height,
             },
-            tiles: Vec::new(),
+            cells: cells::Cells::default(),
             kinds: HashMap::new(),
             warned: Vec::new(),
             noted_tilesets: Vec::new(),
@@ -273,16 +274,15 @@ impl<'m> Importer<'m> {
         let map = self.map;
         self.check_map()?;
         // The size is checked before the cells are allocated.
-        self.tiles = vec![None; (self.grid.w as usize) * (self.grid.h as usize)];
+        self.cells = cells::Cells::new(self.grid.w, self.grid.h);
         let (name, description, tile_default) = self.map_properties(path)?;
         let entries = self.collect_layers()?;
         self.read_layers(entries, tile_default)?;
         self.collision_objects()?;
-        let tiles = self
-            .tiles
-            .iter()
-            .map(|t| t.as_ref().map_or(Tile::Empty, |(t, _)| *t))
-            .collect();
+        let (tiles, met) = self.cells.finish();
+        for (subject, message) in met {
+            self.warn(subject, message);
+        }
         let mut level = Level::from_tiles(&name, self.grid.w, self.grid.h, tiles);
         level.description = description;
         level.source = self.file.clone();
@@ -333,27 +333,6 @@ impl<'m> Importer<'m> {
             subject,
             message,
         });
-    }
-
-    /// Puts `tile` into level cell `k`, set by `by`: an empty tile gives way to any other, a
-    /// ladder and a one-way platform make a ladder (whose top is walkable like a one-way
-    /// platform); other differing kinds are an error.
-    fn set_cell(&mut self, k: usize, tile: Tile, by: String) -> Result<(), CellError> {
-        match &self.tiles[k] {
-            None => self.tiles[k] = Some((tile, by)),
-            Some((prev, _)) if *prev == tile || tile == Tile::Empty => {}
-            Some((Tile::Empty, _)) => self.tiles[k] = Some((tile, by)),
-            Some((Tile::OneWay, _)) if tile == Tile::Ladder => self.tiles[k] = Some((tile, by)),
-            Some((Tile::Ladder, _)) if tile == Tile::OneWay => {}
-            Some((prev, prev_by)) => {
-                return Err(CellError::Conflict {
-                    tile,
-                    held: *prev,
-                    held_by: prev_by.clone(),
-                })
-            }
-        }
-        Ok(())
     }
 }
 

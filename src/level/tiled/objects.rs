@@ -1,20 +1,20 @@
-//! Object layers: collision shapes (rectangles and ramp polygons in layers whose name or
-//! property says collision), spawn points (by class, type or name, or every object of a layer
-//! named like a spawn; points, rectangles and tile objects, feet at the bottom centre) and
-//! moving platforms (a rectangle with a `path`). Everything else is a warning.
+//! Object layers: spawn points (by class, type or name, or every object of a layer named like
+//! a spawn; points, rectangles and tile objects, feet at the bottom centre) and moving
+//! platforms (a rectangle with a `path` naming a polyline, or a point it goes to and back).
+//! Collision shapes are read by `shapes`; everything else is a warning.
 
 use std::collections::{BTreeMap, HashMap};
 
 use glam::Vec2;
 use tiled::{ObjectShape, PropertyValue};
 
-use super::{kind_of, names, ramp, shape_name, Importer, TiledError, SHAPE_TOLERANCE_PX};
+use super::{kind_of, names, shape_name, Importer, TiledError};
 use crate::level::import::names::{is_end_name, is_spawn_name};
 use crate::level::import::spawns::{inside_solid_note, lift_onto_ground};
 use crate::level::import::LayerRole;
 use crate::level::probes::SpawnPoint;
 use crate::level::DEFAULT_CHARACTER_SIZE;
-use crate::level::{character_box, valid_name, Level, Platform, PlatformMotion, Slope, Tile};
+use crate::level::{character_box, valid_name, Level, Platform, PlatformMotion};
 
 /// An object layer kept for reading once the tiles are known.
 pub(super) struct ObjectLayer<'m> {
@@ -32,20 +32,9 @@ pub(super) struct ObjectLayer<'m> {
     pub objects: Vec<tiled::Object<'m>>,
 }
 
-/// The cells a span from `a` to `b` (tiles) covers: edges rounded to whole tiles, at least one
-/// cell (the one below `b`, for a thin platform drawn at a cell's top).
-fn span(a: f32, b: f32) -> (i64, i64) {
-    let (lo, hi) = (a.round() as i64, b.round() as i64);
-    if hi > lo {
-        (lo, hi)
-    } else {
-        (b.ceil() as i64 - 1, b.ceil() as i64)
-    }
-}
-
 impl<'m> Importer<'m> {
     /// Tiled pixels (y down, from the grid's top-left) to level tiles (y up).
-    fn to_level(&self, x: f32, y: f32) -> Vec2 {
+    pub(super) fn to_level(&self, x: f32, y: f32) -> Vec2 {
         let (tw, th) = (self.map.tile_width as f32, self.map.tile_height as f32);
         Vec2::new(
             x / tw - self.grid.x0 as f32,
@@ -53,187 +42,13 @@ impl<'m> Importer<'m> {
         )
     }
 
-    fn obj_err(&self, o: &tiled::Object, message: String) -> TiledError {
+    pub(super) fn obj_err(&self, o: &tiled::Object, message: String) -> TiledError {
         TiledError::Object {
             file: self.file.clone(),
             id: o.id(),
             name: o.name.clone(),
             message,
         }
-    }
-
-    /// Rectangles and ramp polygons of the collision object layers into the level's cells.
-    pub(super) fn collision_objects(&mut self) -> Result<(), TiledError> {
-        let layers = std::mem::take(&mut self.objects);
-        let result = self.collision_objects_of(&layers);
-        self.objects = layers;
-        result
-    }
-
-    fn collision_objects_of(&mut self, layers: &[ObjectLayer<'m>]) -> Result<(), TiledError> {
-        for l in layers {
-            let tile = match l.role {
-                LayerRole::Collision | LayerRole::Solid => Tile::Solid,
-                LayerRole::OneWay => Tile::OneWay,
-                LayerRole::Ladder => Tile::Ladder,
-                _ => continue,
-            };
-            let mut snapped = 0;
-            let mut outside = 0u64;
-            for o in &l.objects {
-                if !Self::is_collision_object(o) {
-                    continue;
-                }
-                let subject = format!("object {} {:?}", o.id(), o.name);
-                // The object's own bool marks: one-way (`isOneWay`), a hazard or `collides =
-                // false` (not solid).
-                let tile = match object_mark(o) {
-                    Some((k, Tile::Empty)) => {
-                        self.warn(subject, format!("its property {k:?} marks it as not solid (a hazard or no collision); left out"));
-                        continue;
-                    }
-                    Some((_, Tile::OneWay)) if tile == Tile::Solid => Tile::OneWay,
-                    _ => tile,
-                };
-                if o.rotation != 0.0 {
-                    self.warn(subject, format!("a collision shape rotated by {} degrees; platbench reads axis-aligned rectangles and ramps only; ignored", o.rotation));
-                    continue;
-                }
-                let (x, y) = (o.x + l.offset.x, o.y + l.offset.y);
-                let by = format!("object {} {:?} in layer {:?}", o.id(), o.name, l.name);
-                let cells: Vec<(i64, i64, Tile)> = match &o.shape {
-                    ObjectShape::Rect { width, height } => {
-                        let a = self.to_level(x, y + height);
-                        let b = self.to_level(x + width, y);
-                        if !(a.is_finite() && b.is_finite()) {
-                            return Err(
-                                self.obj_err(o, "its position or size is not finite".into())
-                            );
-                        }
-                        let (i0, i1) = span(a.x, b.x);
-                        let (j0, j1) = span(a.y, b.y);
-                        let (tw, th) = (self.map.tile_width as f32, self.map.tile_height as f32);
-                        let off = |v: f32| (v - v.round()).abs();
-                        if off(a.x) * tw > SHAPE_TOLERANCE_PX
-                            || off(b.x) * tw > SHAPE_TOLERANCE_PX
-                            || off(a.y) * th > SHAPE_TOLERANCE_PX
-                            || off(b.y) * th > SHAPE_TOLERANCE_PX
-                        {
-                            snapped += 1;
-                        }
-                        // Cells of the rectangle beyond the map (a boundary drawn outside it).
-                        let all = (i1 - i0).max(0) as u64 * (j1 - j0).max(0) as u64;
-                        let kept = (i1.min(self.grid.w as i64) - i0.max(0)).max(0) as u64
-                            * (j1.min(self.grid.h as i64) - j0.max(0)).max(0) as u64;
-                        outside = outside.saturating_add(all - kept);
-                        let mut v = Vec::new();
-                        for j in j0.max(0)..j1.min(self.grid.h as i64) {
-                            for i in i0.max(0)..i1.min(self.grid.w as i64) {
-                                v.push((i, j, tile));
-                            }
-                        }
-                        v
-                    }
-                    ObjectShape::Polygon { points } => {
-                        let pts: Vec<Vec2> = points
-                            .iter()
-                            .map(|&(px, py)| self.to_level(x + px, y + py))
-                            .collect();
-                        match self.ramp_cells(&pts, tile) {
-                            Some(c) => c,
-                            None => {
-                                self.warn(subject, "a collision polygon that is not a ramp (a horizontal bottom on the tile grid, vertical sides, one straight top from side to side); ignored".into());
-                                continue;
-                            }
-                        }
-                    }
-                    _ => continue,
-                };
-                for (i, j, t) in cells {
-                    let k = j as usize * self.grid.w as usize + i as usize;
-                    if let Err(m) = self.set_cell(k, t, by.clone()) {
-                        return Err(self.obj_err(o, format!("at cell i = {i}, j = {j}: {m}")));
-                    }
-                }
-            }
-            if outside > 0 {
-                self.warn(
-                    format!("layer {:?}", l.name),
-                    format!("{outside} cell(s) of its collision rectangles lie outside the map and are dropped; a boundary a game draws outside its map stops the player at the map's sides, which the walls of --edges walls (the default) stand for"),
-                );
-            }
-            if snapped > 0 {
-                self.warn(
-                    format!("layer {:?}", l.name),
-                    format!("{snapped} collision rectangle(s) not on the tile grid (by more than {SHAPE_TOLERANCE_PX} pixel); each edge moved to the nearest tile edge"),
-                );
-            }
-        }
-        Ok(())
-    }
-
-    /// Whether an object of a collision layer is a collision shape (not a spawn, a platform or
-    /// a tile object).
-    fn is_collision_object(o: &tiled::Object) -> bool {
-        o.tile_data().is_none()
-            && matches!(
-                o.shape,
-                ObjectShape::Rect { .. } | ObjectShape::Polygon { .. }
-            )
-            && !o.properties.contains_key(names::PATH)
-            && o.user_type != names::PLATFORM
-            && !is_spawn_name(&o.user_type)
-            && !is_spawn_name(&o.name)
-    }
-
-    /// The cells of a ramp polygon (level tiles, y up) spanning whole tiles across: solids
-    /// under its top line, line slopes where the line crosses a row. `None` if it is no ramp.
-    fn ramp_cells(&self, pts: &[Vec2], tile: Tile) -> Option<Vec<(i64, i64, Tile)>> {
-        if pts.len() < 3 || pts.iter().any(|p| !p.is_finite()) {
-            return None;
-        }
-        let lo = pts.iter().fold(Vec2::splat(f32::MAX), |a, p| a.min(*p));
-        let hi = pts.iter().fold(Vec2::splat(f32::MIN), |a, p| a.max(*p));
-        let (x0, x1, y0) = (lo.x.round(), hi.x.round(), lo.y.round());
-        let (w, h) = (hi.x - lo.x, hi.y - lo.y);
-        if x1 <= x0 || h <= 0.0 || (w * h) as f64 > crate::limits::MAX_TILES as f64 {
-            return None;
-        }
-        // As one big tile in pixels, y down, for `ramp`.
-        let (tw, th) = (self.map.tile_width as f32, self.map.tile_height as f32);
-        let local: Vec<Vec2> = pts
-            .iter()
-            .map(|p| Vec2::new((p.x - lo.x) * tw, (hi.y - p.y) * th))
-            .collect();
-        let Slope::Line { left, right } = ramp(&local, w * tw, h * th)? else {
-            return None;
-        };
-        if tile != Tile::Solid {
-            // A one-way or ladder ramp is not a thing platbench models.
-            return None;
-        }
-        let top = |x: f32| y0 + h * (left + (right - left) * (x - x0) / (x1 - x0));
-        let mut out = Vec::new();
-        for i in x0 as i64..x1 as i64 {
-            if i < 0 || i >= self.grid.w as i64 {
-                continue;
-            }
-            let (hl, hr) = (top(i as f32), top(i as f32 + 1.0));
-            let j_top = hl.max(hr).ceil() as i64;
-            for j in (y0 as i64).max(0)..j_top.min(self.grid.h as i64) {
-                let jf = j as f32;
-                let t = if jf + 1.0 <= hl.min(hr) + 1e-4 {
-                    Tile::Solid
-                } else {
-                    Tile::Slope(Slope::Line {
-                        left: hl - jf,
-                        right: hr - jf,
-                    })
-                };
-                out.push((i, j, t));
-            }
-        }
-        Some(out)
     }
 
     /// Spawn points and platforms from the object layers; everything else is warned about.
@@ -261,8 +76,14 @@ impl<'m> Importer<'m> {
                 let class = o.user_type.as_str();
                 let by_class = is_spawn_name(class);
                 let by_name = is_spawn_name(&o.name);
-                let is_platform =
-                    class == names::PLATFORM || o.properties.contains_key(names::PATH);
+                let collides = matches!(
+                    l.role,
+                    LayerRole::Collision | LayerRole::Solid | LayerRole::OneWay | LayerRole::Ladder
+                );
+                // A moving platform has a path; one of class `platform` without a path is a
+                // one-way piece of a collision layer, and elsewhere a platform missing its path.
+                let is_platform = o.properties.contains_key(names::PATH)
+                    || (class == names::PLATFORM && !collides);
                 let spawn_shape = o.tile_data().is_some()
                     || matches!(o.shape, ObjectShape::Point(..) | ObjectShape::Rect { .. });
                 // A spawn layer often holds the level's end beside its start (`exit`, `goal`):
@@ -309,11 +130,7 @@ impl<'m> Importer<'m> {
                 } else if is_platform {
                     let p = self.platform(o, l.offset, &all, &mut used_paths)?;
                     level.platforms.push(p);
-                } else if matches!(
-                    l.role,
-                    LayerRole::Collision | LayerRole::Solid | LayerRole::OneWay | LayerRole::Ladder
-                ) && Self::is_collision_object(o)
-                {
+                } else if collides && Self::is_collision_object(o) {
                     // Read by collision_objects.
                 } else if o.tile_data().is_some() {
                     if l.role == LayerRole::Decoration {
@@ -503,16 +320,6 @@ impl<'m> Importer<'m> {
         let Some(p) = all.get(&path_id) else {
             return Err(obj_err(o, format!("its path names object {path_id}, which is not in any object layer platbench reads")));
         };
-        let ObjectShape::Polyline { points } = &p.shape else {
-            return Err(obj_err(
-                o,
-                format!(
-                    "its path names object {path_id} {:?}, which is {}; expected a polyline",
-                    p.name,
-                    shape_name(&p.shape)
-                ),
-            ));
-        };
         if p.rotation != 0.0 {
             return Err(obj_err(
                 o,
@@ -522,18 +329,38 @@ impl<'m> Importer<'m> {
                 ),
             ));
         }
-        let Some(&(x0, y0)) = points.first() else {
-            return Err(obj_err(
-                o,
-                format!("its path, object {path_id} {:?}, has no points", p.name),
-            ));
+        let waypoints: Vec<Vec2> = match &p.shape {
+            // The path's shape, moved so that its first point is the platform's start: where
+            // the polyline is drawn does not matter, only its legs.
+            ObjectShape::Polyline { points } => {
+                let Some(&(x0, y0)) = points.first() else {
+                    return Err(obj_err(
+                        o,
+                        format!("its path, object {path_id} {:?}, has no points", p.name),
+                    ));
+                };
+                points
+                    .iter()
+                    .map(|&(x, y)| start + Vec2::new((x - x0) / tw, -(y - y0) / th))
+                    .collect()
+            }
+            // A point is where the platform's top-left corner goes, and back (Excalibur's
+            // Jelly Jumper sample reads its maps so).
+            ObjectShape::Point(..) => vec![
+                start,
+                start + Vec2::new((p.x - o.x) / tw, -(p.y - o.y) / th),
+            ],
+            other => {
+                return Err(obj_err(
+                    o,
+                    format!(
+                        "its path names object {path_id} {:?}, which is {}; expected a polyline (the path's legs) or a point (where the platform goes and back)",
+                        p.name,
+                        shape_name(other)
+                    ),
+                ))
+            }
         };
-        // The path's shape, moved so that its first point is the platform's start: where the
-        // polyline is drawn does not matter, only its legs.
-        let waypoints: Vec<Vec2> = points
-            .iter()
-            .map(|&(x, y)| start + Vec2::new((x - x0) / tw, -(y - y0) / th))
-            .collect();
         let far =
             |v: Vec2| v.abs().max_element() as f64 > crate::limits::MAX_COORD || !v.is_finite();
         if far(start) || far(size) || waypoints.iter().any(|w| far(*w)) {
@@ -568,27 +395,4 @@ impl<'m> Importer<'m> {
             one_way,
         })
     }
-}
-
-/// What an object's own bool properties make it (with the property that says so): one-way
-/// (the bools of [`super::tiles::ONE_WAY_BOOLS`]), not solid (a hazard bool true, or a solid
-/// bool false), or nothing said.
-fn object_mark(o: &tiled::Object<'_>) -> Option<(String, Tile)> {
-    use super::tiles::{HAZARD_BOOLS, ONE_WAY_BOOLS, SOLID_BOOLS};
-    let mut sorted: Vec<_> = o.properties.iter().collect();
-    sorted.sort_by(|a, b| a.0.cmp(b.0));
-    for (k, v) in sorted {
-        let PropertyValue::BoolValue(b) = v else {
-            continue;
-        };
-        let lower = k.to_lowercase();
-        let l = lower.as_str();
-        if *b && ONE_WAY_BOOLS.contains(&l) {
-            return Some((k.clone(), Tile::OneWay));
-        }
-        if (*b && HAZARD_BOOLS.contains(&l)) || (!*b && SOLID_BOOLS.contains(&l)) {
-            return Some((k.clone(), Tile::Empty));
-        }
-    }
-    None
 }
