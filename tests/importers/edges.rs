@@ -131,4 +131,20 @@ fn a_boundary_drawn_outside_the_map_is_said_and_the_side_walled() {
     );
     // The default walls stand for it: column 0 is solid from bottom to top.
     assert!((0..3).all(|j| l.tile(0, j) == Tile::Solid));
+    // With --edges open the drawn boundary is kept all the same (the game has it), and the
+    // right side, which the map leaves open, stays open.
+    let open = ImportOptions {
+        edges: Some(platbench::level::Edges::Open),
+        ..ImportOptions::default()
+    };
+    let (l, warnings) = load_tiled_map_with(&path, &open).unwrap();
+    assert!((0..3).all(|j| l.tile(0, j) == Tile::Solid));
+    assert_eq!(l.width, 5);
+    assert!((1..3).all(|j| l.tile(4, j) == Tile::Empty));
+    assert!(
+        warnings.iter().any(|w| w.subject == "map"
+            && w.message
+                .starts_with("the map draws collision just outside its left side")),
+        "{warnings:?}"
+    );
 }

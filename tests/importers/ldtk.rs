@@ -205,9 +205,10 @@ fn inspect_prints_layers_spawns_and_the_grid() {
 }
 
 #[test]
-fn a_side_file_without_scenarios_is_refused_as_for_a_tiled_map() {
-    // A copy of world.ldtk (and its external level) beside a side file with no [[scenario]]:
-    // refused, naming the side file, instead of a level with nothing to run.
+fn a_side_file_without_scenarios_runs_the_standard_probes_as_for_a_tiled_map() {
+    // A copy of world.ldtk (and its external level) beside a side file with an [import] table
+    // and no [[scenario]] (what `inspect` suggests writing): it says how to read the project,
+    // and the standard probes run, the same as without the file.
     let dir = tempfile::tempdir().unwrap();
     std::fs::copy(shipped("world.ldtk"), dir.path().join("world.ldtk")).unwrap();
     std::fs::create_dir(dir.path().join("world")).unwrap();
@@ -216,20 +217,23 @@ fn a_side_file_without_scenarios_is_refused_as_for_a_tiled_map() {
         dir.path().join("world/Level_1.ldtkl"),
     )
     .unwrap();
-    std::fs::write(dir.path().join("world.toml"), "# no scenarios\n").unwrap();
+    std::fs::write(
+        dir.path().join("world.toml"),
+        "[import]\nedges = \"walls\"\n",
+    )
+    .unwrap();
     let path = dir.path().join("world.ldtk");
-    let err = match load_ldtk_with(&path, &walled()) {
-        Ok(_) => panic!("a side file without scenarios was accepted"),
-        Err(e) => e.error.to_string(),
-    };
-    assert!(
-        err.contains("world.toml") && err.contains("no [[scenario]]"),
-        "{err}"
-    );
-    // Without the side file the same project runs the standard probes.
+    let (with_side, _) = load_ldtk_with(&path, &walled()).unwrap_or_else(|e| panic!("{}", e.error));
     std::fs::remove_file(dir.path().join("world.toml")).unwrap();
-    let (level, _) = load_ldtk_with(&path, &walled()).unwrap_or_else(|e| panic!("{}", e.error));
-    assert!(!level.scenarios.is_empty());
+    let (without, _) = load_ldtk_with(&path, &walled()).unwrap_or_else(|e| panic!("{}", e.error));
+    assert!(!without.scenarios.is_empty());
+    let names = |l: &platbench::level::Level| {
+        l.scenarios
+            .iter()
+            .map(|s| s.name.clone())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(names(&with_side), names(&without));
 }
 
 #[test]

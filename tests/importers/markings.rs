@@ -181,3 +181,24 @@ fn a_platform_path_naming_a_point_goes_there_and_back() {
         }
     );
 }
+
+#[test]
+fn a_one_way_bool_on_some_tiles_leaves_the_unmarked_tiles_solid() {
+    // Tile 1 carries `unisolid = true`; tile 0, the floor, carries nothing. Only a tileset that
+    // marks its solid tiles with a bool leaves its unmarked tiles empty; a one-way (or ladder)
+    // bool marks its own tiles only.
+    let tiles = format!(
+        r#"<tile id="1"><properties>{}</properties></tile>"#,
+        prop("unisolid", "bool", "true")
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = MapText {
+        tiles: &tiles,
+        rows: &["0,2,0", "1,1,1"],
+        ..MapText::default()
+    }
+    .write(dir.path());
+    let r = import_tiled_map_with(&path, &open_edges()).unwrap();
+    assert_eq!(row0(&r.level), [Tile::Solid; 3]);
+    assert_eq!(r.level.tile(1, 1), Tile::OneWay);
+}

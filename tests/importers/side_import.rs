@@ -114,3 +114,47 @@ fn a_wrong_side_file_is_located() {
         "{e}"
     );
 }
+
+#[test]
+fn the_side_file_inspect_suggests_changes_nothing_and_the_probes_still_run() {
+    // tests/maps/object_collision.tmx guesses its layers (a spawn layer among them); the block
+    // `inspect` prints, written beside a copy of the map as the side file, makes the guesses
+    // certain: the same layers, the same spawn, the same probe scenarios.
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("m.tmx");
+    std::fs::copy(shipped("object_collision.tmx"), &map).unwrap();
+    let inspect = |path: &Path| {
+        let out = platbench().arg("inspect").arg(path).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let before = inspect(&map);
+    let block: String = before
+        .lines()
+        .skip_while(|l| l.trim() != "[import]")
+        .take_while(|l| !l.trim().is_empty())
+        .map(|l| format!("{}\n", l.trim()))
+        .collect();
+    assert!(block.contains("layers = {"), "{before}");
+    std::fs::write(dir.path().join("m.toml"), &block).unwrap();
+    let after = inspect(&map);
+    let section = |text: &str, head: &str| -> String {
+        text.lines()
+            .skip_while(|l| !l.starts_with(head))
+            .take_while(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    assert_eq!(section(&after, "spawns"), section(&before, "spawns"));
+    assert_eq!(section(&after, "probes"), section(&before, "probes"));
+    let run = platbench().arg("run").arg(&map).output().unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+}

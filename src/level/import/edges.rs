@@ -37,20 +37,24 @@ fn walled(level: &Level, i: i64) -> bool {
 /// Adds the side walls `edges` asks for where the map's own edge column does not already block
 /// the whole height, moving the map's cells, platforms and `spawns` right when a wall goes on
 /// the left. `continues` names the sides `[left, right]` where the game goes on into another
-/// level (an LDtk level with a neighbour there): those stay open. Returns the note that says
-/// what was added, `None` when nothing was.
+/// level (an LDtk level with a neighbour there): those stay open. `drawn` names the sides where
+/// the map draws collision just outside itself (a boundary a game keeps outside its map): those
+/// get the wall whatever `edges` says, as the game has it. Returns the note that says what was
+/// added, `None` when nothing was.
 pub(crate) fn wall_sides(
     level: &mut Level,
     spawns: &mut [SpawnPoint],
     edges: Edges,
     continues: [bool; 2],
+    drawn: [bool; 2],
     file: &str,
 ) -> Option<ImportWarning> {
-    if edges == Edges::Open || level.width == 0 || level.height == 0 {
+    if level.width == 0 || level.height == 0 {
         return None;
     }
-    let left = !continues[0] && !walled(level, 0);
-    let right = !continues[1] && !walled(level, level.width as i64 - 1);
+    let asked = |side: usize| edges == Edges::Walls || drawn[side];
+    let left = asked(0) && !continues[0] && !walled(level, 0);
+    let right = asked(1) && !continues[1] && !walled(level, level.width as i64 - 1);
     if !left && !right {
         return None;
     }
@@ -85,6 +89,22 @@ pub(crate) fn wall_sides(
         (true, false) => "left side is",
         _ => "right side is",
     };
+    if edges == Edges::Open {
+        return Some(ImportWarning {
+            file: file.into(),
+            subject: "map".into(),
+            message: format!(
+                "the map draws collision just outside its {}, which is dropped; a wall one tile wide and as tall as the map stands for it outside {}{} (--edges open leaves open only the sides the map leaves open)",
+                sides.trim_end_matches(" are").trim_end_matches(" is"),
+                if left && right { "each" } else { "it" },
+                if left {
+                    "; the map's cells are one tile to the right in the level"
+                } else {
+                    ""
+                }
+            ),
+        });
+    }
     Some(ImportWarning {
         file: file.into(),
         subject: "map".into(),
@@ -127,7 +147,15 @@ mod tests {
             name: "s".into(),
             position: Vec2::new(1.5, 1.0),
         }];
-        let note = wall_sides(&mut l, &mut spawns, Edges::Walls, [false; 2], "m").unwrap();
+        let note = wall_sides(
+            &mut l,
+            &mut spawns,
+            Edges::Walls,
+            [false; 2],
+            [false; 2],
+            "m",
+        )
+        .unwrap();
         assert!(note.message.contains("left and right sides"), "{note}");
         assert_eq!((l.width, l.height), (6, 2));
         for j in 0..2 {
@@ -141,14 +169,14 @@ mod tests {
     #[test]
     fn a_side_the_map_walls_itself_or_open_edges_change_nothing() {
         let mut l = level(&["####", "#..#"]);
-        assert!(wall_sides(&mut l, &mut [], Edges::Walls, [false; 2], "m").is_none());
+        assert!(wall_sides(&mut l, &mut [], Edges::Walls, [false; 2], [false; 2], "m").is_none());
         assert_eq!(l.width, 4);
         let mut l = level(&["####", "#..."]);
-        let note = wall_sides(&mut l, &mut [], Edges::Walls, [false; 2], "m").unwrap();
+        let note = wall_sides(&mut l, &mut [], Edges::Walls, [false; 2], [false; 2], "m").unwrap();
         assert!(note.message.contains("right side is"), "{note}");
         assert_eq!((l.width, l.tile(1, 1)), (5, Tile::Empty));
         let mut l = level(&["####", "...."]);
-        assert!(wall_sides(&mut l, &mut [], Edges::Open, [false; 2], "m").is_none());
+        assert!(wall_sides(&mut l, &mut [], Edges::Open, [false; 2], [false; 2], "m").is_none());
         assert_eq!(l.width, 4);
     }
 }

@@ -229,12 +229,14 @@ impl ImportOptions {
     }
 }
 
-/// A tile kind as a user writes it (`solid`, `one_way`, `ladder`, `empty`), any case.
+/// A tile kind as a user writes it (`solid`, `one_way`, `ladder`, `empty`, and the one-way and ladder
+/// words games use: `jumpthrough`, `semisolid`, `climbable`, ...), any case.
 pub(crate) fn parse_tile_kind(s: &str) -> Option<Tile> {
     Some(match normalize(s).as_str() {
         "solid" | "wall" => Tile::Solid,
-        "oneway" | "platform" => Tile::OneWay,
-        "ladder" => Tile::Ladder,
+        "oneway" | "platform" | "jumpthrough" | "jumpthru" | "semisolid" | "passthrough"
+        | "unisolid" => Tile::OneWay,
+        "ladder" | "climb" | "climbable" => Tile::Ladder,
         "empty" | "none" => Tile::Empty,
         _ => return None,
     })
@@ -282,4 +284,24 @@ pub fn ascii_map(level: &Level) -> (String, Vec<(char, Slope)>) {
         text.push('\n');
     }
     (text, legend)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tile_kinds_read_the_words_games_use() {
+        for (word, tile) in [
+            ("Solid", Tile::Solid),
+            ("one_way", Tile::OneWay),
+            ("jumpthrough", Tile::OneWay),
+            ("semi-solid", Tile::OneWay),
+            ("Climbable", Tile::Ladder),
+            ("none", Tile::Empty),
+        ] {
+            assert_eq!(parse_tile_kind(word), Some(tile), "{word}");
+        }
+        assert_eq!(parse_tile_kind("grass"), None);
+    }
 }

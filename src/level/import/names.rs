@@ -141,6 +141,21 @@ pub(crate) const DECORATION_WORDS: &[&str] = &[
     "acid",
     "enemies",
     "enemy",
+    // Enemy in Portuguese, Spanish, French and German, and the creatures games place as
+    // entities rather than walls.
+    "inimigo",
+    "inimigos",
+    "enemigo",
+    "enemigos",
+    "ennemi",
+    "ennemis",
+    "feind",
+    "feinde",
+    "monster",
+    "monsters",
+    "mobs",
+    "npc",
+    "npcs",
     "text",
     "shadows",
     "lights",
@@ -328,5 +343,13 @@ mod tests {
             Some((LayerRole::Collision, "collisionblocks".into()))
         );
         assert!(says("SolidTiles", STRONG_COLLISION_WORDS) && !says("Solid", &["wall"]));
+        // Enemies in other languages are entities, not walls.
+        for name in ["Inimigo", "enemigos", "Ennemis", "Feinde", "Monsters"] {
+            assert_eq!(
+                role_from_name(name).map(|r| r.0),
+                Some(LayerRole::Decoration),
+                "{name}"
+            );
+        }
     }
 }

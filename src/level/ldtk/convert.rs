@@ -565,7 +565,7 @@ pub(super) fn import(
             ),
         });
     }
-    if let Some(wn) = wall_sides(&mut level, &mut spawns, edges, continues, &file) {
+    if let Some(wn) = wall_sides(&mut level, &mut spawns, edges, continues, [false; 2], &file) {
         extra.push(wn);
     }
     if let Some(wn) = settle_spawns(&level, &file, HOW_TO_SPAWN, opts, &mut spawns, &mut sources) {

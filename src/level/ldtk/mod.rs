@@ -110,18 +110,12 @@ pub fn load_ldtk_with(
             Ok(s) => level.scenarios = s,
             Err(e) => return Err(fail(e.into(), warnings)),
         }
-        // As for a Tiled map: a side file that gives no scenario would leave nothing to run.
-        if level.scenarios.is_empty() {
-            return Err(fail(
-                LdtkError::Project {
-                    file: side.display().to_string(),
-                    message: "the side file gives no [[scenario]]; add at least one, or remove the file to run the standard probes at each spawn".into(),
-                },
-                warnings,
-            ));
+        // As for a Tiled map: a side file without [[scenario]] says only how to read the
+        // project (its [import]); the standard probes run, as without it.
+        if !level.scenarios.is_empty() {
+            warnings.retain(|w| !w.message.starts_with("no spawn point found"));
+            return Ok((level, warnings));
         }
-        warnings.retain(|w| !w.message.starts_with("no spawn point found"));
-        return Ok((level, warnings));
     }
     if spawns.is_empty() {
         return Err(ImportFailure {

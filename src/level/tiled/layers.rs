@@ -12,7 +12,7 @@ use glam::Vec2;
 use tiled::{LayerType, ObjectShape, PropertyValue, TileLayer};
 
 use super::objects::ObjectLayer;
-use super::tiles::{apply_flips, is_bool_mark, tile_kind};
+use super::tiles::{apply_flips, is_bool_mark, tile_kind, SOLID_BOOLS};
 use super::{kind_of, names, Importer, TiledError};
 use crate::level::import::names::{is_spawn_name, role_from_name};
 use crate::level::import::{LayerReport, LayerRole};
@@ -310,7 +310,7 @@ impl<'m> Importer<'m> {
                     self.objects.push(ObjectLayer {
                         name: e.path.clone(),
                         role,
-                        spawn_layer: spawn_layer && e.role.is_none(),
+                        spawn_layer: spawn_layer && role == LayerRole::Objects,
                         offset: e.offset,
                         excluded: role == LayerRole::Decoration
                             && e.role
@@ -507,11 +507,13 @@ impl<'m> Importer<'m> {
                 ),
             );
         }
-        // A tileset that marks its solid tiles with a bool property leaves unmarked tiles empty.
+        // A tileset that marks its solid tiles with a bool property leaves unmarked tiles empty
+        // (a one-way or ladder bool marks those tiles only: the unmarked ones stay solid).
         let marks = ts.tiles().any(|(_, t)| {
-            t.properties
-                .iter()
-                .any(|(k, v)| is_bool_mark(k, v) && matches!(v, PropertyValue::BoolValue(true)))
+            t.properties.iter().any(|(k, v)| {
+                SOLID_BOOLS.contains(&k.to_lowercase().as_str())
+                    && matches!(v, PropertyValue::BoolValue(true))
+            })
         });
         // A tile property the side file (or a library caller) gives a kind decides first.
         let given = data.as_ref().and_then(|d| {

@@ -153,29 +153,24 @@ pub fn load_tiled_map_with(
             Ok(s) => s,
             Err(e) => return Err(fail(e.into(), warnings)),
         };
-        if level.scenarios.is_empty() {
-            return Err(fail(
-                TiledError::NoScenarios {
+        // A side file without [[scenario]] says only how to read the map (its [import], the
+        // lines `inspect` suggests): the standard probes run, as without it.
+        if !level.scenarios.is_empty() {
+            // The fallback spawn's warning is moot when a side file gives the scenarios.
+            warnings.retain(|w| !w.message.starts_with("no spawn point found"));
+            if !spawns.is_empty() && spawns[0].name != "auto" {
+                warnings.push(TiledWarning {
                     file: path.display().to_string(),
-                    side: side.display().to_string(),
-                },
-                warnings,
-            ));
+                    subject: "map".into(),
+                    message: format!(
+                        "the side file {} replaces the probes at its {} spawn point(s)",
+                        side.display(),
+                        spawns.len()
+                    ),
+                });
+            }
+            return Ok((level, warnings));
         }
-        // The fallback spawn's warning is moot when a side file gives the scenarios.
-        warnings.retain(|w| !w.message.starts_with("no spawn point found"));
-        if !spawns.is_empty() && spawns[0].name != "auto" {
-            warnings.push(TiledWarning {
-                file: path.display().to_string(),
-                subject: "map".into(),
-                message: format!(
-                    "the side file {} replaces the probes at its {} spawn point(s)",
-                    side.display(),
-                    spawns.len()
-                ),
-            });
-        }
-        return Ok((level, warnings));
     }
     if spawns.is_empty() {
         return Err(fail(
@@ -246,6 +241,9 @@ struct Importer<'m> {
     reports: Vec<LayerReport>,
     /// Object layers to read once the tiles are known.
     objects: Vec<objects::ObjectLayer<'m>>,
+    /// Sides `[left, right]` where collision shapes reach just outside the map (a boundary
+    /// drawn outside it): walled whatever `--edges` says.
+    drawn_sides: [bool; 2],
 }
 
 impl<'m> Importer<'m> {
@@ -267,6 +265,7 @@ impl<'m> Importer<'m> {
             warnings: Vec::new(),
             reports: Vec::new(),
             objects: Vec::new(),
+            drawn_sides: [false; 2],
         }
     }
 
@@ -296,6 +295,7 @@ impl<'m> Importer<'m> {
             &mut spawns,
             self.opts.edges.unwrap_or_default(),
             [false; 2],
+            self.drawn_sides,
             &self.file,
         ) {
             self.warnings.push(w);

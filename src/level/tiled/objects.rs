@@ -130,7 +130,9 @@ impl<'m> Importer<'m> {
                 } else if is_platform {
                     let p = self.platform(o, l.offset, &all, &mut used_paths)?;
                     level.platforms.push(p);
-                } else if collides && Self::is_collision_object(o) {
+                } else if (collides || (l.role == LayerRole::Objects && Self::is_ladder_object(o)))
+                    && Self::is_collision_object(o)
+                {
                     // Read by collision_objects.
                 } else if o.tile_data().is_some() {
                     if l.role == LayerRole::Decoration {

@@ -9,7 +9,7 @@ use tiled::{ObjectShape, PropertyValue};
 
 use super::objects::ObjectLayer;
 use super::{names, ramp, Importer, TiledError, SHAPE_TOLERANCE_PX};
-use crate::level::import::names::is_spawn_name;
+use crate::level::import::names::{is_spawn_name, says, LADDER_WORDS};
 use crate::level::import::LayerRole;
 use crate::level::{Slope, Tile};
 
@@ -35,17 +35,19 @@ impl<'m> Importer<'m> {
 
     fn collision_objects_of(&mut self, layers: &[ObjectLayer<'m>]) -> Result<(), TiledError> {
         for l in layers {
-            let tile = match l.role {
-                LayerRole::Collision | LayerRole::Solid => Tile::Solid,
-                LayerRole::OneWay => Tile::OneWay,
-                LayerRole::Ladder => Tile::Ladder,
+            // In a layer of objects (spawns, platforms), only shapes named like a ladder.
+            let (tile, ladders_only) = match l.role {
+                LayerRole::Collision | LayerRole::Solid => (Tile::Solid, false),
+                LayerRole::OneWay => (Tile::OneWay, false),
+                LayerRole::Ladder => (Tile::Ladder, false),
+                LayerRole::Objects if !l.excluded => (Tile::Ladder, true),
                 _ => continue,
             };
             let mut snapped = 0;
             let mut outside = 0u64;
             let mut platforms = 0;
             for o in &l.objects {
-                if !Self::is_collision_object(o) {
+                if !Self::is_collision_object(o) || (ladders_only && !Self::is_ladder_object(o)) {
                     continue;
                 }
                 let subject = format!("object {} {:?}", o.id(), o.name);
@@ -137,7 +139,7 @@ impl<'m> Importer<'m> {
             if outside > 0 {
                 self.warn(
                     format!("layer {:?}", l.name),
-                    format!("{outside} cell(s) of its collision rectangles and polylines lie outside the map and are dropped; a boundary a game draws outside its map stops the player at the map's sides, which the walls of --edges walls (the default) stand for"),
+                    format!("{outside} cell(s) of its collision rectangles and polylines lie outside the map and are dropped; where they touch a side, a wall outside that side stands for them (with --edges open too)"),
                 );
             }
             if platforms > 0 {
@@ -156,11 +158,17 @@ impl<'m> Importer<'m> {
         Ok(())
     }
 
+    /// Whether an object's name or class says ladder (`Ladder`, `climb`): a ladder shape in
+    /// any object layer that is read.
+    pub(super) fn is_ladder_object(o: &tiled::Object) -> bool {
+        says(&o.name, LADDER_WORDS) || says(&o.user_type, LADDER_WORDS)
+    }
+
     /// The cells of a box from corner `a` to corner `b` (level tiles), its edges on the nearest
     /// tile edges (a box thinner than a cell takes the cell below or left of it); counts the
     /// cells beyond the map in `outside` and a box off the grid in `snapped`.
     fn box_cells(
-        &self,
+        &mut self,
         a: Vec2,
         b: Vec2,
         tile: Tile,
@@ -178,7 +186,15 @@ impl<'m> Importer<'m> {
         {
             *snapped += 1;
         }
-        // Cells of the box beyond the map (a boundary drawn outside it).
+        // Cells of the box beyond the map (a boundary drawn outside it); a box beside the map
+        // within its height, touching its side, is a wall the game keeps there.
+        let beside = j0 < self.grid.h as i64 && j1 > 0;
+        if beside && i0 < 0 && i1 >= 0 {
+            self.drawn_sides[0] = true;
+        }
+        if beside && i1 > self.grid.w as i64 && i0 <= self.grid.w as i64 {
+            self.drawn_sides[1] = true;
+        }
         let all = (i1 - i0).max(0) as u64 * (j1 - j0).max(0) as u64;
         let kept = (i1.min(self.grid.w as i64) - i0.max(0)).max(0) as u64
             * (j1.min(self.grid.h as i64) - j0.max(0)).max(0) as u64;
