@@ -70,6 +70,9 @@ pub(crate) const MAX_ACCEL: f64 = 1e5;
 pub(crate) const MAX_JUMP_HEIGHT: f64 = 1e4;
 /// Smallest platform period, in seconds (a period shorter than the smallest dt is noise).
 pub(crate) const MIN_PERIOD: f64 = 1e-6;
+/// Most waypoints of one platform path: a platform's place is found by walking its legs every
+/// step, so a path's points cost every frame (real maps' paths hold a handful).
+pub(crate) const MAX_PATH_POINTS: usize = 1_000;
 /// Largest sweep epsilon, in tiles: an overlap tolerance of a whole tile tolerates everything.
 pub(crate) const MAX_EPSILON: f64 = 1.0;
 

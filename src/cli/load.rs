@@ -23,7 +23,7 @@ pub(crate) struct ImportArgs {
     pub(crate) tile_layers: Option<String>,
     /// Start the probes here instead of the map's spawns: feet position in tiles, y up
     /// (repeatable).
-    #[arg(long = "spawn", value_name = "X,Y")]
+    #[arg(long = "spawn", value_name = "X,Y", allow_hyphen_values = true)]
     pub(crate) spawns: Vec<String>,
     /// LDtk: make an IntGrid value (its number or name) solid, one_way, ladder or empty
     /// (repeatable).
@@ -63,14 +63,18 @@ impl ImportArgs {
             })?);
         }
         for sp in &self.spawns {
-            let v: Vec<f32> = sp
+            let v: Vec<f64> = sp
                 .split(',')
-                .map(|x| x.trim().parse::<f32>())
+                .map(|x| x.trim().parse::<f64>())
                 .collect::<Result<_, _>>()
                 .map_err(|_| anyhow::anyhow!("--spawn {sp}: expected X,Y in tiles"))?;
+            let far = crate::limits::MAX_COORD;
             match v[..] {
-                [x, y] if x.is_finite() && y.is_finite() => o.spawns.push(glam::Vec2::new(x, y)),
-                _ => bail!("--spawn {sp}: expected X,Y, two finite numbers of tiles"),
+                [x, y] if x.abs() <= far && y.abs() <= far => {
+                    o.spawns.push(glam::Vec2::new(x as f32, y as f32))
+                }
+                [_, _] => bail!("--spawn {sp}: expected X,Y, two numbers of tiles from -{far:e} to {far:e} (inside the level)"),
+                _ => bail!("--spawn {sp}: expected X,Y, two numbers of tiles"),
             }
         }
         for g in &self.intgrid {

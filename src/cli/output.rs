@@ -4,6 +4,7 @@
 //! replaces it only once complete. A run killed midway leaves a staging directory that the next
 //! write beside it removes, once it has proved the directory is one a dead platbench left.
 
+use std::ffi::{OsStr, OsString};
 use std::fs;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -209,6 +210,31 @@ fn process_ended(pid: u32) -> bool {
     Path::new("/proc/self").exists() && !Path::new("/proc").join(pid.to_string()).exists()
 }
 
+/// The process and the output's own name (any bytes the system accepts) of a directory moved
+/// aside for the swap, `.platbench-old-<pid>-<n>-<name>`; `None` for any other name.
+fn moved_aside(name: &OsStr) -> Option<(u32, OsString)> {
+    #[cfg(unix)]
+    let bytes = std::os::unix::ffi::OsStrExt::as_bytes(name);
+    #[cfg(not(unix))]
+    let bytes = name.to_str()?.as_bytes();
+    let rest = bytes.strip_prefix(OLD.as_bytes())?;
+    let mut parts = rest.splitn(3, |&b| b == b'-');
+    let pid = std::str::from_utf8(parts.next()?)
+        .ok()?
+        .parse::<u32>()
+        .ok()?;
+    parts.next()?;
+    let target = parts.next()?;
+    if target.is_empty() {
+        return None;
+    }
+    #[cfg(unix)]
+    let target = OsString::from(<OsStr as std::os::unix::ffi::OsStrExt>::from_bytes(target));
+    #[cfg(not(unix))]
+    let target = OsString::from(std::str::from_utf8(target).ok()?);
+    Some((pid, target))
+}
+
 /// Removes the staging directories a dead platbench left in `parent`, and puts back an output
 /// it had moved aside and not replaced. Only entries whose names platbench gives, of a process
 /// that has ended, are touched. Says on stderr what it did.
@@ -217,9 +243,7 @@ pub(crate) fn clean_stale(parent: &Path) {
         return;
     };
     for e in entries.filter_map(|e| e.ok()) {
-        let Ok(name) = e.file_name().into_string() else {
-            continue;
-        };
+        let name = e.file_name().to_string_lossy().into_owned();
         let path = e.path();
         if !e.file_type().is_ok_and(|t| t.is_dir()) {
             continue;
@@ -240,15 +264,7 @@ pub(crate) fn clean_stale(parent: &Path) {
                     Err(err) => eprintln!("warning: cannot remove {}: {err}", path.display()),
                 }
             }
-        } else if let Some(rest) = name.strip_prefix(OLD) {
-            let mut parts = rest.splitn(3, '-');
-            let (Some(pid), Some(_), Some(target)) = (
-                parts.next().and_then(|p| p.parse::<u32>().ok()),
-                parts.next(),
-                parts.next(),
-            ) else {
-                continue;
-            };
+        } else if let Some((pid, target)) = moved_aside(&e.file_name()) {
             if pid == std::process::id() || !process_ended(pid) {
                 continue;
             }
@@ -338,9 +354,14 @@ pub(crate) fn write_output(
 
     // Swap: move the old directory aside, move the new one in, then delete the old one.
     let old = if fs::symlink_metadata(dir).is_ok() {
-        let name = dir.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+        // The output's own name, whatever its bytes, so that a later run puts it back there.
+        let name = dir.file_name().unwrap_or(OsStr::new("out"));
         let aside = (0..1000u32)
-            .map(|n| parent.join(format!("{OLD}{}-{n}-{name}", std::process::id())))
+            .map(|n| {
+                let mut aside = OsString::from(format!("{OLD}{}-{n}-", std::process::id()));
+                aside.push(name);
+                parent.join(aside)
+            })
             .find(|p| !p.exists())
             .with_context(|| format!("no free name to move {} aside", dir.display()))?;
         fs::rename(dir, &aside)

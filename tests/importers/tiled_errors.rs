@@ -64,6 +64,18 @@ fn platform_and_spawn_errors_name_the_object() {
             "object 4 \"s\"",
             "also the name of object 1",
         ),
+        (
+            // A path of 1,001 points, one more than the limit (src/limits.rs MAX_PATH_POINTS).
+            platform(
+                &format!("{path}{speed}"),
+                &format!(
+                    r#"<object id="3" name="p" x="0" y="0"><polyline points="{}"/></object>"#,
+                    (0..1001).map(|i| format!("{i},0")).collect::<Vec<_>>().join(" ")
+                ),
+            ),
+            "object 2 \"lift\"",
+            "has 1001 points; expected at most 1000",
+        ),
     ];
     for (objects, subject, what) in cases {
         let e = MapText {

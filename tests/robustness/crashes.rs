@@ -353,6 +353,35 @@ fn a_negative_world_size_and_a_number_beyond_f32_say_what_is_wrong() {
 }
 
 #[test]
+fn a_spawn_option_outside_the_level_or_negative_is_judged_by_its_value() {
+    // tests/maps/showcase.tmx is 22 x 12 tiles, 24 wide with its side walls. A negative value
+    // read as an unknown option, 1e308 was called not finite, and feet outside the level ran
+    // probes in the void with exit 0.
+    let map = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/maps/showcase.tmx");
+    for (spawn, said) in [
+        ("-1,2", "--spawn -1,2: the feet are outside the level"),
+        (
+            "1e308,1",
+            "--spawn 1e308,1: expected X,Y, two numbers of tiles from -1e7 to 1e7",
+        ),
+        (
+            "5,1000000",
+            "--spawn 5,1000000: the feet are outside the level",
+        ),
+    ] {
+        for command in [&["inspect"][..], &["run", "--backend", "sweep"]] {
+            let out = platbench()
+                .args(command)
+                .arg(&map)
+                .args(["--spawn", spawn])
+                .output()
+                .unwrap();
+            assert_error(&out, said);
+        }
+    }
+}
+
+#[test]
 fn tile_layers_read_as_objects_is_refused() {
     // `objects` is an object layer's role; `--tile-layers objects` was accepted and did nothing.
     let dir = tempfile::tempdir().unwrap();

@@ -144,11 +144,8 @@ fn report_stress_and_sweep_refuse_a_directory_of_user_files_before_working() {
     }
 }
 
-#[test]
-fn a_staging_directory_left_by_a_dead_run_is_removed_and_others_are_kept() {
-    let dir = tempfile::tempdir().unwrap();
-    let level = quick_level(dir.path());
-    // The id of a process that has ended: a child we waited for.
+/// The id of a process that has ended: a child we waited for.
+fn dead_pid() -> u32 {
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_platbench"))
         .arg("--version")
         .stdout(std::process::Stdio::null())
@@ -156,6 +153,14 @@ fn a_staging_directory_left_by_a_dead_run_is_removed_and_others_are_kept() {
         .unwrap();
     let dead = child.id();
     child.wait().unwrap();
+    dead
+}
+
+#[test]
+fn a_staging_directory_left_by_a_dead_run_is_removed_and_others_are_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let level = quick_level(dir.path());
+    let dead = dead_pid();
     // What a run killed while writing leaves: its staging directory, marked.
     let stale = dir.path().join(format!(".platbench-staging-{dead}-0"));
     std::fs::create_dir_all(stale.join("traces")).unwrap();
@@ -181,6 +186,39 @@ fn a_staging_directory_left_by_a_dead_run_is_removed_and_others_are_kept() {
         .filter(|n| n.starts_with(".platbench-staging-") && n.contains('-'))
         .collect();
     assert_eq!(left.len(), 2, "{left:?}");
+}
+
+#[test]
+fn an_output_moved_aside_by_a_dead_run_is_put_back_under_its_own_name_whatever_its_bytes() {
+    use std::ffi::OsString;
+    use std::os::unix::ffi::OsStringExt;
+    let dir = tempfile::tempdir().unwrap();
+    let level = quick_level(dir.path());
+    let dead = dead_pid();
+    // A run killed between its two renames left the previous output of `runs-\xff` aside; an
+    // unrelated `out` of the user's stands beside it.
+    let name = OsString::from_vec(b"runs-\xff".to_vec());
+    let mut aside = OsString::from(format!(".platbench-old-{dead}-0-"));
+    aside.push(&name);
+    let aside = dir.path().join(aside);
+    std::fs::create_dir(&aside).unwrap();
+    std::fs::write(aside.join(".platbench-output"), "platbench run\n").unwrap();
+    std::fs::write(aside.join("metrics.csv"), "previous").unwrap();
+    let mine = dir.path().join("out");
+    std::fs::create_dir(&mine).unwrap();
+    std::fs::write(mine.join("keep.txt"), "mine").unwrap();
+    // The next write in that folder puts it back where it was.
+    let out = run_quick(&level, &dir.path().join("other"), &[]);
+    assert_success(&out);
+    if Path::new("/proc/self").exists() {
+        assert!(!aside.exists(), "{}", stderr(&out));
+        let back = dir.path().join(&name).join("metrics.csv");
+        assert_eq!(std::fs::read_to_string(back).unwrap(), "previous");
+    }
+    assert_eq!(
+        std::fs::read_to_string(mine.join("keep.txt")).unwrap(),
+        "mine"
+    );
 }
 
 #[test]

@@ -116,11 +116,18 @@ pub(crate) fn settle_spawns(
     opts: &ImportOptions,
     spawns: &mut Vec<SpawnPoint>,
     sources: &mut Vec<String>,
-) -> Option<ImportWarning> {
+) -> Result<Option<ImportWarning>, String> {
     if !opts.spawns.is_empty() {
         spawns.clear();
         sources.clear();
         for (k, p) in opts.spawns.iter().enumerate() {
+            let (w, h) = (level.width as f32, level.height as f32);
+            if !(p.x >= 0.0 && p.x <= w && p.y >= 0.0 && p.y <= h) {
+                return Err(format!(
+                    "--spawn {},{}: the feet are outside the level (0 <= x <= {w}, 0 <= y <= {h} tiles, y up, the side walls included); expected a spawn inside it",
+                    p.x, p.y
+                ));
+            }
             spawns.push(SpawnPoint {
                 name: format!("spawn{}", k + 1),
                 position: *p,
@@ -135,9 +142,9 @@ pub(crate) fn settle_spawns(
                 "fallback: the lowest standable cell of the leftmost column that has one".into(),
             );
         }
-        return Some(w);
+        return Ok(Some(w));
     }
-    None
+    Ok(None)
 }
 
 /// `name` with every character a level's name may not hold (see [`crate::level::valid_name`])

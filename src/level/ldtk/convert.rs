@@ -568,7 +568,9 @@ pub(super) fn import(
     if let Some(wn) = wall_sides(&mut level, &mut spawns, edges, continues, [false; 2], &file) {
         extra.push(wn);
     }
-    if let Some(wn) = settle_spawns(&level, &file, HOW_TO_SPAWN, opts, &mut spawns, &mut sources) {
+    if let Some(wn) =
+        settle_spawns(&level, &file, HOW_TO_SPAWN, opts, &mut spawns, &mut sources).map_err(perr)?
+    {
         extra.push(wn);
     }
     Ok(MapImport {

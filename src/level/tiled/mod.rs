@@ -307,7 +307,9 @@ impl<'m> Importer<'m> {
             self.opts,
             &mut spawns,
             &mut sources,
-        ) {
+        )
+        .map_err(|m| self.map_err(m))?
+        {
             self.warnings.push(w);
         }
         let _ = map;

@@ -335,6 +335,17 @@ impl<'m> Importer<'m> {
             // The path's shape, moved so that its first point is the platform's start: where
             // the polyline is drawn does not matter, only its legs.
             ObjectShape::Polyline { points } => {
+                if points.len() > crate::limits::MAX_PATH_POINTS {
+                    return Err(obj_err(
+                        o,
+                        format!(
+                            "its path, object {path_id} {:?}, has {} points; expected at most {}",
+                            p.name,
+                            points.len(),
+                            crate::limits::MAX_PATH_POINTS
+                        ),
+                    ));
+                }
                 let Some(&(x0, y0)) = points.first() else {
                     return Err(obj_err(
                         o,

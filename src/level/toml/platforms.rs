@@ -85,6 +85,16 @@ pub(super) fn parse_platform(
             (f64::MIN_POSITIVE, limits::MAX_SPEED),
             "tiles/s",
         )?;
+        if path.len() > limits::MAX_PATH_POINTS {
+            return Err(loc.at(
+                &span,
+                format!(
+                    "the platform path has {} waypoints; expected at most {}",
+                    path.len(),
+                    limits::MAX_PATH_POINTS
+                ),
+            ));
+        }
         let mut points = Vec::with_capacity(path.len());
         for [px, py] in path {
             points.push(Vec2::new(

@@ -142,6 +142,19 @@ fn platforms_parse_and_bad_ones_are_named() {
     let e = err("map = \"#\"\n[[platform]]\nrect = [0, 0, 1, 1]\n");
     assert!(e.message.contains("exactly one motion"), "{e}");
     assert_eq!(e.line, 2, "{e}");
+    // More waypoints than the limit (src/limits.rs MAX_PATH_POINTS): refused before any work.
+    let long: Vec<String> = (0..=crate::limits::MAX_PATH_POINTS)
+        .map(|i| format!("[{i}, 0]"))
+        .collect();
+    let e = err(&format!(
+        "map = \"#\"\n[[platform]]\nrect = [0, 0, 1, 1]\npath = [{}]\nspeed = 1\n",
+        long.join(", ")
+    ));
+    assert!(
+        e.to_string()
+            .contains("1001 waypoints; expected at most 1000"),
+        "{e}"
+    );
     let e = err("map = \"#\"\n[[platform]]\nrect = [0, 0, 1, 1]\npath = [[0, 0]]\nspeed = 1\n");
     assert!(e.message.contains("at least 2 waypoints"), "{e}");
     let e =
