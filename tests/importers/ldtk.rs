@@ -389,3 +389,26 @@ fn the_collision_layer_with_the_largest_painted_area_sets_the_grid_and_coarser_c
         r.warnings
     );
 }
+
+#[test]
+fn a_coarse_layer_s_far_cell_does_not_wrap_onto_the_level() {
+    // A 4 x 2 px level of 1 px cells ("Base", the floor, given as collision) and a layer
+    // "Walls" of 2^49 px cells whose one painted cell is column 32768: 2^64 cells of the grid
+    // to the right, far outside the level. Multiplied in i64 the position wrapped to 0 and painted
+    // the whole level solid.
+    let dir = tempfile::tempdir().unwrap();
+    let walls = format!("{}1", "0,".repeat(32768));
+    let text = format!(
+        r#"{{"worldLayout":"Free","levels":[{{"identifier":"a","worldX":0,"worldY":0,"pxWid":4,"pxHei":2,"layerInstances":[
+{{"__identifier":"Base","__type":"IntGrid","__cWid":4,"__cHei":2,"__gridSize":1,"intGridCsv":[0,0,0,0,1,1,1,1]}},
+{{"__identifier":"Walls","__type":"IntGrid","__cWid":32769,"__cHei":1,"__gridSize":562949953421312,"intGridCsv":[{walls}]}}]}}]}}"#
+    );
+    let p = dir.path().join("far.ldtk");
+    std::fs::write(&p, text).unwrap();
+    let opts = ImportOptions {
+        layer_roles: vec![("Base".into(), platbench::level::LayerRole::Collision)],
+        ..ImportOptions::default()
+    };
+    let r = import_ldtk_with(&p, &opts).unwrap_or_else(|e| panic!("{}", e.error));
+    assert_eq!(ascii_map(&r.level).0, "....\n####\n");
+}

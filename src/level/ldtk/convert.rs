@@ -331,6 +331,9 @@ pub(super) fn import(
                         );
                     } else if let Some(old) = &layer.int_grid {
                         cells.extend(old.iter().map(|c| (c.coord_id, c.v + 1)));
+                        // The old format lists cells by id: a repeated one is one cell.
+                        cells.sort_unstable();
+                        cells.dedup();
                     }
                     let mut noted: Vec<i64> = Vec::new();
                     for (idx, v) in cells {
@@ -344,16 +347,21 @@ pub(super) fn import(
                                 warn(&format!("layer {lname:?}"), n);
                             }
                         }
-                        let cx0 =
-                            (ox + layer.px_offset_x).div_euclid(grid) + (idx % cw) * scale - x0;
-                        let cy0 =
-                            (oy + layer.px_offset_y).div_euclid(grid) + (idx / cw) * scale - y0;
+                        // In i128: a cell size near the 10^15 pixel limit times a column
+                        // would wrap an i64.
+                        let corner = |o: i64, off: i64, k: i64, lo: i64| {
+                            (o + off).div_euclid(grid) as i128 + k as i128 * scale as i128
+                                - lo as i128
+                        };
+                        let cx0 = corner(ox, layer.px_offset_x, idx % cw, x0);
+                        let cy0 = corner(oy, layer.px_offset_y, idx / cw, y0);
                         // Clipped to the level first: a layer's cells do not overlap, so a
                         // layer costs at most the level's cells, whatever its cell size.
-                        let (xs, ys) = (
-                            cx0.max(0)..(cx0 + scale).min(w as i64),
-                            cy0.max(0)..(cy0 + scale).min(h as i64),
-                        );
+                        let clip = |c: i128, n: u64| {
+                            c.clamp(0, n as i128) as i64
+                                ..(c + scale as i128).clamp(0, n as i128) as i64
+                        };
+                        let (xs, ys) = (clip(cx0, w), clip(cy0, h));
                         for (cx, cy) in ys.flat_map(|cy| xs.clone().map(move |cx| (cx, cy))) {
                             let j = h as i64 - 1 - cy;
                             let cell = &mut tiles[(j as u64 * w + cx as u64) as usize];
