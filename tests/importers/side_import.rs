@@ -43,6 +43,27 @@ fn the_side_file_names_roles_and_sides_and_the_command_line_wins() {
     let map = two_layers(dir.path(), side);
     let r = import_tiled_map_with(&map, &ImportOptions::default()).unwrap();
     assert_eq!((r.level.width, r.level.tile(1, 1)), (3, Tile::Empty));
+    assert!(
+        r.warnings.is_empty()
+            || r.warnings
+                .iter()
+                .all(|w| !w.message.contains("no layer of that name"))
+    );
+    // A misspelt name matches no layer: said, with the map's layer names.
+    let typo = "[import]\nlayers = { \"Bush Layer\" = \"decoration\" }\n";
+    let m = two_layers(dir.path(), typo);
+    let t = import_tiled_map_with(&m, &ImportOptions::default()).unwrap();
+    assert!(
+        t.warnings
+            .iter()
+            .any(|w| w.subject == "layer \"Bush Layer\""
+                && w.message.contains("no layer of that name")
+                && w.message.contains("Bushes Layer")),
+        "{:?}",
+        t.warnings
+    );
+    let map = two_layers(dir.path(), side);
+    let r = import_tiled_map_with(&map, &ImportOptions::default()).unwrap();
     let bushes = r.layers.iter().find(|l| l.name == "Bushes Layer").unwrap();
     assert!(
         bushes.why.starts_with("given:") && !bushes.is_guess(),

@@ -229,6 +229,45 @@ impl ImportOptions {
     }
 }
 
+/// A warning for each layer the options give a role (`--layer`, a side file's `[import]`
+/// layers) that the map does not have: a misspelt name would otherwise change nothing,
+/// silently. A name matches a layer's whole name or its last part (`group/child`, a world's
+/// `Level_0/Collisions`), in any case.
+#[cfg(any(feature = "tiled", feature = "ldtk"))]
+pub(crate) fn unmatched_layer_roles(
+    opts: &ImportOptions,
+    reports: &[LayerReport],
+    file: &str,
+) -> Vec<ImportWarning> {
+    let last = |n: &str| normalize(n.rsplit('/').next().unwrap_or(n));
+    let mut seen: Vec<String> = Vec::new();
+    let mut out = Vec::new();
+    for (k, _) in &opts.layer_roles {
+        let n = normalize(k);
+        if seen.contains(&n) {
+            continue;
+        }
+        seen.push(n.clone());
+        if reports
+            .iter()
+            .any(|r| normalize(&r.name) == n || last(&r.name) == n)
+        {
+            continue;
+        }
+        let mut names: Vec<&str> = reports.iter().map(|r| r.name.as_str()).collect();
+        names.dedup();
+        out.push(ImportWarning {
+            file: file.into(),
+            subject: format!("layer {k:?}"),
+            message: format!(
+                "given a role (--layer or the side file's [import] layers), but the map has no layer of that name; ignored (its layers: {})",
+                names.join(", ")
+            ),
+        });
+    }
+    out
+}
+
 /// A tile kind as a user writes it (`solid`, `one_way`, `ladder`, `empty`, and the one-way and ladder
 /// words games use: `jumpthrough`, `semisolid`, `climbable`, ...), any case.
 pub(crate) fn parse_tile_kind(s: &str) -> Option<Tile> {

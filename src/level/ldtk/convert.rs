@@ -581,6 +581,9 @@ pub(super) fn import(
     {
         extra.push(wn);
     }
+    extra.extend(crate::level::import::unmatched_layer_roles(
+        opts, &reports, &file,
+    ));
     Ok(MapImport {
         level,
         spawns,

@@ -40,7 +40,7 @@ pub use read::import_tiled_map_with;
 pub(crate) use tiles::ramp;
 
 use super::import::spawns::{no_solids_warning, settle_spawns};
-use super::import::wall_sides;
+use super::import::{unmatched_layer_roles, wall_sides};
 use super::import::{ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole};
 use super::probes::{probe_scenarios, ProbeConfig, SpawnPoint};
 use super::{parse_scenarios, Level, LevelError};
@@ -313,6 +313,8 @@ impl<'m> Importer<'m> {
             self.warnings.push(w);
         }
         let _ = map;
+        let unmatched = unmatched_layer_roles(self.opts, &self.reports, &self.file);
+        self.warnings.extend(unmatched);
         Ok(TiledImport {
             level,
             spawns,
