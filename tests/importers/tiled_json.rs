@@ -75,6 +75,17 @@ fn the_format_is_told_by_the_content() {
     let ldtk = copy("linear_old.ldtk", "old.json");
     let out = platbench().args(["inspect"]).arg(&ldtk).output().unwrap();
     assert!(out.status.success(), "{out:?}");
+    // Even saved as `.toml`: its side file would be itself, so it has none.
+    let as_toml = copy("showcase.tmj", "saved.toml");
+    for command in ["inspect", "run"] {
+        let out = platbench()
+            .args([command])
+            .arg(&as_toml)
+            .args(["--backend", "sweep"][..if command == "run" { 2 } else { 0 }].iter())
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{command}: {out:?}");
+    }
 }
 
 /// `platbench run FILE`'s stderr, which must fail with exit 2.

@@ -91,8 +91,7 @@ pub fn load_ldtk_with(
         mut warnings,
         ..
     } = import_ldtk_with(path, opts)?;
-    let side = path.with_extension("toml");
-    if side.is_file() {
+    if let Some(side) = crate::level::toml::side_file_of(path) {
         let fail = |error: LdtkError, warnings| ImportFailure { error, warnings };
         let text = match crate::limits::read_text_capped(&side) {
             Ok(t) => t,
@@ -121,7 +120,7 @@ pub fn load_ldtk_with(
         return Err(ImportFailure {
             error: LdtkError::Project {
                 file: path.display().to_string(),
-                message: format!("no spawn entity and no cell to stand on, so nothing can run; {HOW_TO_SPAWN}, pass --spawn X,Y, or write {} with [[scenario]] entries", side.display()),
+                message: format!("no spawn entity and no cell to stand on, so nothing can run; {HOW_TO_SPAWN}, pass --spawn X,Y, or write {} with [[scenario]] entries", path.with_extension("toml").display()),
             },
             warnings,
         });

@@ -135,8 +135,7 @@ pub fn load_tiled_map_with(
         ..
     } = import_tiled_map_with(path, opts)?;
     let fail = |error: TiledError, warnings: Vec<TiledWarning>| ImportFailure { error, warnings };
-    let side = path.with_extension("toml");
-    if side.is_file() {
+    if let Some(side) = crate::level::toml::side_file_of(path) {
         let text = match crate::limits::read_text_capped(&side) {
             Ok(t) => t,
             Err(e) => {
@@ -176,7 +175,7 @@ pub fn load_tiled_map_with(
         return Err(fail(
             TiledError::NoScenarios {
                 file: path.display().to_string(),
-                side: side.display().to_string(),
+                side: path.with_extension("toml").display().to_string(),
             },
             warnings,
         ));

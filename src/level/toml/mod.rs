@@ -35,7 +35,7 @@ pub use error::LevelError;
 pub use scenarios::parse_scenarios;
 pub use side::side_import_options;
 #[cfg(any(feature = "tiled", feature = "ldtk"))]
-pub(crate) use side::{options_beside, SideFailure};
+pub(crate) use side::{options_beside, side_file_of, SideFailure};
 
 use error::Locator;
 use legend::parse_legend;

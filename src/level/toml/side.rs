@@ -148,6 +148,14 @@ pub(crate) enum SideFailure {
     Level(LevelError),
 }
 
+/// The side file of `map` when there is one: `MAP.toml` beside it, a regular file other than
+/// the map itself (a map saved as `.toml` has none; it is not read twice).
+#[cfg_attr(not(any(feature = "tiled", feature = "ldtk")), allow(dead_code))]
+pub(crate) fn side_file_of(map: &std::path::Path) -> Option<std::path::PathBuf> {
+    let side = map.with_extension("toml");
+    (side.as_path() != map && side.is_file()).then_some(side)
+}
+
 /// The import options for `map`: those of its side file `MAP.toml` (when there is one) under
 /// the command line's `cli`.
 #[cfg_attr(not(any(feature = "tiled", feature = "ldtk")), allow(dead_code))]
@@ -155,10 +163,9 @@ pub(crate) fn options_beside(
     map: &std::path::Path,
     cli: &ImportOptions,
 ) -> Result<ImportOptions, SideFailure> {
-    let side = map.with_extension("toml");
-    if !side.is_file() {
+    let Some(side) = side_file_of(map) else {
         return Ok(cli.clone());
-    }
+    };
     let file = side.display().to_string();
     let text = crate::limits::read_text_capped(&side).map_err(|e| SideFailure::Read {
         file: file.clone(),
