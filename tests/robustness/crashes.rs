@@ -443,4 +443,13 @@ fn diff_fails_on_a_repeated_key_a_nan_reference_and_a_third_tolerance() {
     // A third number in --tol was ignored; now refused before any work.
     let out = diff(&base, &base, &["--tol", "rest_gap=1,2,3"]);
     assert_error(&out, "--tol rest_gap=1,2,3");
+    // A trace in BASE whose name is not UTF-8 was skipped, so its absence from NEW passed.
+    {
+        use std::os::unix::ffi::OsStringExt;
+        let odd = write("odd", good);
+        let name = std::ffi::OsString::from_vec(b"l.s.sweep.\xff.csv".to_vec());
+        std::fs::write(odd.join("traces").join(name), "frame,t\n").unwrap();
+        let out = diff(&odd, &base, &[]);
+        assert_error(&out, "the trace's file name is not UTF-8");
+    }
 }

@@ -103,6 +103,13 @@ pub enum DiffError {
         /// The key, as `level.scenario backend config metric`.
         key: String,
     },
+    /// A trace's file name is not UTF-8: platbench names traces in ASCII, so it is no trace
+    /// of a run, and skipping it would leave it uncompared.
+    #[error("{path}: the trace's file name is not UTF-8; expected the ASCII names platbench writes (level.scenario.backend.config.csv)")]
+    TraceName {
+        /// The file.
+        path: PathBuf,
+    },
     /// A CSV file is malformed.
     #[error("{path}: {source}")]
     Csv {
@@ -156,11 +163,14 @@ fn trace_files(dir: &Path) -> Result<Vec<String>, DiffError> {
         path: tdir.clone(),
         source,
     })?;
-    let mut names: Vec<String> = entries
-        .filter_map(|e| e.ok())
-        .filter_map(|e| e.file_name().into_string().ok())
-        .filter(|n| n.ends_with(".csv"))
-        .collect();
+    let mut names: Vec<String> = Vec::new();
+    for e in entries.filter_map(|e| e.ok()) {
+        match e.file_name().into_string() {
+            Ok(n) if n.ends_with(".csv") => names.push(n),
+            Ok(_) => {}
+            Err(_) => return Err(DiffError::TraceName { path: e.path() }),
+        }
+    }
     names.sort();
     Ok(names)
 }
