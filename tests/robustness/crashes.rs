@@ -453,3 +453,20 @@ fn diff_fails_on_a_repeated_key_a_nan_reference_and_a_third_tolerance() {
         assert_error(&out, "the trace's file name is not UTF-8");
     }
 }
+
+#[test]
+fn a_chunk_beyond_tiled_s_cell_coordinates_is_named_not_called_missing() {
+    // tests/maps/infinite.tmx with its chunk moved to x = 2147483632: it ends past i32::MAX,
+    // the `tiled` reader dropped it, and the map was said to "hold no chunk".
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/maps/infinite.tmx"),
+    )
+    .unwrap()
+    .replacen("<chunk x=\"-16\"", "<chunk x=\"2147483632\"", 1);
+    let map = dir.path().join("far.tmx");
+    std::fs::write(&map, text).unwrap();
+    let out = platbench().arg("inspect").arg(&map).output().unwrap();
+    assert_error(&out, "chunk at x = 2147483632");
+    assert!(!stderr(&out).contains("no chunk"), "{}", stderr(&out));
+}

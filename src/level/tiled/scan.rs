@@ -198,6 +198,17 @@ fn chunk_data(d: &Data, e: &BytesStart, line: usize) -> Result<Data, ScanError> 
         int("height").unwrap_or(0).max(0) as u64,
     );
     let place = format!("{}, chunk at x = {x}, y = {y}", d.place);
+    // Tiled's cells are i32: a chunk reaching past them is dropped by the reader, which then
+    // finds no chunk at all.
+    let fits = |at: i64, len: u64| at >= i32::MIN as i64 && at + len as i64 <= i32::MAX as i64;
+    if !(fits(x, w) && fits(y, h)) {
+        return Err(ScanError {
+            line,
+            message: format!(
+                "{place}: the chunk ({w} x {h} tiles) reaches beyond Tiled's cell coordinates; expected chunks within -2147483648 to 2147483646"
+            ),
+        });
+    }
     if w.saturating_mul(h) > limits::MAX_TILES {
         return Err(ScanError {
             line,
