@@ -180,6 +180,12 @@ fn a_platform_path_naming_a_point_goes_there_and_back() {
             speed: 2.0
         }
     );
+    // The point is used as a path, so no warning calls it ignored.
+    assert!(
+        r.warnings.iter().all(|w| w.subject != "object 3 \"\""),
+        "{:?}",
+        r.warnings
+    );
 }
 
 #[test]

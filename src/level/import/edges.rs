@@ -84,10 +84,10 @@ pub(crate) fn wall_sides(
     for s in spawns {
         s.position.x += dx;
     }
-    let sides = match (left, right) {
-        (true, true) => "left and right sides are",
-        (true, false) => "left side is",
-        _ => "right side is",
+    let (sides, are) = match (left, right) {
+        (true, true) => ("left and right sides", "are"),
+        (true, false) => ("left side", "is"),
+        _ => ("right side", "is"),
     };
     if edges == Edges::Open {
         return Some(ImportWarning {
@@ -95,7 +95,7 @@ pub(crate) fn wall_sides(
             subject: "map".into(),
             message: format!(
                 "the map draws collision just outside its {}, which is dropped; a wall one tile wide and as tall as the map stands for it outside {}{} (--edges open leaves open only the sides the map leaves open)",
-                sides.trim_end_matches(" are").trim_end_matches(" is"),
+                sides,
                 if left && right { "each" } else { "it" },
                 if left {
                     "; the map's cells are one tile to the right in the level"
@@ -109,7 +109,7 @@ pub(crate) fn wall_sides(
         file: file.into(),
         subject: "map".into(),
         message: format!(
-            "the map's {sides} open, so a wall one tile wide and as tall as the map is added outside {}, as games stop the player at the map's sides (world bounds){}; the bottom stays open, so pits still kill; pass --edges open to leave the sides open",
+            "the map's {sides} {are} open, so a wall one tile wide and as tall as the map is added outside {}, as games stop the player at the map's sides (world bounds){}; the bottom stays open, so pits still kill; pass --edges open to leave the sides open",
             if left && right { "each" } else { "it" },
             if left {
                 "; the map's cells are one tile to the right in the level"

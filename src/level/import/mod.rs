@@ -127,6 +127,14 @@ impl LayerRole {
         }
     }
 
+    /// Whether the layer's tiles or shapes collide (collision, solid, one-way, ladder).
+    pub fn collides(&self) -> bool {
+        matches!(
+            self,
+            LayerRole::Collision | LayerRole::Solid | LayerRole::OneWay | LayerRole::Ladder
+        )
+    }
+
     /// The tile every drawn cell of the layer becomes, for the roles that force one.
     pub fn forced_tile(&self) -> Option<Tile> {
         match self {

@@ -11,7 +11,7 @@ use crate::level::import::{ImportOptions, LayerRole};
 /// given).
 fn tier(l: &LayerInstance, opts: &ImportOptions) -> u8 {
     match opts.role_of(&l.identifier) {
-        Some(LayerRole::Collision | LayerRole::Solid | LayerRole::OneWay | LayerRole::Ladder) => 0,
+        Some(r) if r.collides() => 0,
         Some(_) => 4,
         None => match role_from_name(&l.identifier) {
             Some((LayerRole::Collision, _)) => 1,

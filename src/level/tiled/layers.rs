@@ -9,7 +9,7 @@ use crate::level::import::given;
 use std::collections::{BTreeMap, HashMap};
 
 use glam::Vec2;
-use tiled::{LayerType, ObjectShape, PropertyValue, TileLayer};
+use tiled::{LayerType, PropertyValue, TileLayer};
 
 use super::objects::ObjectLayer;
 use super::tiles::{apply_flips, is_bool_mark, tile_kind, SOLID_BOOLS};
@@ -205,20 +205,10 @@ impl<'m> Importer<'m> {
         Ok(())
     }
 
-    /// Whether an object is a collision shape in a layer of `role`: a rectangle or polygon
-    /// that is neither a spawn nor a moving platform.
+    /// Whether an object is a collision shape in a layer of `role` (see
+    /// [`Importer::is_collision_object`]).
     pub(super) fn is_collision_shape(o: &tiled::Object, role: LayerRole) -> bool {
-        matches!(
-            role,
-            LayerRole::Collision | LayerRole::Solid | LayerRole::OneWay | LayerRole::Ladder
-        ) && o.tile_data().is_none()
-            && matches!(
-                o.shape,
-                ObjectShape::Rect { .. } | ObjectShape::Polygon { .. }
-            )
-            && !o.properties.contains_key(names::PATH)
-            && !is_spawn_name(&o.user_type)
-            && !is_spawn_name(&o.name)
+        role.collides() && Self::is_collision_object(o)
     }
 
     /// Gives each layer its role, reads the tile layers, and keeps the object layers for later.

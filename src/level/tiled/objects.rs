@@ -65,7 +65,7 @@ impl<'m> Importer<'m> {
             .collect();
         let mut used_paths: Vec<u32> = Vec::new();
         let mut spawns: Vec<(SpawnPoint, u32, String)> = Vec::new();
-        let mut polylines: Vec<&tiled::Object<'m>> = Vec::new();
+        let mut paths: Vec<&tiled::Object<'m>> = Vec::new();
         for l in &layers {
             if l.excluded {
                 continue;
@@ -76,10 +76,7 @@ impl<'m> Importer<'m> {
                 let class = o.user_type.as_str();
                 let by_class = is_spawn_name(class);
                 let by_name = is_spawn_name(&o.name);
-                let collides = matches!(
-                    l.role,
-                    LayerRole::Collision | LayerRole::Solid | LayerRole::OneWay | LayerRole::Ladder
-                );
+                let collides = l.role.collides();
                 // A moving platform has a path; one of class `platform` without a path is a
                 // one-way piece of a collision layer, and elsewhere a platform missing its path.
                 let is_platform = o.properties.contains_key(names::PATH)
@@ -142,7 +139,10 @@ impl<'m> Importer<'m> {
                     }
                 } else {
                     match &o.shape {
-                        ObjectShape::Polyline { .. } => polylines.push(o),
+                        // A polyline or a point may be a platform's path: said at the end
+                        // if none names it.
+                        ObjectShape::Polyline { .. } => paths.push(o),
+                        ObjectShape::Point(..) if l.role != LayerRole::Decoration => paths.push(o),
                         _ if l.role == LayerRole::Decoration => ignored += 1,
                         other => {
                             let class_text = if class.is_empty() {
@@ -165,11 +165,15 @@ impl<'m> Importer<'m> {
                 );
             }
         }
-        for o in polylines {
+        for o in paths {
             if !used_paths.contains(&o.id()) {
+                let what = match o.shape {
+                    ObjectShape::Point(..) => "a point that is no spawn (class or name \"spawn\", \"player\", \"start\") and",
+                    _ => "a polyline that",
+                };
                 self.warn(
                     format!("object {} {:?}", o.id(), o.name),
-                    "a polyline that no platform's \"path\" property names; ignored".into(),
+                    format!("{what} no platform's \"path\" property names; ignored"),
                 );
             }
         }
