@@ -15,6 +15,7 @@ use glam::Vec2;
 
 use crate::level::Level;
 use crate::motion::{Input, MotionState};
+use crate::rounding::{ceil32, floor32};
 
 /// How close above a ladder's top the feet count as standing on it, in tiles: Rapier's offset
 /// and rounding, well under a climbing step.
@@ -23,8 +24,8 @@ pub const TOP_TOLERANCE: f32 = 0.02;
 /// The ladder run under the centre column that the box overlaps: (centre x, bottom, top), world.
 fn ladder_here(level: &Level, origin: Vec2, feet: Vec2, size: Vec2) -> Option<(f32, f32, f32)> {
     let local = feet - origin;
-    let i = local.x.floor() as i64;
-    let (j0, j1) = (local.y.floor() as i64, (local.y + size.y).ceil() as i64);
+    let i = floor32(local.x) as i64;
+    let (j0, j1) = (floor32(local.y) as i64, ceil32(local.y + size.y) as i64);
     (j0..j1)
         .find_map(|j| level.ladder_extent(i, j))
         .filter(|(bottom, top)| local.y < *top && local.y + size.y > *bottom)

@@ -39,6 +39,7 @@ pub mod prelude;
 pub mod rapier;
 pub mod registry;
 pub mod report;
+pub(crate) mod rounding;
 pub mod scenario;
 pub mod shape;
 pub mod stress;

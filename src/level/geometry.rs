@@ -7,6 +7,7 @@ use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
 use super::{Level, Slope, Tile};
+use crate::rounding::{ceil64, floor32, round64};
 
 impl Level {
     /// The box of tile `(i, j)`.
@@ -117,10 +118,10 @@ impl Level {
     /// `depth` tiles: a solid tile's top or a slope's surface at `x`. Returns the height and, for
     /// a slope, its tile.
     pub fn surface_at(&self, x: f32, top: f32, depth: f32) -> Option<(f32, Option<(i64, i64)>)> {
-        let i = x.floor() as i64;
+        let i = floor32(x) as i64;
         let lowest = top - depth;
         // Rows above the map hold nothing: the walk starts at most at its top row.
-        let mut j = (top.floor() as i64).min(self.height as i64 - 1);
+        let mut j = (floor32(top) as i64).min(self.height as i64 - 1);
         while j as f32 + 1.0 > lowest && j >= 0 {
             match self.tile(i, j) {
                 Tile::Solid => {
@@ -213,11 +214,11 @@ impl Level {
 /// so feet put on a surface are never below it and at most one step above it.
 pub fn round_height_up(h: f32, per_tile: i64) -> i64 {
     let v = h as f64 * per_tile as f64;
-    let r = v.round();
+    let r = round64(v);
     if (v - r).abs() < 1e-4 {
         r as i64
     } else {
-        v.ceil() as i64
+        ceil64(v) as i64
     }
 }
 

@@ -36,16 +36,18 @@ const NEAR_MARGIN: f32 = 1.0;
 /// root, so a step's cost does not grow with the level's size. The region is refilled, from one
 /// BVH query reaching `NEAR_MARGIN` beyond the asked area, only when a query leaves it.
 ///
-/// The answers are exactly the BVH's: the boxes kept are those touching the region, so those
-/// touching an area inside it are among them, found by the same inclusive test and in the same
-/// (depth-first) order.
+/// A query answers every box of the region, in the BVH's (depth-first) order: the boxes the
+/// BVH would give for the asked area are among them, in the same order, and the others are
+/// near it. The caller tests each box against its own swept box anyway (in its storage's
+/// coordinate, [`super::resolve::move_axis`]), so a box outside the area costs that one test and
+/// changes no answer; testing it here as well would test every box twice.
 ///
-/// Each box is kept with its place in the mover's storage `C` (f32 or f64 tiles, or whole
+/// Each box is kept only as its place in the mover's storage `C` (f32 or f64 tiles, or whole
 /// subpixels), converted once when the region is refilled rather than at every query.
 #[derive(Clone, Debug)]
 pub(crate) struct NearCache<C> {
     region: Aabb,
-    items: Vec<(Aabb, Rect<C>, BoxKind)>,
+    items: Vec<(Rect<C>, BoxKind)>,
 }
 
 impl<C> Default for NearCache<C> {
@@ -60,22 +62,20 @@ impl<C> Default for NearCache<C> {
 }
 
 impl<C: Copy> NearCache<C> {
-    /// The static boxes touching `area` (inclusive), each as `place` puts it in the storage,
-    /// with their kind, in the BVH's order.
+    /// The static boxes near `area`, each as `place` puts it in the storage, with their kind,
+    /// in the BVH's order: every box touching `area` (inclusive) and maybe others near it, which
+    /// the caller's own test leaves out (see the type's note).
     #[inline]
-    pub(crate) fn query<'a>(
-        &'a mut self,
+    pub(crate) fn query(
+        &mut self,
         tiles: &StaticTiles,
         area: Aabb,
         place: impl Fn(&Aabb) -> Rect<C>,
-    ) -> impl Iterator<Item = (Rect<C>, BoxKind)> + 'a {
+    ) -> &[(Rect<C>, BoxKind)] {
         if !self.region.contains(&area) {
             self.refill(tiles, &area, place);
         }
-        self.items
-            .iter()
-            .filter(move |(b, _, _)| b.intersects(&area))
-            .map(|(_, r, k)| (*r, *k))
+        &self.items
     }
 
     /// Keeps the boxes touching `area` loosened by [`NEAR_MARGIN`] (the rare path of a query).
@@ -85,7 +85,7 @@ impl<C: Copy> NearCache<C> {
         self.items.clear();
         let region = self.region;
         self.items
-            .extend(tiles.query(&region).map(|(b, k)| (*b, place(b), k)));
+            .extend(tiles.query(&region).map(|(b, k)| (place(b), k)));
     }
 }
 
@@ -176,9 +176,12 @@ mod tests {
             let x = k as f32 * 0.093;
             let area = Aabb::new(Vec2::new(x, 0.9), Vec2::new(x + 0.8, 2.05));
             let before = near.region;
+            // The caller's own test (inclusive touching) picks the answer out of the cache's.
             let cached: Vec<(Aabb, BoxKind)> = near
                 .query(&tiles, area, |b| Rect::from(*b))
-                .map(|(b, k)| (Aabb::new(b.min.into(), b.max.into()), k))
+                .iter()
+                .map(|(b, k)| (Aabb::new(b.min.into(), b.max.into()), *k))
+                .filter(|(b, _)| b.intersects(&area))
                 .collect();
             refills += (near.region != before) as usize;
             let direct: Vec<(Aabb, BoxKind)> = tiles.query(&area).map(|(b, k)| (*b, k)).collect();

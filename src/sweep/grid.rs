@@ -17,6 +17,7 @@ use parry2d::bounding_volume::{Aabb, BoundingVolume};
 
 use super::space::Rect;
 use crate::backend::BackendError;
+use crate::rounding::round64;
 
 /// The largest distance from the origin, in tiles, at which tile faces are exact in the
 /// broadphase's f32 boxes (2^24).
@@ -76,8 +77,8 @@ impl Grid {
     pub(crate) fn place(&self, feet: Vec2, size: I64Vec2) -> Rect<i64> {
         let s = self.per_tile as f64;
         let min = DVec2::new(
-            (feet.x as f64 * s - size.x as f64 * 0.5).round(),
-            (feet.y as f64 * s).round(),
+            round64(feet.x as f64 * s - size.x as f64 * 0.5),
+            round64(feet.y as f64 * s),
         )
         .as_i64vec2()
             + self.origin;

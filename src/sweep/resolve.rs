@@ -89,17 +89,15 @@ pub(crate) fn move_axis<S: Space>(
     swept.max[across] = swept.max[across] - eps;
 
     let mut closest: Option<(S::Coord, BoxKind)> = None;
-    let statics = o.space.statics(o.tiles, near, swept);
-    let moving = o.moving.into_iter().flat_map(|m| m.near(o.space, swept));
-    for (t, kind) in statics.chain(moving) {
+    let mut consider = |t: super::space::Rect<S::Coord>, kind: BoxKind| {
         // Only a box that touches the swept box (the broadphase's inclusive test, here in the
         // storage's coordinate) can be in the way.
         if !t.touches(&swept) || skip(t.max[1], kind) {
-            continue;
+            return;
         }
         let beside = b.max[across].min(t.max[across]) - b.min[across].max(t.min[across]) > eps;
         if !beside {
-            continue;
+            return;
         }
         if delta > zero {
             let face = t.min[a];
@@ -113,6 +111,16 @@ pub(crate) fn move_axis<S: Space>(
             {
                 closest = Some((face, kind));
             }
+        }
+    };
+    // The static boxes, then the moving platforms, each in its own order (two plain loops: the
+    // one chained iterator they replaced cost more instructions than the tests themselves).
+    for &(t, kind) in o.space.statics(o.tiles, near, swept) {
+        consider(t, kind);
+    }
+    if let Some(m) = o.moving {
+        for (t, kind) in m.near(o.space, swept) {
+            consider(t, kind);
         }
     }
     let at = body.at[a];

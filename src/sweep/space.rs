@@ -28,6 +28,7 @@ use super::broadphase::{BoxKind, NearCache, StaticTiles};
 use super::grid::Grid;
 use super::platforms::PlatformState;
 use super::resolve::Axis;
+use crate::rounding::{ceil64, floor64, round32};
 
 /// A coordinate in which box faces compare: world tiles (f32, f64) or world subpixels (i64).
 /// Its `Default` is zero.
@@ -197,16 +198,16 @@ pub(crate) trait Space {
         delta: f32,
         min_fall: bool,
     ) -> Self::Coord;
-    /// The static boxes the broadphase finds around `swept`, with their kind, in its order,
-    /// asked through the mover's `near` cache: every box that touches `swept`, and in f64 and
-    /// on the grid maybe a few more (the broadphase is asked in f32 with a margin; the sweep
-    /// tests each box again in [`Coord`]).
+    /// The static boxes around `swept`, with their kind, in the broadphase's order, asked
+    /// through the mover's `near` cache: every box that touches `swept` and maybe others near
+    /// it (the cache's whole region; in f64 and on the grid the broadphase is asked in f32 with
+    /// a margin), so the sweep tests each box again in [`Coord`].
     fn statics<'a>(
         &'a self,
         tiles: &StaticTiles,
         near: &'a mut NearCache<Self::Coord>,
         swept: Rect<Self::Coord>,
-    ) -> impl Iterator<Item = (Rect<Self::Coord>, BoxKind)> + 'a;
+    ) -> &'a [(Rect<Self::Coord>, BoxKind)];
     /// Moving platform `p`'s box at time `t` (seconds) as the space places it: its exact path
     /// in float, its path rounded to the nearest subpixel on the grid
     /// ([`crate::level::Platform::grid_box`]).
@@ -292,7 +293,7 @@ impl Space for FloatSpace {
         tiles: &StaticTiles,
         near: &'a mut NearCache<f32>,
         swept: Rect<f32>,
-    ) -> impl Iterator<Item = (Rect<f32>, BoxKind)> + 'a {
+    ) -> &'a [(Rect<f32>, BoxKind)] {
         let area = Aabb::new(Vec2::from_array(swept.min), Vec2::from_array(swept.max));
         near.query(tiles, area, |t| (*t).into())
     }
@@ -392,7 +393,7 @@ impl Space for DoubleSpace {
         tiles: &StaticTiles,
         near: &'a mut NearCache<f64>,
         swept: Rect<f64>,
-    ) -> impl Iterator<Item = (Rect<f64>, BoxKind)> + 'a {
+    ) -> &'a [(Rect<f64>, BoxKind)] {
         let (smin, smax) = (DVec2::from_array(swept.min), DVec2::from_array(swept.max));
         let area = Aabb::new(
             (smin - self.origin).as_vec2() - Vec2::splat(F64_QUERY_MARGIN),
@@ -467,7 +468,7 @@ impl Space for GridSpace {
     }
     #[inline]
     fn length_up(&self, tiles: f32) -> i64 {
-        (tiles as f64 * self.grid.per_tile as f64).ceil() as i64
+        ceil64(tiles as f64 * self.grid.per_tile as f64) as i64
     }
     #[inline]
     fn to_tiles(&self, v: i64) -> f32 {
@@ -477,7 +478,7 @@ impl Space for GridSpace {
     fn whole_move(&self, b: &mut Body<i64>, axis: Axis, delta: f32, min_fall: bool) -> i64 {
         let a = axis.index();
         let total = delta * self.grid.per_tile as f32 + b.remainder[a];
-        let n = total.round();
+        let n = round32(total);
         b.remainder[a] = total - n;
         if min_fall && n as i64 == 0 {
             // The first step of a drop through a one-way platform falls less than a subpixel;
@@ -493,7 +494,7 @@ impl Space for GridSpace {
         tiles: &StaticTiles,
         near: &'a mut NearCache<i64>,
         swept: Rect<i64>,
-    ) -> impl Iterator<Item = (Rect<i64>, BoxKind)> + 'a {
+    ) -> &'a [(Rect<i64>, BoxKind)] {
         let grid = self.grid;
         near.query(tiles, self.grid.query_area(&swept), move |t| grid.box_of(t))
     }
@@ -510,12 +511,12 @@ impl Space for GridSpace {
         let o = self.grid.origin;
         Rect {
             min: [
-                (lo.x * n).floor() as i64 - m + o.x,
-                (lo.y * n).floor() as i64 - m + o.y,
+                floor64(lo.x * n) as i64 - m + o.x,
+                floor64(lo.y * n) as i64 - m + o.y,
             ],
             max: [
-                (hi.x * n).ceil() as i64 + m + o.x,
-                (hi.y * n).ceil() as i64 + m + o.y,
+                ceil64(hi.x * n) as i64 + m + o.x,
+                ceil64(hi.y * n) as i64 + m + o.y,
             ],
         }
     }
