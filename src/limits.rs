@@ -75,6 +75,33 @@ pub(crate) const MIN_PERIOD: f64 = 1e-6;
 pub(crate) const MAX_PATH_POINTS: usize = 1_000;
 /// Largest sweep epsilon, in tiles: an overlap tolerance of a whole tile tolerates everything.
 pub(crate) const MAX_EPSILON: f64 = 1.0;
+/// Most points of one Tiled polygon or polyline (a collision shape, a tile's collision
+/// object, a platform's path), counted in the file before the `tiled` crate reads it: a ramp
+/// has 3 or 4 corners and a hand-drawn outline some dozens, so 10,000 leaves room for traced
+/// outlines while every shape is read in milliseconds (a 1,000,000-point polygon took 58 s
+/// when a ramp was still found by a quadratic search).
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_POLYGON_POINTS: usize = 10_000;
+/// Most spawn points of one map (Tiled or LDtk): each spawn makes up to five probe scenarios
+/// (27 s of game time, 1,620 frames at 60 Hz), and real maps hold a handful; 1,000 spawns make
+/// 5,000 scenarios and 1.6 million frames per configuration, within [`MAX_LEVEL_FRAMES`].
+pub(crate) const MAX_SPAWNS: usize = 1_000;
+/// Largest TOML level or side file, in bytes (32 MiB), read no further: the largest map
+/// [`MAX_TILES`] allows is a 4000 x 4000 string of 16 MB (17 MB with CRLF line ends), and the
+/// rest of a level is a few kilobytes of legend, platforms and scenarios.
+pub(crate) const MAX_TOML_BYTES: u64 = 32 * 1024 * 1024;
+/// Most TOML items in a level or side file (each `=`, `,`, `[` and `{` outside strings and
+/// comments), counted before the `toml` crate parses the file: it builds a tree of every value,
+/// which costs some hundreds of bytes an item (an input event `{ t = 1.0, left = true }` about
+/// 1.5 KB), so 127 MB of input events (3.9 million) took over 2 GB. 500,000 items keep a file's
+/// tree near 250 MB (a map string is one item whatever its size) and hold two scenarios of
+/// [`MAX_INPUT_EVENTS`] events written out in full.
+pub(crate) const MAX_TOML_ITEMS: usize = 500_000;
+/// Most input events of one scenario: a script written by hand holds tens, a recorded play a
+/// change every few frames; 50,000 is one change a frame for 14 minutes at 60 Hz, and a
+/// scenario of that many events written out in full (`{ t = 1.0, left = true }`, 5 items)
+/// takes half of [`MAX_TOML_ITEMS`].
+pub(crate) const MAX_INPUT_EVENTS: usize = 50_000;
 
 /// Whether `dt` (seconds) is within [`DT_RANGE`], compared in f32 as the runner stores it (so
 /// `1e-6` read into an f32, a hair below 1e-6, is in).
@@ -167,6 +194,16 @@ pub fn check_timing(duration: f64, dt: f64) -> Result<u64, TimingError> {
 /// error says why without the file's name, which the caller's own error gives.
 pub(crate) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
     Ok(crate::input::read(path, MAX_INPUT_BYTES, "input file")?)
+}
+
+/// Reads a TOML level or side file of at most [`MAX_TOML_BYTES`] as UTF-8 text; the error says
+/// why without the file's name, which the caller's own error gives.
+pub(crate) fn read_toml_capped(path: &Path) -> std::io::Result<String> {
+    Ok(crate::input::read_text(
+        path,
+        MAX_TOML_BYTES,
+        "TOML level or side file",
+    )?)
 }
 
 /// [`read_capped`] as UTF-8 text.

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::Args;
 
 use super::{out, ImportArgs};
@@ -103,18 +103,20 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
     }
     // The probes `run` makes from these spawns, and those the map makes impossible.
     let cfg = crate::level::ProbeConfig::default();
-    let (probes, notes) = crate::level::probe_scenarios(l, &r.spawns, &cfg);
+    let (probes, notes) = crate::level::probe_scenarios(l, &r.spawns, &cfg)
+        .with_context(|| format!("{}: the map's probes cannot run", p.display()))?;
     text.push_str(&format!("\nprobes: {}\n", probes.len()));
+    // Each spawn's probes, `SPAWN-PROBE` (no probe's own name holds a '-'), gathered in one pass.
+    let mut by_spawn: std::collections::HashMap<&str, Vec<&str>> = Default::default();
+    for q in &probes {
+        if let Some((spawn, probe)) = q.name.rsplit_once('-') {
+            by_spawn.entry(spawn).or_default().push(probe);
+        }
+    }
     for s in &r.spawns {
-        let prefix = format!("{}-", s.name);
-        let run: Vec<&str> = probes
-            .iter()
-            .filter_map(|p| p.name.strip_prefix(&prefix))
-            .collect();
-        let run = if run.is_empty() {
-            "none".to_string()
-        } else {
-            run.join(", ")
+        let run = match by_spawn.get(s.name.as_str()) {
+            Some(run) => run.join(", "),
+            None => "none".to_string(),
         };
         text.push_str(&format!("  {}: {run}\n", s.name));
     }

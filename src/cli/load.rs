@@ -188,7 +188,7 @@ pub(crate) fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result
         let level = if format.is_map() {
             load_map(p, &opts)?
         } else {
-            let text = crate::limits::read_text_capped(p)
+            let text = crate::limits::read_toml_capped(p)
                 .with_context(|| format!("cannot read level file {}", p.display()))?;
             parse_level(&text, &p.display().to_string()).map_err(|e| {
                 // A file named like a map but not one reads as a level: say so, not only why

@@ -6,6 +6,7 @@ mod common;
 mod edges;
 mod evident_roles;
 mod ldtk;
+mod limits;
 mod map_problems;
 mod markings;
 mod shapes;

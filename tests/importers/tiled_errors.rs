@@ -148,13 +148,16 @@ fn unsupported_tiles_are_errors_naming_tileset_tile_and_cell() {
         e.contains("tile 0 (at cell i = 2, j = 0)") && e.contains("flipped vertically"),
         "{e}"
     );
-    // A tile id past the tileset's end.
+    // A tile id past the tileset's end: the map's line (10: the row "0,0,17"), the layer, the
+    // cell as Tiled shows it (column 2, row 1 from the top), the gid and the gids the map's
+    // tileset holds (its 16 tiles from firstgid 1).
     let e = MapText {
         rows: &["0,0,0", "0,0,17"],
         ..MapText::default()
     }
     .error();
-    assert!(e.contains("tile 16") && e.contains("no such tile"), "{e}");
+    let want = "m.tmx:10: layer \"collision\": cell x = 2, y = 1 (column and row from the map's top-left, as Tiled shows them) holds gid 17 (tile 16 of tileset \"t\"), which names no tile; expected 0 (no tile) or a gid of the map's tilesets: 1 to 16 (\"t\")";
+    assert!(e.contains(want), "{e}");
 }
 
 #[test]

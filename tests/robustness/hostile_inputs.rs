@@ -318,3 +318,15 @@ fn shape_without_a_rapier_backend_is_an_error_and_the_rules_map_runs_alone() {
         .unwrap();
     assert_success(&out);
 }
+
+#[test]
+fn a_toml_level_past_32_mib_is_refused_before_it_is_read() {
+    // MAX_TOML_BYTES (src/limits.rs): 32 MiB; one byte more is refused by its size, unread.
+    let dir = tempfile::tempdir().unwrap();
+    let level = dir.path().join("big.toml");
+    let mut big = std::fs::read_to_string(quick_level(dir.path())).unwrap();
+    big.push_str(&"#".repeat(32 * 1024 * 1024 + 1 - big.len()));
+    std::fs::write(&level, &big).unwrap();
+    let out = platbench().arg("run").arg(&level).output().unwrap();
+    assert_error(&out, "big.toml: it holds more than 32 MiB");
+}

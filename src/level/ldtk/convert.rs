@@ -488,6 +488,7 @@ pub(super) fn import(
     );
     let mut spawns = Vec::new();
     let mut sources = Vec::new();
+    let mut taken = std::collections::HashSet::new(); // The spawns' names, looked up not searched.
     for (k, (id, feet, why)) in raw_spawns.into_iter().enumerate() {
         // An entity box drawn a little into the floor stands on it.
         let sunk = level
@@ -531,11 +532,12 @@ pub(super) fn import(
         } else {
             "spawn".into()
         };
-        let n = if spawns.iter().any(|s: &SpawnPoint| s.name == base) {
+        let n = if taken.contains(&base) {
             format!("{base}{}", k + 1)
         } else {
             base
         };
+        taken.insert(n.clone());
         spawns.push(SpawnPoint {
             name: n,
             position: feet,

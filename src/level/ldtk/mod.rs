@@ -93,7 +93,7 @@ pub fn load_ldtk_with(
     } = import_ldtk_with(path, opts)?;
     if let Some(side) = crate::level::toml::side_file_of(path) {
         let fail = |error: LdtkError, warnings| ImportFailure { error, warnings };
-        let text = match crate::limits::read_text_capped(&side) {
+        let text = match crate::limits::read_toml_capped(&side) {
             Ok(t) => t,
             Err(e) => {
                 return Err(fail(
@@ -125,7 +125,18 @@ pub fn load_ldtk_with(
             warnings,
         });
     }
-    let (scenarios, notes) = probe_scenarios(&level, &spawns, &ProbeConfig::default());
+    let (scenarios, notes) = match probe_scenarios(&level, &spawns, &ProbeConfig::default()) {
+        Ok(p) => p,
+        Err(e) => {
+            return Err(ImportFailure {
+                error: LdtkError::Project {
+                    file: path.display().to_string(),
+                    message: format!("the level's probes cannot run: {e}"),
+                },
+                warnings,
+            })
+        }
+    };
     level.scenarios = scenarios;
     let file = path.display().to_string();
     warnings.extend(notes.into_iter().map(|(subject, message)| ImportWarning {

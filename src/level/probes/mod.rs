@@ -64,15 +64,85 @@ impl Default for ProbeConfig {
     }
 }
 
+/// A level's probe scenarios and the notes on those left out, as (subject, message).
+pub type Probes = (Vec<ScenarioSpec>, Vec<(String, String)>);
+
+/// Why a level's probes cannot run: too many of them, checked before they are made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ProbeError {
+    /// More spawn points than a level may have (1,000, `MAX_SPAWNS` in src/limits.rs).
+    #[error(
+        "{count} spawn points; expected at most {max} (each makes up to five probe scenarios)"
+    )]
+    TooManySpawns {
+        /// The spawn points given.
+        count: usize,
+        /// The most a level may have.
+        max: usize,
+    },
+    /// A probe whose duration and step are out of range (a [`ProbeConfig`] of the caller's).
+    #[error("probe {name}: {error}")]
+    Timing {
+        /// The probe's scenario name.
+        name: String,
+        /// What is wrong with its timing.
+        error: crate::limits::TimingError,
+    },
+    /// More frames together than a level may run (50,000,000, `MAX_LEVEL_FRAMES` in
+    /// src/limits.rs).
+    #[error(
+        "the probes up to {name} run {frames} frames together; expected at most {max} in one level"
+    )]
+    TooManyFrames {
+        /// The probe whose frames pass the cap.
+        name: String,
+        /// The frames of the probes up to it.
+        frames: u64,
+        /// The most frames one level may run.
+        max: u64,
+    },
+}
+
 /// The probes at every spawn point, named `<spawn>-drop`, `<spawn>-walk_left`,
 /// `<spawn>-walk_right`, `<spawn>-jump` and `<spawn>-ride`; the ride is left out, with a note,
 /// when the level has no platform or the platform's top has no room for the character. Returns
-/// the scenarios and the notes as (subject, message).
+/// the scenarios and the notes as (subject, message). At most
+/// 1,000 spawns (`MAX_SPAWNS`, checked before any probe is made), and the probes hold to the
+/// frame caps of a level's scenarios ([`crate::limits::check_timing`], `MAX_LEVEL_FRAMES`).
 pub fn probe_scenarios(
     level: &Level,
     spawns: &[SpawnPoint],
     cfg: &ProbeConfig,
-) -> (Vec<ScenarioSpec>, Vec<(String, String)>) {
+) -> Result<Probes, ProbeError> {
+    let max = crate::limits::MAX_SPAWNS;
+    if spawns.len() > max {
+        return Err(ProbeError::TooManySpawns {
+            count: spawns.len(),
+            max,
+        });
+    }
+    let (out, notes) = probes(level, spawns, cfg);
+    let mut frames = 0u64;
+    for s in &out {
+        frames += crate::limits::check_timing(s.duration as f64, s.dt as f64).map_err(|error| {
+            ProbeError::Timing {
+                name: s.name.clone(),
+                error,
+            }
+        })?;
+        if frames > crate::limits::MAX_LEVEL_FRAMES {
+            return Err(ProbeError::TooManyFrames {
+                name: s.name.clone(),
+                frames,
+                max: crate::limits::MAX_LEVEL_FRAMES,
+            });
+        }
+    }
+    Ok((out, notes))
+}
+
+/// The probes of [`probe_scenarios`], unchecked.
+fn probes(level: &Level, spawns: &[SpawnPoint], cfg: &ProbeConfig) -> Probes {
     let mut out = Vec::new();
     let mut notes = Vec::new();
     for s in spawns {
@@ -226,7 +296,7 @@ mod tests {
             name: "a".into(),
             position: Vec2::new(11.0, 1.0),
         }];
-        let (s, notes) = probe_scenarios(&l, &spawns, &ProbeConfig::default());
+        let (s, notes) = probe_scenarios(&l, &spawns, &ProbeConfig::default()).unwrap();
         assert!(notes.is_empty());
         let names: Vec<&str> = s.iter().map(|s| s.name.as_str()).collect();
         assert_eq!(
@@ -242,8 +312,23 @@ mod tests {
         assert_eq!(s[1].inputs[0].left, Some(true));
         assert_eq!(s[2].inputs[0].right, Some(true));
 
+        // Past the spawn cap, an error before any probe is made; a probe longer than a
+        // scenario may run (MAX_FRAMES at 60 Hz is under 2 days), an error naming it.
+        let many = vec![spawns[0].clone(); crate::limits::MAX_SPAWNS + 1];
+        let e = probe_scenarios(&l, &many, &ProbeConfig::default()).unwrap_err();
+        assert!(
+            matches!(e, ProbeError::TooManySpawns { count: 1001, .. }),
+            "{e}"
+        );
+        let long = ProbeConfig {
+            drop_duration: 1e6,
+            ..ProbeConfig::default()
+        };
+        let e = probe_scenarios(&l, &spawns, &long).unwrap_err();
+        assert!(e.to_string().contains("probe a-drop"), "{e}");
+
         l.platforms.clear();
-        let (s, notes) = probe_scenarios(&l, &spawns, &ProbeConfig::default());
+        let (s, notes) = probe_scenarios(&l, &spawns, &ProbeConfig::default()).unwrap();
         assert_eq!(s.len(), 4);
         assert!(notes[0].1.contains("no moving platform"), "{notes:?}");
     }

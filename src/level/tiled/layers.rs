@@ -402,6 +402,7 @@ impl<'m> Importer<'m> {
                         match self.kinds.get(&key) {
                             Some(t) => *t,
                             None => {
+                                self.check_gid(lname, &lt, (sx, sy))?;
                                 let t = self.classify(&lt, (i, j))?;
                                 self.kinds.insert(key, t);
                                 t

@@ -6,7 +6,7 @@
 //! `error` (what cannot be imported), `read` (the map read through the `tiled` crate), `map`
 //! (the map's orientation, extent and properties), `layers` (which layer is what, and the tile
 //! layers), `tiles` (what one tile is), `objects` (spawns, collision objects, platforms),
-//! `normalize` (what the `tiled` crate cannot read as Tiled writes it), `scan` (what it
+//! `normalize` (what the `tiled` crate cannot read as Tiled writes it), `scan` and `points` (what it
 //! would allocate without bound) and `refs` (what it would follow by recursion without end:
 //! templates and tilesets that loop back, groups nested too deep). This file holds the entry points and the state of one import.
 //!
@@ -22,11 +22,13 @@ use tiled::{ObjectShape, PropertyValue};
 mod approx;
 mod cells;
 mod error;
+mod gids;
 mod json;
 mod layers;
 mod map;
 mod normalize;
 mod objects;
+mod points;
 mod read;
 mod refs;
 mod roles;
@@ -136,7 +138,7 @@ pub fn load_tiled_map_with(
     } = import_tiled_map_with(path, opts)?;
     let fail = |error: TiledError, warnings: Vec<TiledWarning>| ImportFailure { error, warnings };
     if let Some(side) = crate::level::toml::side_file_of(path) {
-        let text = match crate::limits::read_text_capped(&side) {
+        let text = match crate::limits::read_toml_capped(&side) {
             Ok(t) => t,
             Err(e) => {
                 return Err(fail(
@@ -180,7 +182,15 @@ pub fn load_tiled_map_with(
             warnings,
         ));
     }
-    let (scenarios, probe_warnings) = probe_scenarios(&level, &spawns, &ProbeConfig::default());
+    let (scenarios, probe_warnings) =
+        match probe_scenarios(&level, &spawns, &ProbeConfig::default()) {
+            Ok(p) => p,
+            Err(e) => {
+                let file = path.display().to_string();
+                let message = format!("the map's probes cannot run: {e}");
+                return Err(fail(TiledError::Map { file, message }, warnings));
+            }
+        };
     level.scenarios = scenarios;
     let file = path.display().to_string();
     warnings.extend(
@@ -224,6 +234,10 @@ struct Grid {
 /// The state of one import.
 struct Importer<'m> {
     file: String,
+    /// The map's XML as the `tiled` crate read it (a JSON map's TMX twin), to find a line in.
+    text: &'m str,
+    /// A line of `text` as an error shows it: `FILE:LINE`, or a JSON map's layer.
+    at: &'m dyn Fn(usize) -> String,
     map: &'m tiled::Map,
     opts: &'m ImportOptions,
     grid: Grid,
@@ -246,9 +260,15 @@ struct Importer<'m> {
 }
 
 impl<'m> Importer<'m> {
-    fn new(file: String, map: &'m tiled::Map, opts: &'m ImportOptions) -> Self {
+    fn new(
+        (file, text, at): (String, &'m str, &'m dyn Fn(usize) -> String),
+        map: &'m tiled::Map,
+        opts: &'m ImportOptions,
+    ) -> Self {
         Importer {
             file,
+            text,
+            at,
             map,
             opts,
             grid: Grid {

@@ -65,6 +65,8 @@ impl<'m> Importer<'m> {
             .collect();
         let mut used_paths: Vec<u32> = Vec::new();
         let mut spawns: Vec<(SpawnPoint, u32, String)> = Vec::new();
+        // Each spawn's name and object id, so that a name is looked up, not searched for.
+        let mut spawn_names: HashMap<String, u32> = HashMap::new();
         let mut paths: Vec<&tiled::Object<'m>> = Vec::new();
         for l in &layers {
             if l.excluded {
@@ -107,22 +109,26 @@ impl<'m> Importer<'m> {
                             l.name
                         )
                     };
+                    if spawns.len() >= crate::limits::MAX_SPAWNS {
+                        return Err(self.obj_err(o, format!("it is spawn point {} of the map; expected at most {} (each spawn makes up to five probe scenarios)", spawns.len() + 1, crate::limits::MAX_SPAWNS)));
+                    }
                     let Some(s) = self.spawn(o, l.offset, level)? else {
                         continue;
                     };
                     // Several objects named "Player" are each a spawn, named by id after the first.
-                    let unique = spawns.iter().all(|(s, _, _)| s.name != o.name);
+                    let unique = !spawn_names.contains_key(&o.name);
                     let name = if valid_name(&o.name) && (!by_name || unique) {
                         o.name.clone()
                     } else {
                         format!("spawn{}", o.id())
                     };
-                    if let Some((_, other, _)) = spawns.iter().find(|(s, _, _)| s.name == name) {
+                    if let Some(other) = spawn_names.get(&name) {
                         return Err(self.obj_err(o, format!("spawn name {name:?} is also the name of object {other}; expected unique spawn names (they name the scenarios)")));
                     }
                     for key in o.properties.keys() {
                         self.warn(subject.clone(), format!("property {key:?} is not one platbench reads on a spawn point; ignored"));
                     }
+                    spawn_names.insert(name.clone(), o.id());
                     spawns.push((SpawnPoint { name, position: s }, o.id(), why));
                 } else if is_platform {
                     let p = self.platform(o, l.offset, &all, &mut used_paths)?;
@@ -165,8 +171,9 @@ impl<'m> Importer<'m> {
                 );
             }
         }
+        let used: std::collections::HashSet<u32> = used_paths.into_iter().collect();
         for o in paths {
-            if !used_paths.contains(&o.id()) {
+            if !used.contains(&o.id()) {
                 let what = match o.shape {
                     ObjectShape::Point(..) => "a point that is no spawn (class or name \"spawn\", \"player\", \"start\") and",
                     _ => "a polyline that",

@@ -7,7 +7,7 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use super::{json, normalize, refs, scan, Importer, TiledError, TiledImport, TiledWarning};
+use super::{json, normalize, points, refs, scan, Importer, TiledError, TiledImport, TiledWarning};
 use crate::level::import::{ImportFailure, ImportOptions};
 use crate::level::toml::{options_beside, SideFailure};
 
@@ -158,8 +158,20 @@ pub fn import_tiled_map_with(
                     .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?;
                 (n.text, n.notes)
             }
+            // A template (`.tx`): read as it is, its shapes counted first.
+            (_, Ok(t)) => {
+                points::check_points(&t)
+                    .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?;
+                return Ok(std::io::Cursor::new(data));
+            }
             _ => return Ok(std::io::Cursor::new(data)),
         };
+        // Each shape's points counted before the crate reads them (the line is the XML's; a
+        // JSON tileset's shape is named by its object and tile).
+        points::check_points(&out.0).map_err(|e| match ext.as_str() {
+            "tsx" => bad(format!("line {}: {}", e.line, e.message)),
+            _ => bad(e.message),
+        })?;
         for n in out.1 {
             reader_notes.borrow_mut().push(TiledWarning {
                 file: shown.clone(),
@@ -176,7 +188,7 @@ pub fn import_tiled_map_with(
             return Err(failed(error, &notes));
         }
     };
-    let mut im = Importer::new(file.clone(), &map, opts);
+    let mut im = Importer::new((file.clone(), &text, &at), &map, opts);
     im.warnings = notes.borrow().clone();
     match im.run(path) {
         Ok(r) => Ok(r),

@@ -67,7 +67,8 @@ pub(super) fn xml_error_line(text: &str) -> Option<usize> {
     }
 }
 
-/// Checks the map's size and every tile layer's data length, and returns the `source` of each
+/// Checks the map's size, every tile layer's data length and the points of every polygon and
+/// polyline ([`super::points`]), and returns the `source` of each
 /// external tileset. The XML's own errors are left to the `tiled` crate (and
 /// [`xml_error_line`]).
 pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
@@ -76,6 +77,7 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
     let mut data: Option<Data> = None;
     let mut chunk: Option<Data> = None;
     let mut sources = Vec::new();
+    let mut shapes = super::points::Shapes::default();
     loop {
         let pos = reader.buffer_position();
         let event = match reader.read_event() {
@@ -84,6 +86,11 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
             Err(_) => return Ok(sources),
         };
         let empty = matches!(event, Event::Empty(_));
+        match &event {
+            Event::Start(e) | Event::Empty(e) => shapes.element(e, empty, || line_of(text, pos))?,
+            Event::End(e) => shapes.end(e.name().as_ref()),
+            _ => {}
+        }
         match event {
             Event::Eof => return Ok(sources),
             Event::Start(e) | Event::Empty(e) => match e.name().as_ref() {

@@ -87,6 +87,7 @@ impl<'m> Importer<'m> {
                         self.box_cells(a, b, tile, &mut outside, &mut snapped)
                     }
                     ObjectShape::Polyline { points } => {
+                        self.check_points(o, "polyline", points.len())?;
                         let pts: Vec<Vec2> = points
                             .iter()
                             .map(|&(px, py)| self.to_level(x + px, y + py))
@@ -115,6 +116,7 @@ impl<'m> Importer<'m> {
                         v
                     }
                     ObjectShape::Polygon { points } => {
+                        self.check_points(o, "polygon", points.len())?;
                         let pts: Vec<Vec2> = points
                             .iter()
                             .map(|&(px, py)| self.to_level(x + px, y + py))
@@ -154,6 +156,19 @@ impl<'m> Importer<'m> {
                     format!("{snapped} collision rectangle(s) or polyline leg(s) not on the tile grid (by more than {SHAPE_TOLERANCE_PX} pixel); each edge moved to the nearest tile edge"),
                 );
             }
+        }
+        Ok(())
+    }
+
+    /// At most [`crate::limits::MAX_POLYGON_POINTS`] points in a shape (counted in the file
+    /// before it is read, `points`; checked again here before the shape costs anything).
+    fn check_points(&self, o: &tiled::Object, what: &str, n: usize) -> Result<(), TiledError> {
+        let max = crate::limits::MAX_POLYGON_POINTS;
+        if n > max {
+            return Err(self.obj_err(
+                o,
+                format!("its {what} has {n} points; expected at most {max}"),
+            ));
         }
         Ok(())
     }

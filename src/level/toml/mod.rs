@@ -17,6 +17,7 @@ use crate::limits;
 
 use super::Level;
 
+mod budget;
 mod error;
 mod expect;
 #[cfg(test)]
@@ -62,6 +63,7 @@ struct RawLevel {
 /// Parses a level file's text. `file` names it in errors.
 pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
     let loc = Locator { file, text };
+    budget::check_budget(&loc)?;
     let raw: RawLevel = toml::from_str(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         loc.err(offset, e.message().trim().to_string())

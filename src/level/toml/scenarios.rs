@@ -78,6 +78,7 @@ pub fn parse_scenarios(
     level: &Level,
 ) -> Result<Vec<ScenarioSpec>, LevelError> {
     let loc = Locator { file, text };
+    super::budget::check_budget(&loc)?;
     let raw: RawScenarioFile = toml::from_str(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         loc.err(offset, e.message().trim().to_string())
@@ -197,6 +198,17 @@ fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelE
         }
         None => Vec2::ZERO,
     };
+    if let Some(ev) = s.inputs.get(limits::MAX_INPUT_EVENTS) {
+        return Err(loc.at(
+            &ev.span(),
+            format!(
+                "scenario {name:?} has {} input events (this is event {}); expected at most {} in one scenario (split the script into scenarios)",
+                s.inputs.len(),
+                limits::MAX_INPUT_EVENTS + 1,
+                limits::MAX_INPUT_EVENTS
+            ),
+        ));
+    }
     let mut inputs = Vec::with_capacity(s.inputs.len());
     let mut last_t = f32::NEG_INFINITY;
     for ev in &s.inputs {

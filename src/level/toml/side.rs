@@ -56,6 +56,7 @@ pub fn side_import_options(
     cli: &ImportOptions,
 ) -> Result<ImportOptions, LevelError> {
     let loc = Locator { file, text };
+    super::budget::check_budget(&loc)?;
     let raw: RawSide = toml::from_str(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         loc.err(offset, e.message().trim().to_string())
@@ -167,7 +168,7 @@ pub(crate) fn options_beside(
         return Ok(cli.clone());
     };
     let file = side.display().to_string();
-    let text = crate::limits::read_text_capped(&side).map_err(|e| SideFailure::Read {
+    let text = crate::limits::read_toml_capped(&side).map_err(|e| SideFailure::Read {
         file: file.clone(),
         message: e.to_string(),
     })?;
