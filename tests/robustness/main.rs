@@ -7,3 +7,4 @@ mod crashes;
 mod hostile;
 mod hostile_inputs;
 mod properties;
+mod streamed;

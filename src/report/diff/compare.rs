@@ -246,30 +246,77 @@ fn differs(a: f32, b: f32, tol: f32) -> bool {
     a != b && (a - b).abs() > tol
 }
 
-/// The first frame where the two traces' positions differ by more than `tol` (or one ends).
-pub(super) fn first_divergence(b: &[TraceRow], n: &[TraceRow], tol: f32) -> Option<TraceDiff> {
-    let at = |r: &TraceRow| (r.x, r.y);
-    for (rb, rn) in b.iter().zip(n) {
-        if differs(rb.x, rn.x, tol) || differs(rb.y, rn.y, tol) || rb.frame != rn.frame {
-            return Some(TraceDiff {
+/// The first frame where two traces' positions differ by more than a tolerance (or one ends
+/// before the other), found as their rows are given in pairs: it holds the first divergence and
+/// a count, never the rows, so a trace of any length compares in constant memory.
+pub(super) struct Divergence {
+    tol: f32,
+    /// Pairs of rows given so far.
+    rows: u64,
+    found: Option<TraceDiff>,
+}
+
+impl Divergence {
+    /// Nothing compared yet; positions may differ by `tol` tiles.
+    pub(super) fn new(tol: f32) -> Self {
+        Divergence {
+            tol,
+            rows: 0,
+            found: None,
+        }
+    }
+
+    /// The next row of each trace: a diverged position (or frame number) is kept if it is the
+    /// first.
+    pub(super) fn pair(&mut self, rb: &TraceRow, rn: &TraceRow) {
+        let tol = self.tol;
+        self.rows += 1;
+        if self.found.is_none()
+            && (differs(rb.x, rn.x, tol) || differs(rb.y, rn.y, tol) || rb.frame != rn.frame)
+        {
+            self.found = Some(TraceDiff {
                 file: String::new(),
                 change: TraceChange::Diverged,
                 frame: Some(rb.frame),
-                base: Some(at(rb)),
-                new: Some(at(rn)),
+                base: Some((rb.x, rb.y)),
+                new: Some((rn.x, rn.y)),
             });
         }
     }
-    (b.len() != n.len()).then(|| {
-        let k = b.len().min(n.len());
-        TraceDiff {
+
+    /// One trace (or both) ended: `rb` or `rn` is the row of the other that has no partner.
+    /// A trace that ends first is truncated at the count of rows both have, if nothing
+    /// diverged before.
+    pub(super) fn end(&mut self, rb: Option<&TraceRow>, rn: Option<&TraceRow>) {
+        if self.found.is_some() || (rb.is_none() && rn.is_none()) {
+            return;
+        }
+        self.found = Some(TraceDiff {
             file: String::new(),
             change: TraceChange::Truncated,
-            frame: Some(k as u32),
-            base: b.get(k).map(at),
-            new: n.get(k).map(at),
-        }
-    })
+            frame: Some(u32::try_from(self.rows).unwrap_or(u32::MAX)),
+            base: rb.map(|r| (r.x, r.y)),
+            new: rn.map(|r| (r.x, r.y)),
+        });
+    }
+
+    /// The first divergence, if any.
+    pub(super) fn finish(self) -> Option<TraceDiff> {
+        self.found
+    }
+}
+
+/// The first frame where the two traces' positions differ by more than `tol` (or one ends),
+/// for traces held whole (tests).
+#[cfg(test)]
+pub(super) fn first_divergence(b: &[TraceRow], n: &[TraceRow], tol: f32) -> Option<TraceDiff> {
+    let mut d = Divergence::new(tol);
+    for (rb, rn) in b.iter().zip(n) {
+        d.pair(rb, rn);
+    }
+    let k = b.len().min(n.len());
+    d.end(b.get(k), n.get(k));
+    d.finish()
 }
 
 #[cfg(test)]

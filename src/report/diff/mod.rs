@@ -2,11 +2,13 @@
 //! change against its tolerance, and for every trace the first frame where a character's
 //! position differs by more than a position tolerance.
 //!
-//! Reading the two run directories and matching their rows and traces is [`diff_runs`]'s; the
-//! rules that judge each pair (tolerances, distance from ideal, divergence, what fails) are in
-//! `compare`; [`render()`] writes the result as tables, Markdown or CSV.
+//! Reading the two run directories (`read`, one row at a time) and matching their rows and
+//! traces (`join`) is [`diff_runs`]'s; the rules that judge each pair (tolerances, distance
+//! from ideal, divergence, what fails) are in `compare`; [`render()`] writes the result as
+//! tables, Markdown or CSV.
 
 mod compare;
+mod join;
 mod read;
 mod render;
 mod timing;
@@ -14,5 +16,6 @@ mod timing;
 pub use compare::{
     default_tolerance, Change, FailOn, MetricDiff, RunDiff, Tolerance, TraceChange, TraceDiff,
 };
-pub use read::{diff_runs, read_metrics, DiffError, MetricRecord};
+pub use join::diff_runs;
+pub use read::{read_metrics, DiffError, MetricRecord};
 pub use render::{render, DiffFormat};

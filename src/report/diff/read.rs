@@ -1,34 +1,16 @@
-//! Reading the two runs of a diff and matching them: `metrics.csv` rows by level, scenario,
-//! configuration and metric, traces by file name; each matched pair is judged by the rules of
-//! `compare`.
+//! Reading the files of a run directory for a diff, one row at a time: `metrics.csv` rows
+//! (owned, [`read_metrics`], or borrowed from the reader's buffer, for the streamed join of
+//! `join`), the trace file names, and two traces compared frame by frame in lockstep, so that
+//! a trace's length costs time, never memory.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::trace::{Trace, TraceRow};
+use crate::trace::TraceRow;
 
-use super::compare::{
-    classify, default_tolerance, first_divergence, Change, MetricDiff, RunDiff, Tolerance,
-    TraceChange, TraceDiff,
-};
-use super::timing::{classify_timing, Spread};
-
-/// Whether `r` is a timing (its unit is ns): judged against its samples' spread.
-fn is_timing(r: &MetricRecord) -> bool {
-    crate::metrics::registry::get(&r.metric).map_or(r.unit.as_str(), |d| d.unit) == "ns"
-}
-
-/// A timing row's median and quartiles; a row without quartiles (written before them, when the
-/// value was a minimum of repeats) has none: its spread is its value alone.
-fn spread(r: &MetricRecord) -> Spread {
-    Spread {
-        median: r.value,
-        q1: r.q1.unwrap_or(r.value),
-        q3: r.q3.unwrap_or(r.value),
-    }
-}
+use super::compare::{Divergence, TraceDiff};
 
 /// A row of `metrics.csv` as read back (owned strings).
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -65,16 +47,28 @@ pub struct MetricRecord {
     pub q3: Option<f64>,
 }
 
-impl MetricRecord {
-    fn key(&self) -> (String, String, String, String, String) {
-        (
-            self.level.clone(),
-            self.scenario.clone(),
-            self.backend.clone(),
-            self.config.clone(),
-            self.metric.clone(),
-        )
-    }
+/// A row of `metrics.csv` borrowed from the reader's record: the same columns as
+/// [`MetricRecord`] (so a file one reads, the other reads), without a string allocated per
+/// field.
+#[derive(Deserialize)]
+pub(super) struct MetricRef<'a> {
+    pub(super) level: &'a str,
+    pub(super) scenario: &'a str,
+    pub(super) backend: &'a str,
+    pub(super) config: &'a str,
+    pub(super) metric: &'a str,
+    pub(super) value: f64,
+    pub(super) unit: &'a str,
+    pub(super) reference: f64,
+    /// Read so that a malformed `error` is refused as [`MetricRecord`] refuses it; not used.
+    #[serde(rename = "error")]
+    _error: f64,
+    #[serde(default)]
+    pub(super) frame: Option<u32>,
+    #[serde(default)]
+    pub(super) q1: Option<f64>,
+    #[serde(default)]
+    pub(super) q3: Option<f64>,
 }
 
 /// Why a run directory could not be compared.
@@ -97,9 +91,9 @@ pub enum DiffError {
         /// The file.
         path: PathBuf,
         /// The line of the first row with the key (the header is line 1).
-        first: usize,
+        first: u64,
         /// The line of the repeat.
-        second: usize,
+        second: u64,
         /// The key, as `level.scenario backend config metric`.
         key: String,
     },
@@ -109,6 +103,31 @@ pub enum DiffError {
     TraceName {
         /// The file.
         path: PathBuf,
+    },
+    /// A field of a CSV row does not hold what its column does.
+    #[error("{path}: line {line}, field {field} ({column}): found {found:?}; expected {expected}")]
+    Field {
+        /// The file.
+        path: PathBuf,
+        /// The line of the row (the header is line 1).
+        line: u64,
+        /// The field, counted from 1.
+        field: u64,
+        /// The column's name in the header.
+        column: String,
+        /// The field's text.
+        found: String,
+        /// What the column holds.
+        expected: &'static str,
+    },
+    /// The two metrics files name more distinct levels, scenarios, backends, configurations,
+    /// metrics and units together than the join numbers (`u32::MAX`).
+    #[error("{path}: line {line}: more than {} distinct names in the two metrics files; expected fewer (the diff numbers each name in 32 bits)", u32::MAX)]
+    TooManyNames {
+        /// The file.
+        path: PathBuf,
+        /// The line of the row whose name was one too many.
+        line: u64,
     },
     /// A CSV file is malformed.
     #[error("{path}: {source}")]
@@ -120,44 +139,144 @@ pub enum DiffError {
     },
 }
 
-/// Reads `DIR/metrics.csv`.
-pub fn read_metrics(dir: &Path) -> Result<Vec<MetricRecord>, DiffError> {
-    let path = dir.join("metrics.csv");
-    let file = crate::input::open(&path, u64::MAX, "metrics file")?;
-    let rows: Vec<MetricRecord> = csv::Reader::from_reader(file)
-        .deserialize()
-        .collect::<Result<_, _>>()
-        .map_err(|source| DiffError::Csv {
-            path: path.clone(),
+/// What a field that failed to parse was expected to hold, by the parser that refused it.
+fn expected_of(kind: &csv::DeserializeErrorKind) -> Option<&'static str> {
+    use csv::DeserializeErrorKind as K;
+    match kind {
+        K::ParseFloat(_) => Some("a number (NaN and inf are numbers too)"),
+        K::ParseInt(_) => Some("a whole number 0 or more within the column's range, or nothing where the column allows it"),
+        K::ParseBool(_) => Some("true or false"),
+        _ => None,
+    }
+}
+
+/// A CSV file read one record at a time into one reused buffer: memory is that of its
+/// longest row, whatever its length.
+pub(super) struct CsvRows {
+    path: PathBuf,
+    reader: csv::Reader<crate::input::Capped>,
+    headers: csv::StringRecord,
+    record: csv::StringRecord,
+}
+
+impl CsvRows {
+    /// Opens `path` (a regular file, [`crate::input::open`]) and reads its header; `what`
+    /// names the file's kind in an error.
+    pub(super) fn open(path: &Path, what: &'static str) -> Result<Self, DiffError> {
+        let file = crate::input::open(path, u64::MAX, what)?;
+        let mut reader = csv::Reader::from_reader(file);
+        let headers = reader.headers().map_err(|e| Self::csv(path, e))?.clone();
+        Ok(CsvRows {
+            path: path.to_path_buf(),
+            reader,
+            headers,
+            record: csv::StringRecord::new(),
+        })
+    }
+
+    fn csv(path: &Path, source: csv::Error) -> DiffError {
+        DiffError::Csv {
+            path: path.to_path_buf(),
             source,
-        })?;
+        }
+    }
+
+    /// The file.
+    pub(super) fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Reads the next record; false at the end of the file.
+    pub(super) fn advance(&mut self) -> Result<bool, DiffError> {
+        self.reader
+            .read_record(&mut self.record)
+            .map_err(|e| Self::csv(&self.path, e))
+    }
+
+    /// The line of the current record (the header is line 1).
+    pub(super) fn line(&self) -> u64 {
+        self.record.position().map_or(0, |p| p.line())
+    }
+
+    /// The current record as a `T` (which may borrow from it); a field that does not parse is
+    /// named by line, field, column, text found and what was expected.
+    pub(super) fn get<'r, T: Deserialize<'r>>(&'r self) -> Result<T, DiffError> {
+        self.record
+            .deserialize(Some(&self.headers))
+            .map_err(|e| self.field_error(e))
+    }
+
+    fn field_error(&self, e: csv::Error) -> DiffError {
+        if let csv::ErrorKind::Deserialize { err, .. } = e.kind() {
+            let expected = expected_of(err.kind());
+            let at = err.field().and_then(|f| usize::try_from(f).ok());
+            if let (Some(expected), Some(at)) = (expected, at) {
+                return DiffError::Field {
+                    path: self.path.clone(),
+                    line: self.line(),
+                    field: at as u64 + 1,
+                    column: self.headers.get(at).unwrap_or("?").to_string(),
+                    found: self.record.get(at).unwrap_or_default().to_string(),
+                    expected,
+                };
+            }
+        }
+        Self::csv(&self.path, e)
+    }
+
+    /// The next record as an owned `T`, or `None` at the end of the file.
+    pub(super) fn next_row<T: serde::de::DeserializeOwned>(
+        &mut self,
+    ) -> Result<Option<T>, DiffError> {
+        if !self.advance()? {
+            return Ok(None);
+        }
+        self.get().map(Some)
+    }
+
+    /// Reads the rest of the file as `T` rows, keeping none: every row is checked, as when the
+    /// file was read whole.
+    pub(super) fn check_rest<T: serde::de::DeserializeOwned>(&mut self) -> Result<(), DiffError> {
+        while self.next_row::<T>()?.is_some() {}
+        Ok(())
+    }
+}
+
+/// Reads `DIR/metrics.csv` whole, refusing a repeated key. Holds every row (its six strings
+/// and numbers): `check` and `review` read their runs' files with it; `diff` streams
+/// them instead ([`super::diff_runs`]).
+pub fn read_metrics(dir: &Path) -> Result<Vec<MetricRecord>, DiffError> {
+    let mut csv = CsvRows::open(&dir.join("metrics.csv"), "metrics file")?;
+    let mut rows: Vec<MetricRecord> = Vec::new();
     // A repeated key would let one of its rows go uncompared (the last one read wins).
-    let mut seen: BTreeMap<_, usize> = BTreeMap::new();
-    for (k, r) in rows.iter().enumerate() {
-        if let Some(first) = seen.insert(r.key(), k) {
+    let mut seen: BTreeMap<_, u64> = BTreeMap::new();
+    while csv.advance()? {
+        let r: MetricRecord = csv.get()?;
+        let key = (
+            r.level.clone(),
+            r.scenario.clone(),
+            r.backend.clone(),
+            r.config.clone(),
+            r.metric.clone(),
+        );
+        if let Some(first) = seen.insert(key, csv.line()) {
             return Err(DiffError::Duplicate {
-                path,
-                first: first + 2,
-                second: k + 2,
+                path: csv.path().to_path_buf(),
+                first,
+                second: csv.line(),
                 key: format!(
                     "{}.{} {} {} {}",
                     r.level, r.scenario, r.backend, r.config, r.metric
                 ),
             });
         }
+        rows.push(r);
     }
     Ok(rows)
 }
 
-fn read_trace(path: &Path) -> Result<Vec<TraceRow>, DiffError> {
-    let file = crate::input::open(path, u64::MAX, "trace")?;
-    Trace::read_rows(file).map_err(|source| DiffError::Csv {
-        path: path.to_path_buf(),
-        source,
-    })
-}
-
-fn trace_files(dir: &Path) -> Result<Vec<String>, DiffError> {
+/// The names of the trace files (`*.csv`) of `DIR/traces`, sorted.
+pub(super) fn trace_files(dir: &Path) -> Result<Vec<String>, DiffError> {
     let tdir = dir.join("traces");
     let entries = std::fs::read_dir(&tdir).map_err(|source| DiffError::Io {
         path: tdir.clone(),
@@ -175,172 +294,35 @@ fn trace_files(dir: &Path) -> Result<Vec<String>, DiffError> {
     Ok(names)
 }
 
-/// Compares run `new` against baseline `base`. `tolerances` overrides the per-unit defaults by
-/// metric name; `position_tolerance` (tiles) decides where a trace diverges.
-pub fn diff_runs(
+/// Compares two traces row by row, reading both in lockstep: the first frame where they
+/// diverge or one ends ([`Divergence`]). Both files are read to their end even past a
+/// divergence, so that a malformed row anywhere is an error, as when they were read whole;
+/// an error in the baseline's file is the one reported when both have one.
+pub(super) fn compare_traces(
     base: &Path,
     new: &Path,
-    tolerances: &BTreeMap<String, Tolerance>,
-    position_tolerance: f32,
-) -> Result<RunDiff, DiffError> {
-    let b = read_metrics(base)?;
-    let n = read_metrics(new)?;
-    let new_by_key: BTreeMap<_, _> = n.iter().map(|r| (r.key(), r)).collect();
-    let base_keys: std::collections::BTreeSet<_> = b.iter().map(|r| r.key()).collect();
-    let mut out = RunDiff::default();
-    for br in &b {
-        let tol = tolerances.get(&br.metric).copied().unwrap_or_else(|| {
-            default_tolerance(
-                crate::metrics::registry::get(&br.metric).map_or(&br.unit, |d| d.unit),
-            )
-        });
-        let label = |r: &MetricRecord| {
-            (
-                format!("{}.{}", r.level, r.scenario),
-                format!("{} {}", r.backend, r.config),
-            )
+    tol: f32,
+) -> Result<Option<TraceDiff>, DiffError> {
+    let mut b = CsvRows::open(base, "trace")?;
+    let mut n = CsvRows::open(new, "trace")?;
+    let mut d = Divergence::new(tol);
+    loop {
+        let rb = b.next_row::<TraceRow>()?;
+        let rn = match n.next_row::<TraceRow>() {
+            Ok(rn) => rn,
+            Err(e) => {
+                b.check_rest::<TraceRow>()?;
+                return Err(e);
+            }
         };
-        let (scenario, config) = label(br);
-        out.compared += 1;
-        let nr = new_by_key.get(&br.key()).copied();
-        let change = match nr {
-            None => Change::Missing,
-            Some(nr) if is_timing(br) => classify_timing(&spread(br), &spread(nr), tol),
-            Some(nr) => classify(br.value, nr.value, br.reference, tol),
-        };
-        if is_timing(br) {
-            out.timings_compared += nr.is_some() as usize;
+        match (rb, rn) {
+            (Some(rb), Some(rn)) => d.pair(&rb, &rn),
+            (rb, rn) => {
+                d.end(rb.as_ref(), rn.as_ref());
+                b.check_rest::<TraceRow>()?;
+                n.check_rest::<TraceRow>()?;
+                return Ok(d.finish());
+            }
         }
-        if change != Change::Same {
-            out.metrics.push(MetricDiff {
-                scenario,
-                config,
-                metric: br.metric.clone(),
-                base: Some(br.value),
-                new: nr.map(|r| r.value),
-                base_frame: br.frame,
-                new_frame: nr.and_then(|r| r.frame),
-                base_q1: br.q1,
-                base_q3: br.q3,
-                new_q1: nr.and_then(|r| r.q1),
-                new_q3: nr.and_then(|r| r.q3),
-                change,
-            });
-        }
-    }
-    for nr in n.iter().filter(|r| !base_keys.contains(&r.key())) {
-        out.metrics.push(MetricDiff {
-            scenario: format!("{}.{}", nr.level, nr.scenario),
-            config: format!("{} {}", nr.backend, nr.config),
-            metric: nr.metric.clone(),
-            base: None,
-            new: Some(nr.value),
-            base_frame: None,
-            new_frame: nr.frame,
-            base_q1: None,
-            base_q3: None,
-            new_q1: nr.q1,
-            new_q3: nr.q3,
-            change: Change::Added,
-        });
-    }
-    let (bt, nt) = (trace_files(base)?, trace_files(new)?);
-    for name in bt.iter().chain(nt.iter().filter(|n| !bt.contains(n))) {
-        let (in_b, in_n) = (bt.contains(name), nt.contains(name));
-        if !(in_b && in_n) {
-            out.traces.push(TraceDiff {
-                file: name.clone(),
-                change: if in_b {
-                    TraceChange::Missing
-                } else {
-                    TraceChange::Added
-                },
-                frame: None,
-                base: None,
-                new: None,
-            });
-            continue;
-        }
-        out.traces_compared += 1;
-        let rb = read_trace(&base.join("traces").join(name))?;
-        let rn = read_trace(&new.join("traces").join(name))?;
-        if let Some(d) = first_divergence(&rb, &rn, position_tolerance) {
-            out.traces.push(TraceDiff {
-                file: name.clone(),
-                ..d
-            });
-        }
-    }
-    Ok(out)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    const HEADER: &str = "level,scenario,backend,config,metric,value,unit,reference,error";
-
-    /// A run directory holding `metrics` as its metrics.csv and no trace.
-    fn run_dir(root: &Path, name: &str, metrics: &str) -> PathBuf {
-        let dir = root.join(name);
-        std::fs::create_dir_all(dir.join("traces")).unwrap();
-        std::fs::write(dir.join("metrics.csv"), metrics).unwrap();
-        dir
-    }
-
-    #[test]
-    fn metrics_are_read_with_or_without_the_frame_column_and_frames_are_not_compared() {
-        let root = tempfile::tempdir().unwrap();
-        // Written before the frame column (an old baseline, a user's CI baseline).
-        let old = run_dir(
-            root.path(),
-            "old",
-            &format!("{HEADER}\nm,s,sweep,default,max_penetration,0.5,tiles,0,0.5\n"),
-        );
-        // With it: the same value reached on another frame, and a row without a frame.
-        let new = run_dir(
-            root.path(),
-            "new",
-            &format!(
-                "{HEADER},frame\nm,s,sweep,default,max_penetration,0.5,tiles,0,0.5,7\n\
-                 m,s,sweep,default,ns_per_character_step,9,ns,0,9,\n"
-            ),
-        );
-        let o = read_metrics(&old).unwrap();
-        assert_eq!(o.len(), 1);
-        assert_eq!((o[0].value, o[0].frame), (0.5, None));
-        let n = read_metrics(&new).unwrap();
-        assert_eq!(n[0].frame, Some(7));
-        assert_eq!(n[1].frame, None);
-        // Old against new: the value is the same, the frame is not compared (only the added
-        // timing row is listed).
-        let d = diff_runs(&old, &new, &BTreeMap::new(), 1e-4).unwrap();
-        assert_eq!(d.compared, 1);
-        assert_eq!(d.metrics.len(), 1, "{:?}", d.metrics);
-        assert_eq!(d.metrics[0].change, Change::Added);
-        // A frame that moved is no change either; a value that moved shows both frames.
-        let moved = run_dir(
-            root.path(),
-            "moved",
-            &format!("{HEADER},frame\nm,s,sweep,default,max_penetration,0.5,tiles,0,0.5,3\n"),
-        );
-        assert!(diff_runs(&new, &moved, &BTreeMap::new(), 1e-4)
-            .unwrap()
-            .metrics
-            .iter()
-            .all(|m| m.metric != "max_penetration"));
-        let worse = run_dir(
-            root.path(),
-            "worse",
-            &format!("{HEADER},frame\nm,s,sweep,default,max_penetration,0.9,tiles,0,0.9,12\n"),
-        );
-        let d = diff_runs(&new, &worse, &BTreeMap::new(), 1e-4).unwrap();
-        let m = d
-            .metrics
-            .iter()
-            .find(|m| m.metric == "max_penetration")
-            .unwrap();
-        assert_eq!(m.change, Change::Worse);
-        assert_eq!((m.base_frame, m.new_frame), (Some(7), Some(12)));
     }
 }
