@@ -6,4 +6,5 @@ mod common;
 mod crashes;
 mod hostile;
 mod hostile_inputs;
+mod memory;
 mod properties;
