@@ -13,8 +13,9 @@
 
 use std::path::Path;
 
-/// Largest file read as a level, map, tileset or side file, in bytes (128 MiB): a 16-million
-/// tile map written as Tiled CSV takes about 80 MB. Only regular files are read
+/// Largest file read as a level, map, tileset or side file, in bytes (128 MiB): sixteen layers
+/// of the largest map (the most a Tiled map's layers hold together) written as Tiled CSV take
+/// about 32 MB. Only regular files are read
 /// ([`crate::input`]): a device or named pipe (`/dev/zero`, a FIFO) is refused before it is
 /// opened.
 pub(crate) const MAX_INPUT_BYTES: u64 = 128 * 1024 * 1024;
@@ -32,8 +33,32 @@ pub(crate) const MAX_XML_DEPTH: usize = 128;
 /// comes back to a file it has already passed is refused whatever its length.
 #[cfg(feature = "tiled")]
 pub(crate) const MAX_TILED_FILE_CHAIN: usize = 32;
-/// Most tiles a level may have (width x height), TOML or Tiled alike.
-pub(crate) const MAX_TILES: u64 = 16_000_000;
+/// Most tiles a level may have (width x height), TOML, Tiled or LDtk alike: what one thread of
+/// a run holds within 2 GB ([`RUN_MEMORY`]) whatever the tiles are. It was 16,000,000, which no
+/// run could hold: a backend's world costs hundreds of bytes a tile (one collider or shape per
+/// tile and an engine's tree over them), and 16 million solid tiles took about 10 GB. Measured
+/// as peak RSS of `platbench run MAP --out DIR --traces none --jobs 1` with every backend: a
+/// solid 2000 x 1000 map 1.24 GB (622 bytes a tile), a 1000 x 1000 map of `/` slopes 675 MB,
+/// and the most costly map, a 1000 x 1000 checkerboard of solid tiles, 1.38 GB (each solid
+/// tile is its own rectangle, which Box2D's merged world makes a chain loop of four segments).
+pub(crate) const MAX_TILES: u64 = 1_000_000;
+/// Most cells all the tile layers of one Tiled map may hold together (the sum of each layer's
+/// width x height), checked before any layer is read: every layer's cells are held while the
+/// map is read, about 20 bytes a cell (peak RSS of `platbench inspect` on a 1000 x 1000 map:
+/// 76 MB with one layer, 135 MB with four), so 20 layers of 16 million cells each aborted under
+/// a 4 GiB cap. Sixteen layers of the largest map, about 330 MB, freed before the run.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_LAYER_CELLS: u64 = 16 * MAX_TILES;
+/// Memory `platbench run` keeps its levels' worlds within, in bytes (2 GiB): the threads it
+/// fans out over ([`jobs_within_memory`]) each build one backend's world of one level at a time.
+pub(crate) const RUN_MEMORY: u64 = 2 << 30;
+/// Peak memory one thread of a run takes per tile of the level it runs, in bytes: the most
+/// costly map measured for [`MAX_TILES`], a checkerboard of solid tiles, 1.38 GB for 1,000,000
+/// tiles, rounded up. Box2D's world is the largest (a shape is 444 bytes in its shape array,
+/// grown by doubling, 46 in its tree and 43 in boxdd's own tables; a solid map's per-tile world
+/// 540 MB a million tiles, a checkerboard's merged one of chain loops 1.38 GB), then Rapier's
+/// (a collider 233 bytes, 199 in its broad phase) and the sweep's (boxes and BVH, about 170).
+pub(crate) const THREAD_BYTES_PER_TILE: u64 = 1_400;
 /// Most frames (duration / dt) one scenario may run.
 pub const MAX_FRAMES: u64 = 10_000_000;
 /// Most frames all the scenarios of one level may run together.
@@ -102,6 +127,15 @@ pub(crate) const MAX_TOML_ITEMS: usize = 500_000;
 /// scenario of that many events written out in full (`{ t = 1.0, left = true }`, 5 items)
 /// takes half of [`MAX_TOML_ITEMS`].
 pub(crate) const MAX_INPUT_EVENTS: usize = 50_000;
+
+/// The threads a run may fan out over when its largest level holds `tiles` tiles: `jobs`, or
+/// as many as keep every thread's world within [`RUN_MEMORY`] ([`THREAD_BYTES_PER_TILE`]
+/// each), at least one. The output is the same whatever the number of threads.
+pub(crate) fn jobs_within_memory(jobs: usize, tiles: u64) -> usize {
+    let per_thread = tiles.saturating_mul(THREAD_BYTES_PER_TILE).max(1);
+    let fit = (RUN_MEMORY / per_thread).max(1);
+    jobs.min(usize::try_from(fit).unwrap_or(usize::MAX)).max(1)
+}
 
 /// Whether `dt` (seconds) is within [`DT_RANGE`], compared in f32 as the runner stores it (so
 /// `1e-6` read into an f32, a hair below 1e-6, is in).
@@ -218,6 +252,20 @@ pub(crate) fn read_text_capped(path: &Path) -> std::io::Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_run_takes_fewer_threads_on_a_large_level() {
+        // Levels of a few thousand tiles (the built-in set) keep every thread asked for.
+        assert_eq!(jobs_within_memory(8, 10_000), 8);
+        // The largest level: one thread's world is up to 1.4 GB (THREAD_BYTES_PER_TILE), and
+        // two would pass RUN_MEMORY (2 GiB).
+        assert_eq!(jobs_within_memory(8, MAX_TILES), 1);
+        // 500,000 tiles: 700 MB a thread, three within 2 GiB.
+        assert_eq!(jobs_within_memory(8, 500_000), 3);
+        // Never none, whatever is asked or however large.
+        assert_eq!(jobs_within_memory(0, 0), 1);
+        assert_eq!(jobs_within_memory(4, u64::MAX), 1);
+    }
 
     #[test]
     fn timing_is_checked_before_anything_runs() {

@@ -135,7 +135,23 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
     let total = modelled_runs(&levels, &configs);
     let skipped_runs = scenarios * configs.len() - total;
     // Timing measures one thread with nothing else running beside it.
-    let jobs = if args.timing { 1 } else { args.select.jobs() };
+    let asked = if args.timing { 1 } else { args.select.jobs() };
+    // Each thread builds the world of the level it runs: on a large level, fewer threads, so
+    // that their worlds together stay within the run's memory (src/limits.rs).
+    let largest = levels
+        .iter()
+        .map(|l| l.width as u64 * l.height as u64)
+        .max()
+        .unwrap_or(0);
+    let jobs = crate::limits::jobs_within_memory(asked, largest);
+    if jobs < asked {
+        eprintln!(
+            "platbench: {jobs} thread{} rather than {asked}: a thread running a level of {largest} tiles takes up to {} MB, and a run keeps within {} MB",
+            if jobs == 1 { "" } else { "s" },
+            largest * crate::limits::THREAD_BYTES_PER_TILE / 1_000_000,
+            crate::limits::RUN_MEMORY / 1_000_000,
+        );
+    }
     eprintln!(
         "platbench: {scenarios} scenarios on {} configurations ({total} runs{}) on {jobs} thread{}",
         configs.len(),
@@ -366,67 +382,79 @@ pub(crate) fn execute<'a>(
     } else {
         Vec::new()
     };
-    // One runner per thread, kept while its jobs stay on one level (they come in level order).
-    let init = || None::<(usize, Runner<'a>)>;
-    let work = |cache: &mut Option<(usize, Runner<'a>)>, i: usize| -> Result<Outcome> {
-        let (li, si, ci) = item(i);
-        let (level, spec, run) = (&levels[li], &levels[li].scenarios[si], &configs[ci]);
-        if cache.as_ref().is_none_or(|(l, _)| *l != li) {
-            *cache = Some((li, Runner::new(level)));
-        }
-        let Some((_, runner)) = cache.as_mut() else {
-            unreachable!("set just above")
-        };
-        let mut e = match evaluate_recorded(runner, spec, run, RowStore::default()) {
-            Err(RecordError::Run(e)) if e.is_failure() => {
-                return Ok(Outcome::Failed(e.to_string()));
+    // One runner per thread, kept while its jobs stay on one level and one backend (they come
+    // in level order, each scenario's configurations grouped by backend): what a backend built
+    // for the level (Rapier's colliders) is dropped before another backend builds its world,
+    // so a thread holds one backend's world at a time. On a 1000 x 1000 solid map Rapier's
+    // per-tile colliders held beside Box2D's per-tile world took a run on one thread from
+    // 0.6 to 1.05 GB; rebuilding Rapier's colliders once per scenario costs far less.
+    let init = || None::<(usize, &'static str, Runner<'a>)>;
+    let work =
+        |cache: &mut Option<(usize, &'static str, Runner<'a>)>, i: usize| -> Result<Outcome> {
+            let (li, si, ci) = item(i);
+            let (level, spec, run) = (&levels[li], &levels[li].scenarios[si], &configs[ci]);
+            let backend = run.backend.backend();
+            if cache
+                .as_ref()
+                .is_none_or(|(l, b, _)| *l != li || *b != backend)
+            {
+                // The old runner's geometry goes before the new one's is built.
+                *cache = None;
+                *cache = Some((li, backend, Runner::new(level)));
             }
-            Err(RecordError::Run(e)) if e.is_unsupported() => {
-                return Ok(Outcome::Skipped(format!(
-                    "{} {}: {e}",
-                    run.backend.backend(),
-                    run.label
-                )));
+            let Some((_, _, runner)) = cache.as_mut() else {
+                unreachable!("set just above")
+            };
+            let mut e = match evaluate_recorded(runner, spec, run, RowStore::default()) {
+                Err(RecordError::Run(e)) if e.is_failure() => {
+                    return Ok(Outcome::Failed(e.to_string()));
+                }
+                Err(RecordError::Run(e)) if e.is_unsupported() => {
+                    return Ok(Outcome::Skipped(format!(
+                        "{} {}: {e}",
+                        run.backend.backend(),
+                        run.label
+                    )));
+                }
+                e => e.with_context(|| {
+                    format!(
+                        "running {}.{} on {}/{}",
+                        level.name,
+                        spec.name,
+                        run.backend.backend(),
+                        run.label
+                    )
+                })?,
+            };
+            let mut metrics = Vec::with_capacity(e.metrics.len() + 1);
+            if args.timing {
+                let mut samples = timed.get(i).copied().unwrap_or_default();
+                let t = crate::metrics::timing::Timing::of(&mut samples).with_context(|| {
+                    format!(
+                        "timing {}.{} on {}/{}: a sample is not a finite number of ns",
+                        level.name,
+                        spec.name,
+                        run.backend.backend(),
+                        run.label
+                    )
+                })?;
+                metrics.push(crate::metrics::timing_row(level, spec, run, t));
             }
-            e => e.with_context(|| {
-                format!(
-                    "running {}.{} on {}/{}",
-                    level.name,
-                    spec.name,
-                    run.backend.backend(),
-                    run.label
-                )
-            })?,
+            metrics.extend(std::mem::take(&mut e.metrics));
+            let keep = match mode {
+                Traces::None => false,
+                Traces::Failing => failing(&metrics),
+                Traces::All => true,
+            };
+            if let (true, Some(t)) = (keep, &traces_dir) {
+                let path = t.join(e.trace.file_name());
+                let file = std::fs::File::create(&path)
+                    .with_context(|| format!("cannot create {}", path.display()))?;
+                e.write_csv(std::io::BufWriter::new(file))
+                    .with_context(|| format!("cannot write {}", path.display()))?;
+            }
+            Ok(Outcome::Ran(metrics, keep))
         };
-        let mut metrics = Vec::with_capacity(e.metrics.len() + 1);
-        if args.timing {
-            let mut samples = timed.get(i).copied().unwrap_or_default();
-            let t = crate::metrics::timing::Timing::of(&mut samples).with_context(|| {
-                format!(
-                    "timing {}.{} on {}/{}: a sample is not a finite number of ns",
-                    level.name,
-                    spec.name,
-                    run.backend.backend(),
-                    run.label
-                )
-            })?;
-            metrics.push(crate::metrics::timing_row(level, spec, run, t));
-        }
-        metrics.extend(std::mem::take(&mut e.metrics));
-        let keep = match mode {
-            Traces::None => false,
-            Traces::Failing => failing(&metrics),
-            Traces::All => true,
-        };
-        if let (true, Some(t)) = (keep, &traces_dir) {
-            let path = t.join(e.trace.file_name());
-            let file = std::fs::File::create(&path)
-                .with_context(|| format!("cannot create {}", path.display()))?;
-            e.write_csv(std::io::BufWriter::new(file))
-                .with_context(|| format!("cannot write {}", path.display()))?;
-        }
-        Ok(Outcome::Ran(metrics, keep))
-    };
     // Progress within a level, only for a person watching: a terminal's stderr.
     let live = std::io::stderr().is_terminal();
     let total = modelled_runs(levels, configs);

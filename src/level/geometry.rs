@@ -24,7 +24,7 @@ impl Level {
         self.tiles
             .iter()
             .enumerate()
-            .filter(|(_, t)| **t == Tile::Solid)
+            .filter(|(_, t)| *t == Tile::Solid)
             .map(move |(k, _)| Self::tile_box((k % w) as i64, (k / w) as i64))
     }
 
@@ -32,7 +32,7 @@ impl Level {
     /// the rows above hold the same run. Every solid tile is in exactly one rectangle.
     pub fn merged_solid_rects(&self) -> Vec<Aabb> {
         let (w, h) = (self.width as usize, self.height as usize);
-        let solid = |i: usize, j: usize| self.tiles[j * w + i] == Tile::Solid;
+        let solid = |i: usize, j: usize| self.tiles.get(j * w + i) == Tile::Solid;
         let mut used = vec![false; w * h];
         let mut out = Vec::new();
         for j in 0..h {
@@ -63,6 +63,19 @@ impl Level {
             }
         }
         out
+    }
+
+    /// The columns `i0..=i1` that lie within the map (an empty range, `i0 > i1`, if none do):
+    /// outside the map every cell is empty, so a walk over cells that only looks for what the
+    /// map holds costs the map's cells, not the area asked about.
+    pub(crate) fn clip_columns(&self, i0: i64, i1: i64) -> (i64, i64) {
+        (i0.max(0), i1.min(self.width as i64 - 1))
+    }
+
+    /// The rows `j0..=j1` that lie within the map (an empty range if none do); see
+    /// [`Level::clip_columns`].
+    pub(crate) fn clip_rows(&self, j0: i64, j1: i64) -> (i64, i64) {
+        (j0.max(0), j1.min(self.height as i64 - 1))
     }
 
     /// Solid tiles whose boxes overlap `area` with positive area (touching does not count).
@@ -197,11 +210,14 @@ impl Level {
     /// Every slope tile with its column and row.
     pub fn slopes(&self) -> impl Iterator<Item = (i64, i64, Slope)> + '_ {
         let w = self.width as usize;
+        // A level without slope tiles has none to look for (most levels): no walk over its cells.
+        let any = self.tiles.any_distinct(|t| matches!(t, Tile::Slope(_)));
         self.tiles
             .iter()
+            .take(if any { usize::MAX } else { 0 })
             .enumerate()
             .filter_map(move |(k, t)| match t {
-                Tile::Slope(s) => Some(((k % w) as i64, (k / w) as i64, *s)),
+                Tile::Slope(s) => Some(((k % w) as i64, (k / w) as i64, s)),
                 _ => None,
             })
     }

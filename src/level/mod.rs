@@ -11,6 +11,8 @@
 //! format: `toml`. The importers: [`tiled`] and [`ldtk`], with what they share in [`import`]
 //! and the standard probes for a map without scenarios in [`probes`].
 
+mod cells;
+pub(crate) use cells::SlopeKey;
 mod features;
 mod format;
 mod geometry;

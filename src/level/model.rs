@@ -4,6 +4,7 @@
 
 use glam::{DVec2, Vec2};
 
+use super::cells::Cells;
 use super::{Features, Platform, ScenarioSpec, Tile};
 
 /// A parsed level.
@@ -25,8 +26,9 @@ pub struct Level {
     /// level at this origin rounded to the nearest f32 ([`Level::origin_f32`]), an f64 backend
     /// at the origin itself; traces and metrics stay in level coordinates. Default: the origin.
     pub origin: DVec2,
-    /// Tiles row by row from the bottom (`j * width + i`).
-    pub(super) tiles: Vec<Tile>,
+    /// Tiles row by row from the bottom (`j * width + i`), a byte each and shared between
+    /// copies ([`Cells`]).
+    pub(super) tiles: Cells,
     /// What the level contains.
     pub features: Features,
     /// The scenarios that run on it.
@@ -38,16 +40,19 @@ pub struct Level {
 impl Level {
     /// Builds a level from rows given bottom first; computes its features.
     pub fn from_tiles(name: &str, width: u32, height: u32, tiles: Vec<Tile>) -> Level {
-        assert_eq!(tiles.len(), (width * height) as usize);
-        let mut features = Features::default();
-        for t in &tiles {
-            match t {
-                Tile::OneWay => features.one_way = true,
-                Tile::Ladder => features.ladders = true,
-                Tile::Slope(_) => features.slopes = true,
-                Tile::Empty | Tile::Solid => {}
-            }
-        }
+        Self::with_cells(name, width, height, &tiles)
+    }
+
+    /// [`Level::from_tiles`] from a slice; the level keeps its tiles a byte each.
+    pub(crate) fn with_cells(name: &str, width: u32, height: u32, tiles: &[Tile]) -> Level {
+        assert_eq!(tiles.len(), width as usize * height as usize);
+        let tiles = Cells::new(tiles);
+        let features = Features {
+            one_way: tiles.any_distinct(|t| *t == Tile::OneWay),
+            ladders: tiles.any_distinct(|t| *t == Tile::Ladder),
+            slopes: tiles.any_distinct(|t| matches!(t, Tile::Slope(_))),
+            ..Features::default()
+        };
         Level {
             name: name.to_string(),
             description: String::new(),
@@ -88,7 +93,8 @@ impl Level {
         far
     }
 
-    /// A copy of the level's geometry without its scenarios, for a backend to keep.
+    /// A copy of the level's geometry without its scenarios, for a backend to keep. The tiles
+    /// are shared with this level, not copied.
     pub fn geometry(&self) -> Level {
         Level {
             name: self.name.clone(),
@@ -104,11 +110,26 @@ impl Level {
         }
     }
 
+    /// Replaces the level's tiles with `tiles` (`width` columns, its rows), leaving its
+    /// features as they are.
+    pub(crate) fn set_tiles(&mut self, width: u32, tiles: &[Tile]) {
+        assert_eq!(tiles.len(), width as usize * self.height as usize);
+        self.tiles = Cells::new(tiles);
+        self.width = width;
+    }
+
+    /// The distinct tiles the level holds, each once (a handful: the plain kinds and its slopes),
+    /// for what is built per kind of tile rather than per cell.
+    pub(crate) fn distinct_tiles(&self) -> impl Iterator<Item = Tile> + '_ {
+        self.tiles.distinct()
+    }
+
     /// The tile at column `i`, row `j` (from the bottom); outside the map is empty.
     pub fn tile(&self, i: i64, j: i64) -> Tile {
         if i < 0 || j < 0 || i >= self.width as i64 || j >= self.height as i64 {
             return Tile::Empty;
         }
-        self.tiles[(j as usize) * self.width as usize + i as usize]
+        self.tiles
+            .get((j as usize) * self.width as usize + i as usize)
     }
 }

@@ -19,7 +19,7 @@ use parry2d::query::{cast_shapes, contact, ShapeCastHit, ShapeCastOptions};
 use parry2d::shape::{Cuboid, SharedShape};
 
 use super::landing::FLICKER_SUPPORT_TOLERANCE;
-use crate::level::{Level, Slope, Tile};
+use crate::level::{Level, Slope, SlopeKey, Tile};
 use crate::shape::CharacterShape;
 
 /// How far below the feet the ground is looked for, in tiles.
@@ -34,7 +34,10 @@ pub struct Ground<'a> {
     level: &'a Level,
     shape: SharedShape,
     size: Vec2,
-    slopes: HashMap<(i64, i64), SharedShape>,
+    /// The solid part of each distinct slope the level holds (`None`: it has none), built once
+    /// per slope rather than per slope tile (a map of a million slope tiles held a million
+    /// shapes, 320 bytes a tile, where it has a handful of slopes).
+    slopes: HashMap<SlopeKey, Option<SharedShape>>,
     tile: Cuboid,
 }
 
@@ -110,8 +113,11 @@ impl<'a> Ground<'a> {
     /// The ground of `level` for a character of `shape` and outer `size` (tiles).
     pub fn new(level: &'a Level, shape: CharacterShape, size: Vec2) -> Self {
         let slopes = level
-            .slopes()
-            .filter_map(|(i, j, s)| slope_shape(&s).map(|sh| ((i, j), sh)))
+            .distinct_tiles()
+            .filter_map(|t| match t {
+                Tile::Slope(s) => Some((SlopeKey::of(&s), slope_shape(&s))),
+                _ => None,
+            })
             .collect();
         Ground {
             level,
@@ -120,6 +126,23 @@ impl<'a> Ground<'a> {
             slopes,
             tile: Cuboid::new(Vec2::splat(0.5)),
         }
+    }
+
+    /// The solid part of slope `s` (a slope of the level), if it has one.
+    fn slope(&self, s: &Slope) -> Option<&SharedShape> {
+        self.slopes.get(&SlopeKey::of(s)).and_then(Option::as_ref)
+    }
+
+    /// The columns `i0..=i1` that lie within the map (an empty range, `i0 > i1`, if none do):
+    /// every walk over cells goes through this or [`Ground::rows`], so its cost is bounded by
+    /// the map whatever the character's size.
+    fn columns(&self, i0: i64, i1: i64) -> (i64, i64) {
+        self.level.clip_columns(i0, i1)
+    }
+
+    /// The rows `j0..=j1` that lie within the map (an empty range if none do).
+    fn rows(&self, j0: i64, j1: i64) -> (i64, i64) {
+        self.level.clip_rows(j0, j1)
     }
 
     /// Deepest overlap of the shape with the level's solid geometry (solid tiles and slopes'
@@ -158,10 +181,18 @@ impl<'a> Ground<'a> {
     ) {
         let pose = CharacterShape::pose(feet, self.size);
         let bb = self.shape.compute_aabb(&pose);
-        let (i0, i1) = (bb.mins.x.floor() as i64, bb.maxs.x.ceil() as i64);
-        let (j0, j1) = (bb.mins.y.floor() as i64, bb.maxs.y.ceil() as i64);
-        for j in j0..j1 {
-            for i in i0..i1 {
+        // Only the map's cells: outside it every cell is empty and overlaps nothing, so the
+        // walk costs what the map holds under the box, not the box's area.
+        let (i0, i1) = self.columns(
+            bb.mins.x.floor() as i64,
+            (bb.maxs.x.ceil() as i64).saturating_sub(1),
+        );
+        let (j0, j1) = self.rows(
+            bb.mins.y.floor() as i64,
+            (bb.maxs.y.ceil() as i64).saturating_sub(1),
+        );
+        for j in j0..=j1 {
+            for i in i0..=i1 {
                 let is_square = matches!(self.level.tile(i, j), Tile::Solid);
                 if (is_square && !squares) || (!is_square && !slopes) {
                     continue;
@@ -185,7 +216,7 @@ impl<'a> Ground<'a> {
                     Pose::from_translation(origin + Vec2::splat(0.5)),
                     &self.tile,
                 ),
-                Tile::Slope(_) => match self.slopes.get(&(i, j)) {
+                Tile::Slope(s) => match self.slope(&s) {
                     Some(s) => (Pose::from_translation(origin), &**s),
                     None => return 0.0,
                 },
@@ -211,11 +242,16 @@ impl<'a> Ground<'a> {
         let band = self.size.y * 0.5;
         let pose = CharacterShape::pose(feet, self.size);
         let half = self.shape.compute_aabb(&pose).half_extents().x;
-        let i0 = (feet.x - half + 1e-4).floor() as i64;
-        let i1 = (feet.x + half - 1e-4).floor() as i64;
+        // Within the map: outside it no cell is one-way.
+        let (i0, i1) = self.columns(
+            (feet.x - half + 1e-4).floor() as i64,
+            (feet.x + half - 1e-4).floor() as i64,
+        );
         // Tops j + 1 in (feet.y, feet.y + band].
-        let j0 = feet.y.floor() as i64;
-        let j1 = (feet.y + band).floor() as i64 - 1;
+        let (j0, j1) = self.rows(
+            feet.y.floor() as i64,
+            ((feet.y + band).floor() as i64).saturating_sub(1),
+        );
         let above = CharacterShape::pose(feet + Vec2::Y * band, self.size);
         let mut worst = 0.0f32;
         for i in i0..=i1 {
@@ -356,10 +392,15 @@ impl<'a> Ground<'a> {
         let half = self.shape.compute_aabb(&pose).half_extents().x;
         // Columns the shape spans (a wall touching its side is not under it), rows from mid-body
         // down to the search depth.
-        let i0 = (feet.x - half + 1e-4).floor() as i64;
-        let i1 = (feet.x + half - 1e-4).floor() as i64;
-        let j_top = (feet.y + self.size.y * 0.5).floor() as i64;
-        let j_low = (feet.y - GROUND_SEARCH).floor() as i64;
+        // Within the map: outside it every cell is empty and holds no ground.
+        let (i0, i1) = self.columns(
+            (feet.x - half + 1e-4).floor() as i64,
+            (feet.x + half - 1e-4).floor() as i64,
+        );
+        let (j_low, j_top) = self.rows(
+            (feet.y - GROUND_SEARCH).floor() as i64,
+            (feet.y + self.size.y * 0.5).floor() as i64,
+        );
         let mut best = (f32::INFINITY, Vec2::Y);
         for i in i0..=i1 {
             for j in (j_low..=j_top).rev() {
@@ -383,7 +424,7 @@ impl<'a> Ground<'a> {
                             Pose::from_translation(origin + Vec2::splat(0.5)),
                             &self.tile,
                         ),
-                        Tile::Slope(_) => match self.slopes.get(&(i, j)) {
+                        Tile::Slope(s) => match self.slope(&s) {
                             Some(s) => (Pose::from_translation(origin), &**s),
                             None => continue,
                         },

@@ -442,8 +442,13 @@ fn on_flat_top(ctx: &Context, r: &TraceRow) -> bool {
     // The row whose top is nearest the feet.
     let j = r.y.round() as i64 - 1;
     let top = (j + 1) as f32;
+    // Columns outside the map hold nothing: only the map's are looked at.
+    let (i0, i1) = ctx.level.clip_columns(
+        (r.x - half).floor() as i64,
+        ((r.x + half).ceil() as i64).saturating_sub(1),
+    );
     (r.y - top).abs() <= FLICKER_SUPPORT_TOLERANCE
-        && ((r.x - half).floor() as i64..(r.x + half).ceil() as i64).any(|i| {
+        && (i0..=i1).any(|i| {
             let (lo, hi) = (i as f32, i as f32 + 1.0);
             hi > r.x - half
                 && lo < r.x + half

@@ -160,7 +160,16 @@ fn room_beyond(
     // touching a cell's edge does not reach into it, nor does one sunk into the floor by a
     // declared sag (Box2D's pogo) or lifted by an offset (Rapier's), both under ON_PLATFORM.
     let lo = (across.0 + ON_PLATFORM).floor() as i64;
-    let hi = (across.1 - ON_PLATFORM).ceil() as i64 - 1;
+    let hi = ((across.1 - ON_PLATFORM).ceil() as i64).saturating_sub(1);
+    // Only cells within the map can block (outside it every cell is empty): the span is
+    // clipped to the map, and the walk along the axis stops at the map's far side.
+    let level = ctx.level;
+    let (lo, hi) = if a == 0 {
+        level.clip_rows(lo, hi)
+    } else {
+        level.clip_columns(lo, hi)
+    };
+    let cells = if a == 0 { level.width } else { level.height } as i64;
     let blocked = |n: i64| {
         (lo..=hi).any(|m| {
             let (i, j) = if a == 0 { (n, m) } else { (m, n) };
@@ -168,7 +177,18 @@ fn room_beyond(
         })
     };
     let mut n = face.floor() as i64;
+    // Before the map's near side nothing blocks and the room only grows: the walk starts at
+    // that side (where it would return `limit` on the way, it returns it there too).
+    if dir > 0.0 && n < 0 {
+        n = 0;
+    } else if dir < 0.0 && n >= cells {
+        n = cells - 1;
+    }
     loop {
+        if (dir > 0.0 && n >= cells) || (dir < 0.0 && n < 0) {
+            // Past the map's far side nothing blocks: the room grows to `limit`.
+            return limit;
+        }
         // The near edge of cell n along the direction of the push.
         let edge = if dir > 0.0 { n as f32 } else { (n + 1) as f32 };
         let room = (edge - face) * dir;

@@ -41,9 +41,15 @@ pub fn progress_ratio(ctx: &Context, rows: Frames) -> Option<Measure> {
         return None;
     }
     let path = Aabb::new(Vec2::new(lo, y0), Vec2::new(hi, y0 + spec.size.y));
-    let open = (lo.floor() as i64..hi.ceil() as i64).all(|i| {
-        (y0 as i64..(y0 + spec.size.y).ceil() as i64).all(|j| ctx.level.tile(i, j) == Tile::Empty)
-    });
+    // Cells outside the map are empty: only the map's cells under the path are looked at.
+    let (i0, i1) = ctx
+        .level
+        .clip_columns(lo.floor() as i64, (hi.ceil() as i64).saturating_sub(1));
+    let (j0, j1) = ctx.level.clip_rows(
+        y0 as i64,
+        ((y0 + spec.size.y).ceil() as i64).saturating_sub(1),
+    );
+    let open = (i0..=i1).all(|i| (j0..=j1).all(|j| ctx.level.tile(i, j) == Tile::Empty));
     if ctx.level.solids_overlapping(&path).next().is_some() || !open {
         return None;
     }

@@ -216,3 +216,47 @@ fn progress_ratio_and_landing_on_a_stuck_or_late_controller() {
         Some(2.0)
     );
 }
+
+#[test]
+fn clipped_scans_equal_the_whole_box() {
+    // A character far wider and taller than a small map (60 x 60 tiles over a 6 x 4 map with
+    // solids, a slope and a one-way tile), placed so that its box covers the whole map and
+    // beyond: the overlaps found walking the map's cells only are those found walking every
+    // cell of the box, the walk the metrics did before it was clipped (cells outside the map
+    // are empty). 60 tiles keeps the whole-box walk small; the clip is the same at 1000.
+    use crate::level::character_box;
+    use crate::shape::CharacterShape;
+    let level = parse_level(
+        "map = \"\"\"\n......\n..=...\n./##..\n######\n\"\"\"\n",
+        "c.toml",
+    )
+    .unwrap();
+    let size = Vec2::new(60.0, 60.0);
+    for shape in [
+        CharacterShape::Cuboid,
+        CharacterShape::Capsule,
+        CharacterShape::Ball,
+    ] {
+        let g = ground::Ground::new(&level, shape, size);
+        for feet in [
+            Vec2::new(3.0, 0.5),
+            Vec2::new(-20.0, 1.0),
+            Vec2::new(10.0, -3.5),
+        ] {
+            let mut clipped = Vec::new();
+            g.each_overlap(feet, true, true, |t, d| clipped.push((t, d)));
+            // Every cell of the box, in the same order (rows, then columns).
+            let bb = character_box(feet, size);
+            let mut whole = Vec::new();
+            for j in bb.mins.y.floor() as i64 - 1..bb.maxs.y.ceil() as i64 + 1 {
+                for i in bb.mins.x.floor() as i64 - 1..bb.maxs.x.ceil() as i64 + 1 {
+                    let d = g.tile_overlap(feet, i, j);
+                    if d > 0.0 {
+                        whole.push(((i, j), d));
+                    }
+                }
+            }
+            assert_eq!(clipped, whole, "{shape:?} at {feet}");
+        }
+    }
+}

@@ -11,6 +11,7 @@ use engine::prelude::{
 pub use crate::level::outlines::ColliderBuilding;
 use crate::level::outlines::{one_way_rects, slope_outlines, solid_rects};
 use crate::level::Level;
+use parry2d::bounding_volume::Aabb;
 
 /// The level's static colliders and the broad phase that holds them. Built once per level and
 /// collider building, and shared by every character shape and scenario run on it.
@@ -29,11 +30,9 @@ impl StaticWorld {
     /// them visible to queries (before it the broad phase is empty and a character falls
     /// through the floor). The level's corner is placed at `level.origin` in Rapier's world.
     pub fn new(level: &Level, building: ColliderBuilding) -> Self {
-        let rects = solid_rects(level, building);
         let origin = level_origin(level);
         let mut colliders = ColliderSet::new();
-        let mut handles: Vec<ColliderHandle> = rects
-            .iter()
+        let mut handles: Vec<ColliderHandle> = solid_boxes(level, building)
             .map(|r| {
                 let half = v(r.half_extents());
                 colliders.insert(
@@ -92,6 +91,16 @@ impl StaticWorld {
             &[],
             &mut events,
         );
+    }
+}
+
+/// The level's solid boxes as [`solid_rects`] gives them, in its order, without collecting a
+/// per-tile world's boxes first (16 bytes a tile held beside the colliders while they are
+/// built).
+fn solid_boxes(level: &Level, building: ColliderBuilding) -> Box<dyn Iterator<Item = Aabb> + '_> {
+    match building {
+        ColliderBuilding::PerTile => Box::new(level.solid_boxes()),
+        ColliderBuilding::Merged => Box::new(solid_rects(level, building).into_iter()),
     }
 }
 

@@ -140,7 +140,8 @@ fn broken_projects_are_errors_with_file_line_and_column() {
     )
     .unwrap();
     let e = import_ldtk_with(&p, &walled()).unwrap_err().to_string();
-    assert!(e.contains("expected 1 to 16000000 cells"), "{e}");
+    // The tile cap, crate::limits::MAX_TILES.
+    assert!(e.contains("expected 1 to 1000000 cells"), "{e}");
     // A level at worldX = i64::MAX: its right edge (worldX + pxWid + grid - 1) overflowed an
     // i64 (wrapping in release); now refused where it stands, past 10^15 pixels.
     std::fs::write(

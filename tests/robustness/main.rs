@@ -6,5 +6,6 @@ mod common;
 mod crashes;
 mod hostile;
 mod hostile_inputs;
+mod memory;
 mod properties;
 mod streamed;

@@ -70,8 +70,8 @@ pub(crate) fn wall_sides(
             tiles.push(Tile::Solid);
         }
     }
-    level.tiles = tiles;
-    level.width = width;
+    level.set_tiles(width, &tiles);
+    drop(tiles);
     let dx = shift as f32;
     for p in &mut level.platforms {
         p.start.x += dx;

@@ -78,6 +78,8 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
     let mut chunk: Option<Data> = None;
     let mut sources = Vec::new();
     let mut shapes = super::points::Shapes::default();
+    // Cells of every tile layer so far (width x height each), against MAX_LAYER_CELLS.
+    let mut cells_read: u64 = 0;
     loop {
         let pos = reader.buffer_position();
         let event = match reader.read_event() {
@@ -123,6 +125,16 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                             message: format!(
                                 "layer {name:?} is {w} x {h} tiles; expected at most {} tiles",
                                 limits::MAX_TILES
+                            ),
+                        });
+                    }
+                    cells_read = cells_read.saturating_add(w * h);
+                    if cells_read > limits::MAX_LAYER_CELLS {
+                        return Err(ScanError {
+                            line: line_of(text, pos),
+                            message: format!(
+                                "layer {name:?} ({w} x {h} tiles) brings the map's tile layers to {cells_read} cells together; expected at most {} (each layer's cells are held while the map is read)",
+                                limits::MAX_LAYER_CELLS
                             ),
                         });
                     }
