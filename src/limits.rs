@@ -98,6 +98,10 @@ pub(crate) const MIN_PERIOD: f64 = 1e-6;
 /// Most waypoints of one platform path: a platform's place is found by walking its legs every
 /// step, so a path's points cost every frame (real maps' paths hold a handful).
 pub(crate) const MAX_PATH_POINTS: usize = 1_000;
+/// Most rows of a trade-off CSV given to `report --tradeoff`: `platbench sweep` writes one row
+/// per setting and scope, a few hundred (the built-in `compare/tradeoff/tradeoff.csv` holds 490),
+/// and the report's chart draws an element per row, so 2.6 million rows (108 MiB) took 3.8 GB.
+pub(crate) const MAX_TRADEOFF_ROWS: usize = 100_000;
 /// Largest sweep epsilon, in tiles: an overlap tolerance of a whole tile tolerates everything.
 pub(crate) const MAX_EPSILON: f64 = 1.0;
 /// Most points of one Tiled polygon or polyline (a collision shape, a tile's collision
@@ -112,15 +116,16 @@ pub(crate) const MAX_POLYGON_POINTS: usize = 10_000;
 /// 5,000 scenarios and 1.6 million frames per configuration, within [`MAX_LEVEL_FRAMES`].
 pub(crate) const MAX_SPAWNS: usize = 1_000;
 /// Largest TOML level or side file, in bytes (32 MiB), read no further: the largest map
-/// [`MAX_TILES`] allows is a 4000 x 4000 string of 16 MB (17 MB with CRLF line ends), and the
-/// rest of a level is a few kilobytes of legend, platforms and scenarios.
+/// [`MAX_TILES`] allows is a 1000 x 1000 string of about 1 MB, and the rest of a level is a few
+/// kilobytes of legend, platforms and scenarios (the cap was set when maps could hold 16 million
+/// tiles; [`MAX_TOML_ITEMS`] bounds what a file costs).
 pub(crate) const MAX_TOML_BYTES: u64 = 32 * 1024 * 1024;
-/// Most TOML items in a level or side file (each `=`, `,`, `[` and `{` outside strings and
+/// Most TOML items in a level or side file (each `=`, `,`, `.`, `[` and `{` outside strings and
 /// comments), counted before the `toml` crate parses the file: it builds a tree of every value,
 /// which costs some hundreds of bytes an item (an input event `{ t = 1.0, left = true }` about
 /// 1.5 KB), so 127 MB of input events (3.9 million) took over 2 GB. 500,000 items keep a file's
-/// tree near 250 MB (a map string is one item whatever its size) and hold two scenarios of
-/// [`MAX_INPUT_EVENTS`] events written out in full.
+/// tree near 250 MB (a map string is one item whatever its size) and hold a scenario of
+/// [`MAX_INPUT_EVENTS`] events written out in full (about six items an event).
 pub(crate) const MAX_TOML_ITEMS: usize = 500_000;
 /// Most input events of one scenario: a script written by hand holds tens, a recorded play a
 /// change every few frames; 50,000 is one change a frame for 14 minutes at 60 Hz, and a

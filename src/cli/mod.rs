@@ -380,12 +380,30 @@ pub(crate) fn out(text: &str) {
 
 /// Reads every row of a CSV file written by `platbench sweep` or `platbench stress`.
 pub(crate) fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) -> Result<Vec<T>> {
+    read_rows_capped(path, usize::MAX)
+}
+
+/// [`read_rows`], refusing the file at its row past `max` (before reading further).
+pub(crate) fn read_rows_capped<T: serde::de::DeserializeOwned>(
+    path: &std::path::Path,
+    max: usize,
+) -> Result<Vec<T>> {
     let file = crate::input::open(path, crate::limits::MAX_INPUT_BYTES, "input file")?;
     let mut r = csv::Reader::from_reader(file);
-    let rows = r
-        .deserialize()
-        .collect::<Result<Vec<T>, _>>()
-        .with_context(|| format!("{}: not the CSV this option expects", path.display()))?;
+    let mut rows = Vec::new();
+    for row in r.deserialize() {
+        if rows.len() == max {
+            // Line 1 is the header.
+            anyhow::bail!(
+                "{}:{}: more than {max} rows; expected at most {max}",
+                path.display(),
+                max + 2
+            );
+        }
+        rows.push(
+            row.with_context(|| format!("{}: not the CSV this option expects", path.display()))?,
+        );
+    }
     if rows.is_empty() {
         anyhow::bail!("{}: no rows", path.display());
     }

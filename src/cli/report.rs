@@ -45,7 +45,9 @@ pub(crate) struct ReportArgs {
 /// Reads a tradeoff.csv and checks what the chart draws: each cost and error score finite and
 /// >= 0 (a damaged file drew NaN and -1e308 costs), and at least one setting per row.
 fn read_tradeoff(path: &std::path::Path) -> Result<Vec<crate::tradeoff::TradeoffRow>> {
-    let rows: Vec<crate::tradeoff::TradeoffRow> = read_rows(path)?;
+    // `platbench sweep` writes a few hundred rows; the chart draws an element per row.
+    let rows: Vec<crate::tradeoff::TradeoffRow> =
+        super::read_rows_capped(path, crate::limits::MAX_TRADEOFF_ROWS)?;
     for (k, r) in rows.iter().enumerate() {
         // Line 1 is the header.
         let line = k + 2;

@@ -149,7 +149,8 @@ fn a_tile_id_of_no_tile_names_the_layer_the_cell_from_the_top_and_the_line() {
     assert!(e.contains(want), "{e}");
 }
 
-/// A TOML level whose one scenario has `events` input events `{t=0.0}` (3 items each), all
+/// A TOML level whose one scenario has `events` input events `{t=0.0}` (4 items each: `{`, `=`,
+/// the point and `,`), all
 /// on line 10.
 fn level_with_events(events: usize) -> String {
     format!(
@@ -173,7 +174,8 @@ fn a_toml_level_is_refused_past_its_bytes_items_or_input_events_before_it_costs_
         ),
         "{e}"
     );
-    // Past the item limit (3 items an event): refused before the `toml` crate reads it.
+    // Past the item limit (4 items an event, so MAX / 3 events are past it): refused before the
+    // `toml` crate reads it.
     let e = parse_level(&level_with_events(MAX_TOML_ITEMS / 3), "ev.toml").unwrap_err();
     assert_eq!(e.line, 10, "{e}");
     assert!(

@@ -238,36 +238,33 @@ fn report_refuses_a_damaged_tradeoff_file_naming_its_line() {
     let dir = tempfile::tempdir().unwrap();
     let level = quick_level(dir.path());
     let trade = dir.path().join("tradeoff.csv");
-    std::fs::write(
-        &trade,
-        "backend,setting,cost_us,error,pareto,scenarios\nsweep,dt=1/60,2.5,0.01,true,1\nsweep,dt=1/30,NaN,0.01,false,1\n",
-    )
-    .unwrap();
-    let out = platbench()
-        .arg("report")
-        .arg(&level)
-        .arg("--tradeoff")
-        .arg(&trade)
-        .args(["--backend", "sweep", "--out"])
-        .arg(dir.path().join("r"))
-        .output()
-        .unwrap();
+    // `report LEVEL --tradeoff FILE` with FILE holding `text`.
+    let report_with = |text: &str| {
+        std::fs::write(&trade, text).unwrap();
+        platbench()
+            .arg("report")
+            .arg(&level)
+            .arg("--tradeoff")
+            .arg(&trade)
+            .args(["--backend", "sweep", "--out"])
+            .arg(dir.path().join("r"))
+            .output()
+            .unwrap()
+    };
+    let head = "backend,setting,cost_us,error,pareto,scenarios\n";
+    let out = report_with(&format!(
+        "{head}sweep,dt=1/60,2.5,0.01,true,1\nsweep,dt=1/30,NaN,0.01,false,1\n"
+    ));
     assert_error(&out, "tradeoff.csv:3: cost_us is NaN");
-    std::fs::write(
-        &trade,
-        "backend,setting,cost_us,error,pareto,scenarios\nsweep,dt=1/60,-1e308,0.01,true,1\n",
-    )
-    .unwrap();
-    let out = platbench()
-        .arg("report")
-        .arg(&level)
-        .arg("--tradeoff")
-        .arg(&trade)
-        .arg("--out")
-        .arg(dir.path().join("r"))
-        .output()
-        .unwrap();
+    let out = report_with(&format!("{head}sweep,dt=1/60,-1e308,0.01,true,1\n"));
     assert_error(&out, "tradeoff.csv:2: cost_us is -1");
+    // One row past src/limits.rs MAX_TRADEOFF_ROWS (100,000) is refused at its line before the
+    // run; the chart drew an element per row (2.6 million rows took 3.8 GB).
+    let rows: String = (0..=100_000)
+        .map(|k| format!("sweep,dt=1/{k},2.5,0.01,false,1\n"))
+        .collect();
+    let out = report_with(&format!("{head}{rows}"));
+    assert_error(&out, "tradeoff.csv:100002: more than 100000 rows");
 }
 
 // ---- 6. the small things ----------------------------------------------------------------

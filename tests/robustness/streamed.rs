@@ -198,3 +198,29 @@ fn a_trace_differing_only_at_its_last_frame_is_found_and_a_bad_row_past_a_diverg
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(stderr(&out).contains("end before"), "{}", stderr(&out));
 }
+
+#[test]
+fn an_empty_metrics_file_or_trace_is_refused_not_read_as_a_run_of_no_rows() {
+    // A 0-byte baseline passed `diff` (every new row "added", exit 0) and a 0-byte new run
+    // failed it only as "missing" rows: either is a damaged file, exit 2.
+    let root = tempfile::tempdir().unwrap();
+    let full = run_dir(root.path(), "full", &row("rest_gap", "0.0"), None);
+    let empty = root.path().join("empty");
+    std::fs::create_dir_all(empty.join("traces")).unwrap();
+    std::fs::write(empty.join("metrics.csv"), "").unwrap();
+    for (base, new) in [(&empty, &full), (&full, &empty)] {
+        let out = diff(base, new, &[]);
+        assert_error(&out, "metrics.csv: the file is empty");
+    }
+    // An empty trace beside a whole one.
+    let a = run_dir(
+        root.path(),
+        "a",
+        &row("rest_gap", "0.0"),
+        Some(&frames(3, "2")),
+    );
+    let b = run_dir(root.path(), "b", &row("rest_gap", "0.0"), Some(""));
+    std::fs::write(b.join("traces/l.s.sweep.csv"), "").unwrap();
+    let out = diff(&a, &b, &[]);
+    assert_error(&out, "l.s.sweep.csv: the file is empty");
+}

@@ -6,14 +6,15 @@
 use super::error::{LevelError, Locator};
 use crate::limits;
 
-/// Checks the size of `loc`'s text and the number of its items (each `=`, `,`, `[` and `{`
-/// outside strings and comments); the error names the line of the first item past the limit.
+/// Checks the size of `loc`'s text and the number of its items (each `=`, `,`, `.`, `[` and `{`
+/// outside strings and comments: a dot joins the parts of a dotted key, each of which the crate
+/// makes a table); the error names the line of the first item past the limit.
 pub(super) fn check_budget(loc: &Locator) -> Result<(), LevelError> {
     if loc.text.len() as u64 > limits::MAX_TOML_BYTES {
         return Err(loc.err(
             0,
             format!(
-                "the file is {} bytes; expected at most {} (32 MiB) in a TOML level or side file (a map of the largest size, 16,000,000 tiles, takes 16 MB)",
+                "the file is {} bytes; expected at most {} (32 MiB) in a TOML level or side file (a map of the largest size, 1,000,000 tiles, takes about 1 MB)",
                 loc.text.len(),
                 limits::MAX_TOML_BYTES
             ),
@@ -33,8 +34,8 @@ pub(super) fn check_budget(loc: &Locator) -> Result<(), LevelError> {
     Ok(())
 }
 
-/// The byte offset of item `max + 1` of `text` (each `=`, `,`, `[` and `{` outside strings and
-/// comments), or `None` if it has at most `max`. Linear in the text; a malformed file is counted
+/// The byte offset of item `max + 1` of `text` (each `=`, `,`, `.`, `[` and `{` outside strings
+/// and comments; the point of a float counts too, which only makes the bound safer), or `None` if it has at most `max`. Linear in the text; a malformed file is counted
 /// as far as it goes (the `toml` crate reports what is wrong with it).
 fn item_past_limit(text: &str, max: usize) -> Option<usize> {
     let b = text.as_bytes();
@@ -51,7 +52,7 @@ fn item_past_limit(text: &str, max: usize) -> Option<usize> {
                 k = string_end(b, k, q);
                 continue;
             }
-            b'=' | b',' | b'[' | b'{' => {
+            b'=' | b',' | b'.' | b'[' | b'{' => {
                 count += 1;
                 if count > max {
                     return Some(k);
@@ -107,6 +108,9 @@ mod tests {
         assert_eq!(count("m = \"\"\"\n=,\n\\\"\"\" , \"\"\"\"\"\nx = 1"), 2);
         assert_eq!(count("m = '''=''''' \ny = 2"), 2);
         assert_eq!(count("[[scenario]]\ninputs = [{ t = 1, left = true }]"), 8);
+        // A dotted key's parts, each a table the crate builds (a file of keys 80 parts long
+        // slipped past a count of `=` alone and took 4 GB), and a float's point.
+        assert_eq!(count("a.b.c = 1.5"), 4);
         // The offset of the first item past the limit.
         assert_eq!(item_past_limit("a = 1, 2", 1), Some(5));
     }

@@ -129,6 +129,14 @@ pub enum DiffError {
         /// The line of the row whose name was one too many.
         line: u64,
     },
+    /// A metrics file or trace is empty: no header, so no run wrote it whole (a truncated or
+    /// damaged file would otherwise read as a run of no rows, and every row of the other side
+    /// would pass as added or be reported missing).
+    #[error("{path}: the file is empty; expected the header line and rows platbench writes (the file was truncated or damaged)")]
+    Empty {
+        /// The file.
+        path: PathBuf,
+    },
     /// A CSV file is malformed.
     #[error("{path}: {source}")]
     Csv {
@@ -166,6 +174,11 @@ impl CsvRows {
         let file = crate::input::open(path, u64::MAX, what)?;
         let mut reader = csv::Reader::from_reader(file);
         let headers = reader.headers().map_err(|e| Self::csv(path, e))?.clone();
+        if headers.iter().all(str::is_empty) {
+            return Err(DiffError::Empty {
+                path: path.to_path_buf(),
+            });
+        }
         Ok(CsvRows {
             path: path.to_path_buf(),
             reader,
