@@ -100,16 +100,23 @@ pub(crate) fn evaluate_or_skip(
             }
             Ok(None)
         }
-        e => e.map(Some).with_context(|| {
-            format!(
-                "running {}.{} on {}/{}",
-                level.name,
-                spec.name,
-                run.backend.backend(),
-                run.label
-            )
-        }),
+        e => e.map(Some).with_context(|| running(level, spec, run)),
     }
+}
+
+/// The context of an error of one run: which scenario on which configuration.
+fn running(
+    level: &crate::level::Level,
+    spec: &crate::level::ScenarioSpec,
+    run: &RunConfig,
+) -> String {
+    format!(
+        "running {}.{} on {}/{}",
+        level.name,
+        spec.name,
+        run.backend.backend(),
+        run.label
+    )
 }
 
 pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
@@ -416,15 +423,7 @@ pub(crate) fn execute<'a>(
                         run.label
                     )));
                 }
-                e => e.with_context(|| {
-                    format!(
-                        "running {}.{} on {}/{}",
-                        level.name,
-                        spec.name,
-                        run.backend.backend(),
-                        run.label
-                    )
-                })?,
+                e => e.with_context(|| running(level, spec, run))?,
             };
             let mut metrics = Vec::with_capacity(e.metrics.len() + 1);
             if args.timing {

@@ -31,7 +31,7 @@ fn copy_dir(from: &Path, to: &Path) {
 }
 
 /// `platbench diff BASE NEW EXTRA...`
-fn diff(base: &Path, new: &Path, extra: &[&str]) -> Output {
+pub(super) fn diff(base: &Path, new: &Path, extra: &[&str]) -> Output {
     platbench()
         .arg("diff")
         .arg(base)

@@ -10,14 +10,10 @@
     feature = "ldtk"
 ))]
 
-use crate::common;
-
 use std::path::{Path, PathBuf};
-use std::process::Output;
-
-use common::platbench;
 
 use super::hostile::{assert_error, stderr};
+use super::hostile_inputs::diff;
 
 const METRICS: &str =
     "level,scenario,backend,config,metric,value,unit,reference,error,frame,q1,q3\n";
@@ -53,16 +49,6 @@ fn frames(n: u32, last_x: &str) -> String {
             format!("{f},0.0,0,{x},1.0,0.0,0.0,1,0.0,1.0,,0,0\n")
         })
         .collect()
-}
-
-fn diff(base: &Path, new: &Path, extra: &[&str]) -> Output {
-    platbench()
-        .arg("diff")
-        .arg(base)
-        .arg(new)
-        .args(extra)
-        .output()
-        .unwrap()
 }
 
 #[test]
