@@ -127,6 +127,11 @@ pub(crate) const MAX_TOML_BYTES: u64 = 32 * 1024 * 1024;
 /// tree near 250 MB (a map string is one item whatever its size) and hold a scenario of
 /// [`MAX_INPUT_EVENTS`] events written out in full (about six items an event).
 pub(crate) const MAX_TOML_ITEMS: usize = 500_000;
+/// Deepest nesting in a TOML level or side file: open `[` and `{` plus the parts of a dotted
+/// key, counted before the `toml` crate parses the file. A level nests at most four deep
+/// (`[[scenario]]`, `inputs = [{ t = 1.0 }]`); the crate recurses once a level and refuses past
+/// about 80 (nested arrays) or 90 (key parts) with a bare "recursion limit" at line 1, column 1.
+pub(crate) const MAX_TOML_DEPTH: usize = 32;
 /// Most input events of one scenario: a script written by hand holds tens, a recorded play a
 /// change every few frames; 50,000 is one change a frame for 14 minutes at 60 Hz, and a
 /// scenario of that many events written out in full (`{ t = 1.0, left = true }`, 5 items)

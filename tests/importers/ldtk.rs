@@ -413,3 +413,25 @@ fn a_coarse_layer_s_far_cell_does_not_wrap_onto_the_level() {
     let r = import_ldtk_with(&p, &opts).unwrap_or_else(|e| panic!("{}", e.error));
     assert_eq!(ascii_map(&r.level).0, "....\n####\n");
 }
+
+#[test]
+fn more_spawn_entities_than_the_limit_are_refused_naming_the_level_layer_and_entity() {
+    // MAX_SPAWNS (src/limits.rs) is 1,000: 1,001 "Player" entities on the floor of a 4 x 2
+    // level. The error named only the file before; it names the one past the limit.
+    let dir = tempfile::tempdir().unwrap();
+    let player =
+        r#"{"__identifier":"Player","__pivot":[0.5,1],"px":[24,16],"width":16,"height":16}"#;
+    let text = format!(
+        r#"{{"worldLayout":"Free","levels":[{{"identifier":"a","worldX":0,"worldY":0,"pxWid":64,"pxHei":32,"layerInstances":[
+{{"__identifier":"Entities","__type":"Entities","__cWid":4,"__cHei":2,"__gridSize":16,"entityInstances":[{}]}},
+{{"__identifier":"Collision","__type":"IntGrid","__cWid":4,"__cHei":2,"__gridSize":16,"intGridCsv":[0,0,0,0,1,1,1,1]}}]}}]}}"#,
+        vec![player; 1001].join(",")
+    );
+    let p = dir.path().join("crowd.ldtk");
+    std::fs::write(&p, text).unwrap();
+    let e = import_ldtk_with(&p, &walled()).unwrap_err().to_string();
+    assert!(
+        e.contains("level \"a\", layer \"Entities\": entity \"Player\" at px (24, 16) is spawn point 1001 of the project; expected at most 1000"),
+        "{e}"
+    );
+}

@@ -50,6 +50,38 @@ fn a_map_written_with_escapes_is_read_and_its_errors_are_located() {
     common::assert_success(&out);
 }
 
+// ---- recursion in a TOML level: keys of many parts, values nested deep ------------------
+
+#[test]
+fn a_toml_key_or_value_nested_past_the_limit_is_refused_where_it_passes() {
+    let dir = tempfile::tempdir().unwrap();
+    let level = dir.path().join("deep.toml");
+    let run = |text: &str| {
+        std::fs::write(&level, text).unwrap();
+        platbench()
+            .arg("run")
+            .arg(&level)
+            .arg("--out")
+            .arg(dir.path().join("o"))
+            .output()
+            .unwrap()
+    };
+    // MAX_TOML_DEPTH (src/limits.rs) is 32. A key of 100 parts got the `toml` crate's bare
+    // "recursion limit" at 1:1. The count passes 32 at the 33rd dot, just after part k32: its
+    // column is the length of the first 33 parts, each with its dot.
+    let key: Vec<String> = (0..100).map(|i| format!("k{i}")).collect();
+    let out = run(&format!("name = \"d\"\n{} = 1\n", key.join(".")));
+    let dot_33 = key[..33].iter().map(|k| k.len() + 1).sum::<usize>();
+    assert_error(
+        &out,
+        &format!("deep.toml:2:{dot_33}: nesting passes 32 levels here"),
+    );
+    // Arrays nested 100 deep: the 33rd `[` (column 5 + 32) is named, not the crate's
+    // "cannot recurse further".
+    let out = run(&format!("a = {}{}\n", "[".repeat(100), "]".repeat(100)));
+    assert_error(&out, "deep.toml:1:37: nesting passes 32 levels here");
+}
+
 // ---- stack overflows: Tiled references that loop back, groups nested without end ----------
 
 /// A 4 x 2 map's opening and its one empty tile layer; the case's elements go after it.

@@ -444,6 +444,9 @@ pub(super) fn import(
                             (fx / g - x0 as f64) as f32,
                             (h as f64 - (fy / g - y0 as f64)) as f32,
                         );
+                        if raw_spawns.len() >= crate::limits::MAX_SPAWNS {
+                            return Err(perr(format!("level {:?}, layer {lname:?}: entity {:?} at px ({px}, {py}) is spawn point {} of the project; expected at most {} (each makes up to five probe scenarios)", lvl.identifier, e.identifier, raw_spawns.len() + 1, crate::limits::MAX_SPAWNS)));
+                        }
                         raw_spawns.push((
                             e.identifier.clone(),
                             feet,

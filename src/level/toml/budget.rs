@@ -20,8 +20,8 @@ pub(super) fn check_budget(loc: &Locator) -> Result<(), LevelError> {
             ),
         ));
     }
-    if let Some(at) = item_past_limit(loc.text, limits::MAX_TOML_ITEMS) {
-        return Err(loc.err(
+    match past_limit(loc.text, limits::MAX_TOML_ITEMS, limits::MAX_TOML_DEPTH) {
+        Some(Past::Items(at)) => Err(loc.err(
             at,
             format!(
                 "the file holds more than {} TOML items (keys, array entries, tables; this is where the count passes it); expected at most {} (a scenario holds at most {} input events; split long scripts into scenarios or levels)",
@@ -29,17 +29,40 @@ pub(super) fn check_budget(loc: &Locator) -> Result<(), LevelError> {
                 limits::MAX_TOML_ITEMS,
                 limits::MAX_INPUT_EVENTS
             ),
-        ));
+        )),
+        Some(Past::Depth(at)) => Err(loc.err(
+            at,
+            format!(
+                "nesting passes {} levels here (open brackets and braces, plus the parts of a dotted key); expected at most {} (a level nests at most four deep: `[[scenario]]`, `inputs = [{{ t = 1.0 }}]`)",
+                limits::MAX_TOML_DEPTH,
+                limits::MAX_TOML_DEPTH
+            ),
+        )),
+        None => Ok(()),
     }
-    Ok(())
 }
 
-/// The byte offset of item `max + 1` of `text` (each `=`, `,`, `.`, `[` and `{` outside strings
-/// and comments; the point of a float counts too, which only makes the bound safer), or `None` if it has at most `max`. Linear in the text; a malformed file is counted
+/// Where a text first passes a limit of [`past_limit`], as a byte offset.
+#[derive(Debug, PartialEq)]
+enum Past {
+    /// The offset of the first item past the item limit.
+    Items(usize),
+    /// The offset of the first bracket, brace or key part past the depth limit.
+    Depth(usize),
+}
+
+/// Where `text` first holds more than `max_items` items (each `=`, `,`, `.`, `[` and `{` outside
+/// strings and comments; the point of a float counts too, which only makes the bound safer) or
+/// nests deeper than `max_depth` (open `[` and `{`, plus the dots of the key being read: the
+/// crate recurses once per dotted part and per nested value, and past about 80 of either it gives
+/// a bare "recursion limit" at line 1 column 1). Linear in the text; a malformed file is counted
 /// as far as it goes (the `toml` crate reports what is wrong with it).
-fn item_past_limit(text: &str, max: usize) -> Option<usize> {
+fn past_limit(text: &str, max_items: usize, max_depth: usize) -> Option<Past> {
     let b = text.as_bytes();
     let mut count = 0usize;
+    // Open brackets and braces, and dots since the last `=`, `,`, `{` or line end.
+    let mut open = 0usize;
+    let mut dots = 0usize;
     let mut k = 0;
     while k < b.len() {
         match b[k] {
@@ -47,17 +70,32 @@ fn item_past_limit(text: &str, max: usize) -> Option<usize> {
                 while k < b.len() && b[k] != b'\n' {
                     k += 1;
                 }
+                continue;
             }
             q @ (b'"' | b'\'') => {
                 k = string_end(b, k, q);
                 continue;
             }
-            b'=' | b',' | b'.' | b'[' | b'{' => {
+            c @ (b'=' | b',' | b'.' | b'[' | b'{') => {
                 count += 1;
-                if count > max {
-                    return Some(k);
+                if count > max_items {
+                    return Some(Past::Items(k));
+                }
+                match c {
+                    b'.' => dots += 1,
+                    b'[' => open += 1,
+                    b'{' => {
+                        open += 1;
+                        dots = 0;
+                    }
+                    _ => dots = 0,
+                }
+                if open + dots > max_depth {
+                    return Some(Past::Depth(k));
                 }
             }
+            b']' | b'}' => open = open.saturating_sub(1),
+            b'\n' => dots = 0,
             _ => {}
         }
         k += 1;
@@ -97,7 +135,14 @@ fn string_end(b: &[u8], start: usize, q: u8) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use super::item_past_limit;
+    use super::{past_limit, Past};
+
+    fn item_past_limit(text: &str, max: usize) -> Option<usize> {
+        match past_limit(text, max, usize::MAX) {
+            Some(Past::Items(at)) => Some(at),
+            _ => None,
+        }
+    }
 
     #[test]
     fn items_inside_strings_and_comments_are_not_counted() {
@@ -113,5 +158,28 @@ mod tests {
         assert_eq!(count("a.b.c = 1.5"), 4);
         // The offset of the first item past the limit.
         assert_eq!(item_past_limit("a = 1, 2", 1), Some(5));
+    }
+
+    #[test]
+    fn depth_counts_open_brackets_and_a_key_s_parts() {
+        let depth = |t: &str| {
+            (0..100)
+                .find(|&m| past_limit(t, usize::MAX, m).is_none())
+                .unwrap()
+        };
+        assert_eq!(depth("a = 1\n"), 0);
+        assert_eq!(depth("a.b.c = 1\n"), 2);
+        // A header's brackets and parts; a float's point is one more (harmless).
+        assert_eq!(
+            depth("[[scenario]]\ninputs = [{ t = 1.5, left = true }]\n"),
+            3
+        );
+        assert_eq!(depth("a = [[[1]]]\nb = [2]\n"), 3);
+        // Brackets in strings and comments do not nest.
+        assert_eq!(depth("a = \"[[[{\" # [[[[\n"), 0);
+        assert_eq!(
+            past_limit("a = [[[1]]]", usize::MAX, 2),
+            Some(Past::Depth(6))
+        );
     }
 }
