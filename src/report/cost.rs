@@ -10,6 +10,7 @@
 //! is least (it need not have timed every scenario).
 
 use std::collections::HashMap;
+use std::fmt::Write as _;
 
 use crate::metrics::timing::{quantile, three_figures};
 use crate::metrics::MetricRow;
@@ -21,6 +22,8 @@ pub(crate) struct CostRows {
     configs: Vec<String>,
     /// Scenario index by (level, scenario).
     scenarios: HashMap<(String, String), usize>,
+    /// `level.scenario` by scenario index.
+    names: Vec<String>,
     /// (scenario, configuration, median ns per character step) of every timing row.
     times: Vec<(usize, usize, f64)>,
 }
@@ -44,12 +47,16 @@ impl CostRows {
             let s = *self
                 .scenarios
                 .entry((r.level.clone(), r.scenario.clone()))
-                .or_insert(next);
+                .or_insert_with(|| {
+                    self.names.push(format!("{}.{}", r.level, r.scenario));
+                    next
+                });
             self.times.push((s, c, r.value));
         }
     }
 
-    /// The closing lines: one per configuration but the cheapest, from the least ratio to the
+    /// The closing lines: one per configuration but the cheapest (under it, the scenarios of its
+    /// least and greatest ratio), from the least median ratio to the
     /// greatest (see the module's doc); none when fewer than two configurations were timed.
     pub(crate) fn closing_lines(&self) -> Vec<String> {
         let (nc, ns) = (self.configs.len(), self.scenarios.len());
@@ -82,20 +89,23 @@ impl CostRows {
         let mut lines: Vec<(f64, String)> = (0..nc)
             .filter(|&o| o != cheapest)
             .filter_map(|o| {
-                let mut ratios: Vec<f64> = grid
+                let mut ratios: Vec<(f64, usize)> = grid
                     .iter()
-                    .filter_map(|row| Some(row[o]? / row[cheapest]?))
+                    .enumerate()
+                    .filter_map(|(s, row)| Some((row[o]? / row[cheapest]?, s)))
                     .collect();
                 if ratios.is_empty() {
                     return None;
                 }
-                ratios.sort_by(f64::total_cmp);
+                ratios.sort_by(|x, y| x.0.total_cmp(&y.0));
+                let (least, most) = (ratios[0], ratios[ratios.len() - 1]);
+                let ratios: Vec<f64> = ratios.into_iter().map(|(r, _)| r).collect();
                 let r = quantile(&ratios, 0.5);
                 let half_iqr = (quantile(&ratios, 0.75) - quantile(&ratios, 0.25)) / 2.0;
                 let (a, b) = (&self.configs[cheapest], &self.configs[o]);
                 let n = ratios.len();
                 let scenarios = if n == 1 { "scenario" } else { "scenarios" };
-                let line = if r >= 1.0 {
+                let mut line = if r >= 1.0 {
                     format!(
                         "{a} is {} × cheaper than {b} (median over {n} {scenarios})",
                         with_spread(r, half_iqr)
@@ -106,6 +116,17 @@ impl CostRows {
                         with_spread(r, half_iqr)
                     )
                 };
+                if n > 1 {
+                    // The scenarios where the gap is least and greatest, to trace the extremes.
+                    let _ = write!(
+                        line,
+                        "\n    least {} × on {}, greatest {} × on {}",
+                        three_figures(least.0),
+                        self.names[least.1],
+                        three_figures(most.0),
+                        self.names[most.1]
+                    );
+                }
                 Some((r, line))
             })
             .collect();
@@ -156,7 +177,7 @@ mod tests {
             lines,
             [
                 "a is 1.50 ± 0.00 × cheaper than c (median over 1 scenario)",
-                "a is 3.50 ± 0.75 × cheaper than b (median over 4 scenarios)",
+                "a is 3.50 ± 0.75 × cheaper than b (median over 4 scenarios)\n    least 2.00 × on l.s1, greatest 5.00 × on l.s4",
             ]
         );
         // One configuration: no line.
