@@ -111,6 +111,27 @@ pub(crate) const MAX_EPSILON: f64 = 1.0;
 /// when a ramp was still found by a quadratic search).
 #[cfg(feature = "tiled")]
 pub(crate) const MAX_POLYGON_POINTS: usize = 10_000;
+/// Deepest nesting of arrays and objects in a Tiled JSON file (map, tileset or template):
+/// serde_json, which reads it, stops at 128 with a bare "recursion limit exceeded", so the walk
+/// before it (`level/tiled/json_walk.rs`) refuses what passes 127 with the line and column. A
+/// group layer nests two (its object and its `layers`), so a tile layer's `data` array sits in at
+/// most 61 groups of a JSON map (64 in a TMX map, [`MAX_GROUP_DEPTH`]).
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_JSON_DEPTH: usize = 127;
+/// Most JSON objects (`{...}`) in a Tiled JSON file, counted before serde_json reads the file
+/// into a tree, where each takes a node of 632 bytes and more: 9.4 million polygon points
+/// (`{"x":0,"y":0}`, a 126 MB map) took over 4 GB, and 940 polygons of 10,000 points each, every
+/// one within [`MAX_POLYGON_POINTS`], as much. A layer, an object, a property, a tileset's tile
+/// and a polygon's point are one object each; real maps hold some thousands. A file at every
+/// JSON limit at once (16 layers of 1,000,000 cells, 490,000 points in 49 polygons, 3.4 million
+/// more numbers) took 1.1 GB to import.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_JSON_OBJECTS: u64 = 500_000;
+/// Most JSON values other than the cells of tile layers (which [`MAX_LAYER_CELLS`] bounds) in a
+/// Tiled JSON file, counted with [`MAX_JSON_OBJECTS`]: serde_json's tree takes 32 bytes a value
+/// and more (60 million numbers outside a layer's data took 2 GB). 5,000,000 take about 320 MB.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_JSON_VALUES: u64 = 5_000_000;
 /// Most spawn points of one map (Tiled or LDtk): each spawn makes up to five probe scenarios
 /// (27 s of game time, 1,620 frames at 60 Hz), and real maps hold a handful; 1,000 spawns make
 /// 5,000 scenarios and 1.6 million frames per configuration, within [`MAX_LEVEL_FRAMES`].

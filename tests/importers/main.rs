@@ -5,6 +5,7 @@ mod common;
 
 mod edges;
 mod evident_roles;
+mod json_limits;
 mod ldtk;
 mod limits;
 mod map_problems;

@@ -123,7 +123,7 @@ fn unsupported_tiles_are_errors_naming_tileset_tile_and_cell() {
         ),
     ];
     for (tiles, what) in cases {
-        // Tile 0 (gid 1) at Tiled column 1 of the bottom row: cell (1, 0).
+        // Tile 0 (gid 1) at column 1 of the bottom row, row 1 from the top as Tiled counts.
         let e = MapText {
             tiles: &tiles,
             rows: &["0,0,0", "0,1,0"],
@@ -131,11 +131,12 @@ fn unsupported_tiles_are_errors_naming_tileset_tile_and_cell() {
         }
         .error();
         assert!(
-            e.contains("tileset \"t\" tile 0 (at cell i = 1, j = 0)") && e.contains(what),
+            e.contains("tileset \"t\" tile 0 (at cell x = 1, y = 1, column and row from the map's top-left): ") && e.contains(what),
             "{what}: {e}"
         );
     }
-    // A slope drawn flipped vertically (gid 1 | 0x40000000) would be a ceiling.
+    // A slope drawn flipped vertically (gid 1 | 0x40000000) would be a ceiling: at column 2,
+    // row 1 from the top.
     let e = MapText {
         tiles: &props(
             r#"<property name="slope_left" type="float" value="0"/><property name="slope_right" type="float" value="1"/>"#,
@@ -145,7 +146,8 @@ fn unsupported_tiles_are_errors_naming_tileset_tile_and_cell() {
     }
     .error();
     assert!(
-        e.contains("tile 0 (at cell i = 2, j = 0)") && e.contains("flipped vertically"),
+        e.contains("tile 0 (at cell x = 2, y = 1, column and row from the map's top-left): ")
+            && e.contains("flipped vertically"),
         "{e}"
     );
     // A tile id past the tileset's end: the map's line (10: the row "0,0,17"), the layer, the
@@ -199,12 +201,13 @@ fn unsupported_maps_and_layers_are_errors() {
     );
     let path = dir.path().join("m.tmx");
     std::fs::write(&path, text).unwrap();
-    // The solid stops from more sides than the ladder: it is kept, and the meeting warned.
+    // The solid stops from more sides than the ladder: it is kept, and the meeting warned at the
+    // first cell where they meet, column 0 of row 1 from the top (the second layer's cell 3).
     let met = import_tiled_map(&path).unwrap();
     assert_eq!(met.level.tile(0, 0), Tile::Solid);
     assert!(
         met.warnings.iter().any(|w| w.subject == "layer \"more walls\""
-            && w.message.starts_with("1 cell(s) (the first at i = 0, j = 0) where its ladder tiles meet layer \"collision\"'s solid tiles")),
+            && w.message.starts_with("1 cell(s) (the first at x = 0, y = 1, column and row from the map's top-left) where its ladder tiles meet layer \"collision\"'s solid tiles")),
         "{:?}",
         met.warnings
     );
@@ -219,6 +222,24 @@ fn unsupported_maps_and_layers_are_errors() {
         e.contains("layer \"collision\"")
             && e.contains("4 cells of 4 bytes")
             && e.contains("expected exactly 6 cells"),
+        "{e}"
+    );
+}
+
+#[test]
+fn collision_objects_that_meet_in_a_cell_name_it_as_tiled_shows_it() {
+    // An up ramp and a down ramp drawn over the same cell, column 1 of the top row, in a
+    // collision object layer: two different slopes in one cell, which neither stops more.
+    let text = MapText::default().text().replace(
+        " <objectgroup id=\"2\" name=\"objects\">\n",
+        " <objectgroup id=\"2\" name=\"walls\">\n<object id=\"11\" name=\"up\" x=\"16\" y=\"0\"><polygon points=\"0,16 16,16 16,0\"/></object>\n<object id=\"12\" name=\"down\" x=\"16\" y=\"0\"><polygon points=\"0,16 16,16 0,0\"/></object>\n",
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("m.tmx");
+    std::fs::write(&path, text).unwrap();
+    let e = import_tiled_map(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("object 12 \"down\": at cell x = 1, y = 0 (column and row from the map's top-left): it is a line slope (1, 0) but the cell already holds a line slope (0, 1) from object 11 \"up\" in layer \"walls\""),
         "{e}"
     );
 }

@@ -122,16 +122,66 @@ fn errors_name_the_json_layer_and_the_format() {
         r#"{"type":"tileset","name":"t","tilewidth":16}"#,
     );
     assert!(e.contains("it is a Tiled tileset"), "{e}");
-    // A check of the TMX twin (a layer larger than its map allows) names the JSON layer, not a
-    // line of a file the user never saw.
+    // A layer larger than a level may be: refused by the walk before the JSON is read into a
+    // tree, at the line and column where the layer starts (line 2: 12 spaces, `"layers":[`).
     let e = run_error(
         d,
         "big.tmj",
         r#"{"type":"map","width":2,"height":1,"tilewidth":16,"tileheight":16,"orientation":"orthogonal",
             "layers":[{"type":"tilelayer","name":"wide","width":100000,"height":100000,"data":[0]}]}"#,
     );
-    assert!(e.contains("big.tmj (layer \"wide\")"), "{e}");
+    assert!(
+        e.contains("big.tmj: line 2, column 23: layer \"wide\" is 100000 x 100000 tiles; expected at most 1000000 tiles"),
+        "{e}"
+    );
+    // A check of the TMX twin (data shorter than its layer) is shown at the JSON line where the
+    // layer starts, not a line of a file the user never saw, and names the layer once.
+    let e = run_error(
+        d,
+        "short.tmj",
+        r#"{"type":"map","width":2,"height":1,"tilewidth":16,"tileheight":16,"orientation":"orthogonal",
+            "layers":[
+            {"type":"tilelayer","name":"floor","width":2,"height":1,"data":[1]}]}"#,
+    );
+    assert!(
+        e.contains("short.tmj:3: layer \"floor\": its data holds 1 comma-separated cells; expected exactly 2 cells"),
+        "{e}"
+    );
     // A file that is neither: read as a level, and said so.
     let e = run_error(d, "level1.tmj", "hello world\n");
     assert!(e.contains("read as a platbench level (TOML)"), "{e}");
+}
+
+#[test]
+fn a_tile_id_of_no_tile_names_the_layer_once_the_cell_from_the_top_and_its_json_line() {
+    // Tileset "t" holds gids 1 to 16 (an image of 16 tiles); gid 17 names none. One cell a line
+    // in the layer's data, as Tiled writes it: the cell at column 2, row 1 from the top is on
+    // line 14 (the layer starts on line 7, its data on line 8).
+    let map = |data: &str| {
+        format!(
+            r#"{{"type":"map","version":"1.10","orientation":"orthogonal","width":3,"height":2,
+"tilewidth":16,"tileheight":16,"infinite":false,
+"tilesets":[{{"firstgid":1,"name":"t","tilewidth":16,"tileheight":16,"tilecount":16,"columns":16,"image":"t.png","imagewidth":256,"imageheight":16}}],
+"layers":[
+{{"type":"objectgroup","name":"objects","objects":[]}},
+{{"type":"group","name":"world","layers":[
+ {{"type":"tilelayer","name":"ground","width":3,"height":2,
+{data}}}]}}]}}
+"#
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("m.tmj");
+    std::fs::write(&path, map("\"data\":[\n0,\n0,\n0,\n1,\n1,\n17]")).unwrap();
+    let e = import_tiled_map(&path).unwrap_err().to_string();
+    let want = "m.tmj:14: layer \"world/ground\": cell x = 2, y = 1 (column and row from the map's top-left, as Tiled shows them) holds gid 17 (tile 16 of tileset \"t\"), which names no tile; expected 0 (no tile) or a gid of the map's tilesets: 1 to 16 (\"t\")";
+    assert!(e.ends_with(want), "{e}");
+    // Base64 data (cells 1, 1, 1, 1, 1, 17) has no line a cell: the line where the layer starts.
+    let b64 = "\"encoding\":\"base64\",\"data\":\"AQAAAAEAAAABAAAAAQAAAAEAAAARAAAA\"";
+    std::fs::write(&path, map(b64)).unwrap();
+    let e = import_tiled_map(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("m.tmj:7: layer \"world/ground\": cell x = 2, y = 1 "),
+        "{e}"
+    );
 }

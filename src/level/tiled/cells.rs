@@ -120,8 +120,12 @@ impl Cells {
     }
 
     /// The tiles, row 0 at the bottom, and one warning (subject, message) per pair of layers
-    /// whose tiles met in a cell.
-    pub fn finish(&mut self) -> (Vec<Tile>, Vec<(String, String)>) {
+    /// whose tiles met in a cell, the first cell as Tiled shows it (`tiled` gives the column and
+    /// row from the map's top-left of a cell `(i, j)`).
+    pub fn finish(
+        &mut self,
+        tiled: impl Fn(u32, u32) -> (i64, i64),
+    ) -> (Vec<Tile>, Vec<(String, String)>) {
         let tiles = self
             .tiles
             .iter()
@@ -130,6 +134,7 @@ impl Cells {
         let warnings = std::mem::take(&mut self.meetings)
             .into_iter()
             .map(|((kept_layer, kept, dropped_layer, dropped), ((i, j), n))| {
+                let (x, y) = tiled(i, j);
                 let whose = if kept_layer == dropped_layer {
                     "its own".to_string()
                 } else {
@@ -137,7 +142,7 @@ impl Cells {
                 };
                 (
                     format!("layer {dropped_layer:?}"),
-                    format!("{n} cell(s) (the first at i = {i}, j = {j}) where its {dropped} tiles meet {whose} {kept} tiles: the {kept} tile is kept, as it stops the character from more sides"),
+                    format!("{n} cell(s) (the first at x = {x}, y = {y}, column and row from the map's top-left) where its {dropped} tiles meet {whose} {kept} tiles: the {kept} tile is kept, as it stops the character from more sides"),
                 )
             })
             .collect();
@@ -170,13 +175,14 @@ mod tests {
         c.set(1, Tile::Solid, solid).unwrap();
         c.set(2, Tile::Ladder, plank).unwrap();
         c.set(2, Tile::OneWay, plank).unwrap();
-        let (tiles, warnings) = c.finish();
+        // One row: Tiled's row 0.
+        let (tiles, warnings) = c.finish(|i, _| (i.into(), 0));
         assert_eq!(tiles, vec![Tile::Solid, Tile::Solid, Tile::Ladder]);
         assert_eq!(warnings.len(), 1, "{warnings:?}");
         assert_eq!(warnings[0].0, "layer \"platforms\"");
-        assert!(warnings[0]
-            .1
-            .starts_with("2 cell(s) (the first at i = 0, j = 0)"));
+        assert!(warnings[0].1.starts_with(
+            "2 cell(s) (the first at x = 0, y = 0, column and row from the map's top-left)"
+        ));
     }
 
     #[test]

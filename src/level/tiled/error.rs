@@ -44,9 +44,9 @@ pub enum TiledError {
         tileset: String,
         /// The tile's id, local to its tileset (as Tiled's tileset editor shows it).
         tile: u32,
-        /// The map cell (i, j) where it is used, in platbench's coordinates (j = 0 is the bottom
-        /// row), when one cell is involved.
-        cell: Option<(u32, u32)>,
+        /// The map cell (x, y) where it is used, as Tiled shows it (column and row from the
+        /// map's top-left; Tiled's cells are `i32`), when one cell is involved.
+        cell: Option<(i32, i32)>,
         /// What was found and what was expected.
         message: String,
     },
@@ -83,9 +83,11 @@ pub enum TiledError {
     },
 }
 
-fn cell_text(cell: &Option<(u32, u32)>) -> String {
+fn cell_text(cell: &Option<(i32, i32)>) -> String {
     match cell {
-        Some((i, j)) => format!(" (at cell i = {i}, j = {j})"),
+        Some((x, y)) => {
+            format!(" (at cell x = {x}, y = {y}, column and row from the map's top-left)")
+        }
         None => String::new(),
     }
 }
@@ -242,6 +244,17 @@ pub(crate) enum JsonError {
     /// Not JSON: the parser's error, with its line and column.
     #[error("line {}, column {}: not Tiled JSON: {}", .0.line(), .0.column(), .0)]
     Syntax(#[source] serde_json::Error),
+    /// More than platbench reads, found by the walk before serde_json builds its tree
+    /// (`json_walk`): where the count passes, what was found and what was expected.
+    #[error("line {line}, column {column}: {message}")]
+    Limit {
+        /// The 1-based line where the count passes (or the layer or map starts).
+        line: usize,
+        /// The 1-based column, in bytes as serde_json counts them.
+        column: usize,
+        /// What passes which limit, naming the layer or object.
+        message: String,
+    },
     /// JSON, but not an object at the top.
     #[error("not Tiled JSON: expected an object at the top")]
     NotObject,

@@ -1,6 +1,7 @@
 //! A cell whose tile id (gid) names no tile of the map's tilesets: the error names the layer,
 //! the cell as Tiled shows it (column and row from the map's top-left), the line of the map
-//! where the cell is written, the gid and the gids the map's tilesets hold.
+//! where the cell is written (a JSON map's: the cell's line in its layer's `data` array, else
+//! the line where the layer starts), the gid and the gids the map's tilesets hold.
 
 use quick_xml::events::Event;
 
@@ -45,7 +46,7 @@ impl<'m> Importer<'m> {
             .collect();
         let line = cell_line(self.text, layer, (x, y));
         Err(TiledError::Layer {
-            file: line.map_or(self.file.clone(), |l| (self.at)(l)),
+            file: line.map_or(self.file.clone(), |l| (self.cell_at)(l, (x, y))),
             layer: layer.into(),
             message: format!(
                 "cell x = {x}, y = {y} (column and row from the map's top-left, as Tiled shows them) holds {found}, which names no tile; expected 0 (no tile) or a gid of the map's tilesets: {}",

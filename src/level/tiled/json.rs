@@ -1,35 +1,21 @@
 //! Tiled's JSON formats as the XML the `tiled` crate reads: a JSON map (`.tmj`, or `.json`) as
 //! its TMX twin, a JSON tileset (`.tsj`) as TSX and a JSON template (`.tj`) as TX. The crate
 //! reads TMX only; translating the text keeps one reader, so a JSON map gets the same rules,
-//! limits and errors as a TMX map. Each layer of a translated map starts a line of its own, so
-//! an error found at a line of the TMX names the JSON layer it came from ([`JsonMap::layer_at`]).
+//! limits and errors as a TMX map. The text is walked first ([`super::json_walk`]): what the tree
+//! serde_json builds would hold is counted and refused past the limits before it is built. Each
+//! layer of a translated map starts a line of its own, so an error found at a line of the TMX
+//! names the JSON layer it came from ([`JsonMap::layer_at`]) and its line in the JSON.
 
 use std::fmt::Write as _;
 
 use serde_json::{Map, Value};
 
 use super::error::JsonError;
+use super::json_walk::{walk, Lines, Walked};
 use super::normalize::{count_tiles, Normalized, TilesetInfo};
 use crate::limits;
 
-/// A JSON map as TMX, with the line each layer starts at.
-pub(super) struct JsonMap {
-    /// The TMX text and the notes of the translation.
-    pub tmx: Normalized,
-    /// `(line, "layer \"NAME\"")` for each layer, in the order of the text.
-    layers: Vec<(usize, String)>,
-}
-
-impl JsonMap {
-    /// What of the JSON map a line of its TMX twin belongs to: the layer it is in, or the map.
-    pub(super) fn layer_at(&self, line: usize) -> String {
-        self.layers
-            .iter()
-            .rev()
-            .find(|(l, _)| *l <= line)
-            .map_or_else(|| "the map's header".to_string(), |(_, s)| s.clone())
-    }
-}
+pub(super) use super::json_walk::JsonMap;
 
 fn esc(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -287,10 +273,11 @@ fn tileset_xml(
     Ok(out)
 }
 
-/// The top object of a JSON file, or why it is not one.
-fn top(text: &str) -> Result<Map<String, Value>, JsonError> {
+/// The top object of a JSON file walked within the limits, or why it is not one.
+fn top(text: &str) -> Result<(Map<String, Value>, Walked), JsonError> {
+    let walked = walk(text)?;
     match serde_json::from_str(text).map_err(JsonError::Syntax)? {
-        Value::Object(m) => Ok(m),
+        Value::Object(m) => Ok((m, walked)),
         _ => Err(JsonError::NotObject),
     }
 }
@@ -298,7 +285,7 @@ fn top(text: &str) -> Result<Map<String, Value>, JsonError> {
 /// A JSON tileset (Tiled's `.tsj`, or `.json` from older versions) as the TSX the crate reads.
 /// `Err` says what is wrong, with the line and column of a JSON syntax error.
 pub(super) fn json_tileset_to_tsx(text: &str) -> Result<Normalized, JsonError> {
-    let v = Value::Object(top(text)?);
+    let v = Value::Object(top(text)?.0);
     let mut notes = vec!["a JSON tileset; read through its TSX equivalent".to_string()];
     let ts = tileset_xml(&v, None, &mut notes)?;
     Ok(Normalized {
@@ -310,7 +297,7 @@ pub(super) fn json_tileset_to_tsx(text: &str) -> Result<Normalized, JsonError> {
 /// A JSON template (`.tj`) as the TX the crate reads: its object, and the tileset a tile
 /// object's `gid` refers to.
 pub(super) fn json_template_to_tx(text: &str) -> Result<Normalized, JsonError> {
-    let v = Value::Object(top(text)?);
+    let v = Value::Object(top(text)?.0);
     let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<template>");
     if let Some(ts) = v.get("tileset") {
         out.push_str(&format!("<tileset{}/>", attrs(ts, &["firstgid", "source"])));
@@ -366,15 +353,20 @@ fn data_attrs(l: &Value) -> String {
     attrs(l, &["encoding", "compression"]).replace(" compression=\"\"", "")
 }
 
-/// One layer (and the layers of a group) as TMX, each element on a line of its own.
+/// One layer (and the layers of a group) as TMX, each element on a line of its own; `path` is
+/// its place in the map.
 fn layer_xml(
     l: &Value,
     out: &mut String,
-    lines: &mut Vec<(usize, String)>,
+    lines: &mut Lines,
+    path: &mut Vec<u32>,
 ) -> Result<(), JsonError> {
     let name = l.get("name").and_then(Value::as_str).unwrap_or_default();
-    let line = out.matches('\n').count() + 1;
-    lines.push((line, format!("layer {name:?}")));
+    let cells = matches!(l.get("data"), Some(Value::Array(_))) && l.get("chunks").is_none();
+    let width = num_attr(l, "width")
+        .filter(|_| cells)
+        .map(|w| w.max(0.0) as u64);
+    lines.push(out, format!("layer {name:?}"), Some((path, width)));
     let common = [
         "id",
         "name",
@@ -445,16 +437,19 @@ fn layer_xml(
         }
         "group" => {
             let _ = writeln!(out, "<group{}>{props}", attrs(l, &common));
-            for c in l
+            for (k, c) in l
                 .get("layers")
                 .and_then(Value::as_array)
                 .into_iter()
                 .flatten()
+                .enumerate()
             {
-                layer_xml(c, out, lines)?;
+                path.push(k as u32);
+                layer_xml(c, out, lines, path)?;
+                path.pop();
             }
             out.push_str("</group>\n");
-            lines.push((out.matches('\n').count() + 1, "the map's layers".into()));
+            lines.push(out, "the map's layers".into(), None);
         }
         other => {
             return Err(JsonError::LayerType {
@@ -478,7 +473,7 @@ const MAP_ATTRS: &[&str] = &[
 /// wrong: a JSON syntax error with its line and column, a tileset or LDtk file given as a map,
 /// a cell that is not a tile id with its layer and index.
 pub(super) fn json_map_to_tmx(text: &str) -> Result<JsonMap, JsonError> {
-    let m = top(text)?;
+    let (m, walked) = top(text)?;
     let kind = m.get("type").and_then(Value::as_str).unwrap_or("map");
     if kind != "map" || !m.contains_key("layers") {
         let mut keys: Vec<&str> = m.keys().map(String::as_str).take(8).collect();
@@ -516,19 +511,20 @@ pub(super) fn json_map_to_tmx(text: &str) -> Result<JsonMap, JsonError> {
             }
         }
     }
-    let mut layers = Vec::new();
-    for l in v
+    let mut lines = Lines::new(&walked);
+    for (k, l) in v
         .get("layers")
         .and_then(Value::as_array)
         .into_iter()
         .flatten()
+        .enumerate()
     {
-        layer_xml(l, &mut out, &mut layers)?;
+        layer_xml(l, &mut out, &mut lines, &mut vec![k as u32])?;
     }
     out.push_str("</map>\n");
     Ok(JsonMap {
         tmx: Normalized { text: out, notes },
-        layers,
+        layers: lines.list,
     })
 }
 

@@ -67,6 +67,12 @@ pub(super) fn chunk_bounds<'m>(
     (lo, hi)
 }
 
+/// A Tiled cell as Tiled's `i32` coordinates (a level's cells lie within them).
+fn tiled_i32((x, y): Cell) -> (i32, i32) {
+    let c = |v: i64| v.clamp(i32::MIN.into(), i32::MAX.into()) as i32;
+    (c(x), c(y))
+}
+
 fn kind_name(l: &tiled::Layer) -> &'static str {
     match l.layer_type() {
         LayerType::Tiles(_) => "tiles",
@@ -403,7 +409,7 @@ impl<'m> Importer<'m> {
                             Some(t) => *t,
                             None => {
                                 self.check_gid(lname, &lt, (sx, sy))?;
-                                let t = self.classify(&lt, (i, j))?;
+                                let t = self.classify(&lt, (sx, sy))?;
                                 self.kinds.insert(key, t);
                                 t
                             }
@@ -426,7 +432,7 @@ impl<'m> Importer<'m> {
                         file: self.file.clone(),
                         tileset: lt.get_tileset().name.clone(),
                         tile: lt.id(),
-                        cell: Some((i, j)),
+                        cell: Some(tiled_i32(g.tiled_cell(i.into(), j.into()))),
                         message: e.to_string(),
                     });
                 }
@@ -455,11 +461,11 @@ impl<'m> Importer<'m> {
         Ok(())
     }
 
-    /// What a tile of the map means, flips included.
+    /// What a tile of the map means, flips included; `cell` is the Tiled cell it is drawn at.
     fn classify(
         &mut self,
         lt: &tiled::LayerTile<'m>,
-        cell: (u32, u32),
+        cell: (i64, i64),
     ) -> Result<Tile, TiledError> {
         let ts = lt.get_tileset();
         let id = lt.id();
@@ -468,7 +474,7 @@ impl<'m> Importer<'m> {
             file: file.clone(),
             tileset: ts.name.clone(),
             tile: id,
-            cell: Some(cell),
+            cell: Some(tiled_i32(cell)),
             message,
         };
         let data = ts.get_tile(id);

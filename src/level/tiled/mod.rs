@@ -6,8 +6,9 @@
 //! `error` (what cannot be imported), `read` (the map read through the `tiled` crate), `map`
 //! (the map's orientation, extent and properties), `layers` (which layer is what, and the tile
 //! layers), `tiles` (what one tile is), `objects` (spawns, collision objects, platforms),
-//! `normalize` (what the `tiled` crate cannot read as Tiled writes it), `scan` and `points` (what it
-//! would allocate without bound) and `refs` (what it would follow by recursion without end:
+//! `normalize` (what the `tiled` crate cannot read as Tiled writes it), `json` (Tiled's JSON formats
+//! as the XML the crate reads) and `json_walk` (what serde_json's tree of one would hold, counted
+//! first), `scan` and `points` (what the crate would allocate without bound) and `refs` (what it would follow by recursion without end:
 //! templates and tilesets that loop back, groups nested too deep). This file holds the entry points and the state of one import.
 //!
 //! Nothing here panics on a map's content: every construct platbench cannot represent is a
@@ -24,6 +25,8 @@ mod cells;
 mod error;
 mod gids;
 mod json;
+mod json_budget;
+mod json_walk;
 mod layers;
 mod map;
 mod normalize;
@@ -211,6 +214,9 @@ pub fn import_tiled_map(path: &Path) -> Result<TiledImport, TiledError> {
     import_tiled_map_with(path, &ImportOptions::default()).map_err(|f| f.error)
 }
 
+/// How an error that names a layer shows a line of the map's text and a Tiled cell.
+type CellAt<'m> = &'m dyn Fn(usize, (i64, i64)) -> String;
+
 /// A role and why it was given.
 type Reasoned = (LayerRole, String);
 
@@ -231,13 +237,25 @@ struct Grid {
     h: u32,
 }
 
+impl Grid {
+    /// The Tiled cell (column, row from the map's top-left) of the level's cell `(i, j)` (row
+    /// 0 at the bottom).
+    fn tiled_cell(&self, i: i64, j: i64) -> (i64, i64) {
+        (
+            i + i64::from(self.x0),
+            i64::from(self.y0) + i64::from(self.h) - 1 - j,
+        )
+    }
+}
+
 /// The state of one import.
 struct Importer<'m> {
     file: String,
     /// The map's XML as the `tiled` crate read it (a JSON map's TMX twin), to find a line in.
     text: &'m str,
-    /// A line of `text` as an error shows it: `FILE:LINE`, or a JSON map's layer.
-    at: &'m dyn Fn(usize) -> String,
+    /// A line of `text` in a layer, and a Tiled cell of it, as an error that names the layer
+    /// shows them: `FILE:LINE`; for a JSON map, the JSON line of the cell, or of the layer.
+    cell_at: CellAt<'m>,
     map: &'m tiled::Map,
     opts: &'m ImportOptions,
     grid: Grid,
@@ -261,14 +279,14 @@ struct Importer<'m> {
 
 impl<'m> Importer<'m> {
     fn new(
-        (file, text, at): (String, &'m str, &'m dyn Fn(usize) -> String),
+        (file, text, cell_at): (String, &'m str, CellAt<'m>),
         map: &'m tiled::Map,
         opts: &'m ImportOptions,
     ) -> Self {
         Importer {
             file,
             text,
-            at,
+            cell_at,
             map,
             opts,
             grid: Grid {
@@ -297,7 +315,10 @@ impl<'m> Importer<'m> {
         let entries = self.collect_layers()?;
         self.read_layers(entries, tile_default)?;
         self.collision_objects()?;
-        let (tiles, met) = self.cells.finish();
+        let grid = self.grid;
+        let (tiles, met) = self
+            .cells
+            .finish(|i, j| grid.tiled_cell(i.into(), j.into()));
         for (subject, message) in met {
             self.warn(subject, message);
         }

@@ -42,7 +42,7 @@ pub fn import_tiled_map_with(
     let opts = &merged;
     // Read once, within the input cap, made readable by the crate where Tiled is tolerant and
     // the crate is not, and looked at for what the crate would allocate or index before it does.
-    let text = crate::limits::read_text_capped(path).map_err(|e| {
+    let raw = crate::limits::read_text_capped(path).map_err(|e| {
         failed(
             TiledError::Load {
                 file: file.clone(),
@@ -52,9 +52,10 @@ pub fn import_tiled_map_with(
         )
     })?;
     // A JSON map (told by its content, whatever its extension) is read as its TMX twin; a line
-    // of that twin is shown as the JSON layer it came from.
-    let json = if crate::level::format::looks_like_json(&text) {
-        let j = json::json_map_to_tmx(&text).map_err(|e| {
+    // of that twin is shown as the JSON line where its layer starts (a cell's own line for an
+    // error at a cell), or as the part of the map it is in.
+    let (json, text) = if crate::level::format::looks_like_json(&raw) {
+        let mut j = json::json_map_to_tmx(&raw).map_err(|e| {
             failed(
                 TiledError::Map {
                     file: file.clone(),
@@ -63,26 +64,30 @@ pub fn import_tiled_map_with(
                 &notes,
             )
         })?;
-        Some(j)
+        for n in &j.tmx.notes {
+            notes.borrow_mut().push(TiledWarning {
+                file: file.clone(),
+                subject: "map".into(),
+                message: n.clone(),
+            });
+        }
+        let tmx = std::mem::take(&mut j.tmx.text);
+        (Some((j, raw)), tmx)
     } else {
-        None
+        (None, raw)
     };
     let at = |line: usize| match &json {
-        Some(j) => format!("{file} ({})", j.layer_at(line)),
+        Some((j, _)) => j.layer_start(line).map_or_else(
+            || format!("{file} ({})", j.layer_at(line)),
+            |l| format!("{file}:{l}"),
+        ),
         None => format!("{file}:{line}"),
     };
-    let text = match &json {
-        Some(j) => {
-            for n in &j.tmx.notes {
-                notes.borrow_mut().push(TiledWarning {
-                    file: file.clone(),
-                    subject: "map".into(),
-                    message: n.clone(),
-                });
-            }
-            j.tmx.text.clone()
-        }
-        None => text,
+    let cell_at = |line: usize, cell: (i64, i64)| match &json {
+        Some((j, raw)) => j
+            .json_line(raw, line, cell)
+            .map_or_else(|| file.clone(), |l| format!("{file}:{l}")),
+        None => format!("{file}:{line}"),
     };
     let norm = normalize::normalize_xml(&text).map_err(|e| {
         failed(
@@ -188,7 +193,7 @@ pub fn import_tiled_map_with(
             return Err(failed(error, &notes));
         }
     };
-    let mut im = Importer::new((file.clone(), &text, &at), &map, opts);
+    let mut im = Importer::new((file.clone(), &text, &cell_at), &map, opts);
     im.warnings = notes.borrow().clone();
     match im.run(path) {
         Ok(r) => Ok(r),

@@ -134,7 +134,8 @@ impl<'m> Importer<'m> {
                 for (i, j, t) in cells {
                     let k = j as usize * self.grid.w as usize + i as usize;
                     if let Err(m) = self.cells.set(k, t, by) {
-                        return Err(self.obj_err(o, format!("at cell i = {i}, j = {j}: {m}")));
+                        let (x, y) = self.grid.tiled_cell(i, j);
+                        return Err(self.obj_err(o, format!("at cell x = {x}, y = {y} (column and row from the map's top-left): {m}")));
                     }
                 }
             }
