@@ -102,6 +102,20 @@ pub(crate) const MAX_PATH_POINTS: usize = 1_000;
 /// per setting and scope, a few hundred (the built-in `compare/tradeoff/tradeoff.csv` holds 490),
 /// and the report's chart draws an element per row, so 2.6 million rows (108 MiB) took 3.8 GB.
 pub(crate) const MAX_TRADEOFF_ROWS: usize = 100_000;
+/// Most rows of a stability.csv given to `report --stability`: `platbench stress` writes about
+/// 4,000 (every backend, both precisions), and the report draws a table row per configuration
+/// and dimension, so a file of rows each naming its own configuration costs a verdict, a table
+/// row and their text per row: the 2.8 million such rows of a 128 MiB file reached 3.5 GB under
+/// `prlimit --as=4294967296` (32 s); 100,000 take 0.9 s and 182 MB, 100,000 rows of a real run's
+/// repeated 0.14 s and 47 MB. Refused at the first row past it.
+pub(crate) const MAX_STABILITY_ROWS: usize = 100_000;
+/// Most cells the combination grids of a stability.csv given to `report --stability` may hold
+/// together, counted row by row as the file is read: a grid has a cell for every configuration
+/// and first value times every second value, measured or not, so its size grows as the product
+/// of the distinct values, not with the rows. `platbench stress` writes grids of about 250 cells
+/// (the largest 27 x 4); 20,000 made-up rows of distinct values (2,222 of each) asked for 4.9
+/// million cells, 241 MB of report and 980 MB of memory. 100,000 cells are about 5 MB of report.
+pub(crate) const MAX_STABILITY_GRID_CELLS: u64 = 100_000;
 /// Largest sweep epsilon, in tiles: an overlap tolerance of a whole tile tolerates everything.
 pub(crate) const MAX_EPSILON: f64 = 1.0;
 /// Most points of one Tiled polygon or polyline (a collision shape, a tile's collision

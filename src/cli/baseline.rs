@@ -81,7 +81,8 @@ pub(crate) fn baseline(h: &Harness, args: &BaselineArgs) -> Result<()> {
         .select
         .levels(load_levels_with(&run.levels, &run.import)?)?;
     let configs = run.select.builtin_configs(h)?;
-    let jobs = if run.timing { 1 } else { run.select.jobs() };
+    let asked = if run.timing { 1 } else { run.select.jobs() };
+    let jobs = super::select::jobs_for_levels(asked, &levels);
     let manifest = manifest_of(&run, &levels, &configs)?;
     eprintln!(
         "platbench baseline: {} scenarios on {} configurations into {}",

@@ -14,7 +14,7 @@ use clap::Args;
 use super::baseline::{baseline_dir, run_args_of, selection_of};
 use super::{out, output, Harness};
 use crate::report::check::{closing_line, line, summary_markdown, units, Unit};
-use crate::report::diff::{diff_runs, read_metrics, render, DiffFormat, FailOn, Tolerance};
+use crate::report::diff::{diff_runs, read_runs, render, DiffFormat, FailOn, Tolerance};
 use crate::report::manifest::{content_hash, Manifest};
 
 /// The file of `check --out` that lists every run with its status.
@@ -217,7 +217,8 @@ fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
     for n in &notes {
         out(&format!("note: {n}"));
     }
-    let jobs = if run.timing { 1 } else { run.select.jobs() };
+    let asked = if run.timing { 1 } else { run.select.jobs() };
+    let jobs = super::select::jobs_for_levels(asked, &levels);
     let fail_on = FailOn {
         timing: args.fail_on_timing,
         allow_missing: args.allow_missing,
@@ -243,7 +244,8 @@ fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
         )?;
         let d = diff_runs(&base, dir, &tols, p)
             .with_context(|| format!("comparing with the baseline {}", base.display()))?;
-        let (b, n) = (read_metrics(&base)?, read_metrics(dir)?);
+        // The runs of each side, not their rows: what the lines list.
+        let (b, n) = (read_runs(&base)?, read_runs(dir)?);
         let all = units(&b, &n, &d, fail_on);
         // Only the traces of what changed stay: what `review` replays and CI uploads.
         for u in all

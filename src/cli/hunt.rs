@@ -111,7 +111,7 @@ pub(crate) fn hunt(h: &Harness, args: &HuntArgs) -> Result<()> {
         seed: args.seed,
         budget: Duration::from_secs_f64(args.budget),
         cases: args.cases,
-        jobs: args.select.jobs(),
+        jobs: super::select::jobs_within_memory_noted(args.select.jobs(), crate::hunt::LEVEL_TILES),
         per_kind: args.per_kind as usize,
     };
     eprintln!(

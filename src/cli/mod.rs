@@ -388,21 +388,34 @@ pub(crate) fn read_rows_capped<T: serde::de::DeserializeOwned>(
     path: &std::path::Path,
     max: usize,
 ) -> Result<Vec<T>> {
+    read_rows_checked(path, max, |_: &T, _| Ok(()))
+}
+
+/// [`read_rows_capped`], calling `check(row, line)` on each row as it is read (line 1 is the
+/// header), so a row that makes the file too costly is refused at its line before the rest is
+/// read.
+pub(crate) fn read_rows_checked<T: serde::de::DeserializeOwned>(
+    path: &std::path::Path,
+    max: usize,
+    mut check: impl FnMut(&T, u64) -> Result<()>,
+) -> Result<Vec<T>> {
     let file = crate::input::open(path, crate::limits::MAX_INPUT_BYTES, "input file")?;
     let mut r = csv::Reader::from_reader(file);
+    let not_it = || format!("{}: not the CSV this option expects", path.display());
+    let headers = r.headers().with_context(not_it)?.clone();
+    let mut record = csv::StringRecord::new();
     let mut rows = Vec::new();
-    for row in r.deserialize() {
+    while r.read_record(&mut record).with_context(not_it)? {
+        let line = record.position().map_or(0, |p| p.line());
         if rows.len() == max {
-            // Line 1 is the header.
             anyhow::bail!(
-                "{}:{}: more than {max} rows; expected at most {max}",
-                path.display(),
-                max + 2
+                "{}:{line}: more than {max} rows; expected at most {max}",
+                path.display()
             );
         }
-        rows.push(
-            row.with_context(|| format!("{}: not the CSV this option expects", path.display()))?,
-        );
+        let row: T = record.deserialize(Some(&headers)).with_context(not_it)?;
+        check(&row, line)?;
+        rows.push(row);
     }
     if rows.is_empty() {
         anyhow::bail!("{}: no rows", path.display());

@@ -3,8 +3,9 @@
 //! at a terminal, or all at once by flags. Accepted runs replace their part of the baseline
 //! (`review_apply`).
 
+use std::collections::{HashMap, HashSet};
 use std::io::{BufRead as _, IsTerminal as _, Write as _};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{bail, Context as _, Result};
 use clap::Args;
@@ -13,10 +14,9 @@ use super::baseline::{baseline_dir, run_args_of, selection_of};
 use super::check::{CheckRecord, UNITS};
 use super::{out, output, Harness};
 use crate::report::check::{line, Status, Unit};
-use crate::report::diff::{read_metrics, MetricRecord};
+use crate::report::diff::{read_metrics_where, MetricRecord};
 use crate::report::manifest::Manifest;
 use crate::report::review_page::{review_page, MetricLine, ReviewRun};
-use crate::trace::Trace;
 
 /// `platbench review`'s options.
 #[derive(Args)]
@@ -95,16 +95,20 @@ fn ask(id: &str) -> Result<Answer> {
     }
 }
 
-/// The rows of `u` in `rows`.
-fn rows_of<'a>(rows: &'a [MetricRecord], u: &Unit) -> Vec<&'a MetricRecord> {
-    rows.iter()
-        .filter(|r| {
-            r.level == u.level
-                && r.scenario == u.scenario
-                && r.backend == u.backend
-                && r.config == u.config
-        })
-        .collect()
+/// The run of `u`: level, scenario, backend, configuration.
+fn run_of(u: &Unit) -> [&str; 4] {
+    [&u.level, &u.scenario, &u.backend, &u.config]
+}
+
+/// `rows` by their run, each run's in file order.
+fn by_run(rows: &[MetricRecord]) -> HashMap<[&str; 4], Vec<&MetricRecord>> {
+    let mut out: HashMap<[&str; 4], Vec<&MetricRecord>> = HashMap::new();
+    for r in rows {
+        out.entry([&r.level, &r.scenario, &r.backend, &r.config])
+            .or_default()
+            .push(r);
+    }
+    out
 }
 
 /// The metrics of `u`, the baseline's beside the check's, in the baseline's order.
@@ -112,9 +116,19 @@ fn metric_lines(base: &[&MetricRecord], new: &[&MetricRecord]) -> Vec<MetricLine
     let show = |r: Option<&&MetricRecord>| {
         r.map_or("-".to_string(), |r| crate::report::format_value(r.value))
     };
+    // Each side's first row of each metric, found by hash.
+    fn first<'a>(rows: &[&'a MetricRecord]) -> HashMap<&'a str, usize> {
+        let mut m: HashMap<&str, usize> = HashMap::new();
+        for (i, r) in rows.iter().enumerate() {
+            m.entry(r.metric.as_str()).or_insert(i);
+        }
+        m
+    }
+    let (in_base, in_new) = (first(base), first(new));
     let mut names: Vec<&str> = base.iter().map(|r| r.metric.as_str()).collect();
+    let mut listed: HashSet<&str> = names.iter().copied().collect();
     for r in new {
-        if !names.contains(&r.metric.as_str()) {
+        if listed.insert(&r.metric) {
             names.push(&r.metric);
         }
     }
@@ -122,8 +136,8 @@ fn metric_lines(base: &[&MetricRecord], new: &[&MetricRecord]) -> Vec<MetricLine
         .into_iter()
         .map(|m| {
             let (b, n) = (
-                base.iter().find(|r| r.metric == m),
-                new.iter().find(|r| r.metric == m),
+                in_base.get(m).map(|&i| &base[i]),
+                in_new.get(m).map(|&i| &new[i]),
             );
             MetricLine {
                 metric: m.to_string(),
@@ -133,18 +147,6 @@ fn metric_lines(base: &[&MetricRecord], new: &[&MetricRecord]) -> Vec<MetricLine
             }
         })
         .collect()
-}
-
-/// Reads a trace file, if it is there.
-fn trace_at(path: &Path, u: &Unit) -> Option<Trace> {
-    let file = crate::input::open(path, u64::MAX, "trace").ok()?;
-    Some(Trace {
-        level: u.level.clone(),
-        scenario: u.scenario.clone(),
-        backend: u.backend.clone(),
-        config: u.config.clone(),
-        rows: Trace::read_rows(file).ok()?,
-    })
 }
 
 pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
@@ -203,7 +205,13 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
         ));
         return Ok(());
     }
-    let (base_rows, new_rows) = (read_metrics(&base)?, read_metrics(&args.check)?);
+    // Only the rows of the runs shown are kept, each file read a row at a time.
+    let shown: HashSet<[&str; 4]> = changed.iter().map(|u| run_of(u)).collect();
+    let (base_rows, new_rows) = (
+        read_metrics_where(&base, |k| shown.contains(&k))?,
+        read_metrics_where(&args.check, |k| shown.contains(&k))?,
+    );
+    let (base_rows, new_rows) = (by_run(&base_rows), by_run(&new_rows));
     // The levels and configurations draw the pages; without them the pages are left out.
     let selection = selection_of(h, &manifest, &run_args_of(&manifest, None));
     if let Err(e) = &selection {
@@ -215,7 +223,10 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
     let mut accepted: Vec<&Unit> = Vec::new();
     let mut rest: Option<bool> = None;
     for u in &changed {
-        let (b, n) = (rows_of(&base_rows, u), rows_of(&new_rows, u));
+        let (b, n) = (
+            base_rows.get(&run_of(u)).cloned().unwrap_or_default(),
+            new_rows.get(&run_of(u)).cloned().unwrap_or_default(),
+        );
         let metrics = metric_lines(&b, &n);
         let mut table = comfy_table::Table::new();
         table.load_style(comfy_table::presets::ASCII_MARKDOWN);
@@ -240,6 +251,10 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
                 .iter()
                 .find(|c| c.backend.backend() == u.backend && c.label == u.config);
             if let (Some(level), Some(spec), Some(run)) = (level, spec, run) {
+                let traces = (
+                    base.join("traces").join(&u.trace),
+                    args.check.join("traces").join(&u.trace),
+                );
                 let page = review_page(
                     &h.registry,
                     &ReviewRun {
@@ -249,8 +264,8 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
                         id: u.id(),
                         headline: line(u),
                         metrics,
-                        base: trace_at(&base.join("traces").join(&u.trace), u),
-                        new: trace_at(&args.check.join("traces").join(&u.trace), u),
+                        base: &traces.0,
+                        new: &traces.1,
                     },
                 );
                 let path = pages.join(u.trace.replace(".csv", ".html"));

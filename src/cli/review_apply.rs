@@ -4,10 +4,10 @@
 
 use std::collections::{BTreeSet, HashMap};
 use std::fs;
-use std::ops::Range;
+use std::io::{Read as _, Write};
 use std::path::Path;
 
-use anyhow::{bail, Context as _, Result};
+use anyhow::{anyhow, bail, Context as _, Result};
 
 use super::output;
 use crate::report::check::Unit;
@@ -16,19 +16,36 @@ use crate::report::manifest::{Manifest, FILE};
 /// A run's key in `metrics.csv`: level, scenario, backend, configuration.
 type Key = (String, String, String, String);
 
-/// A `metrics.csv` read as bytes: its header's bytes and each record's key and byte range.
-struct Rows {
-    bytes: Vec<u8>,
-    header: Range<usize>,
-    records: Vec<(Key, Range<usize>)>,
+/// A part of a `metrics.csv` as [`scan`] reads it, with its bytes as they are in the file.
+enum Part<'a> {
+    /// The header (everything before the first record).
+    Header(&'a [u8]),
+    /// A record, with its run.
+    Row(Key, &'a [u8]),
 }
 
-/// Reads `path` as [`Rows`], checking that the ranges cover the file exactly.
-fn read_rows(path: &Path) -> Result<Rows> {
-    let bytes = crate::input::read(path, u64::MAX, "metrics file")?;
+/// Reads `path` a record at a time, calling `each` with its header and then every record, in
+/// order, each with its bytes as they are in the file: memory is that of the longest record,
+/// whatever the file's length. The records must tile the file (each starts where the one before
+/// ends, the last ends at the end of the file), or a splice would lose or repeat bytes.
+fn scan(path: &Path, mut each: impl FnMut(Part) -> Result<()>) -> Result<()> {
+    let open = || crate::input::open(path, u64::MAX, "metrics file");
     let mut r = csv::ReaderBuilder::new()
         .has_headers(true)
-        .from_reader(bytes.as_slice());
+        .from_reader(open()?);
+    // The same bytes again, read in step with the parser: each record's bytes, verbatim.
+    let mut raw = std::io::BufReader::new(open()?);
+    let mut take = |n: u64, buf: &mut Vec<u8>| -> Result<()> {
+        buf.clear();
+        (&mut raw)
+            .take(n)
+            .read_to_end(buf)
+            .with_context(|| format!("cannot read {}", path.display()))?;
+        if buf.len() as u64 != n {
+            bail!("{}: changed while it was read", path.display());
+        }
+        Ok(())
+    };
     let head = r
         .byte_headers()
         .with_context(|| format!("{}: no header", path.display()))?
@@ -44,9 +61,16 @@ fn read_rows(path: &Path) -> Result<Rows> {
         col("backend")?,
         col("config")?,
     ];
-    let mut records = Vec::new();
+    let untiled = || {
+        anyhow!(
+            "{}: cannot tell its rows apart byte for byte; refusing to edit it",
+            path.display()
+        )
+    };
     let mut rec = csv::ByteRecord::new();
-    let mut start = None;
+    let mut bytes = Vec::new();
+    // Bytes passed so far; `None` until the header is.
+    let mut at: Option<u64> = None;
     loop {
         let more = r
             .read_byte_record(&mut rec)
@@ -54,79 +78,125 @@ fn read_rows(path: &Path) -> Result<Rows> {
         if !more {
             break;
         }
-        let from = rec.position().map_or(0, |p| p.byte() as usize);
-        let to = r.position().byte() as usize;
-        start.get_or_insert(from);
-        let field = |i: usize| String::from_utf8_lossy(rec.get(i).unwrap_or_default()).into_owned();
-        records.push((
-            (
-                field(cols[0]),
-                field(cols[1]),
-                field(cols[2]),
-                field(cols[3]),
-            ),
-            from..to,
-        ));
-    }
-    let header = 0..start.unwrap_or(bytes.len());
-    // The ranges must tile the file, or a splice would lose or repeat bytes.
-    let mut at = header.end;
-    for (_, range) in &records {
-        if range.start != at {
-            bail!(
-                "{}: cannot tell its rows apart byte for byte; refusing to edit it",
-                path.display()
-            );
+        let from = rec.position().map_or(0, |p| p.byte());
+        let to = r.position().byte();
+        let start = match at {
+            Some(a) => a,
+            None => {
+                take(from, &mut bytes)?;
+                each(Part::Header(&bytes))?;
+                from
+            }
+        };
+        if from != start || to < from {
+            return Err(untiled());
         }
-        at = range.end;
-    }
-    if at != bytes.len() {
-        bail!(
-            "{}: cannot tell its rows apart byte for byte; refusing to edit it",
-            path.display()
+        take(to - from, &mut bytes)?;
+        at = Some(to);
+        let field = |i: usize| String::from_utf8_lossy(rec.get(i).unwrap_or_default()).into_owned();
+        let key = (
+            field(cols[0]),
+            field(cols[1]),
+            field(cols[2]),
+            field(cols[3]),
         );
+        each(Part::Row(key, &bytes))?;
     }
-    Ok(Rows {
-        bytes,
-        header,
-        records,
-    })
+    if at.is_none() {
+        // No record: the whole file is the header.
+        bytes.clear();
+        raw.read_to_end(&mut bytes)
+            .with_context(|| format!("cannot read {}", path.display()))?;
+        return each(Part::Header(&bytes));
+    }
+    // Nothing may follow the last record.
+    if raw
+        .read(&mut [0u8])
+        .with_context(|| format!("cannot read {}", path.display()))?
+        != 0
+    {
+        return Err(untiled());
+    }
+    Ok(())
 }
 
-/// The baseline's `metrics.csv` with the rows of the `accepted` runs taken from the check's
-/// (in the place of the baseline's first row of that run; a run new to the baseline at the
-/// end; a run gone from the check removed). Every other byte is the baseline's.
-fn spliced(base: &Rows, new: &Rows, accepted: &BTreeSet<Key>) -> Result<Vec<u8>> {
-    if base.bytes[base.header.clone()] != new.bytes[new.header.clone()] {
-        bail!("the baseline's metrics.csv and the check's have different columns (a baseline written by another platbench): write the baseline again with `platbench baseline --replace` instead of accepting part of it");
-    }
-    let mut by_key: HashMap<&Key, Vec<&Range<usize>>> = HashMap::new();
-    for (k, r) in &new.records {
-        by_key.entry(k).or_default().push(r);
-    }
-    let mut out = base.bytes[base.header.clone()].to_vec();
-    let mut done: BTreeSet<&Key> = BTreeSet::new();
-    let push = |out: &mut Vec<u8>, bytes: &[u8]| {
-        if !out.is_empty() && !out.ends_with(b"\n") {
-            out.push(b'\n');
-        }
-        out.extend_from_slice(bytes);
+/// The check's `metrics.csv` header and the rows of the `accepted` runs, by run, in file
+/// order: all that is kept of it.
+struct Taken {
+    header: Vec<u8>,
+    rows: HashMap<Key, Vec<Vec<u8>>>,
+}
+
+/// Reads the check's `metrics.csv` at `path`, keeping the rows of the `accepted` runs.
+fn taken(path: &Path, accepted: &BTreeSet<Key>) -> Result<Taken> {
+    let mut t = Taken {
+        header: Vec::new(),
+        rows: HashMap::new(),
     };
-    for (k, r) in &base.records {
-        if !accepted.contains(k) {
-            push(&mut out, &base.bytes[r.clone()]);
-        } else if done.insert(k) {
-            for nr in by_key.get(k).into_iter().flatten() {
-                push(&mut out, &new.bytes[(*nr).clone()]);
+    scan(path, |part| {
+        match part {
+            Part::Header(h) => t.header = h.to_vec(),
+            Part::Row(k, bytes) if accepted.contains(&k) => {
+                t.rows.entry(k).or_default().push(bytes.to_vec());
+            }
+            Part::Row(..) => {}
+        }
+        Ok(())
+    })?;
+    Ok(t)
+}
+
+/// Writes to `out` the baseline's `metrics.csv` at `base` with the rows of the `accepted` runs
+/// taken from the check's (`new`: in the place of the baseline's first row of that run; a run
+/// new to the baseline at the end; a run gone from the check removed). Every other byte is the
+/// baseline's, copied as it is read.
+fn splice(base: &Path, new: &Taken, accepted: &BTreeSet<Key>, out: &mut impl Write) -> Result<()> {
+    let mut done: BTreeSet<Key> = BTreeSet::new();
+    // The last byte written (`None`: nothing yet): a row after one without its line end gets
+    // one.
+    let mut last: Option<u8> = None;
+    fn push(out: &mut dyn Write, last: &mut Option<u8>, bytes: &[u8]) -> std::io::Result<()> {
+        if last.is_some_and(|b| b != b'\n') {
+            out.write_all(b"\n")?;
+            *last = Some(b'\n');
+        }
+        out.write_all(bytes)?;
+        if let Some(&b) = bytes.last() {
+            *last = Some(b);
+        }
+        Ok(())
+    }
+    let none = Vec::new();
+    let rows_of = |k: &Key| new.rows.get(k).unwrap_or(&none);
+    let write_err = |e: std::io::Error| anyhow!("cannot write the baseline's metrics.csv: {e}");
+    scan(base, |part| {
+        match part {
+            Part::Header(h) => {
+                if h != new.header.as_slice() {
+                    bail!("the baseline's metrics.csv and the check's have different columns (a baseline written by another platbench): write the baseline again with `platbench baseline --replace` instead of accepting part of it");
+                }
+                out.write_all(h).map_err(write_err)?;
+                last = h.last().copied();
+            }
+            Part::Row(k, bytes) => {
+                if !accepted.contains(&k) {
+                    push(out, &mut last, bytes).map_err(write_err)?;
+                } else if !done.contains(&k) {
+                    for row in rows_of(&k) {
+                        push(out, &mut last, row).map_err(write_err)?;
+                    }
+                    done.insert(k);
+                }
             }
         }
-    }
-    for k in accepted.iter().filter(|k| !done.contains(k)) {
-        for nr in by_key.get(k).into_iter().flatten() {
-            push(&mut out, &new.bytes[(*nr).clone()]);
+        Ok(())
+    })?;
+    for k in accepted.iter().filter(|k| !done.contains(*k)) {
+        for row in rows_of(k) {
+            push(out, &mut last, row).map_err(write_err)?;
         }
     }
-    Ok(out)
+    out.flush().map_err(write_err)
 }
 
 /// Puts `from` at `to`: a hard link where the filesystem allows (the old baseline is deleted
@@ -297,11 +367,9 @@ pub(crate) fn accept(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<()
             )
         })
         .collect();
-    let metrics = spliced(
-        &read_rows(&base.join("metrics.csv"))?,
-        &read_rows(&check.join("metrics.csv"))?,
-        &keys,
-    )?;
+    // The check's rows of the accepted runs; the baseline's file is copied row by row into
+    // the staging directory below.
+    let new_rows = taken(&check.join("metrics.csv"), &keys)?;
     let manifest = updated_manifest(base, check, accepted)?;
     let marker = crate::limits::read_capped(&base.join(output::MARKER))
         .with_context(|| format!("cannot read {}", base.join(output::MARKER).display()))?;
@@ -310,7 +378,10 @@ pub(crate) fn accept(base: &Path, check: &Path, accepted: &[&Unit]) -> Result<()
         output::write_file(&staging.join(output::MARKER), &marker)?;
         let m = staging.join("metrics.csv");
         fs::remove_file(&m).with_context(|| format!("cannot replace {}", m.display()))?;
-        output::write_file(&m, &metrics)?;
+        let file =
+            fs::File::create(&m).with_context(|| format!("cannot create {}", m.display()))?;
+        let mut w = std::io::BufWriter::new(file);
+        splice(&base.join("metrics.csv"), &new_rows, &keys, &mut w)?;
         if let Some(manifest) = &manifest {
             // A hard link to the old baseline's file: unlinked first, not written through.
             let f = staging.join(FILE);

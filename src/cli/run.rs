@@ -143,22 +143,7 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
     let skipped_runs = scenarios * configs.len() - total;
     // Timing measures one thread with nothing else running beside it.
     let asked = if args.timing { 1 } else { args.select.jobs() };
-    // Each thread builds the world of the level it runs: on a large level, fewer threads, so
-    // that their worlds together stay within the run's memory (src/limits.rs).
-    let largest = levels
-        .iter()
-        .map(|l| l.width as u64 * l.height as u64)
-        .max()
-        .unwrap_or(0);
-    let jobs = crate::limits::jobs_within_memory(asked, largest);
-    if jobs < asked {
-        eprintln!(
-            "platbench: {jobs} thread{} rather than {asked}: a thread running a level of {largest} tiles takes up to {} MB, and a run keeps within {} MB",
-            if jobs == 1 { "" } else { "s" },
-            largest * crate::limits::THREAD_BYTES_PER_TILE / 1_000_000,
-            crate::limits::RUN_MEMORY / 1_000_000,
-        );
-    }
+    let jobs = super::select::jobs_for_levels(asked, &levels);
     eprintln!(
         "platbench: {scenarios} scenarios on {} configurations ({total} runs{}) on {jobs} thread{}",
         configs.len(),

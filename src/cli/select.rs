@@ -304,3 +304,52 @@ impl Selection {
             .collect())
     }
 }
+
+/// The threads a command that builds `levels`' worlds may fan out over: `asked`, or as many as
+/// keep their worlds within [`crate::limits::RUN_MEMORY`] on the largest of them
+/// ([`jobs_within_memory_noted`]).
+pub(crate) fn jobs_for_levels(asked: usize, levels: &[crate::level::Level]) -> usize {
+    let largest = levels
+        .iter()
+        .map(|l| l.width as u64 * l.height as u64)
+        .max()
+        .unwrap_or(0);
+    jobs_within_memory_noted(asked, largest)
+}
+
+/// [`crate::limits::jobs_within_memory`] for a largest level of `tiles` tiles: each thread
+/// builds the world of the level it runs, so on a large level fewer threads, said on stderr.
+pub(crate) fn jobs_within_memory_noted(asked: usize, tiles: u64) -> usize {
+    let jobs = crate::limits::jobs_within_memory(asked, tiles);
+    if jobs < asked {
+        eprintln!(
+            "platbench: {jobs} thread{} rather than {asked}: a thread running a level of {tiles} tiles takes up to {} MB, and a run keeps within {} MB",
+            if jobs == 1 { "" } else { "s" },
+            tiles.saturating_mul(crate::limits::THREAD_BYTES_PER_TILE) / 1_000_000,
+            crate::limits::RUN_MEMORY / 1_000_000,
+        );
+    }
+    jobs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stress_and_hunt_take_fewer_threads_only_past_what_their_levels_allow() {
+        // The probe level (300 x 40 tiles) is up to 16.8 MB a thread: 127 threads within
+        // RUN_MEMORY (2 GiB), so `stress --jobs 1024` takes 127, and 64 keep every one.
+        assert_eq!(jobs_within_memory_noted(64, crate::stress::PROBE_TILES), 64);
+        assert_eq!(
+            jobs_within_memory_noted(1024, crate::stress::PROBE_TILES),
+            127
+        );
+        // A hunt's generated level is at most 20 x 10 tiles: every thread `--jobs` allows
+        // (1024) fits.
+        assert_eq!(
+            jobs_within_memory_noted(1024, crate::hunt::LEVEL_TILES),
+            1024
+        );
+    }
+}

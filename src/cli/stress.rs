@@ -47,7 +47,8 @@ pub(crate) fn stress(
     let rows = stress_matrix_reporting(
         &runs,
         select.dt()?,
-        select.jobs(),
+        // Each thread builds a probe level's world at a time.
+        super::select::jobs_within_memory_noted(select.jobs(), crate::stress::PROBE_TILES),
         |what| eprintln!("  {what}"),
         |e| {
             eprintln!("  error: {e} (the other probes go on)");
@@ -71,11 +72,10 @@ pub(crate) fn stress(
         .map(String::from)
         .to_vec(),
     );
-    let envelopes = crate::stress::envelope(&rows);
+    let envelopes = crate::report::html::envelopes_by_key(&rows);
     for v in verdicts(&rows) {
         let breaks = envelopes
-            .iter()
-            .find(|e| e.config == v.config && e.dimension == v.dimension)
+            .get(&(v.config.clone(), v.dimension.clone()))
             .map_or("-".into(), breaks_list);
         t.add_row(vec![
             v.config.clone(),

@@ -28,7 +28,7 @@ pub(crate) fn tradeoff(
     .at_pixels_per_tile(pixels_per_tile)?;
     let levels = select.levels(load_levels(level_files)?)?;
     let settings = selected_settings(h, select)?;
-    let jobs = select.jobs();
+    let jobs = super::select::jobs_for_levels(select.jobs(), &levels);
     eprintln!("error score: {}", score.describe());
     let started = Instant::now();
     let mut failures = Vec::new();

@@ -24,6 +24,10 @@ use crate::metrics::evaluate;
 use crate::parallel::for_each_ordered;
 use sketch::Sketch;
 
+/// The most tiles a generated level holds (its largest width and height): what each thread of
+/// a hunt builds a world of.
+pub(crate) const LEVEL_TILES: u64 = (generate::ranges::WIDTH.1 * generate::ranges::HEIGHT.1) as u64;
+
 /// Cases per round: fixed, so a seed's findings do not depend on the number of threads.
 pub const ROUND: u64 = 8;
 

@@ -6,7 +6,7 @@
 use super::ground::Ground;
 use super::landing::{beyond_declared, supported};
 use super::platforms::{platform_depth, CRUSH_DEPTH};
-use super::seams::stuck_steps;
+use super::seams::stuck_judge;
 use super::Context;
 use crate::trace::TraceRow;
 
@@ -45,24 +45,36 @@ pub(crate) const INSIDE_TOLERANCE: f32 = 1e-3;
 /// The fault bits of each of the measured character's rows (the trace's first), in frame order.
 pub(crate) fn frame_faults(ctx: &Context) -> Vec<u8> {
     let id = ctx.trace.rows.first().map_or(0, |r| r.character);
-    let rows: Vec<TraceRow> = ctx.trace.character(id).copied().collect();
+    let mut scan = fault_scan(ctx);
+    ctx.trace.character(id).map(|r| scan(*r)).collect()
+}
+
+/// [`frame_faults`] a row at a time, for rows read as they come: called with each of the
+/// measured character's rows in frame order, its fault bits. Reads nothing of `ctx.trace`.
+pub(crate) fn fault_scan<'a>(ctx: &'a Context) -> impl FnMut(TraceRow) -> u8 + 'a {
     let g = Ground::new(ctx.level, ctx.shape, ctx.spec.size);
-    let stuck: Vec<bool> = stuck_steps(ctx, crate::trace::Frames::new(&rows)).collect();
-    let mut out: Vec<u8> = Vec::with_capacity(rows.len());
-    for (k, r) in rows.iter().enumerate() {
+    let mut judge = stuck_judge(ctx);
+    // The script's steps run out (or the rows do) once: no step is stuck after that.
+    let mut judging = true;
+    let mut prev: Option<(TraceRow, u8)> = None;
+    let mut k = 0usize;
+    move |r: TraceRow| {
         let mut f = 0;
-        let in_platform = platform_depth(ctx, &g, r, k);
-        if beyond_declared(ctx, &g, r) > INSIDE_TOLERANCE || in_platform > INSIDE_TOLERANCE {
+        let in_platform = platform_depth(ctx, &g, &r, k);
+        if beyond_declared(ctx, &g, &r) > INSIDE_TOLERANCE || in_platform > INSIDE_TOLERANCE {
             f |= INSIDE;
         }
         // Step k - 1 produced row k.
-        if k > 0 && stuck.get(k - 1).copied().unwrap_or(false) {
-            f |= STUCK;
+        if let (Some((before, _)), true) = (&prev, judging) {
+            match judge(before, &r) {
+                Some(true) => f |= STUCK,
+                Some(false) => {}
+                None => judging = false,
+            }
         }
-        let near = supported(ctx, &g, r);
-        let before = k
-            .checked_sub(1)
-            .map(|j| (rows[j].is_grounded(), out[j] & AIRBORNE_NEAR_GROUND != 0));
+        let near = supported(ctx, &g, &r);
+        let before =
+            prev.map(|(row, fault)| (row.is_grounded(), fault & AIRBORNE_NEAR_GROUND != 0));
         let left = matches!(before, Some((true, _)) | Some((_, true)));
         if !r.is_grounded() && near && r.vy <= 0.0 && left {
             f |= AIRBORNE_NEAR_GROUND;
@@ -73,9 +85,10 @@ pub(crate) fn frame_faults(ctx: &Context) -> Vec<u8> {
         if r.crushed != 0 || in_platform > CRUSH_DEPTH {
             f |= CRUSHED;
         }
-        out.push(f);
+        prev = Some((r, f));
+        k += 1;
+        f
     }
-    out
 }
 
 /// The words for the fault bits `f`, comma-separated (empty when none).

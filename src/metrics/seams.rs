@@ -5,7 +5,7 @@ use super::slopes::steep_columns;
 use super::{commanded_distance, commanded_steps, pos, Context, Measure};
 use crate::level::{character_box, Tile};
 use crate::scenario::input_script;
-use crate::trace::Frames;
+use crate::trace::{Frames, TraceRow};
 use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
@@ -100,22 +100,30 @@ pub(crate) fn stuck_steps<'a>(
     ctx: &'a Context,
     rows: Frames<'a>,
 ) -> impl Iterator<Item = bool> + 'a {
+    let mut judge = stuck_judge(ctx);
+    (0..rows.len().saturating_sub(1)).map_while(move |k| judge(&rows.at(k), &rows.at(k + 1)))
+}
+
+/// [`stuck_steps`] a step at a time, for rows read as they come: called with rows `k` and
+/// `k + 1` for `k = 0, 1, ...` in turn, whether step `k` was stuck, or `None` once the script
+/// has no step `k`.
+pub(crate) fn stuck_judge<'a>(
+    ctx: &'a Context,
+) -> impl FnMut(&TraceRow, &TraceRow) -> Option<bool> + 'a {
     let script = input_script(ctx.spec);
     let size = ctx.spec.size;
     let commanded = commanded_steps(ctx.params, script.clone(), ctx.spec.velocity.x, ctx.spec.dt);
-    let steps = script.into_iter().zip(commanded).enumerate();
-    steps.map_while(move |(k, (input, step))| {
+    let mut steps = script.into_iter().zip(commanded);
+    move |before, after| {
+        let (input, step) = steps.next()?;
         let step = &step;
-        let (Some(before), Some(after)) = (rows.get(k), rows.get(k + 1)) else {
-            return None;
-        };
         let stuck = input.horizontal() != 0.0
             && after.is_grounded()
             && step.abs() >= 1e-9
             && ((after.x - before.x) as f64).abs() < STUCK_FRACTION * step.abs()
             && {
                 // The box moved by the commanded step, lifted out of the floor band.
-                let mut ahead = character_box(pos(&before) + Vec2::new(*step as f32, 0.0), size);
+                let mut ahead = character_box(pos(before) + Vec2::new(*step as f32, 0.0), size);
                 ahead.mins.y += STUCK_FLOOR_BAND;
                 let dir = step.signum() as f32;
                 let steep_ahead = steep_columns(ctx, dir)
@@ -123,5 +131,5 @@ pub(crate) fn stuck_steps<'a>(
                 ctx.level.solids_overlapping(&ahead).next().is_none() && !steep_ahead
             };
         Some(stuck)
-    })
+    }
 }

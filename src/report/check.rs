@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 
-use super::diff::{Change, FailOn, MetricDiff, MetricRecord, RunDiff, TraceChange, TraceDiff};
+use super::diff::{Change, FailOn, MetricDiff, RunDiff, RunKey, TraceChange, TraceDiff};
 use crate::trace::Trace;
 
 /// What happened to one scenario on one configuration.
@@ -99,60 +99,57 @@ pub(crate) fn trace_name(level: &str, scenario: &str, backend: &str, config: &st
 /// Every run of `base` and `new` (the baseline's order, then the new run's), each with its
 /// status from the diff `d` of the two under `fail_on`: a timing counts only with
 /// `fail_on.timing`, a divergence not with `fail_on.allow_divergence`, a missing metric or
-/// trace not with `fail_on.allow_missing`.
-pub(crate) fn units(
-    base: &[MetricRecord],
-    new: &[MetricRecord],
-    d: &RunDiff,
-    fail_on: FailOn,
-) -> Vec<Unit> {
+/// trace not with `fail_on.allow_missing`. The diff's changes are found per run by hash, so
+/// this takes time in proportion to the runs and changes.
+pub(crate) fn units(base: &[RunKey], new: &[RunKey], d: &RunDiff, fail_on: FailOn) -> Vec<Unit> {
+    use std::collections::{HashMap, HashSet};
     let mut out: Vec<Unit> = Vec::new();
-    let mut seen = std::collections::HashSet::new();
-    let mut in_base = std::collections::HashSet::new();
-    let mut in_new = std::collections::HashSet::new();
-    for (r, side) in base
-        .iter()
-        .map(|r| (r, 0))
-        .chain(new.iter().map(|r| (r, 1)))
-    {
-        let key = (
-            r.level.clone(),
-            r.scenario.clone(),
-            r.backend.clone(),
-            r.config.clone(),
-        );
-        if side == 0 {
-            in_base.insert(key.clone());
-        } else {
-            in_new.insert(key.clone());
-        }
+    let in_base: HashSet<&RunKey> = base.iter().collect();
+    let in_new: HashSet<&RunKey> = new.iter().collect();
+    let mut seen = HashSet::new();
+    for key in base.iter().chain(new) {
         if seen.insert(key) {
+            let [level, scenario, backend, config] = key;
             out.push(Unit {
-                level: r.level.clone(),
-                scenario: r.scenario.clone(),
-                backend: r.backend.clone(),
-                config: r.config.clone(),
+                level: level.clone(),
+                scenario: scenario.clone(),
+                backend: backend.clone(),
+                config: config.clone(),
                 status: Status::Pass,
-                trace: trace_name(&r.level, &r.scenario, &r.backend, &r.config),
+                trace: trace_name(level, scenario, backend, config),
                 detail: String::new(),
             });
         }
     }
+    // The diff's metric changes by the labels of their run, in the diff's order; its traces'
+    // by file (the first of a name).
+    let mut metrics_of: HashMap<(&str, &str), Vec<&MetricDiff>> = HashMap::new();
+    for m in &d.metrics {
+        metrics_of
+            .entry((m.scenario.as_str(), m.config.as_str()))
+            .or_default()
+            .push(m);
+    }
+    let mut trace_of: HashMap<&str, &TraceDiff> = HashMap::new();
+    for t in &d.traces {
+        trace_of.entry(t.file.as_str()).or_insert(t);
+    }
     for u in &mut out {
-        let key = (
+        let key: RunKey = [
             u.level.clone(),
             u.scenario.clone(),
             u.backend.clone(),
             u.config.clone(),
-        );
+        ];
         let (s, c) = u.labels();
-        let metrics: Vec<&MetricDiff> = d
-            .metrics
-            .iter()
-            .filter(|m| m.scenario == s && m.config == c)
+        let metrics: Vec<&MetricDiff> = metrics_of
+            .get(&(s.as_str(), c.as_str()))
+            .into_iter()
+            .flatten()
+            .copied()
             .filter(|m| fail_on.timing || m.metric != "ns_per_character_step")
             .collect();
-        let trace: Option<&TraceDiff> = d.traces.iter().find(|t| t.file == u.trace);
+        let trace = trace_of.get(u.trace.as_str()).copied();
         (u.status, u.detail) = judge(
             in_base.contains(&key),
             in_new.contains(&key),

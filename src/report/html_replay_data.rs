@@ -10,7 +10,8 @@ use std::fmt::Write as _;
 
 use glam::Vec2;
 
-use super::replay::{frame_faults, ReplayRun, ScenarioTraces, Style, SCALE};
+use super::replay::{DrawnRun, Style, SCALE};
+use crate::level::{Level, ScenarioSpec};
 use crate::metrics::faults;
 use crate::trace::TraceRow;
 
@@ -91,8 +92,9 @@ fn state_char(r: &TraceRow) -> char {
 /// its state bits (`s`, [`state_char`]) and faults (`f`, `'0'` plus the fault bits of the
 /// frames the drawn frame stands for) as one character per drawn frame.
 pub(crate) fn replay_json(
-    s: &ScenarioTraces,
-    rows: &[(Vec<&TraceRow>, &ReplayRun, &Style)],
+    level: &Level,
+    spec: &ScenarioSpec,
+    rows: &[(DrawnRun, &Style)],
     picked: &[usize],
     stride: usize,
     origin: Vec2,
@@ -101,7 +103,7 @@ pub(crate) fn replay_json(
     let frames = picked.last().map_or(0, |l| l + 1);
     let mut j = format!(
         "{{\"dt\":{},\"stride\":{stride},\"frames\":{frames},\"scale\":{SCALE},\"ox\":{},\"oy\":{},\"pu\":{POSITION_UNIT},\"vu\":{VECTOR_UNIT},\"names\":[",
-        s.spec.dt, origin.x, origin.y
+        spec.dt, origin.x, origin.y
     );
     for (i, (bit, name)) in faults::NAMES.iter().enumerate() {
         let _ = write!(j, "{}[{bit},\"{name}\"]", if i > 0 { "," } else { "" });
@@ -109,13 +111,14 @@ pub(crate) fn replay_json(
     j.push_str("],\"platforms\":[");
     let times: Vec<f64> = picked
         .iter()
-        .map(|&f| {
+        .enumerate()
+        .map(|(i, &f)| {
             rows.iter()
-                .find_map(|(rs, _, _)| rs.get(f).map(|r| r.t as f64))
-                .unwrap_or(f as f64 * s.spec.dt as f64)
+                .find_map(|(run, _)| run.rows.get(i).map(|r| r.t as f64))
+                .unwrap_or(f as f64 * spec.dt as f64)
         })
         .collect();
-    for (pi, p) in s.level.platforms.iter().enumerate() {
+    for (pi, p) in level.platforms.iter().enumerate() {
         let (mut xs, mut ys) = (Vec::new(), Vec::new());
         for &t in &times {
             let b = p.aabb(t);
@@ -132,12 +135,11 @@ pub(crate) fn replay_json(
         );
     }
     j.push_str("],\"runs\":[");
-    for (k, (rs, run, _)) in rows.iter().enumerate() {
-        let drawn: Vec<&TraceRow> = picked.iter().map_while(|&f| rs.get(f).copied()).collect();
-        let mut faults = String::new();
-        for i in 0..drawn.len() {
-            faults.push(char::from(b'0' + frame_faults(&run.faults, picked, i)));
-        }
+    for (k, (run, _)) in rows.iter().enumerate() {
+        let drawn = &run.rows;
+        let faults: String = (0..drawn.len())
+            .map(|i| char::from(b'0' + run.faults.get(i).copied().unwrap_or(0)))
+            .collect();
         let channel =
             |f: fn(&TraceRow) -> f32, unit: f64| pack(drawn.iter().map(|r| fixed(f(r), unit)));
         let _ = write!(
@@ -151,7 +153,7 @@ pub(crate) fn replay_json(
             channel(|r| r.vy, VECTOR_UNIT),
             channel(|r| r.ground_nx, VECTOR_UNIT),
             channel(|r| r.ground_ny, VECTOR_UNIT),
-            drawn.iter().map(|r| state_char(r)).collect::<String>(),
+            drawn.iter().map(state_char).collect::<String>(),
         );
     }
     j.push_str("]}");

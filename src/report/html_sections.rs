@@ -99,6 +99,17 @@ pub(crate) fn breaks_list(e: &Envelope) -> String {
         .join("; ")
 }
 
+/// Each configuration's [`Envelope`] per dimension, by `(config, dimension)`, for the verdict
+/// tables to find in constant time.
+pub(crate) fn envelopes_by_key(
+    rows: &[StressRow],
+) -> std::collections::HashMap<(String, String), Envelope> {
+    envelope(rows)
+        .into_iter()
+        .map(|e| ((e.config.clone(), e.dimension.clone()), e))
+        .collect()
+}
+
 /// The colour of a combination cell whose first broken invariant is `first` (green where every
 /// invariant held).
 fn invariant_colour(first: Option<&str>) -> &'static str {
@@ -117,18 +128,23 @@ fn invariant_colour(first: Option<&str>) -> &'static str {
 
 /// Each pair of dimensions' combination cells as a grid: per pair, a row per configuration and
 /// first value, a column per second value, each cell `ok` or the invariants that broke there
-/// (first broken first). Each grid is `(pair, header, rows)`.
+/// (first broken first). Each grid is `(pair, header, rows)`. Cells are found by hash (values as
+/// `==` matches them: a NaN matches none), so a grid costs time in proportion to its size.
 pub(crate) fn pair_grids(rows: &[StressRow]) -> Vec<(String, Vec<String>, Vec<Vec<String>>)> {
+    use crate::stress::{value_key, Cell};
+    use std::collections::{HashMap, HashSet};
     let cells = crate::stress::cells(rows);
     let mut out: Vec<(String, Vec<String>, Vec<Vec<String>>)> = Vec::new();
-    let mut pairs: Vec<&str> = Vec::new();
+    let mut pairs: Vec<(&str, Vec<&Cell>)> = Vec::new();
+    let mut pair_at: HashMap<&str, usize> = HashMap::new();
     for c in &cells {
-        if !pairs.contains(&c.pair.as_str()) {
-            pairs.push(&c.pair);
-        }
+        let i = *pair_at.entry(&c.pair).or_insert_with(|| {
+            pairs.push((&c.pair, Vec::new()));
+            pairs.len() - 1
+        });
+        pairs[i].1.push(c);
     }
-    for pair in pairs {
-        let of_pair: Vec<&crate::stress::Cell> = cells.iter().filter(|c| c.pair == pair).collect();
+    for (pair, of_pair) in pairs {
         let mut bs: Vec<f64> = of_pair.iter().map(|c| c.b).collect();
         bs.sort_by(f64::total_cmp);
         bs.dedup();
@@ -136,18 +152,24 @@ pub(crate) fn pair_grids(rows: &[StressRow]) -> Vec<(String, Vec<String>, Vec<Ve
         let mut header = vec!["configuration".to_string(), format!("{da} \\ {db}")];
         header.extend(bs.iter().map(|&b| format_setting(b)));
         let mut keys: Vec<(&str, f64)> = Vec::new();
+        let mut seen: HashSet<(&str, u64)> = HashSet::new();
+        // The first cell of each configuration and pair of values.
+        let mut cell_at: HashMap<(&str, u64, u64), &Cell> = HashMap::new();
         for c in &of_pair {
-            if !keys.contains(&(c.config.as_str(), c.a)) {
+            if value_key(c.a).is_none_or(|a| seen.insert((&c.config, a))) {
                 keys.push((&c.config, c.a));
+            }
+            if let (Some(a), Some(b)) = (value_key(c.a), value_key(c.b)) {
+                cell_at.entry((&c.config, a, b)).or_insert(c);
             }
         }
         let mut grid = Vec::new();
         for (config, a) in keys {
             let mut row = vec![config.to_string(), format_setting(a)];
             for &b in &bs {
-                let cell = of_pair
-                    .iter()
-                    .find(|c| c.config == config && c.a == a && c.b == b);
+                let cell = value_key(a)
+                    .zip(value_key(b))
+                    .and_then(|(a, b)| cell_at.get(&(config, a, b)));
                 row.push(match cell {
                     None => "-".into(),
                     Some(c) if c.broken.is_empty() => "ok".into(),
@@ -184,13 +206,12 @@ pub(crate) fn pair_tables(rows: &[StressRow]) -> Vec<String> {
 pub(crate) fn stability_section(rows: &[StressRow]) -> (String, String) {
     let mut html = String::from("<h2 id=\"stability\">Stability at the extremes</h2><p>From <code>platbench stress</code>: each dimension is pushed away from the base case alone; the verdict gives, each side of the base value, the last value where every invariant (finite, penetration, no tunneling, stable rest, no flicker, carry without drift, progress, no stuck step, jump height) held and the first where one broke, naming it; the last column names each invariant that broke and where.</p><table><thead><tr><th>configuration</th><th>dimension</th><th>verdict</th><th>each invariant that broke, where</th></tr></thead><tbody>");
     let mut md = String::from("\n## Stability at the extremes\n\n| configuration | dimension | verdict | each invariant that broke, where |\n|---|---|---|---|\n");
-    let envelopes = envelope(rows);
+    let envelopes = envelopes_by_key(rows);
     for v in crate::stress::verdicts(rows) {
         let (config, dim) = (&v.config, &v.dimension);
         let ok = v.text();
         let bad = envelopes
-            .iter()
-            .find(|e| e.config == v.config && e.dimension == v.dimension)
+            .get(&(v.config.clone(), v.dimension.clone()))
             .map_or("-".into(), breaks_list);
         let _ = write!(
             html,

@@ -14,6 +14,7 @@ pub(crate) mod manifest;
 pub mod notes;
 pub mod profile;
 pub mod replay;
+mod replay_drawn;
 pub(crate) mod review_page;
 pub mod rules;
 pub mod summary_rows;

@@ -22,6 +22,7 @@ use crate::tradeoff::error_score;
 
 pub use super::html_colours::{styles, Style};
 use super::html_replay_data::{px, replay_json};
+pub(crate) use super::replay_drawn::{Drawing, DrawnRun};
 
 /// One configuration's run of a scenario, as the replay draws it.
 pub struct ReplayRun<'a> {
@@ -73,7 +74,7 @@ pub(crate) fn stride(frames: usize) -> usize {
 }
 
 /// The frames drawn for a run of `frames` frames with `stride`: every `stride`-th, and the last.
-fn drawn_frames(frames: usize, stride: usize) -> impl Iterator<Item = usize> {
+pub(super) fn drawn_frames(frames: usize, stride: usize) -> impl Iterator<Item = usize> {
     let n = if frames == 0 {
         0
     } else {
@@ -93,29 +94,55 @@ pub(crate) fn scenario_replay(
     styles: &[Style],
     shown: &[(String, String)],
 ) -> (String, f32) {
-    let level = s.level;
-    let rows: Vec<(Vec<&TraceRow>, &ReplayRun, &Style)> = s
+    let runs: Vec<(&ReplayRun, &Style)> = s
         .runs
         .iter()
-        .filter_map(|r| {
-            let style = styles
-                .iter()
-                .find(|st| st.backend == r.trace.backend && st.config == r.trace.config)?;
-            Some((r.trace.character(0).collect(), r, style))
+        .filter_map(|r| Some((r, style_of(styles, &r.trace.backend, &r.trace.config)?)))
+        .collect();
+    let frames = runs
+        .iter()
+        .map(|(r, _)| r.trace.character(0).count())
+        .max()
+        .unwrap_or(0);
+    let drawing = Drawing::of(frames);
+    let drawn: Vec<(DrawnRun, &Style)> = runs
+        .into_iter()
+        .map(|(r, style)| {
+            let mut b = drawing.run(r.size);
+            r.trace.character(0).for_each(|row| b.row(*row));
+            r.faults.iter().for_each(|&f| b.fault(f));
+            (b.finish(&r.trace.backend, &r.trace.config, r.shape), style)
         })
         .collect();
-    let frames = rows.iter().map(|(r, _, _)| r.len()).max().unwrap_or(0);
-    let stride = stride(frames);
-    let picked: Vec<usize> = drawn_frames(frames, stride).collect();
+    draw_replay(id, s.level, s.spec, &drawn, &drawing, shown)
+}
+
+/// The style of configuration `backend` `config` among `styles`; a run without one is not
+/// drawn.
+pub(crate) fn style_of<'s>(styles: &'s [Style], backend: &str, config: &str) -> Option<&'s Style> {
+    styles
+        .iter()
+        .find(|st| st.backend == backend && st.config == config)
+}
+
+/// [`scenario_replay`] of runs already reduced to their drawn frames ([`DrawnRun`]), each with
+/// its style, drawn at `drawing`'s frames.
+pub(crate) fn draw_replay(
+    id: &str,
+    level: &Level,
+    spec: &ScenarioSpec,
+    rows: &[(DrawnRun, &Style)],
+    drawing: &Drawing,
+    shown: &[(String, String)],
+) -> (String, f32) {
+    let (stride, picked) = (drawing.stride, &drawing.picked);
     // The area to draw: the paths and the spawn, padded, within the level.
-    let size = s.spec.size;
-    let (mut lo, mut hi) = (s.spec.spawn, s.spec.spawn + size);
-    for (rs, run, _) in &rows {
-        for r in rs {
-            if r.x.is_finite() && r.y.is_finite() {
-                lo = lo.min(Vec2::new(r.x - run.size.x, r.y));
-                hi = hi.max(Vec2::new(r.x + run.size.x, r.y + run.size.y));
-            }
+    let size = spec.size;
+    let (mut lo, mut hi) = (spec.spawn, spec.spawn + size);
+    for (run, _) in rows {
+        if let Some((a, b)) = run.bounds {
+            lo = lo.min(a);
+            hi = hi.max(b);
         }
     }
     let lo = (lo - Vec2::splat(3.0)).max(Vec2::ZERO).floor();
@@ -149,14 +176,14 @@ pub(crate) fn scenario_replay(
         );
     }
     doc = doc.add(plats);
-    let is_shown = |t: &Trace| shown.iter().any(|(b, c)| *b == t.backend && *c == t.config);
+    let is_shown = |t: &DrawnRun| shown.iter().any(|(b, c)| *b == t.backend && *c == t.config);
     // A point of a path: the character's centre at a drawn frame, in pixels.
-    let centre = |r: &TraceRow, run: &ReplayRun| to_px(Vec2::new(r.x, r.y + run.size.y * 0.5));
-    for (k, (rs, run, style)) in rows.iter().enumerate() {
-        let t = run.trace;
+    let centre = |r: &TraceRow, run: &DrawnRun| to_px(Vec2::new(r.x, r.y + run.size.y * 0.5));
+    for (k, (run, style)) in rows.iter().enumerate() {
+        let t = run;
         let colour = style.colour.as_str();
         let mut pts = String::new();
-        for r in picked.iter().filter_map(|&f| rs.get(f)) {
+        for r in &run.rows {
             let (x, y) = centre(r, run);
             let _ = write!(
                 pts,
@@ -182,9 +209,8 @@ pub(crate) fn scenario_replay(
         if !is_shown(t) {
             g = g.set("display", "none");
         }
-        for (i, &f) in picked.iter().enumerate() {
-            let Some(r) = rs.get(f) else { break };
-            let bad = frame_faults(&run.faults, &picked, i) != 0;
+        for (i, r) in run.rows.iter().enumerate() {
+            let bad = run.faults.get(i).is_some_and(|&f| f != 0);
             if bad || (!r.is_grounded() && i % 4 == 0) {
                 let (x, y) = centre(r, run);
                 g = g.add(
@@ -200,8 +226,8 @@ pub(crate) fn scenario_replay(
         doc = doc.add(g);
     }
     // The characters at frame 0, on top of every path.
-    for (k, (rs, run, style)) in rows.iter().enumerate() {
-        let (x, y) = rs.first().map_or((0.0, 0.0), |r| centre(r, run));
+    for (k, (run, style)) in rows.iter().enumerate() {
+        let (x, y) = run.rows.first().map_or((0.0, 0.0), |r| centre(r, run));
         let mut g = Group::new()
             .set("class", "body")
             .set("data-k", k)
@@ -211,7 +237,7 @@ pub(crate) fn scenario_replay(
             .set("stroke", style.colour.as_str())
             .set("stroke-width", 1.5)
             .add(shape_element(run.shape, run.size));
-        if !is_shown(run.trace) {
+        if !is_shown(run) {
             g = g.set("display", "none");
         }
         doc = doc.add(g);
@@ -224,7 +250,7 @@ pub(crate) fn scenario_replay(
         escape(id),
         picked.len().saturating_sub(1)
     );
-    out.push_str(&picker(&rows, shown));
+    out.push_str(&picker(rows, shown));
     out.push_str("</div>");
     // The picture and the state table side by side where both fit, else one above the other.
     out.push_str("<div class=\"stage\">");
@@ -232,9 +258,10 @@ pub(crate) fn scenario_replay(
     out.push_str("<table class=\"state\"><thead><tr><th>at this frame</th><th title=\"feet, tiles\">x, y</th><th title=\"tiles/s\">vx, vy</th><th title=\"grounded, and the ground's normal\">ground</th></tr></thead><tbody></tbody></table></div>");
     out.push_str("<script type=\"application/json\" class=\"replay-data\">");
     out.push_str(&replay_json(
-        s,
-        &rows,
-        &picked,
+        level,
+        spec,
+        rows,
+        picked,
         stride,
         Vec2::new(lo.x, hi.y),
         &to_px,
@@ -246,16 +273,15 @@ pub(crate) fn scenario_replay(
 /// The picker of a replay: a collapsed list of its configurations, grouped by backend, each a
 /// checkbox with its colour; its summary says how many are shown. The colours are named once
 /// per page (the legend above the scenarios), so the picker stays one line until opened.
-fn picker(rows: &[(Vec<&TraceRow>, &ReplayRun, &Style)], shown: &[(String, String)]) -> String {
-    let is_shown = |t: &Trace| shown.iter().any(|(b, c)| *b == t.backend && *c == t.config);
-    let n = rows.iter().filter(|(_, r, _)| is_shown(r.trace)).count();
+fn picker(rows: &[(DrawnRun, &Style)], shown: &[(String, String)]) -> String {
+    let is_shown = |t: &DrawnRun| shown.iter().any(|(b, c)| *b == t.backend && *c == t.config);
+    let n = rows.iter().filter(|(r, _)| is_shown(r)).count();
     let mut out = format!(
         "<details class=\"picker\"><summary>configurations: <span class=\"count\">{n}</span> of {} shown</summary>",
         rows.len()
     );
     let mut backend: Option<&str> = None;
-    for (k, (_, run, style)) in rows.iter().enumerate() {
-        let t = run.trace;
+    for (k, (t, style)) in rows.iter().enumerate() {
         if backend != Some(t.backend.as_str()) {
             if backend.is_some() {
                 out.push_str("</div>");
@@ -278,18 +304,6 @@ fn picker(rows: &[(Vec<&TraceRow>, &ReplayRun, &Style)], shown: &[(String, Strin
     }
     out.push_str("</details>");
     out
-}
-
-/// The fault bits of drawn frame `i`: those of every frame it stands for (since the drawn frame
-/// before it), so subsampling the drawing never hides a fault.
-pub(crate) fn frame_faults(faults: &[u8], picked: &[usize], i: usize) -> u8 {
-    let from = if i == 0 { 0 } else { picked[i - 1] + 1 };
-    let to = picked[i];
-    faults
-        .get(from..=to.min(faults.len().saturating_sub(1)))
-        .unwrap_or(&[])
-        .iter()
-        .fold(0, |a, b| a | b)
 }
 
 /// The solid tiles, slopes, one-way platforms and ladders between `lo` and `hi`.
@@ -449,9 +463,10 @@ mod tests {
         assert_eq!(picked, [0, 2, 4, 5]);
         // A fault at frame 3, which is not drawn, shows at drawn frame 4.
         let faults = [0, 0, 0, faults::STUCK, 0, 0];
-        let shown: Vec<u8> = (0..picked.len())
-            .map(|i| frame_faults(&faults, &picked, i))
-            .collect();
+        let drawing = Drawing { stride: 2, picked };
+        let mut b = drawing.run(Vec2::ONE);
+        faults.iter().for_each(|&f| b.fault(f));
+        let shown = b.finish("b", "c", CharacterShape::Cuboid).faults;
         assert_eq!(shown, [0, 0, faults::STUCK, 0]);
     }
 

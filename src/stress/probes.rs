@@ -11,6 +11,11 @@ use super::definition::BASE;
 /// Period of the probe level's moving platforms, in seconds.
 const RIDE_PERIOD: f32 = 4.0;
 
+/// The probe level's width and height, in tiles ([`probe_level`]).
+pub(crate) const PROBE_SIZE: (u32, u32) = (300, 40);
+/// The probe level's tiles: what each thread of `platbench stress` builds a world of.
+pub(crate) const PROBE_TILES: u64 = PROBE_SIZE.0 as u64 * PROBE_SIZE.1 as u64;
+
 /// The probe level: a floor 300 tiles long with a one-tile wall at x = 250, 40 tiles high (room
 /// for a 10-tile character), and for the rides (a level of their own, so that a configuration
 /// without moving platforms still runs the static probes) two 12-tile platforms swaying on
@@ -22,7 +27,7 @@ const RIDE_PERIOD: f32 = 4.0;
 /// Merged, the floor is one 300-tile box: long enough to matter, short of the thousands of tiles
 /// on which Rapier's rounded shapes sink (a separate finding).
 pub(super) fn probe_level(offset: f64, with_platforms: bool) -> Level {
-    let (w, h) = (300u32, 40u32);
+    let (w, h) = PROBE_SIZE;
     let mut tiles = vec![Tile::Empty; (w * h) as usize];
     for i in 0..w {
         tiles[i as usize] = Tile::Solid;

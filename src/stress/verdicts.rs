@@ -1,9 +1,93 @@
 //! The stress matrix's verdicts: its rows judged per configuration (the envelope along each
 //! dimension, the edges either side of the base value, the reach from the origin, the combination
 //! cells) and the verdicts in words (whether a world of a given size holds is [`super::world`]).
+//!
+//! Rows are grouped once by configuration, dimension and value (hash maps, values compared as
+//! `==` compares them), so a verdict costs time in proportion to the rows, whatever their
+//! number: a `stability.csv` given to `platbench report` may hold any.
+
+use std::collections::{HashMap, HashSet};
 
 use super::definition::{dimensions, format_setting, INVARIANTS};
 use super::execution::StressRow;
+
+/// `v` as a hash key that matches as `==` does: 0 and -0 are one key; NaN, equal to nothing,
+/// has none.
+pub(crate) fn value_key(v: f64) -> Option<u64> {
+    if v.is_nan() {
+        None
+    } else if v == 0.0 {
+        Some(0)
+    } else {
+        Some(v.to_bits())
+    }
+}
+
+/// Whether `v` is new to `seen` as `==` tells values apart (a NaN always is), noting it.
+fn first_seen(seen: &mut HashSet<u64>, v: f64) -> bool {
+    value_key(v).is_none_or(|k| seen.insert(k))
+}
+
+/// The one-dimension rows of one configuration (`backend config`) along one dimension, in
+/// file order.
+struct Group<'a> {
+    config: String,
+    dimension: &'a str,
+    rows: Vec<&'a StressRow>,
+}
+
+/// The one-dimension rows of `rows` per configuration and dimension, in the order each pair
+/// first appears.
+fn one_dimension_groups(rows: &[StressRow]) -> Vec<Group<'_>> {
+    let mut out: Vec<Group> = Vec::new();
+    let mut index: HashMap<(String, &str), usize> = HashMap::new();
+    for r in rows.iter().filter(|r| r.dimension2.is_empty()) {
+        let config = format!("{} {}", r.backend, r.config);
+        let i = *index
+            .entry((config.clone(), r.dimension.as_str()))
+            .or_insert_with(|| {
+                out.push(Group {
+                    config,
+                    dimension: &r.dimension,
+                    rows: Vec::new(),
+                });
+                out.len() - 1
+            });
+        out[i].rows.push(r);
+    }
+    out
+}
+
+/// One group's rows by value, each value's rows in file order ([`value_key`]: a NaN value's
+/// rows match no value).
+struct ByValue<'a>(HashMap<u64, Vec<&'a StressRow>>);
+
+impl<'a> ByValue<'a> {
+    fn of(rows: &[&'a StressRow]) -> Self {
+        let mut m: HashMap<u64, Vec<&StressRow>> = HashMap::new();
+        for r in rows {
+            if let Some(k) = value_key(r.value) {
+                m.entry(k).or_default().push(r);
+            }
+        }
+        ByValue(m)
+    }
+
+    /// The rows whose value `== v`.
+    fn at(&self, v: f64) -> &[&'a StressRow] {
+        value_key(v)
+            .and_then(|k| self.0.get(&k))
+            .map_or(&[], Vec::as_slice)
+    }
+}
+
+/// `values` sorted and deduplicated, as a verdict walks them.
+fn sorted_values(values: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut values: Vec<f64> = values.collect();
+    values.sort_by(f64::total_cmp);
+    values.dedup();
+    values
+}
 
 /// One configuration's results along one dimension of the matrix.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,12 +105,11 @@ pub struct Envelope {
 impl Envelope {
     /// The values at which some invariant broke, in matrix order.
     pub fn broken_values(&self) -> Vec<f64> {
+        let mut seen = HashSet::new();
         let mut v: Vec<f64> = Vec::new();
-        for (_, vs) in &self.breaks {
-            for x in vs {
-                if !v.contains(x) {
-                    v.push(*x);
-                }
+        for x in self.breaks.iter().flat_map(|(_, vs)| vs) {
+            if first_seen(&mut seen, *x) {
+                v.push(*x);
             }
         }
         v.sort_by(f64::total_cmp);
@@ -38,41 +121,42 @@ impl Envelope {
 /// invariant, those at which it broke (so an invariant that breaks everywhere, such as a
 /// controller that cannot carry a rider at the base case, does not hide where the others hold).
 pub fn envelope(rows: &[StressRow]) -> Vec<Envelope> {
-    let mut out: Vec<Envelope> = Vec::new();
-    for r in rows.iter().filter(|r| r.dimension2.is_empty()) {
-        let config = format!("{} {}", r.backend, r.config);
-        let i = match out
-            .iter()
-            .position(|e| e.config == config && e.dimension == r.dimension)
-        {
-            Some(i) => i,
-            None => {
-                out.push(Envelope {
-                    config,
-                    dimension: r.dimension.clone(),
-                    holds: Vec::new(),
-                    breaks: Vec::new(),
-                });
-                out.len() - 1
-            }
-        };
-        let e = &mut out[i];
+    one_dimension_groups(rows).iter().map(envelope_of).collect()
+}
+
+/// [`envelope`] of one group.
+fn envelope_of(g: &Group) -> Envelope {
+    let mut e = Envelope {
+        config: g.config.clone(),
+        dimension: g.dimension.to_string(),
+        holds: Vec::new(),
+        breaks: Vec::new(),
+    };
+    let mut held = HashSet::new();
+    let mut broke: HashMap<&str, usize> = HashMap::new();
+    for r in &g.rows {
         if r.holds {
-            if !e.holds.contains(&r.value) {
+            if first_seen(&mut held, r.value) {
                 e.holds.push(r.value);
             }
         } else {
-            match e.breaks.iter_mut().find(|(inv, _)| *inv == r.invariant) {
-                Some((_, vs)) => vs.push(r.value),
-                None => e.breaks.push((r.invariant.clone(), vec![r.value])),
+            match broke.get(r.invariant.as_str()) {
+                Some(&i) => e.breaks[i].1.push(r.value),
+                None => {
+                    broke.insert(&r.invariant, e.breaks.len());
+                    e.breaks.push((r.invariant.clone(), vec![r.value]));
+                }
             }
         }
     }
-    for e in &mut out {
-        let bad = e.broken_values();
-        e.holds.retain(|v| !bad.contains(v));
-    }
-    out
+    let bad: HashSet<u64> = e
+        .broken_values()
+        .into_iter()
+        .filter_map(value_key)
+        .collect();
+    e.holds
+        .retain(|v| value_key(*v).is_none_or(|k| !bad.contains(&k)));
+    e
 }
 
 /// Where a configuration stops holding, on one side of a dimension's base value.
@@ -103,16 +187,19 @@ pub struct Verdict {
 }
 
 /// The invariants that broke among `rows` (one value's rows of one configuration), in
-/// [`INVARIANTS`] order.
-fn broken<'a>(rows: impl Iterator<Item = &'a StressRow> + Clone) -> Vec<String> {
-    let mut out: Vec<String> = INVARIANTS
-        .iter()
-        .filter(|i| rows.clone().any(|r| !r.holds && r.invariant == **i))
-        .map(|i| i.to_string())
-        .collect();
+/// [`INVARIANTS`] order, then any other in the order the rows name it.
+fn broken(rows: &[&StressRow]) -> Vec<String> {
+    let mut seen: HashSet<&str> = HashSet::new();
+    let mut out: Vec<String> = Vec::new();
+    for i in INVARIANTS {
+        if rows.iter().any(|r| !r.holds && r.invariant == *i) {
+            seen.insert(i);
+            out.push(i.to_string());
+        }
+    }
     // An invariant another backend's rows name (none yet) after the known ones.
-    for r in rows.filter(|r| !r.holds) {
-        if !out.contains(&r.invariant) {
+    for r in rows.iter().filter(|r| !r.holds) {
+        if seen.insert(&r.invariant) {
             out.push(r.invariant.clone());
         }
     }
@@ -143,19 +230,13 @@ fn edge(values: &[f64], broken_at: impl Fn(f64) -> Vec<String>) -> Edge {
 pub fn verdicts(rows: &[StressRow]) -> Vec<Verdict> {
     let dims = dimensions();
     let mut out = Vec::new();
-    for e in envelope(rows) {
-        let Some(d) = dims.iter().find(|d| d.name == e.dimension) else {
+    for g in one_dimension_groups(rows) {
+        let Some(d) = dims.iter().find(|d| d.name == g.dimension) else {
             continue;
         };
-        let mine = |r: &&StressRow| {
-            r.dimension2.is_empty()
-                && r.dimension == e.dimension
-                && format!("{} {}", r.backend, r.config) == e.config
-        };
-        let mut values: Vec<f64> = rows.iter().filter(mine).map(|r| r.value).collect();
-        values.sort_by(f64::total_cmp);
-        values.dedup();
-        let broken_at = |v: f64| broken(rows.iter().filter(mine).filter(move |r| r.value == v));
+        let at = ByValue::of(&g.rows);
+        let values = sorted_values(g.rows.iter().map(|r| r.value));
+        let broken_at = |v: f64| broken(at.at(v));
         let base = if values.contains(&d.base) {
             d.base
         } else {
@@ -165,8 +246,8 @@ pub fn verdicts(rows: &[StressRow]) -> Vec<Verdict> {
         down.reverse();
         let up: Vec<f64> = values.iter().copied().filter(|&v| v >= base).collect();
         out.push(Verdict {
-            config: e.config.clone(),
-            dimension: e.dimension.clone(),
+            config: g.config.clone(),
+            dimension: g.dimension.to_string(),
             base,
             down: edge(&down, broken_at),
             up: edge(&up, broken_at),
@@ -254,38 +335,22 @@ impl Reach {
 
 /// Each configuration's [`Reach`], from the one-dimension `offset` rows of `rows`.
 pub fn reach(rows: &[StressRow]) -> Vec<Reach> {
-    let mut configs: Vec<String> = Vec::new();
-    let offset_rows: Vec<&StressRow> = rows
-        .iter()
-        .filter(|r| r.dimension2.is_empty() && r.dimension == "offset")
-        .collect();
-    for r in &offset_rows {
-        let c = format!("{} {}", r.backend, r.config);
-        if !configs.contains(&c) {
-            configs.push(c);
-        }
-    }
-    configs
+    one_dimension_groups(rows)
         .into_iter()
-        .map(|config| {
-            let mine: Vec<&StressRow> = offset_rows
-                .iter()
-                .copied()
-                .filter(|r| format!("{} {}", r.backend, r.config) == config)
-                .collect();
-            let at = |v: f64| mine.iter().copied().filter(move |r| r.value == v);
-            let at_origin = broken(at(0.0));
-            let mut values: Vec<f64> = mine.iter().map(|r| r.value).filter(|&v| v >= 0.0).collect();
-            values.sort_by(f64::total_cmp);
-            values.dedup();
+        .filter(|g| g.dimension == "offset")
+        .map(|g| {
+            let at = ByValue::of(&g.rows);
+            let at_origin = broken(at.at(0.0));
+            let aside: HashSet<&str> = at_origin.iter().map(String::as_str).collect();
+            let values = sorted_values(g.rows.iter().map(|r| r.value).filter(|&v| v >= 0.0));
             let edge = edge(&values, |v| {
-                broken(at(v))
+                broken(at.at(v))
                     .into_iter()
-                    .filter(|i| !at_origin.contains(i))
+                    .filter(|i| !aside.contains(i.as_str()))
                     .collect()
             });
             Reach {
-                config,
+                config: g.config,
                 at_origin,
                 edge,
             }
@@ -312,15 +377,18 @@ pub struct Cell {
 /// The combination cells of `rows`, in the order they first appear.
 pub fn cells(rows: &[StressRow]) -> Vec<Cell> {
     let mut out: Vec<Cell> = Vec::new();
+    // Each cell by its configuration, pair and values ([`value_key`]: a NaN value's row is a
+    // cell of its own, as `==` matches it to none).
+    let mut index: HashMap<(String, String, u64, u64), usize> = HashMap::new();
     for r in rows.iter().filter(|r| !r.dimension2.is_empty()) {
         let config = format!("{} {}", r.backend, r.config);
         let pair = format!("{} x {}", r.dimension, r.dimension2);
         let b = r.value2.unwrap_or(f64::NAN);
-        let i = match out
-            .iter()
-            .position(|c| c.config == config && c.pair == pair && c.a == r.value && c.b == b)
-        {
-            Some(i) => i,
+        let key = value_key(r.value)
+            .zip(value_key(b))
+            .map(|(ka, kb)| (config.clone(), pair.clone(), ka, kb));
+        let i = match key.as_ref().and_then(|k| index.get(k)) {
+            Some(&i) => i,
             None => {
                 out.push(Cell {
                     config,
@@ -329,6 +397,9 @@ pub fn cells(rows: &[StressRow]) -> Vec<Cell> {
                     b,
                     broken: Vec::new(),
                 });
+                if let Some(k) = key {
+                    index.insert(k, out.len() - 1);
+                }
                 out.len() - 1
             }
         };

@@ -1,6 +1,8 @@
 //! The stress matrix's world verdict: whether a configuration holds in a world of a given size,
 //! from its offsets alone and the combination cells within that size, in words.
 
+use std::collections::HashMap;
+
 use super::definition::format_setting;
 use super::execution::StressRow;
 use super::verdicts::{reach, verdicts, Edge};
@@ -31,18 +33,29 @@ pub struct WorldVerdict {
 pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
     let f = format_setting;
     let reaches = reach(rows);
+    // Each configuration's reach, offsets and broken combination cells at an offset, found
+    // once (by `backend config`), so the verdicts take time in proportion to the rows.
+    let reach_of: HashMap<&str, &super::verdicts::Reach> = reaches
+        .iter()
+        .rev()
+        .map(|r| (r.config.as_str(), r))
+        .collect();
+    let mut offsets: HashMap<String, Vec<f64>> = HashMap::new();
+    let mut broken_cells: HashMap<String, Vec<&StressRow>> = HashMap::new();
+    for r in rows.iter().filter(|r| r.dimension == "offset") {
+        let config = format!("{} {}", r.backend, r.config);
+        if r.dimension2.is_empty() {
+            offsets.entry(config).or_default().push(r.value);
+        } else if !r.holds {
+            broken_cells.entry(config).or_default().push(r);
+        }
+    }
     let mut out = Vec::new();
     for v in verdicts(rows)
         .into_iter()
         .filter(|v| v.dimension == "offset")
     {
-        let ofs = |r: &&StressRow| format!("{} {}", r.backend, r.config) == v.config;
-        let mut values: Vec<f64> = rows
-            .iter()
-            .filter(ofs)
-            .filter(|r| r.dimension2.is_empty() && r.dimension == "offset")
-            .map(|r| r.value)
-            .collect();
+        let mut values: Vec<f64> = offsets.get(&v.config).cloned().unwrap_or_default();
         values.sort_by(f64::total_cmp);
         values.dedup();
         let cover = values.iter().copied().find(|&x| x >= size);
@@ -53,7 +66,7 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
                 // Broken at the origin already: how far the others hold ([`reach`]), so that
                 // an f32 and an f64 build still read apart.
                 if *b == 0.0 {
-                    if let Some(r) = reaches.iter().find(|r| r.config == v.config) {
+                    if let Some(r) = reach_of.get(v.config.as_str()) {
                         let aside = |e: &Edge| match (e.last_holding, &e.first_break) {
                             (Some(l), Some((x, i))) => format!(
                                 "; those that held at 0 hold to {}, break at {} ({})",
@@ -92,10 +105,10 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
                 ),
             ),
         };
-        let mut combinations = Vec::new();
-        for r in rows.iter().filter(ofs).filter(|r| {
-            !r.holds && !r.dimension2.is_empty() && r.dimension == "offset" && r.value <= size
-        }) {
+        let mut combinations: Vec<(String, Vec<String>)> = Vec::new();
+        let mut cell_at: HashMap<String, usize> = HashMap::new();
+        let within = broken_cells.get(&v.config).into_iter().flatten();
+        for r in within.filter(|r| r.value <= size) {
             let cell = format!(
                 "{} x {} at ({}, {})",
                 r.dimension,
@@ -103,12 +116,12 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
                 f(r.value),
                 r.value2.map_or("-".into(), f)
             );
-            match combinations
-                .iter_mut()
-                .find(|(c, _): &&mut (String, Vec<String>)| *c == cell)
-            {
-                Some((_, inv)) => inv.push(r.invariant.clone()),
-                None => combinations.push((cell, vec![r.invariant.clone()])),
+            match cell_at.get(&cell) {
+                Some(&i) => combinations[i].1.push(r.invariant.clone()),
+                None => {
+                    cell_at.insert(cell.clone(), combinations.len());
+                    combinations.push((cell, vec![r.invariant.clone()]));
+                }
             }
         }
         // A cell within the world that breaks is a break within it: the world's positions
@@ -117,13 +130,13 @@ pub fn world_verdicts(rows: &[StressRow], size: f64) -> Vec<WorldVerdict> {
         // Broken already (at the origin, say): the cells that break an invariant that held
         // there are still said, so a configuration broken at 0 does not read sturdier than one
         // that is not.
-        let at_origin: Vec<String> = reaches
-            .iter()
-            .find(|r| r.config == v.config)
-            .map_or_else(Vec::new, |r| r.at_origin.clone());
+        let at_origin: std::collections::HashSet<&str> = reach_of
+            .get(v.config.as_str())
+            .map(|r| r.at_origin.iter().map(String::as_str).collect())
+            .unwrap_or_default();
         let more = combinations
             .iter()
-            .filter(|(_, inv)| inv.iter().any(|i| !at_origin.contains(i)))
+            .filter(|(_, inv)| inv.iter().any(|i| !at_origin.contains(i.as_str())))
             .count();
         let cells = |n: usize| {
             let (noun, verb) = if n == 1 { ("", "s") } else { ("s", "") };

@@ -8,4 +8,6 @@ mod hostile;
 mod hostile_inputs;
 mod memory;
 mod properties;
+mod proportional;
 mod streamed;
+mod streamed_runs;

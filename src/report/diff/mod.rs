@@ -17,5 +17,6 @@ pub use compare::{
     default_tolerance, Change, FailOn, MetricDiff, RunDiff, Tolerance, TraceChange, TraceDiff,
 };
 pub use join::diff_runs;
-pub use read::{read_metrics, DiffError, MetricRecord};
+pub(crate) use read::CsvRows;
+pub use read::{read_metrics, read_metrics_where, read_runs, DiffError, MetricRecord, RunKey};
 pub use render::{render, DiffFormat};

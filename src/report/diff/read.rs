@@ -3,7 +3,7 @@
 //! `join`), the trace file names, and two traces compared frame by frame in lockstep, so that
 //! a trace's length costs time, never memory.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
@@ -160,7 +160,7 @@ fn expected_of(kind: &csv::DeserializeErrorKind) -> Option<&'static str> {
 
 /// A CSV file read one record at a time into one reused buffer: memory is that of its
 /// longest row, whatever its length.
-pub(super) struct CsvRows {
+pub(crate) struct CsvRows {
     path: PathBuf,
     reader: csv::Reader<crate::input::Capped>,
     headers: csv::StringRecord,
@@ -170,7 +170,7 @@ pub(super) struct CsvRows {
 impl CsvRows {
     /// Opens `path` (a regular file, [`crate::input::open`]) and reads its header; `what`
     /// names the file's kind in an error.
-    pub(super) fn open(path: &Path, what: &'static str) -> Result<Self, DiffError> {
+    pub(crate) fn open(path: &Path, what: &'static str) -> Result<Self, DiffError> {
         let file = crate::input::open(path, u64::MAX, what)?;
         let mut reader = csv::Reader::from_reader(file);
         let headers = reader.headers().map_err(|e| Self::csv(path, e))?.clone();
@@ -195,25 +195,25 @@ impl CsvRows {
     }
 
     /// The file.
-    pub(super) fn path(&self) -> &Path {
+    pub(crate) fn path(&self) -> &Path {
         &self.path
     }
 
     /// Reads the next record; false at the end of the file.
-    pub(super) fn advance(&mut self) -> Result<bool, DiffError> {
+    pub(crate) fn advance(&mut self) -> Result<bool, DiffError> {
         self.reader
             .read_record(&mut self.record)
             .map_err(|e| Self::csv(&self.path, e))
     }
 
     /// The line of the current record (the header is line 1).
-    pub(super) fn line(&self) -> u64 {
+    pub(crate) fn line(&self) -> u64 {
         self.record.position().map_or(0, |p| p.line())
     }
 
     /// The current record as a `T` (which may borrow from it); a field that does not parse is
     /// named by line, field, column, text found and what was expected.
-    pub(super) fn get<'r, T: Deserialize<'r>>(&'r self) -> Result<T, DiffError> {
+    pub(crate) fn get<'r, T: Deserialize<'r>>(&'r self) -> Result<T, DiffError> {
         self.record
             .deserialize(Some(&self.headers))
             .map_err(|e| self.field_error(e))
@@ -238,7 +238,7 @@ impl CsvRows {
     }
 
     /// The next record as an owned `T`, or `None` at the end of the file.
-    pub(super) fn next_row<T: serde::de::DeserializeOwned>(
+    pub(crate) fn next_row<T: serde::de::DeserializeOwned>(
         &mut self,
     ) -> Result<Option<T>, DiffError> {
         if !self.advance()? {
@@ -249,21 +249,36 @@ impl CsvRows {
 
     /// Reads the rest of the file as `T` rows, keeping none: every row is checked, as when the
     /// file was read whole.
-    pub(super) fn check_rest<T: serde::de::DeserializeOwned>(&mut self) -> Result<(), DiffError> {
+    pub(crate) fn check_rest<T: serde::de::DeserializeOwned>(&mut self) -> Result<(), DiffError> {
         while self.next_row::<T>()?.is_some() {}
         Ok(())
     }
 }
 
 /// Reads `DIR/metrics.csv` whole, refusing a repeated key. Holds every row (its six strings
-/// and numbers): `check` and `review` read their runs' files with it; `diff` streams
-/// them instead ([`super::diff_runs`]).
+/// and numbers); `diff` streams the file instead ([`super::diff_runs`]), `check` keeps its
+/// runs only ([`read_runs`]) and `review` the rows of the runs it shows
+/// ([`read_metrics_where`]).
 pub fn read_metrics(dir: &Path) -> Result<Vec<MetricRecord>, DiffError> {
+    read_metrics_where(dir, |_| true)
+}
+
+/// The rows of `DIR/metrics.csv` of the runs `keep([level, scenario, backend, config])`
+/// selects, read a row at a time: every row is read and checked, only those kept are held (a
+/// repeated key among them is refused), so memory is that of the rows kept.
+pub fn read_metrics_where(
+    dir: &Path,
+    mut keep: impl FnMut([&str; 4]) -> bool,
+) -> Result<Vec<MetricRecord>, DiffError> {
     let mut csv = CsvRows::open(&dir.join("metrics.csv"), "metrics file")?;
     let mut rows: Vec<MetricRecord> = Vec::new();
     // A repeated key would let one of its rows go uncompared (the last one read wins).
     let mut seen: BTreeMap<_, u64> = BTreeMap::new();
     while csv.advance()? {
+        let r: MetricRef = csv.get()?;
+        if !keep([r.level, r.scenario, r.backend, r.config]) {
+            continue;
+        }
         let r: MetricRecord = csv.get()?;
         let key = (
             r.level.clone(),
@@ -286,6 +301,33 @@ pub fn read_metrics(dir: &Path) -> Result<Vec<MetricRecord>, DiffError> {
         rows.push(r);
     }
     Ok(rows)
+}
+
+/// A run: its level, scenario, backend and configuration.
+pub type RunKey = [String; 4];
+
+/// The runs of `DIR/metrics.csv`, each once, in the order of its first row, read a row at a
+/// time (every row read and checked, none kept): memory is that of the runs, not the rows.
+pub fn read_runs(dir: &Path) -> Result<Vec<RunKey>, DiffError> {
+    let mut csv = CsvRows::open(&dir.join("metrics.csv"), "metrics file")?;
+    let mut seen: HashSet<RunKey> = HashSet::new();
+    let mut runs: Vec<RunKey> = Vec::new();
+    while csv.advance()? {
+        let r: MetricRef = csv.get()?;
+        let key = [r.level, r.scenario, r.backend, r.config];
+        // A run's rows come together: most rows are of the run before.
+        if runs
+            .last()
+            .is_some_and(|last| last.iter().zip(key).all(|(a, b)| a == b))
+        {
+            continue;
+        }
+        let key = key.map(String::from);
+        if seen.insert(key.clone()) {
+            runs.push(key);
+        }
+    }
+    Ok(runs)
 }
 
 /// The names of the trace files (`*.csv`) of `DIR/traces`, sorted.
