@@ -125,6 +125,13 @@ pub(crate) const MAX_EPSILON: f64 = 1.0;
 /// when a ramp was still found by a quadratic search).
 #[cfg(feature = "tiled")]
 pub(crate) const MAX_POLYGON_POINTS: usize = 10_000;
+/// Most bytes of strings and member names in a Tiled JSON file (map, tileset or template), a
+/// tile layer's `data` string aside, counted before serde_json reads it: the translation to TMX
+/// escapes `&`, `<`, `>` and `"` (up to six bytes each) and holds several copies, so 120 MB of
+/// `&` in one property aborted at 3.1 GB (about 27 bytes a byte of file). A map's names, types,
+/// properties and image paths take kilobytes; 16 MiB keeps that worst case near 450 MB.
+#[cfg(feature = "tiled")]
+pub(crate) const MAX_JSON_TEXT_BYTES: u64 = 16 * 1024 * 1024;
 /// Deepest nesting of arrays and objects in a Tiled JSON file (map, tileset or template):
 /// serde_json, which reads it, stops at 128 with a bare "recursion limit exceeded", so the walk
 /// before it (`level/tiled/json_walk.rs`) refuses what passes 127 with the line and column. A
@@ -162,10 +169,11 @@ pub(crate) const MAX_TOML_BYTES: u64 = 32 * 1024 * 1024;
 /// tree near 250 MB (a map string is one item whatever its size) and hold a scenario of
 /// [`MAX_INPUT_EVENTS`] events written out in full (about six items an event).
 pub(crate) const MAX_TOML_ITEMS: usize = 500_000;
-/// Deepest nesting in a TOML level or side file: open `[` and `{` plus the parts of a dotted
-/// key, counted before the `toml` crate parses the file. A level nests at most four deep
-/// (`[[scenario]]`, `inputs = [{ t = 1.0 }]`); the crate recurses once a level and refuses past
-/// about 80 (nested arrays) or 90 (key parts) with a bare "recursion limit" at line 1, column 1.
+/// Deepest nesting in a TOML level or side file: a value's table header's parts, plus each open
+/// `[` and `{` and each part of a dotted key on the way to it, counted before the `toml` crate
+/// parses the file. A level nests at most four deep (`[[scenario]]`, `inputs = [{ t = 1.0 }]`);
+/// the crate recurses once a level and refuses past about 80 (nested arrays) or 90 (key parts)
+/// with a bare "recursion limit" at line 1, column 1.
 pub(crate) const MAX_TOML_DEPTH: usize = 32;
 /// Most input events of one scenario: a script written by hand holds tens, a recorded play a
 /// change every few frames; 50,000 is one change a frame for 14 minutes at 60 Hz, and a

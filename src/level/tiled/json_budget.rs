@@ -163,6 +163,7 @@ impl Walker<'_> {
     /// Counts the value starting at `at` with byte `c`, under a parent of role `parent`: past
     /// a limit, says which and where.
     pub(super) fn count(&mut self, at: Pos, c: u8, parent: Option<Role>) -> Result<(), JsonError> {
+        self.check_text(at)?;
         let cell = parent == Some(Role::Cells) && matches!(c, b'-' | b'0'..=b'9');
         if !cell {
             self.values += 1;
@@ -190,6 +191,17 @@ impl Walker<'_> {
                     limits::MAX_JSON_OBJECTS, limits::MAX_JSON_OBJECTS
                 )));
             }
+        }
+        Ok(())
+    }
+
+    /// Past [`limits::MAX_JSON_TEXT_BYTES`] of strings and member names, says where.
+    pub(super) fn check_text(&self, at: Pos) -> Result<(), JsonError> {
+        if self.text_bytes > limits::MAX_JSON_TEXT_BYTES {
+            return Err(limit(at, format!(
+                "the file's strings and member names (a tile layer's data aside) pass {} bytes here; expected at most {} (16 MiB: names, types, properties and paths of a map take kilobytes, and the translation to TMX escapes and copies each)",
+                limits::MAX_JSON_TEXT_BYTES, limits::MAX_JSON_TEXT_BYTES
+            )));
         }
         Ok(())
     }
@@ -510,6 +522,27 @@ mod tests {
         assert!(
             m.starts_with("the map is 5000 x 5000 tiles; expected at most 1000000 tiles"),
             "{m}"
+        );
+    }
+
+    #[test]
+    fn strings_past_the_text_limit_are_refused_but_a_layer_s_data_string_is_not_counted() {
+        let max = limits::MAX_JSON_TEXT_BYTES as usize;
+        // A property value of `&`s (the translation escapes each to `&amp;`: 120 MB of them
+        // took 3.1 GB): at the limit with its member names (`properties`, `value`: 15 bytes).
+        let prop = |n: usize| format!(r#"{{"properties":[{{"value":"{}"}}]}}"#, "&".repeat(n));
+        assert!(walk(&prop(max - 15)).is_ok());
+        let (line, column, m) = err(&prop(max - 14));
+        // Named at the string's opening quote.
+        assert_eq!((line, column), (1, 25));
+        assert!(m.starts_with("the file's strings and member names (a tile layer's data aside) pass 16777216 bytes here; expected at most 16777216"), "{m}");
+        // A base64 layer's data string is bounded by its cells, not by this limit.
+        let data = format!(
+            r#"{{"layers":[{{"data":"{}","encoding":"base64","name":"g","type":"tilelayer","width":1,"height":1}}]}}"#,
+            "A".repeat(max + 1)
+        );
+        assert!(
+            !matches!(walk(&data), Err(JsonError::Limit { message, .. }) if message.contains("strings and member names"))
         );
     }
 }

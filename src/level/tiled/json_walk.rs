@@ -16,7 +16,7 @@
 use std::collections::BTreeMap;
 
 use super::error::JsonError;
-use super::json_budget::{key_of, Frame, Role};
+use super::json_budget::{key_of, Frame, Key, Role};
 use super::normalize::Normalized;
 
 /// A layer's place in the map: its index in the map's `layers`, then in each group's.
@@ -146,6 +146,8 @@ pub(super) struct Walker<'t> {
     pub values: u64,
     /// The tile layers' cells so far.
     pub layer_cells: u64,
+    /// Bytes of the strings and member names so far, a tile layer's `data` string aside.
+    pub text_bytes: u64,
     pub layers: BTreeMap<LayerPath, usize>,
     /// The cell [`cell_line`] looks for, and its line once found.
     target: Option<(LayerPath, u64)>,
@@ -172,6 +174,7 @@ impl<'t> Walker<'t> {
             objects: 0,
             values: 0,
             layer_cells: 0,
+            text_bytes: 0,
             layers: BTreeMap::new(),
             target,
             found: None,
@@ -299,6 +302,7 @@ impl<'t> Walker<'t> {
             return false;
         };
         let quoted = &self.b[s - 1..e + 1];
+        self.text_bytes += (e - s) as u64;
         if let Some(f) = self.stack.last_mut() {
             f.key = Some(key_of(quoted));
             f.key_text = (f.role() == Role::Tiles).then(|| unescape(quoted));
@@ -336,6 +340,15 @@ impl<'t> Walker<'t> {
                 let Some((s, e)) = self.string() else {
                     return Ok(None);
                 };
+                let data = self.stack.last().is_some_and(|p| {
+                    !p.array
+                        && p.key == Some(Key::Data)
+                        && matches!(p.role(), Role::Layer | Role::Chunk)
+                });
+                if !data {
+                    self.text_bytes += (e - s) as u64;
+                    self.check_text(at)?;
+                }
                 // With its quotes, for serde_json to unescape.
                 self.scalar(&self.b[s - 1..e + 1], true);
                 Ok(Some(false))

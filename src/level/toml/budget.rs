@@ -33,7 +33,7 @@ pub(super) fn check_budget(loc: &Locator) -> Result<(), LevelError> {
         Some(Past::Depth(at)) => Err(loc.err(
             at,
             format!(
-                "nesting passes {} levels here (open brackets and braces, plus the parts of a dotted key); expected at most {} (a level nests at most four deep: `[[scenario]]`, `inputs = [{{ t = 1.0 }}]`)",
+                "nesting passes {} levels here (a table header's parts, then each open bracket and brace and each part of a dotted key on the way); expected at most {} (a level nests at most four deep: `[[scenario]]`, `inputs = [{{ t = 1.0 }}]`)",
                 limits::MAX_TOML_DEPTH,
                 limits::MAX_TOML_DEPTH
             ),
@@ -53,51 +53,91 @@ enum Past {
 
 /// Where `text` first holds more than `max_items` items (each `=`, `,`, `.`, `[` and `{` outside
 /// strings and comments; the point of a float counts too, which only makes the bound safer) or
-/// nests deeper than `max_depth` (open `[` and `{`, plus the dots of the key being read: the
-/// crate recurses once per dotted part and per nested value, and past about 80 of either it gives
-/// a bare "recursion limit" at line 1 column 1). Linear in the text; a malformed file is counted
-/// as far as it goes (the `toml` crate reports what is wrong with it).
+/// nests deeper than `max_depth`: a value's depth is its table header's parts, plus one for each
+/// array and inline table around it, plus the parts of every dotted key on the way (the crate
+/// recurses once per level, and past about 80 gives a bare "recursion limit" at line 1, column
+/// 1). Linear in the text; a malformed file is counted as far as it goes (the `toml` crate
+/// reports what is wrong with it).
 fn past_limit(text: &str, max_items: usize, max_depth: usize) -> Option<Past> {
     let b = text.as_bytes();
     let mut count = 0usize;
-    // Open brackets and braces, and dots since the last `=`, `,`, `{` or line end.
-    let mut open = 0usize;
+    // The depth of each open array and inline table; of the table the last header opened; the
+    // dots of the key being read; those of a header being read.
+    let mut open: Vec<usize> = Vec::new();
+    let mut table = 0usize;
     let mut dots = 0usize;
+    let mut header: Option<usize> = None;
+    let mut line_start = true;
     let mut k = 0;
     while k < b.len() {
-        match b[k] {
+        let c = b[k];
+        match c {
             b'#' => {
                 while k < b.len() && b[k] != b'\n' {
                     k += 1;
                 }
                 continue;
             }
-            q @ (b'"' | b'\'') => {
-                k = string_end(b, k, q);
+            b'"' | b'\'' => {
+                k = string_end(b, k, c);
+                line_start = false;
                 continue;
             }
-            c @ (b'=' | b',' | b'.' | b'[' | b'{') => {
+            b'=' | b',' | b'.' | b'[' | b'{' => {
                 count += 1;
                 if count > max_items {
                     return Some(Past::Items(k));
                 }
-                match c {
-                    b'.' => dots += 1,
-                    b'[' => open += 1,
-                    b'{' => {
-                        open += 1;
-                        dots = 0;
-                    }
-                    _ => dots = 0,
-                }
-                if open + dots > max_depth {
-                    return Some(Past::Depth(k));
-                }
             }
-            b']' | b'}' => open = open.saturating_sub(1),
-            b'\n' => dots = 0,
             _ => {}
         }
+        let around = open.last().copied().unwrap_or(table);
+        let depth = match c {
+            // A table header, `[a.b]` or `[[a.b]]`, at the start of a line outside any value.
+            b'[' if open.is_empty() && (line_start || header.is_some()) => {
+                header.get_or_insert(0);
+                0
+            }
+            b'[' | b'{' => {
+                open.push(around + dots + 1);
+                dots = 0;
+                around + 1
+            }
+            b']' if header.is_some() => 0,
+            b']' | b'}' => {
+                open.pop();
+                dots = 0;
+                0
+            }
+            b'.' => match header.as_mut() {
+                Some(h) => {
+                    *h += 1;
+                    1 + *h
+                }
+                None => {
+                    dots += 1;
+                    around + dots
+                }
+            },
+            b',' => {
+                dots = 0;
+                0
+            }
+            b'\n' => {
+                if let Some(h) = header.take() {
+                    table = 1 + h;
+                }
+                if open.is_empty() {
+                    dots = 0;
+                }
+                0
+            }
+            _ => 0,
+        };
+        if depth > max_depth || open.last().is_some_and(|&d| d > max_depth) {
+            return Some(Past::Depth(k));
+        }
+        line_start = c == b'\n' || (line_start && matches!(c, b' ' | b'\t' | b'\r'));
         k += 1;
     }
     None
@@ -169,11 +209,15 @@ mod tests {
         };
         assert_eq!(depth("a = 1\n"), 0);
         assert_eq!(depth("a.b.c = 1\n"), 2);
-        // A header's brackets and parts; a float's point is one more (harmless).
+        // A header, then an array and a table; a float's point is one more (harmless).
         assert_eq!(
             depth("[[scenario]]\ninputs = [{ t = 1.5, left = true }]\n"),
-            3
+            4
         );
+        // Dotted keys inside inline tables and under a dotted header add up (an adversary's
+        // `zz = { k0.….k31 = { k0.….k30 = { … } } }` nested 528 deep past a per-key count):
+        // the header's two parts, the table, `a.b`'s second part, the table, `c.d`'s.
+        assert_eq!(depth("[h.i]\nz = { a.b = { c.d = 1 } }\n"), 6);
         assert_eq!(depth("a = [[[1]]]\nb = [2]\n"), 3);
         // Brackets in strings and comments do not nest.
         assert_eq!(depth("a = \"[[[{\" # [[[[\n"), 0);
