@@ -72,7 +72,7 @@ pub(crate) fn stress(
         .map(String::from)
         .to_vec(),
     );
-    let envelopes = crate::report::html::envelopes_by_key(&rows);
+    let envelopes = crate::stress::envelopes_by_key(&rows);
     for v in verdicts(&rows) {
         let breaks = envelopes
             .get(&(v.config.clone(), v.dimension.clone()))

@@ -11,7 +11,7 @@ use std::fmt::Write as _;
 
 pub(crate) use super::html_nav::wide;
 use super::html_nav::{metric_definitions, metric_header, replay_link, Toc, PAGE_STYLE};
-pub(crate) use super::html_sections::{breaks_list, envelopes_by_key, pair_tables};
+pub(crate) use super::html_sections::{breaks_list, pair_tables};
 use super::html_sections::{stability_section, tradeoff_section};
 use super::replay::{escape, scenario_replay, styles};
 pub use super::replay::{ReplayRun, ScenarioTraces};

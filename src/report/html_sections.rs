@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use super::format_setting;
 use super::html::wide;
 use super::replay::escape;
-use crate::stress::{envelope, Envelope, StressRow};
+use crate::stress::{Envelope, StressRow};
 use crate::tradeoff::{chart_svg, TradeoffRow};
 
 /// Setting values as a short comma-separated list ("-" when empty).
@@ -97,17 +97,6 @@ pub(crate) fn breaks_list(e: &Envelope) -> String {
         .map(|(inv, vs)| format!("{inv} at {}", value_list(vs)))
         .collect::<Vec<_>>()
         .join("; ")
-}
-
-/// Each configuration's [`Envelope`] per dimension, by `(config, dimension)`, for the verdict
-/// tables to find in constant time.
-pub(crate) fn envelopes_by_key(
-    rows: &[StressRow],
-) -> std::collections::HashMap<(String, String), Envelope> {
-    envelope(rows)
-        .into_iter()
-        .map(|e| ((e.config.clone(), e.dimension.clone()), e))
-        .collect()
 }
 
 /// The colour of a combination cell whose first broken invariant is `first` (green where every
@@ -206,7 +195,7 @@ pub(crate) fn pair_tables(rows: &[StressRow]) -> Vec<String> {
 pub(crate) fn stability_section(rows: &[StressRow]) -> (String, String) {
     let mut html = String::from("<h2 id=\"stability\">Stability at the extremes</h2><p>From <code>platbench stress</code>: each dimension is pushed away from the base case alone; the verdict gives, each side of the base value, the last value where every invariant (finite, penetration, no tunneling, stable rest, no flicker, carry without drift, progress, no stuck step, jump height) held and the first where one broke, naming it; the last column names each invariant that broke and where.</p><table><thead><tr><th>configuration</th><th>dimension</th><th>verdict</th><th>each invariant that broke, where</th></tr></thead><tbody>");
     let mut md = String::from("\n## Stability at the extremes\n\n| configuration | dimension | verdict | each invariant that broke, where |\n|---|---|---|---|\n");
-    let envelopes = envelopes_by_key(rows);
+    let envelopes = crate::stress::envelopes_by_key(rows);
     for v in crate::stress::verdicts(rows) {
         let (config, dim) = (&v.config, &v.dimension);
         let ok = v.text();

@@ -27,6 +27,6 @@ pub use execution::{
 pub use probes::check_base_dt;
 pub use probes::ProbeTimingError;
 pub(crate) use probes::PROBE_TILES;
-pub(crate) use verdicts::value_key;
 pub use verdicts::{cells, envelope, reach, verdicts, Cell, Edge, Envelope, Reach, Verdict};
+pub(crate) use verdicts::{envelopes_by_key, value_key};
 pub use world::{world_verdicts, WorldVerdict};

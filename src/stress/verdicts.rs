@@ -124,6 +124,15 @@ pub fn envelope(rows: &[StressRow]) -> Vec<Envelope> {
     one_dimension_groups(rows).iter().map(envelope_of).collect()
 }
 
+/// [`envelope`] by `(config, dimension)`, for a verdict's envelope to be found in constant
+/// time (the stress command's table and the report's stability section).
+pub(crate) fn envelopes_by_key(rows: &[StressRow]) -> HashMap<(String, String), Envelope> {
+    envelope(rows)
+        .into_iter()
+        .map(|e| ((e.config.clone(), e.dimension.clone()), e))
+        .collect()
+}
+
 /// [`envelope`] of one group.
 fn envelope_of(g: &Group) -> Envelope {
     let mut e = Envelope {
