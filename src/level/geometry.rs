@@ -7,7 +7,7 @@ use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
 use super::{Level, Slope, Tile};
-use crate::rounding::{ceil64, floor32, round64};
+use crate::rounding::{ceil64, floor_to_i64, round64};
 
 impl Level {
     /// The box of tile `(i, j)`.
@@ -131,29 +131,26 @@ impl Level {
     /// `depth` tiles: a solid tile's top or a slope's surface at `x`. Returns the height and, for
     /// a slope, its tile.
     pub fn surface_at(&self, x: f32, top: f32, depth: f32) -> Option<(f32, Option<(i64, i64)>)> {
-        let i = floor32(x) as i64;
-        let lowest = top - depth;
-        // Rows above the map hold nothing: the walk starts at most at its top row.
-        let mut j = (floor32(top) as i64).min(self.height as i64 - 1);
-        while j as f32 + 1.0 > lowest && j >= 0 {
-            match self.tile(i, j) {
-                Tile::Solid => {
-                    let h = j as f32 + 1.0;
-                    return (h <= top && h >= lowest).then_some((h, None));
+        let i = floor_to_i64(x);
+        surface_walk(self.height, i, top, depth, |j| self.surface_cell(i, j, x))
+    }
+
+    /// What cell `(i, j)` offers [`Level::surface_at`]'s walk at `x` (in column `i`).
+    #[inline]
+    pub(crate) fn surface_cell(&self, i: i64, j: i64, x: f32) -> SurfaceCell {
+        match self.tile(i, j) {
+            Tile::Solid => SurfaceCell::Solid,
+            Tile::Slope(s) => {
+                // Where the surface is at the tile's bottom, this tile holds nothing at x.
+                let local = s.height_at(x - i as f32);
+                if local > 0.0 {
+                    SurfaceCell::Slope(local)
+                } else {
+                    SurfaceCell::Open
                 }
-                Tile::Slope(s) => {
-                    // Where the surface is at the tile's bottom, this tile holds nothing at x.
-                    let local = s.height_at(x - i as f32);
-                    let h = j as f32 + local;
-                    if local > 0.0 && h <= top {
-                        return (h >= lowest).then_some((h, Some((i, j))));
-                    }
-                }
-                _ => {}
             }
-            j -= 1;
+            _ => SurfaceCell::Open,
         }
-        None
     }
 
     /// The slope surface's normal at `x` in slope tile `(i, j)`, from the gradient over a
@@ -221,6 +218,51 @@ impl Level {
                 _ => None,
             })
     }
+}
+
+/// What one cell of a column offers the walk of [`Level::surface_at`] at a given x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum SurfaceCell {
+    /// Nothing to stand on at x: empty, one-way, ladder, or a slope whose surface is at the
+    /// cell's bottom there.
+    Open,
+    /// A solid tile: its top.
+    Solid,
+    /// A slope tile whose surface at x is this far (above 0) over the cell's bottom.
+    Slope(f32),
+}
+
+/// [`Level::surface_at`]'s walk down column `i` of a map `height` rows tall, reading each row's
+/// cell from `cell` (the level's own, or cells kept from an earlier walk at the same x): the
+/// highest surface at or below `top`, looking down at most `depth` tiles.
+#[inline]
+pub(crate) fn surface_walk(
+    height: u32,
+    i: i64,
+    top: f32,
+    depth: f32,
+    mut cell: impl FnMut(i64) -> SurfaceCell,
+) -> Option<(f32, Option<(i64, i64)>)> {
+    let lowest = top - depth;
+    // Rows above the map hold nothing: the walk starts at most at its top row.
+    let mut j = floor_to_i64(top).min(height as i64 - 1);
+    while j as f32 + 1.0 > lowest && j >= 0 {
+        match cell(j) {
+            SurfaceCell::Solid => {
+                let h = j as f32 + 1.0;
+                return (h <= top && h >= lowest).then_some((h, None));
+            }
+            SurfaceCell::Slope(local) => {
+                let h = j as f32 + local;
+                if h <= top {
+                    return (h >= lowest).then_some((h, Some((i, j))));
+                }
+            }
+            SurfaceCell::Open => {}
+        }
+        j -= 1;
+    }
+    None
 }
 
 /// A height `h` (tiles, from the level's corner) on a grid of `per_tile` steps per tile, as

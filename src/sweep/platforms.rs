@@ -36,12 +36,14 @@ use super::grid::Grid;
 use super::resolve::{shove, Obstacles};
 use super::space::{Rect, Space};
 use super::{Character, RiderFollow};
-use crate::level::Platform;
+use crate::level::{Path, Platform};
 use crate::oneway::OneWayCheck;
 
 /// A platform's motion and where it is.
 pub(crate) struct PlatformState {
     spec: Platform,
+    /// What placing it computes whatever the time (a waypoint path's lengths), computed once.
+    path: Path,
     /// The level's corner in the world, tiles.
     origin: DVec2,
 }
@@ -51,8 +53,15 @@ impl PlatformState {
     pub(super) fn new(spec: &Platform, origin: DVec2) -> Self {
         PlatformState {
             spec: spec.clone(),
+            path: spec.path(),
             origin,
         }
+    }
+
+    /// Its lower-left corner at time `t`, level tiles ([`Platform::position`]).
+    #[inline]
+    fn position(&self, t: f64) -> Vec2 {
+        self.spec.position_on(&self.path, t)
     }
 
     /// The box it stays inside over its whole motion, in world tiles (lower left, upper right):
@@ -70,7 +79,9 @@ impl PlatformState {
     /// Its box in the world at time `t`, in f32 (the float mode): its box in level
     /// coordinates placed at the origin rounded to f32.
     pub(super) fn aabb(&self, t: f64) -> Aabb {
-        self.spec.aabb(t).translated(self.origin.as_vec2())
+        self.spec
+            .aabb_at(self.position(t))
+            .translated(self.origin.as_vec2())
     }
 
     /// Its box in the world at time `t`, in f64 (the f64 mode): its corner in level coordinates
@@ -81,7 +92,7 @@ impl PlatformState {
     /// an f32 spacing off it, more than an epsilon of 1e-7 tile, and the rider would fall
     /// through).
     pub(super) fn aabb_f64(&self, t: f64) -> Rect<f64> {
-        let min = self.spec.position(t).as_dvec2() + self.origin;
+        let min = self.position(t).as_dvec2() + self.origin;
         Rect {
             min: min.to_array(),
             max: (min + self.spec.size.as_dvec2()).to_array(),
@@ -91,7 +102,7 @@ impl PlatformState {
     /// Its box on `grid` at time `t`, in world subpixels: its path rounded to the nearest
     /// subpixel ([`Platform::grid_box`]), placed at the level's corner on the grid.
     pub(super) fn grid_box(&self, grid: &Grid, t: f64) -> Rect<i64> {
-        let (min, max) = self.spec.grid_box(t, grid.per_tile);
+        let (min, max) = self.spec.grid_box_at(self.position(t), grid.per_tile);
         Rect {
             min: (min + grid.origin).to_array(),
             max: (max + grid.origin).to_array(),
@@ -172,23 +183,35 @@ impl<C: super::space::Coord> Platforms<C> {
     #[inline]
     fn box_now<S: Space<Coord = C>>(&self, s: &S, i: usize) -> (Rect<C>, BoxKind) {
         if self.placed_at[i].get() != self.now {
-            let (_, kind) = self.boxes[i].get();
-            self.boxes[i].set((s.platform_at(&self.states[i], self.now), kind));
-            self.placed_at[i].set(self.now);
+            self.place_now(s, i);
         }
         self.boxes[i].get()
     }
 
-    /// The platforms at the current time whose reach touches `swept`, in their order: every
-    /// platform whose box can touch it.
-    pub(super) fn near<'a, S: Space<Coord = C>>(
-        &'a self,
-        s: &'a S,
+    /// Places platform `i` at the current time (once per step, for the first move that meets
+    /// it).
+    #[inline(never)]
+    fn place_now<S: Space<Coord = C>>(&self, s: &S, i: usize) {
+        let (_, kind) = self.boxes[i].get();
+        self.boxes[i].set((s.platform_at(&self.states[i], self.now), kind));
+        self.placed_at[i].set(self.now);
+    }
+
+    /// Calls `f` with each platform at the current time whose reach touches `swept`, in their
+    /// order: every platform whose box can touch it.
+    #[inline(always)]
+    pub(super) fn near<S: Space<Coord = C>>(
+        &self,
+        s: &S,
         swept: Rect<C>,
-    ) -> impl Iterator<Item = (Rect<C>, BoxKind)> + 'a {
-        (0..self.reach.len())
-            .filter(move |&i| self.reach[i].touches(&swept))
-            .map(move |i| self.box_now(s, i))
+        mut f: impl FnMut(Rect<C>, BoxKind),
+    ) {
+        for (i, reach) in self.reach.iter().enumerate() {
+            if reach.touches(&swept) {
+                let (t, kind) = self.box_now(s, i);
+                f(t, kind);
+            }
+        }
     }
 
     /// Makes every platform's reach the whole plane, so that every platform is placed and
