@@ -75,7 +75,7 @@ impl<C: Copy> NearCache<C> {
     /// The static boxes near `area`, each as `place` puts it in the storage, with their kind,
     /// in the BVH's order: every box touching `area` (inclusive) and maybe others near it, which
     /// the caller's own test leaves out (see the type's note).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn query(
         &mut self,
         tiles: &StaticTiles,
@@ -107,7 +107,7 @@ impl<C: Coord> NearCache<C> {
     /// `area_of` must be monotone (the area of a box inside another lies inside the other's),
     /// as rounding each corner to f32 and widening by the corners' magnitude is; `inside`
     /// gives a box in the storage's coordinate meant to lie within a region, which is checked.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn query_rect(
         &mut self,
         tiles: &StaticTiles,

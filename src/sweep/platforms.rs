@@ -131,6 +131,9 @@ pub(super) struct Platforms<C> {
     /// Each platform's downward speed (tiles/s) over the step that ended at the time given
     /// beside it, kept when the platform moved so that the next step need not place it twice.
     down: Vec<(f64, f32)>,
+    /// Per platform, whether a character rode it when this step's pass began (kept here so
+    /// that the pass allocates nothing).
+    ridden: Vec<bool>,
     /// The time the platforms are at: the end of the last step.
     now: f64,
     /// The start and length (s) of the last step, none before the first (a rider's follow
@@ -169,6 +172,7 @@ impl<C: super::space::Coord> Platforms<C> {
         Platforms {
             placed_at: vec![Cell::new(0.0); states.len()],
             down: vec![(0.0, 0.0); states.len()],
+            ridden: vec![false; states.len()],
             reach: states.iter().map(|p| s.reach(p)).collect(),
             states,
             boxes,
@@ -269,7 +273,26 @@ impl<C: super::space::Coord> Platforms<C> {
             eps,
         };
         let g = self.gravity;
-        for i in 0..self.states.len() {
+        // What the pass tests each platform against first: the platforms ridden when it began
+        // (a character's ride changes in the pass only to the platform moving it, or to none),
+        // and a box holding every character (grown as they are moved): a platform neither
+        // ridden nor reaching that box meets nobody, with one test for all the characters.
+        self.ridden.fill(false);
+        let mut all: Option<Rect<C>> = None;
+        for c in characters.iter() {
+            if let Some(r) = c.riding.and_then(|k| self.ridden.get_mut(k as usize)) {
+                *r = true;
+            }
+            all = Some(cover(all, &c.body.rect()));
+        }
+        let mut next = 0;
+        // The next platform from `next` on that is ridden or reaches the characters' box (one
+        // scan over the platforms; the others meet nobody).
+        while let Some(k) = (self.reach[next..].iter().zip(&self.ridden[next..]))
+            .position(|(reach, &ridden)| ridden || all.is_some_and(|a| a.touches(reach)))
+        {
+            let i = next + k;
+            next = i + 1;
             // A platform no character rides or touches the reach of meets nobody this step.
             let reach = self.reach[i];
             let met = characters
@@ -298,6 +321,7 @@ impl<C: super::space::Coord> Platforms<C> {
                         carry[1] = -follow;
                     }
                     let blocked = shove(&level, c, carry);
+                    all = Some(cover(all, &c.body.rect()));
                     let after = overlap(&c.body.rect(), &new);
                     if blocked && after[0] > eps && after[1] > eps {
                         // Carried into the level (lifted into a ceiling, pressed into a wall):
@@ -344,6 +368,7 @@ impl<C: super::space::Coord> Platforms<C> {
                     (None, None) => continue,
                 };
                 let blocked = shove(&level, c, push);
+                all = Some(cover(all, &c.body.rect()));
                 let after = overlap(&c.body.rect(), &new);
                 if blocked && after[0] > eps && after[1] > eps {
                     c.crushed = true;
@@ -361,6 +386,17 @@ impl<C: super::space::Coord> Platforms<C> {
         }
         self.last = Some((self.now, dt));
         self.now = t1;
+    }
+}
+
+/// The box holding `a` (if any) and `b`.
+fn cover<C: super::space::Coord>(a: Option<Rect<C>>, b: &Rect<C>) -> Rect<C> {
+    match a {
+        None => *b,
+        Some(a) => Rect {
+            min: [0, 1].map(|k| a.min[k].min(b.min[k])),
+            max: [0, 1].map(|k| a.max[k].max(b.max[k])),
+        },
     }
 }
 

@@ -297,7 +297,7 @@ impl Space for FloatSpace {
     fn whole_move(&self, _: &mut Body<f32>, _: Axis, delta: f32, _: bool) -> f32 {
         delta
     }
-    #[inline]
+    #[inline(always)]
     fn statics<'a>(
         &'a self,
         tiles: &StaticTiles,
@@ -397,7 +397,7 @@ impl Space for DoubleSpace {
     fn whole_move(&self, _: &mut Body<f64>, _: Axis, delta: f32, _: bool) -> f64 {
         delta as f64
     }
-    #[inline]
+    #[inline(always)]
     fn statics<'a>(
         &'a self,
         tiles: &StaticTiles,
@@ -508,7 +508,7 @@ impl Space for GridSpace {
         }
         n as i64
     }
-    #[inline]
+    #[inline(always)]
     fn statics<'a>(
         &'a self,
         tiles: &StaticTiles,
