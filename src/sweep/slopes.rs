@@ -194,12 +194,12 @@ fn overhang<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> f32 {
 pub(super) fn ramp_top_for_x<S: Space>(
     w: &World<S>,
     c: &mut Character<S::Coord>,
+    feet: Vec2,
 ) -> Option<S::Coord> {
     if !w.level.features.slopes {
         return None;
     }
     let overhang = overhang(w, c);
-    let feet = w.feet(c);
     slope_under(w.level, &mut c.column, w.frame.origin, feet, overhang)
         .map(|h| w.space.coord_y(h + overhang))
 }
@@ -209,12 +209,12 @@ pub(super) fn ramp_top_for_x<S: Space>(
 pub(super) fn ramp_band_for_y<S: Space>(
     w: &World<S>,
     c: &mut Character<S::Coord>,
+    feet: Vec2,
 ) -> Option<(S::Coord, S::Coord)> {
     if !w.level.features.slopes {
         return None;
     }
     let overhang = overhang(w, c);
-    let feet = w.feet(c);
     slope_under(w.level, &mut c.column, w.frame.origin, feet, overhang).map(|h| {
         (
             w.space.coord_y(h + w.frame.eps),
@@ -223,35 +223,42 @@ pub(super) fn ramp_band_for_y<S: Space>(
     })
 }
 
-/// How far the ground under the centre may rise during the x move that started at `start`:
-/// the climb gradient times the horizontal distance, plus the tolerance (frame tiles);
+/// `c`'s feet in the frame for the slope rules ([`World::feet`]; on the grid a conversion from
+/// subpixels, so the step finds each once and hands it on), zero on a level without slopes,
+/// where nothing reads them.
+pub(super) fn feet<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> Vec2 {
+    if w.level.features.slopes {
+        w.feet(c)
+    } else {
+        Vec2::ZERO
+    }
+}
+
+/// How far the ground under the centre may rise during the x move from feet `start` to feet
+/// `now`: the climb gradient times the horizontal distance, plus the tolerance (frame tiles);
 /// 0 on a level without slopes, where nothing reads it.
-pub(super) fn rise_allow<S: Space>(
-    w: &World<S>,
-    c: &Character<S::Coord>,
-    start: &Body<S::Coord>,
-) -> f32 {
+pub(super) fn rise_allow<S: Space>(w: &World<S>, now: Vec2, start: Vec2) -> f32 {
     if !w.level.features.slopes {
         return 0.0;
     }
-    w.climb_gradient * (w.feet(c).x - w.space.feet(start).x).abs() + w.frame.eps
+    w.climb_gradient * (now.x - start.x).abs() + w.frame.eps
 }
 
-/// Step 4, the climb limit: if the ground under the centre rose more than `rise_allow` during
-/// the x move, the move is undone (back to `start`'s x) as a wall would stop it. Returns
-/// whether it was.
+/// Step 4, the climb limit: if the ground under the centre (`c`'s feet now at `feet`) rose
+/// more than `rise_allow` during the x move, the move is undone (back to `start`'s x) as a wall
+/// would stop it, which puts the feet back where they were before it. Returns whether it was.
 pub(super) fn climb_limit<S: Space>(
     w: &World<S>,
     stats: &mut SweepStats,
     c: &mut Character<S::Coord>,
     start: &Body<S::Coord>,
+    feet: Vec2,
     rise_allow: f32,
 ) -> bool {
     if !w.level.features.slopes {
         return false;
     }
     stats.slope_steps += 1;
-    let feet = w.feet(c);
     let origin = w.frame.origin;
     let blocked = climb_blocked(w.level, &mut c.column, origin, feet.x, feet.y, rise_allow);
     if blocked {
@@ -259,16 +266,6 @@ pub(super) fn climb_limit<S: Space>(
         c.body.remainder.x = 0.0;
     }
     blocked
-}
-
-/// The feet's height before the y move (frame tiles), for [`ground_on_slopes`]; 0 on a level
-/// without slopes, where nothing reads it.
-pub(super) fn feet_before_y<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> f32 {
-    if w.level.features.slopes {
-        w.feet(c).y
-    } else {
-        0.0
-    }
 }
 
 /// Puts `c`'s feet at frame height `y` (on the grid: [`crate::sweep::grid::Grid::round_height`],
