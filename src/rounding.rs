@@ -60,6 +60,40 @@ macro_rules! roundings {
 roundings!(f32, F32_WHOLE, i32, floor32, ceil32, round32);
 roundings!(f64, F64_WHOLE, i64, floor64, ceil64, round64);
 
+/// `floor32(x) as i64` (so `x.floor() as i64`), bit for bit, without rounding in float first:
+/// the truncating conversion (saturating, NaN to 0) and one step down for a negative fraction.
+/// A column's or row's index from a coordinate.
+#[inline]
+pub(crate) fn floor_to_i64(x: f32) -> i64 {
+    let t = x as i64;
+    // Below 2^23 in magnitude `t` is exact in f32; above, `x` is whole and `t` is `x` (or the
+    // saturated bound, which only a value beyond it exceeds: then the bound is the answer).
+    if (t as f32) > x && t != i64::MIN {
+        t - 1
+    } else {
+        t
+    }
+}
+
+/// `round64(x) as i64` (so `x.round() as i64`), bit for bit, without rounding in float
+/// first: below 2^52 in magnitude, the truncating conversion and one step away from zero for
+/// a fraction of a half or more (`x - t` is exact there); anything else as the standard does.
+#[inline]
+pub(crate) fn round_to_i64(x: f64) -> i64 {
+    if x.is_nan() || x.abs() >= F64_WHOLE {
+        return round64(x) as i64;
+    }
+    let t = x as i64;
+    let d = x - t as f64;
+    if d >= 0.5 {
+        t + 1
+    } else if d <= -0.5 {
+        t - 1
+    } else {
+        t
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -115,6 +149,10 @@ mod tests {
             assert!(same32(floor32(x), x.floor()), "floor {x:e}");
             assert!(same32(ceil32(x), x.ceil()), "ceil {x:e}");
             assert!(same32(round32(x), x.round()), "round {x:e}");
+            assert_eq!(floor_to_i64(x), x.floor() as i64, "floor to i64 {x:e}");
+        }
+        for x in [-9.3e18f32, -9.223372e18, -1e30, 9.3e18, 9.223372e18, 1e30] {
+            assert_eq!(floor_to_i64(x), x.floor() as i64, "floor to i64 {x:e}");
         }
     }
 
@@ -133,6 +171,7 @@ mod tests {
             assert!(same64(floor64(x), x.floor()), "floor {x:e}");
             assert!(same64(ceil64(x), x.ceil()), "ceil {x:e}");
             assert!(same64(round64(x), x.round()), "round {x:e}");
+            assert_eq!(round_to_i64(x), x.round() as i64, "round to i64 {x:e}");
         }
     }
 }

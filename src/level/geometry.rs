@@ -7,7 +7,7 @@ use glam::Vec2;
 use parry2d::bounding_volume::Aabb;
 
 use super::{Level, Slope, Tile};
-use crate::rounding::{ceil64, floor32, round64};
+use crate::rounding::{ceil64, floor_to_i64, round64};
 
 impl Level {
     /// The box of tile `(i, j)`.
@@ -131,29 +131,26 @@ impl Level {
     /// `depth` tiles: a solid tile's top or a slope's surface at `x`. Returns the height and, for
     /// a slope, its tile.
     pub fn surface_at(&self, x: f32, top: f32, depth: f32) -> Option<(f32, Option<(i64, i64)>)> {
-        let i = floor32(x) as i64;
-        let lowest = top - depth;
-        // Rows above the map hold nothing: the walk starts at most at its top row.
-        let mut j = (floor32(top) as i64).min(self.height as i64 - 1);
-        while j as f32 + 1.0 > lowest && j >= 0 {
-            match self.tile(i, j) {
-                Tile::Solid => {
-                    let h = j as f32 + 1.0;
-                    return (h <= top && h >= lowest).then_some((h, None));
+        let i = floor_to_i64(x);
+        surface_walk(self.height, i, top, depth, |j| self.surface_cell(i, j, x))
+    }
+
+    /// What cell `(i, j)` offers [`Level::surface_at`]'s walk at `x` (in column `i`).
+    #[inline]
+    pub(crate) fn surface_cell(&self, i: i64, j: i64, x: f32) -> SurfaceCell {
+        match self.tile(i, j) {
+            Tile::Solid => SurfaceCell::Solid,
+            Tile::Slope(s) => {
+                // Where the surface is at the tile's bottom, this tile holds nothing at x.
+                let local = s.height_at(x - i as f32);
+                if local > 0.0 {
+                    SurfaceCell::Slope(local)
+                } else {
+                    SurfaceCell::Open
                 }
-                Tile::Slope(s) => {
-                    // Where the surface is at the tile's bottom, this tile holds nothing at x.
-                    let local = s.height_at(x - i as f32);
-                    let h = j as f32 + local;
-                    if local > 0.0 && h <= top {
-                        return (h >= lowest).then_some((h, Some((i, j))));
-                    }
-                }
-                _ => {}
             }
-            j -= 1;
+            _ => SurfaceCell::Open,
         }
-        None
     }
 
     /// The slope surface's normal at `x` in slope tile `(i, j)`, from the gradient over a
@@ -223,6 +220,51 @@ impl Level {
     }
 }
 
+/// What one cell of a column offers the walk of [`Level::surface_at`] at a given x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum SurfaceCell {
+    /// Nothing to stand on at x: empty, one-way, ladder, or a slope whose surface is at the
+    /// cell's bottom there.
+    Open,
+    /// A solid tile: its top.
+    Solid,
+    /// A slope tile whose surface at x is this far (above 0) over the cell's bottom.
+    Slope(f32),
+}
+
+/// [`Level::surface_at`]'s walk down column `i` of a map `height` rows tall, reading each row's
+/// cell from `cell` (the level's own, or cells kept from an earlier walk at the same x): the
+/// highest surface at or below `top`, looking down at most `depth` tiles.
+#[inline]
+pub(crate) fn surface_walk(
+    height: u32,
+    i: i64,
+    top: f32,
+    depth: f32,
+    mut cell: impl FnMut(i64) -> SurfaceCell,
+) -> Option<(f32, Option<(i64, i64)>)> {
+    let lowest = top - depth;
+    // Rows above the map hold nothing: the walk starts at most at its top row.
+    let mut j = floor_to_i64(top).min(height as i64 - 1);
+    while j as f32 + 1.0 > lowest && j >= 0 {
+        match cell(j) {
+            SurfaceCell::Solid => {
+                let h = j as f32 + 1.0;
+                return (h <= top && h >= lowest).then_some((h, None));
+            }
+            SurfaceCell::Slope(local) => {
+                let h = j as f32 + local;
+                if h <= top {
+                    return (h >= lowest).then_some((h, Some((i, j))));
+                }
+            }
+            SurfaceCell::Open => {}
+        }
+        j -= 1;
+    }
+    None
+}
+
 /// A height `h` (tiles, from the level's corner) on a grid of `per_tile` steps per tile, as
 /// whole steps: the one rounding of surface heights that integer positions use (the sweep's
 /// `Grid::round_height`, and the metrics' declared stance for it). A height within 1e-4 of a
@@ -230,6 +272,20 @@ impl Level {
 /// so feet put on a surface are never below it and at most one step above it.
 pub fn round_height_up(h: f32, per_tile: i64) -> i64 {
     let v = h as f64 * per_tile as f64;
+    if v.abs() < 4_503_599_627_370_496.0 {
+        // Below 2^52 (and not NaN), in integers: `t` truncates `v`, `d = v - t` is exact, `t + k`
+        // is `round64(v)` and `d - k` is exactly `v - round64(v)`; `ceil64(v)` is `t + 1` for a
+        // positive fraction, else `t`. The same answers as the float roundings below, with two
+        // conversions instead of four (this runs a few times per step on the grid's slopes).
+        let t = v as i64;
+        let d = v - t as f64;
+        let k = (d >= 0.5) as i64 - (d <= -0.5) as i64;
+        return if (d - k as f64).abs() < 1e-4 {
+            t + k
+        } else {
+            t + (d > 0.0) as i64
+        };
+    }
     let r = round64(v);
     if (v - r).abs() < 1e-4 {
         r as i64
@@ -286,6 +342,41 @@ mod tests {
         assert_eq!(round_height_up(0.75 + 1e-7, 32), 24);
         assert_eq!(round_height_up(0.414_213_57, 32), 14); // 13.25 subpixels
         assert_eq!(round_height_up(-0.414_213_57, 32), -13);
+    }
+
+    #[test]
+    fn heights_round_up_as_the_float_roundings_do() {
+        // The integer path against the float roundings it replaced, over every magnitude (each
+        // of 2^32 f32 bit patterns stepped by a prime), the grid's steps and their neighbours.
+        let reference = |h: f32, n: i64| {
+            let v = h as f64 * n as f64;
+            let r = v.round();
+            if (v - r).abs() < 1e-4 {
+                r as i64
+            } else {
+                v.ceil() as i64
+            }
+        };
+        let spread = (0..100_000u64).map(|k| f32::from_bits((k * 42_947) as u32));
+        let steps = (-2000..2000).flat_map(|k| {
+            let h = k as f32 / 32.0;
+            [
+                h,
+                h.next_up(),
+                h.next_down(),
+                h + 1e-5,
+                h - 1e-5,
+                h + 0.5 / 32.0,
+            ]
+        });
+        for h in spread
+            .chain(steps)
+            .chain([f32::NAN, f32::INFINITY, -1e30, 1e30])
+        {
+            for n in [1, 16, 32, 65_536] {
+                assert_eq!(round_height_up(h, n), reference(h, n), "{h:e} x {n}");
+            }
+        }
     }
 
     #[test]

@@ -33,10 +33,12 @@ pub use self::toml::{parse_level, parse_scenarios, side_import_options, LevelErr
 pub use features::Features;
 pub use format::{detect_format, LevelFormat};
 pub use geometry::{character_box, round_height_up};
+pub(crate) use geometry::{surface_walk, SurfaceCell};
 pub use import::{
     Edges, ImportFailure, ImportOptions, ImportWarning, LayerReport, LayerRole, MapImport,
 };
 pub use model::Level;
+pub(crate) use platform::Path;
 pub use platform::{Platform, PlatformMotion};
 pub use probes::{probe_scenarios, ProbeConfig, SpawnPoint};
 pub use scenario::{

@@ -3,6 +3,8 @@
 
 use glam::{DVec2, I64Vec2, Vec2};
 
+use crate::rounding::round_to_i64;
+
 /// How a platform moves. Positions are of the platform's lower-left corner, in tiles.
 #[derive(Clone, Debug, PartialEq)]
 pub enum PlatformMotion {
@@ -47,6 +49,50 @@ impl Platform {
     /// The lower-left corner at time `t` (seconds), computed in f64 and rounded once, so that
     /// every backend gets the same bits.
     pub fn position(&self, t: f64) -> Vec2 {
+        match &self.motion {
+            PlatformMotion::Waypoints { points, speed } => {
+                // No allocation: this runs every step (a controller that places a platform
+                // often keeps its [`Path`] instead).
+                let length: f64 = points.windows(2).map(segment).sum();
+                along(self.start, points, *speed, t, length, |k| {
+                    segment(&points[k..k + 2])
+                })
+            }
+            _ => self.smooth_position(t),
+        }
+    }
+
+    /// What [`Platform::position`] computes whatever the time, computed once: a waypoint
+    /// path's segment lengths and their sum.
+    pub(crate) fn path(&self) -> Path {
+        match &self.motion {
+            PlatformMotion::Waypoints { points, .. } => {
+                let segments: Vec<f64> = points.windows(2).map(segment).collect();
+                Path {
+                    length: segments.iter().sum(),
+                    segments,
+                }
+            }
+            _ => Path::default(),
+        }
+    }
+
+    /// [`Platform::position`] from the platform's [`Platform::path`], bit for bit.
+    #[inline]
+    pub(crate) fn position_on(&self, path: &Path, t: f64) -> Vec2 {
+        match &self.motion {
+            PlatformMotion::Waypoints { points, speed } => {
+                along(self.start, points, *speed, t, path.length, |k| {
+                    path.segments[k]
+                })
+            }
+            _ => self.smooth_position(t),
+        }
+    }
+
+    /// [`Platform::position`] of a sine or circle motion (the start for a waypoint path).
+    #[inline]
+    fn smooth_position(&self, t: f64) -> Vec2 {
         let start = self.start.as_dvec2();
         let tau = std::f64::consts::TAU;
         let p = match &self.motion {
@@ -57,30 +103,7 @@ impl Platform {
                 let a = tau * t / *period as f64;
                 start + *radius as f64 * DVec2::new(a.cos() - 1.0, a.sin())
             }
-            PlatformMotion::Waypoints { points, speed } => {
-                // No allocation: this runs every step.
-                let seg = |w: &[Vec2]| (w[1].as_dvec2() - w[0].as_dvec2()).length();
-                let length: f64 = points.windows(2).map(seg).sum();
-                if length <= 0.0 {
-                    return self.start;
-                }
-                let mut s = (*speed as f64 * t).rem_euclid(2.0 * length);
-                if s > length {
-                    s = 2.0 * length - s;
-                }
-                let mut at = start;
-                for w in points.windows(2) {
-                    let (a, b) = (w[0].as_dvec2(), w[1].as_dvec2());
-                    let len = (b - a).length();
-                    if s <= len {
-                        at = a + (b - a) * (s / len);
-                        break;
-                    }
-                    s -= len;
-                    at = b;
-                }
-                at
-            }
+            PlatformMotion::Waypoints { .. } => start,
         };
         p.as_vec2()
     }
@@ -111,7 +134,12 @@ impl Platform {
 
     /// The platform's box at time `t`.
     pub fn aabb(&self, t: f64) -> parry2d::bounding_volume::Aabb {
-        let p = self.position(t);
+        self.aabb_at(self.position(t))
+    }
+
+    /// The platform's box with its lower-left corner at `p`.
+    #[inline]
+    pub(crate) fn aabb_at(&self, p: Vec2) -> parry2d::bounding_volume::Aabb {
         parry2d::bounding_volume::Aabb::new(p, p + self.size)
     }
 
@@ -122,12 +150,16 @@ impl Platform {
     /// rounding never accumulates (Celeste's solids move a whole pixel at a time, their
     /// remainder carried).
     pub fn grid_box(&self, t: f64, per_tile: i64) -> (I64Vec2, I64Vec2) {
+        self.grid_box_at(self.position(t), per_tile)
+    }
+
+    /// [`Platform::grid_box`] with the lower-left corner at `p` (level tiles).
+    #[inline]
+    pub(crate) fn grid_box_at(&self, p: Vec2, per_tile: i64) -> (I64Vec2, I64Vec2) {
         let n = per_tile as f64;
-        let min = (self.position(t).as_dvec2() * n).round().as_i64vec2();
-        let size = (self.size.as_dvec2() * n)
-            .round()
-            .as_i64vec2()
-            .max(I64Vec2::ONE);
+        let round = |v: DVec2| I64Vec2::new(round_to_i64(v.x), round_to_i64(v.y));
+        let min = round(p.as_dvec2() * n);
+        let size = round(self.size.as_dvec2() * n).max(I64Vec2::ONE);
         (min, min + size)
     }
 
@@ -143,6 +175,64 @@ impl Platform {
             (min.as_dvec2() / n).as_vec2(),
             (max.as_dvec2() / n).as_vec2(),
         )
+    }
+}
+
+/// A waypoint path's segment lengths and their sum ([`Platform::path`]); empty for the other
+/// motions.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Path {
+    segments: Vec<f64>,
+    length: f64,
+}
+
+/// The length of the segment between the two points of `w`.
+fn segment(w: &[Vec2]) -> f64 {
+    (w[1].as_dvec2() - w[0].as_dvec2()).length()
+}
+
+/// Where a platform starting at `start` is at time `t` going back and forth along `points` at
+/// `speed`, the path `length` long and its segment `k` `len(k)` long.
+#[inline]
+fn along(
+    start: Vec2,
+    points: &[Vec2],
+    speed: f32,
+    t: f64,
+    length: f64,
+    len: impl Fn(usize) -> f64,
+) -> Vec2 {
+    if length <= 0.0 {
+        return start;
+    }
+    let mut s = wrap(speed as f64 * t, 2.0 * length);
+    if s > length {
+        s = 2.0 * length - s;
+    }
+    let mut at = start.as_dvec2();
+    for (k, w) in points.windows(2).enumerate() {
+        let (a, b) = (w[0].as_dvec2(), w[1].as_dvec2());
+        let len = len(k);
+        if s <= len {
+            at = a + (b - a) * (s / len);
+            break;
+        }
+        s -= len;
+        at = b;
+    }
+    at.as_vec2()
+}
+
+/// `x.rem_euclid(m)` for `m > 0`, bit for bit, without the remainder's division for the
+/// first two laps: `x` itself below `m`, and `x - m` below `2m` (exact there: Sterbenz).
+#[inline]
+fn wrap(x: f64, m: f64) -> f64 {
+    if (0.0..m).contains(&x) {
+        x
+    } else if (m..2.0 * m).contains(&x) {
+        x - m
+    } else {
+        x.rem_euclid(m)
     }
 }
 

@@ -6,7 +6,7 @@
 use parry2d::bounding_volume::{Aabb, BoundingVolume};
 use parry2d::partitioning::{Bvh, BvhBuildStrategy};
 
-use super::space::Rect;
+use super::space::{Coord, Rect};
 use crate::level::Level;
 
 /// What a box in the broadphase is.
@@ -44,9 +44,18 @@ const NEAR_MARGIN: f32 = 1.0;
 ///
 /// Each box is kept only as its place in the mover's storage `C` (f32 or f64 tiles, or whole
 /// subpixels), converted once when the region is refilled rather than at every query.
+///
+/// Where a query comes in the storage's coordinate and its broadphase area takes converting
+/// (f64, the subpixel grid: [`NearCache::query_rect`]), the cache also keeps `inner`, a box in
+/// that coordinate whose area the region holds: a query inside it is answered from the cache
+/// with no conversion, exactly as the region would answer it (the area of a box inside `inner`
+/// lies inside `inner`'s area, so the region holds it).
 #[derive(Clone, Debug)]
 pub(crate) struct NearCache<C> {
     region: Aabb,
+    /// A box in the storage's coordinate whose broadphase area `region` holds (checked when
+    /// it was set), if one is known.
+    inner: Option<Rect<C>>,
     items: Vec<(Rect<C>, BoxKind)>,
 }
 
@@ -54,6 +63,7 @@ impl<C> Default for NearCache<C> {
     fn default() -> Self {
         NearCache {
             region: Aabb::new_invalid(),
+            inner: None,
             // Room for the neighbourhood of a character a few tiles tall; it grows (once) only
             // for bigger characters or very fast moves.
             items: Vec::with_capacity(64),
@@ -65,7 +75,7 @@ impl<C: Copy> NearCache<C> {
     /// The static boxes near `area`, each as `place` puts it in the storage, with their kind,
     /// in the BVH's order: every box touching `area` (inclusive) and maybe others near it, which
     /// the caller's own test leaves out (see the type's note).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn query(
         &mut self,
         tiles: &StaticTiles,
@@ -82,10 +92,54 @@ impl<C: Copy> NearCache<C> {
     #[cold]
     fn refill(&mut self, tiles: &StaticTiles, area: &Aabb, place: impl Fn(&Aabb) -> Rect<C>) {
         self.region = area.loosened(NEAR_MARGIN);
+        self.inner = None;
         self.items.clear();
         let region = self.region;
         self.items
             .extend(tiles.query(&region).map(|(b, k)| (place(b), k)));
+    }
+}
+
+impl<C: Coord> NearCache<C> {
+    /// [`NearCache::query`] for the box `swept` in the storage's coordinate, whose broadphase
+    /// area is `area_of(swept)`: the same answer and the same refills, but a query inside the
+    /// box kept as `inner` costs four comparisons instead of converting `swept` to its area.
+    /// `area_of` must be monotone (the area of a box inside another lies inside the other's),
+    /// as rounding each corner to f32 and widening by the corners' magnitude is; `inside`
+    /// gives a box in the storage's coordinate meant to lie within a region, which is checked.
+    #[inline(always)]
+    pub(crate) fn query_rect(
+        &mut self,
+        tiles: &StaticTiles,
+        swept: Rect<C>,
+        area_of: impl Fn(&Rect<C>) -> Aabb,
+        inside: impl Fn(&Aabb) -> Rect<C>,
+        place: impl Fn(&Aabb) -> Rect<C>,
+    ) -> &[(Rect<C>, BoxKind)] {
+        if !self.inner.is_some_and(|r| r.contains(&swept)) {
+            self.outside_inner(tiles, swept, area_of, inside, place);
+        }
+        &self.items
+    }
+
+    /// A query outside `inner`: [`NearCache::query`]'s test on its area; a refill sets
+    /// `inner` to `inside(region)` if the region holds that box's area (else to none, and
+    /// every query takes this test).
+    fn outside_inner(
+        &mut self,
+        tiles: &StaticTiles,
+        swept: Rect<C>,
+        area_of: impl Fn(&Rect<C>) -> Aabb,
+        inside: impl Fn(&Aabb) -> Rect<C>,
+        place: impl Fn(&Aabb) -> Rect<C>,
+    ) {
+        let area = area_of(&swept);
+        if !self.region.contains(&area) {
+            self.refill(tiles, &area, place);
+            let inner = inside(&self.region);
+            let valid = (0..2).all(|k| inner.min[k] <= inner.max[k]);
+            self.inner = (valid && self.region.contains(&area_of(&inner))).then_some(inner);
+        }
     }
 }
 

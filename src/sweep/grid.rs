@@ -17,7 +17,7 @@ use parry2d::bounding_volume::{Aabb, BoundingVolume};
 
 use super::space::Rect;
 use crate::backend::BackendError;
-use crate::rounding::round64;
+use crate::rounding::{ceil64, floor64, round_to_i64};
 
 /// The largest distance from the origin, in tiles, at which tile faces are exact in the
 /// broadphase's f32 boxes (2^24).
@@ -30,6 +30,10 @@ pub(crate) struct Grid {
     pub per_tile: i64,
     /// The level's corner (tile (0, 0)'s lower left) in world subpixels.
     pub origin: I64Vec2,
+    /// `1 / per_tile` when that is exact (`per_tile` a power of two: 16 and 32 are), else 0:
+    /// dividing by `per_tile` is then multiplying by it, the same bits for a cheaper
+    /// instruction ([`Grid::tiles`]).
+    recip: f64,
 }
 
 impl Grid {
@@ -61,7 +65,24 @@ impl Grid {
         Ok(Grid {
             per_tile: per_tile as i64,
             origin: o.as_i64vec2(),
+            recip: if per_tile.is_power_of_two() {
+                1.0 / s
+            } else {
+                0.0
+            },
         })
+    }
+
+    /// `v` subpixels in tiles: `v / per_tile`, bit for bit. When `per_tile` is a power of two
+    /// its reciprocal is exact, and `v * recip` and `v / per_tile` are the same real number
+    /// rounded once, so the same f64.
+    #[inline]
+    pub(crate) fn tiles(&self, v: f64) -> f64 {
+        if self.recip != 0.0 {
+            v * self.recip
+        } else {
+            v / self.per_tile as f64
+        }
     }
 
     /// A size in tiles as whole subpixels, rounded up (so the grid box holds the float box);
@@ -76,12 +97,10 @@ impl Grid {
     #[inline]
     pub(crate) fn place(&self, feet: Vec2, size: I64Vec2) -> Rect<i64> {
         let s = self.per_tile as f64;
-        let min = DVec2::new(
-            round64(feet.x as f64 * s - size.x as f64 * 0.5),
-            round64(feet.y as f64 * s),
-        )
-        .as_i64vec2()
-            + self.origin;
+        let min = I64Vec2::new(
+            round_to_i64(feet.x as f64 * s - size.x as f64 * 0.5),
+            round_to_i64(feet.y as f64 * s),
+        ) + self.origin;
         Rect {
             min: min.to_array(),
             max: (min + size).to_array(),
@@ -92,11 +111,10 @@ impl Grid {
     /// level under 2^24 / `per_tile` tiles across.
     #[inline]
     pub(crate) fn feet(&self, b: &Rect<i64>) -> Vec2 {
-        let s = self.per_tile as f64;
         let local = I64Vec2::from_array(b.min) - self.origin;
         Vec2::new(
-            ((local.x as f64 + (b.max[0] - b.min[0]) as f64 * 0.5) / s) as f32,
-            (local.y as f64 / s) as f32,
+            self.tiles(local.x as f64 + (b.max[0] - b.min[0]) as f64 * 0.5) as f32,
+            self.tiles(local.y as f64) as f32,
         )
     }
 
@@ -113,9 +131,30 @@ impl Grid {
     #[inline]
     pub(crate) fn box_of(&self, b: &Aabb) -> Rect<i64> {
         let s = self.per_tile as f64;
+        let on_grid = |v: f32| round_to_i64(v as f64 * s);
         Rect {
-            min: (b.mins.as_dvec2() * s).round().as_i64vec2().to_array(),
-            max: (b.maxs.as_dvec2() * s).round().as_i64vec2().to_array(),
+            min: [on_grid(b.mins.x), on_grid(b.mins.y)],
+            max: [on_grid(b.maxs.x), on_grid(b.maxs.y)],
+        }
+    }
+
+    /// A box of whole subpixels inside the broadphase area `a` (world tiles), short of its
+    /// sides by two subpixels and the widening [`Grid::query_area`] adds at its magnitude, so
+    /// that the area of the box lies inside `a` (the near cache checks it).
+    #[inline]
+    pub(crate) fn inside(&self, a: &Aabb) -> Rect<i64> {
+        let s = self.per_tile as f64;
+        let magnitude = a.mins.abs().max(a.maxs.abs()).max_element().max(1.0) as f64;
+        let m = 2 + ceil64(4.0 * magnitude * f32::EPSILON as f64 * s) as i64;
+        Rect {
+            min: [
+                ceil64(a.mins.x as f64 * s) as i64 + m,
+                ceil64(a.mins.y as f64 * s) as i64 + m,
+            ],
+            max: [
+                floor64(a.maxs.x as f64 * s) as i64 - m,
+                floor64(a.maxs.y as f64 * s) as i64 - m,
+            ],
         }
     }
 
@@ -124,11 +163,8 @@ impl Grid {
     /// of a tile near the origin, two tiles at 1e7).
     #[inline]
     pub(crate) fn query_area(&self, b: &Rect<i64>) -> Aabb {
-        let s = self.per_tile as f64;
-        let (lo, hi) = (
-            I64Vec2::from_array(b.min).as_dvec2() / s,
-            I64Vec2::from_array(b.max).as_dvec2() / s,
-        );
+        let tiles = |v: [i64; 2]| DVec2::new(self.tiles(v[0] as f64), self.tiles(v[1] as f64));
+        let (lo, hi) = (tiles(b.min), tiles(b.max));
         let magnitude = lo.abs().max(hi.abs()).max_element().max(1.0) as f32;
         Aabb::new(lo.as_vec2(), hi.as_vec2()).loosened(2.0 * magnitude * f32::EPSILON)
     }

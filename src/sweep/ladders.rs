@@ -33,7 +33,9 @@ pub(super) fn enter<S: Space>(
 /// The last step: leaves the ladder state when the character is past the ladder's top, off
 /// it, or on the ground while climbing down.
 pub(super) fn leave<S: Space>(w: &World<S>, c: &mut Character<S::Coord>, input: &Input) {
-    if !w.level.features.ladders {
+    // Off a ladder there is nothing to leave (the shared rule's own first test), and the feet
+    // need not be found.
+    if !w.level.features.ladders || !c.motion.on_ladder {
         return;
     }
     let feet = w.feet(c);

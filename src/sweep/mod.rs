@@ -142,6 +142,8 @@ struct Character<C> {
     ground_normal: Vec2,
     /// The static boxes around it, kept between steps.
     near: NearCache<C>,
+    /// The cells under its centre the slope rules read, kept between their lookups.
+    column: slopes::Column,
 }
 
 /// How often each feature's code ran: evidence that a step costs only what the level contains.
@@ -365,6 +367,7 @@ impl<S: Space> Sweep<S> {
             riding: None,
             crushed: false,
             near: NearCache::default(),
+            column: slopes::Column::default(),
         });
         self.characters.len() - 1
     }

@@ -36,12 +36,14 @@ use super::grid::Grid;
 use super::resolve::{shove, Obstacles};
 use super::space::{Rect, Space};
 use super::{Character, RiderFollow};
-use crate::level::Platform;
+use crate::level::{Path, Platform};
 use crate::oneway::OneWayCheck;
 
 /// A platform's motion and where it is.
 pub(crate) struct PlatformState {
     spec: Platform,
+    /// What placing it computes whatever the time (a waypoint path's lengths), computed once.
+    path: Path,
     /// The level's corner in the world, tiles.
     origin: DVec2,
 }
@@ -51,8 +53,15 @@ impl PlatformState {
     pub(super) fn new(spec: &Platform, origin: DVec2) -> Self {
         PlatformState {
             spec: spec.clone(),
+            path: spec.path(),
             origin,
         }
+    }
+
+    /// Its lower-left corner at time `t`, level tiles ([`Platform::position`]).
+    #[inline]
+    fn position(&self, t: f64) -> Vec2 {
+        self.spec.position_on(&self.path, t)
     }
 
     /// The box it stays inside over its whole motion, in world tiles (lower left, upper right):
@@ -70,7 +79,9 @@ impl PlatformState {
     /// Its box in the world at time `t`, in f32 (the float mode): its box in level
     /// coordinates placed at the origin rounded to f32.
     pub(super) fn aabb(&self, t: f64) -> Aabb {
-        self.spec.aabb(t).translated(self.origin.as_vec2())
+        self.spec
+            .aabb_at(self.position(t))
+            .translated(self.origin.as_vec2())
     }
 
     /// Its box in the world at time `t`, in f64 (the f64 mode): its corner in level coordinates
@@ -81,7 +92,7 @@ impl PlatformState {
     /// an f32 spacing off it, more than an epsilon of 1e-7 tile, and the rider would fall
     /// through).
     pub(super) fn aabb_f64(&self, t: f64) -> Rect<f64> {
-        let min = self.spec.position(t).as_dvec2() + self.origin;
+        let min = self.position(t).as_dvec2() + self.origin;
         Rect {
             min: min.to_array(),
             max: (min + self.spec.size.as_dvec2()).to_array(),
@@ -91,7 +102,7 @@ impl PlatformState {
     /// Its box on `grid` at time `t`, in world subpixels: its path rounded to the nearest
     /// subpixel ([`Platform::grid_box`]), placed at the level's corner on the grid.
     pub(super) fn grid_box(&self, grid: &Grid, t: f64) -> Rect<i64> {
-        let (min, max) = self.spec.grid_box(t, grid.per_tile);
+        let (min, max) = self.spec.grid_box_at(self.position(t), grid.per_tile);
         Rect {
             min: (min + grid.origin).to_array(),
             max: (max + grid.origin).to_array(),
@@ -120,6 +131,9 @@ pub(super) struct Platforms<C> {
     /// Each platform's downward speed (tiles/s) over the step that ended at the time given
     /// beside it, kept when the platform moved so that the next step need not place it twice.
     down: Vec<(f64, f32)>,
+    /// Per platform, whether a character rode it when this step's pass began (kept here so
+    /// that the pass allocates nothing).
+    ridden: Vec<bool>,
     /// The time the platforms are at: the end of the last step.
     now: f64,
     /// The start and length (s) of the last step, none before the first (a rider's follow
@@ -158,6 +172,7 @@ impl<C: super::space::Coord> Platforms<C> {
         Platforms {
             placed_at: vec![Cell::new(0.0); states.len()],
             down: vec![(0.0, 0.0); states.len()],
+            ridden: vec![false; states.len()],
             reach: states.iter().map(|p| s.reach(p)).collect(),
             states,
             boxes,
@@ -172,23 +187,35 @@ impl<C: super::space::Coord> Platforms<C> {
     #[inline]
     fn box_now<S: Space<Coord = C>>(&self, s: &S, i: usize) -> (Rect<C>, BoxKind) {
         if self.placed_at[i].get() != self.now {
-            let (_, kind) = self.boxes[i].get();
-            self.boxes[i].set((s.platform_at(&self.states[i], self.now), kind));
-            self.placed_at[i].set(self.now);
+            self.place_now(s, i);
         }
         self.boxes[i].get()
     }
 
-    /// The platforms at the current time whose reach touches `swept`, in their order: every
-    /// platform whose box can touch it.
-    pub(super) fn near<'a, S: Space<Coord = C>>(
-        &'a self,
-        s: &'a S,
+    /// Places platform `i` at the current time (once per step, for the first move that meets
+    /// it).
+    #[inline(never)]
+    fn place_now<S: Space<Coord = C>>(&self, s: &S, i: usize) {
+        let (_, kind) = self.boxes[i].get();
+        self.boxes[i].set((s.platform_at(&self.states[i], self.now), kind));
+        self.placed_at[i].set(self.now);
+    }
+
+    /// Calls `f` with each platform at the current time whose reach touches `swept`, in their
+    /// order: every platform whose box can touch it.
+    #[inline(always)]
+    pub(super) fn near<S: Space<Coord = C>>(
+        &self,
+        s: &S,
         swept: Rect<C>,
-    ) -> impl Iterator<Item = (Rect<C>, BoxKind)> + 'a {
-        (0..self.reach.len())
-            .filter(move |&i| self.reach[i].touches(&swept))
-            .map(move |i| self.box_now(s, i))
+        mut f: impl FnMut(Rect<C>, BoxKind),
+    ) {
+        for (i, reach) in self.reach.iter().enumerate() {
+            if reach.touches(&swept) {
+                let (t, kind) = self.box_now(s, i);
+                f(t, kind);
+            }
+        }
     }
 
     /// Makes every platform's reach the whole plane, so that every platform is placed and
@@ -246,7 +273,26 @@ impl<C: super::space::Coord> Platforms<C> {
             eps,
         };
         let g = self.gravity;
-        for i in 0..self.states.len() {
+        // What the pass tests each platform against first: the platforms ridden when it began
+        // (a character's ride changes in the pass only to the platform moving it, or to none),
+        // and a box holding every character (grown as they are moved): a platform neither
+        // ridden nor reaching that box meets nobody, with one test for all the characters.
+        self.ridden.fill(false);
+        let mut all: Option<Rect<C>> = None;
+        for c in characters.iter() {
+            if let Some(r) = c.riding.and_then(|k| self.ridden.get_mut(k as usize)) {
+                *r = true;
+            }
+            all = Some(cover(all, &c.body.rect()));
+        }
+        let mut next = 0;
+        // The next platform from `next` on that is ridden or reaches the characters' box (one
+        // scan over the platforms; the others meet nobody).
+        while let Some(k) = (self.reach[next..].iter().zip(&self.ridden[next..]))
+            .position(|(reach, &ridden)| ridden || all.is_some_and(|a| a.touches(reach)))
+        {
+            let i = next + k;
+            next = i + 1;
             // A platform no character rides or touches the reach of meets nobody this step.
             let reach = self.reach[i];
             let met = characters
@@ -275,6 +321,7 @@ impl<C: super::space::Coord> Platforms<C> {
                         carry[1] = -follow;
                     }
                     let blocked = shove(&level, c, carry);
+                    all = Some(cover(all, &c.body.rect()));
                     let after = overlap(&c.body.rect(), &new);
                     if blocked && after[0] > eps && after[1] > eps {
                         // Carried into the level (lifted into a ceiling, pressed into a wall):
@@ -321,6 +368,7 @@ impl<C: super::space::Coord> Platforms<C> {
                     (None, None) => continue,
                 };
                 let blocked = shove(&level, c, push);
+                all = Some(cover(all, &c.body.rect()));
                 let after = overlap(&c.body.rect(), &new);
                 if blocked && after[0] > eps && after[1] > eps {
                     c.crushed = true;
@@ -338,6 +386,17 @@ impl<C: super::space::Coord> Platforms<C> {
         }
         self.last = Some((self.now, dt));
         self.now = t1;
+    }
+}
+
+/// The box holding `a` (if any) and `b`.
+fn cover<C: super::space::Coord>(a: Option<Rect<C>>, b: &Rect<C>) -> Rect<C> {
+    match a {
+        None => *b,
+        Some(a) => Rect {
+            min: [0, 1].map(|k| a.min[k].min(b.min[k])),
+            max: [0, 1].map(|k| a.max[k].max(b.max[k])),
+        },
     }
 }
 

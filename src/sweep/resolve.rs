@@ -19,7 +19,7 @@
 use super::broadphase::{BoxKind, NearCache, StaticTiles};
 use super::oneway;
 use super::platforms::Platforms;
-use super::space::{Body, Coord, Space};
+use super::space::{Body, Coord, Rect, Space};
 use super::{Character, World};
 use crate::oneway::OneWayCheck;
 
@@ -61,6 +61,7 @@ pub(crate) struct Obstacles<'a, S: Space> {
 /// stopped it. `skip` tells which boxes are not obstacles for this move (it gets a box's top
 /// and its kind). The tolerance `eps` counts as the module says; the snap moves the anchor
 /// (`body.at`) alone, so the box keeps its size.
+#[inline(always)]
 pub(crate) fn move_axis<S: Space>(
     o: &Obstacles<'_, S>,
     near: &mut NearCache<S::Coord>,
@@ -88,41 +89,24 @@ pub(crate) fn move_axis<S: Space>(
     swept.min[across] = swept.min[across] + eps;
     swept.max[across] = swept.max[across] - eps;
 
-    let mut closest: Option<(S::Coord, BoxKind)> = None;
-    let mut consider = |t: super::space::Rect<S::Coord>, kind: BoxKind| {
-        // Only a box that touches the swept box (the broadphase's inclusive test, here in the
-        // storage's coordinate) can be in the way.
-        if !t.touches(&swept) || skip(t.max[1], kind) {
-            return;
-        }
-        let beside = b.max[across].min(t.max[across]) - b.min[across].max(t.min[across]) > eps;
-        if !beside {
-            return;
-        }
-        if delta > zero {
-            let face = t.min[a];
-            if face >= hi - eps && face <= hi + delta + eps && closest.is_none_or(|(c, _)| face < c)
-            {
-                closest = Some((face, kind));
-            }
-        } else {
-            let face = t.max[a];
-            if face <= lo + eps && face >= lo + delta - eps && closest.is_none_or(|(c, _)| face > c)
-            {
-                closest = Some((face, kind));
-            }
-        }
+    let mut sweep = Sweep {
+        b,
+        swept,
+        a,
+        across,
+        delta,
+        eps,
+        closest: None,
     };
     // The static boxes, then the moving platforms, each in its own order (two plain loops: the
     // one chained iterator they replaced cost more instructions than the tests themselves).
     for &(t, kind) in o.space.statics(o.tiles, near, swept) {
-        consider(t, kind);
+        sweep.consider(t, kind, &skip);
     }
     if let Some(m) = o.moving {
-        for (t, kind) in m.near(o.space, swept) {
-            consider(t, kind);
-        }
+        m.near(o.space, swept, |t, kind| sweep.consider(t, kind, &skip));
     }
+    let closest = sweep.closest;
     let at = body.at[a];
     match closest {
         None => {
@@ -137,6 +121,57 @@ pub(crate) fn move_axis<S: Space>(
                 face + (at - lo)
             };
             Some(kind)
+        }
+    }
+}
+
+/// One axis move's sweep: the mover's box `b`, the box swept over the move `swept`, and the
+/// closest face found so far ([`move_axis`]).
+struct Sweep<C> {
+    b: Rect<C>,
+    swept: Rect<C>,
+    /// The axis of the move and the other one (indices).
+    a: usize,
+    across: usize,
+    delta: C,
+    eps: C,
+    closest: Option<(C, BoxKind)>,
+}
+
+impl<C: Coord> Sweep<C> {
+    /// Tests box `t` of `kind` against the move: keeps its face if it is the closest obstacle
+    /// so far. Inlined into both loops of [`move_axis`] (as a closure it was a call per box).
+    #[inline(always)]
+    fn consider(&mut self, t: Rect<C>, kind: BoxKind, skip: &impl Fn(C, BoxKind) -> bool) {
+        let (a, across, eps, delta) = (self.a, self.across, self.eps, self.delta);
+        let zero = C::default();
+        // Only a box that touches the swept box (the broadphase's inclusive test, here in the
+        // storage's coordinate) can be in the way.
+        if !t.touches(&self.swept) || skip(t.max[1], kind) {
+            return;
+        }
+        let b = &self.b;
+        let beside = b.max[across].min(t.max[across]) - b.min[across].max(t.min[across]) > eps;
+        if !beside {
+            return;
+        }
+        let (lo, hi) = (b.min[a], b.max[a]);
+        if delta > zero {
+            let face = t.min[a];
+            if face >= hi - eps
+                && face <= hi + delta + eps
+                && self.closest.is_none_or(|(c, _)| face < c)
+            {
+                self.closest = Some((face, kind));
+            }
+        } else {
+            let face = t.max[a];
+            if face <= lo + eps
+                && face >= lo + delta - eps
+                && self.closest.is_none_or(|(c, _)| face > c)
+            {
+                self.closest = Some((face, kind));
+            }
         }
     }
 }
@@ -166,6 +201,7 @@ pub(crate) fn touching<S: Space>(
 /// platforms, in the storage's units ([`Space::whole_move`]). On the grid a fall too small to
 /// move a subpixel reports the ground the box rests on, and a move that hits drops the axis's
 /// carried fraction.
+#[inline(always)]
 fn step_move<S: Space>(
     w: &World<S>,
     c: &mut Character<S::Coord>,

@@ -20,7 +20,8 @@ use glam::Vec2;
 
 use super::space::{Body, Space};
 use super::{Character, SweepStats, World};
-use crate::level::Level;
+use crate::level::{surface_walk, Level, SurfaceCell};
+use crate::rounding::floor_to_i64;
 
 /// Ground found under the centre: its height (world) and normal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,61 +32,153 @@ pub(crate) struct Ground {
     pub normal: Vec2,
 }
 
-fn ground(level: &Level, origin: Vec2, x: f32, top: f32, depth: f32) -> Option<Ground> {
+/// How many rows of a column [`Column`] keeps: a step's lookups under the centre read the rows
+/// from one above the feet to one below.
+const ROWS: usize = 4;
+
+/// The cells of the column under one x (level coordinates) that the slope rules have read, kept
+/// between their lookups: a step looks under the centre four or five times, at the x it
+/// started from and the x the x move ended at, and the next step starts at that x again. A
+/// lookup at an x not kept (another x is another column, or the same column's slopes at other
+/// heights) starts afresh; the cells kept are what [`Level::surface_cell`] gives for that x, so
+/// every answer is the level's own ([`Level::surface_at`]'s walk over the same cells).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Column {
+    /// The x the cells are read at (its bits), and its column `floor(x)` (0 at x = 0).
+    x: u32,
+    i: i64,
+    /// The lowest row kept: rows `base..base + ROWS`, `None` where not read yet.
+    base: i64,
+    cells: [Option<SurfaceCell>; ROWS],
+}
+
+impl Column {
+    /// [`Level::surface_at`] (level coordinates), reading the cells through this column.
+    fn surface_at(
+        &mut self,
+        level: &Level,
+        x: f32,
+        top: f32,
+        depth: f32,
+    ) -> Option<(f32, Option<(i64, i64)>)> {
+        if x.to_bits() != self.x {
+            self.x = x.to_bits();
+            self.i = floor_to_i64(x);
+            self.cells = [None; ROWS];
+        }
+        let i = self.i;
+        surface_walk(level.height, i, top, depth, |j| {
+            let k = j.wrapping_sub(self.base);
+            match self.cells.get(k as usize) {
+                Some(&Some(cell)) => cell,
+                _ => self.read(level, j, x),
+            }
+        })
+    }
+
+    /// Reads row `j` from the level and keeps it (the rows kept become two below to one
+    /// above `j`, the rest of a step's lookups, when `j` is not among them). Not inlined, so
+    /// that a lookup of rows already kept does none of its work.
+    #[inline(never)]
+    fn read(&mut self, level: &Level, j: i64, x: f32) -> SurfaceCell {
+        // The walk reads rows 0 to the map's top only, so `j - 2` does not overflow.
+        if !(self.base..self.base + ROWS as i64).contains(&j) {
+            self.base = j - 2;
+            self.cells = [None; ROWS];
+        }
+        let cell = level.surface_cell(self.i, j, x);
+        self.cells[(j - self.base) as usize] = Some(cell);
+        cell
+    }
+}
+
+/// The surface under the centre at frame `x` from frame height `top` down `depth` tiles: its
+/// height (frame) and, on a slope, the slope's tile.
+fn surface(
+    level: &Level,
+    column: &mut Column,
+    origin: Vec2,
+    x: f32,
+    top: f32,
+    depth: f32,
+) -> Option<(f32, Option<(i64, i64)>)> {
     let (lx, ltop) = (x - origin.x, top - origin.y);
-    level.surface_at(lx, ltop, depth).map(|(h, slope)| Ground {
-        y: h + origin.y,
+    column
+        .surface_at(level, lx, ltop, depth)
+        .map(|(h, slope)| (h + origin.y, slope))
+}
+
+/// The ground at height `y` (frame) found at frame `x`: its normal, a slope's if on one.
+fn ground_at(level: &Level, origin: Vec2, x: f32, y: f32, slope: Option<(i64, i64)>) -> Ground {
+    let lx = x - origin.x;
+    Ground {
+        y,
         normal: slope.map_or(Vec2::Y, |(i, j)| level.slope_normal(i, j, lx)),
-    })
+    }
 }
 
 /// The height of the slope under the centre, if the ground under the centre (from `reach`
 /// above the feet down to one tile below) is a slope.
-pub(crate) fn slope_under(level: &Level, origin: Vec2, feet: Vec2, reach: f32) -> Option<f32> {
-    level
-        .surface_at(feet.x - origin.x, feet.y - origin.y + reach, reach + 1.0)
+fn slope_under(
+    level: &Level,
+    column: &mut Column,
+    origin: Vec2,
+    feet: Vec2,
+    reach: f32,
+) -> Option<f32> {
+    column
+        .surface_at(
+            level,
+            feet.x - origin.x,
+            feet.y - origin.y + reach,
+            reach + 1.0,
+        )
         .and_then(|(h, slope)| slope.map(|_| h + origin.y))
 }
 
 /// Whether the ground under the centre at `x` rises above `feet + rise_allow` (within one tile
 /// above the feet): the climb limit.
-pub(crate) fn climb_blocked(
+fn climb_blocked(
     level: &Level,
+    column: &mut Column,
     origin: Vec2,
     x: f32,
     feet: f32,
     rise_allow: f32,
 ) -> bool {
-    ground(level, origin, x, feet + 1.0, 1.0).is_some_and(|g| g.y > feet + rise_allow && g.y > feet)
+    surface(level, column, origin, x, feet + 1.0, 1.0)
+        .is_some_and(|(y, _)| y > feet + rise_allow && y > feet)
 }
 
 /// Puts feet that ended below the surface under the centre back on it. `from` is the feet
 /// height before the y move, `rise_allow` how far the surface may be above it (uphill walking).
-pub(crate) fn resolve_up(
+fn resolve_up(
     level: &Level,
+    column: &mut Column,
     origin: Vec2,
     pos: &mut Vec2,
     from: f32,
     rise_allow: f32,
 ) -> Option<Ground> {
     let top = from.max(pos.y) + rise_allow;
-    let g = ground(level, origin, pos.x, top, top - pos.y + 1.0)?;
-    (pos.y < g.y).then(|| {
-        pos.y = g.y;
-        g
+    let (y, slope) = surface(level, column, origin, pos.x, top, top - pos.y + 1.0)?;
+    (pos.y < y).then(|| {
+        pos.y = y;
+        ground_at(level, origin, pos.x, y, slope)
     })
 }
 
 /// Follows the ground down by at most `max_drop`.
-pub(crate) fn follow_down(
+fn follow_down(
     level: &Level,
+    column: &mut Column,
     origin: Vec2,
     pos: &mut Vec2,
     max_drop: f32,
 ) -> Option<Ground> {
-    let g = ground(level, origin, pos.x, pos.y, max_drop)?;
-    pos.y = g.y;
-    Some(g)
+    let (y, slope) = surface(level, column, origin, pos.x, pos.y, max_drop)?;
+    pos.y = y;
+    Some(ground_at(level, origin, pos.x, y, slope))
 }
 
 /// The overhang of the seed's box over a slope, in frame tiles: half the moved width times the
@@ -98,25 +191,31 @@ fn overhang<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> f32 {
 /// Before the x move (step 3): the highest top, as a coordinate of the storage, of a solid the
 /// x move skips because it lies within the overhang above the slope under the centre (the mass
 /// under a ramp); `None` when no slope is under the centre or the level has none.
-pub(super) fn ramp_top_for_x<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> Option<S::Coord> {
+pub(super) fn ramp_top_for_x<S: Space>(
+    w: &World<S>,
+    c: &mut Character<S::Coord>,
+    feet: Vec2,
+) -> Option<S::Coord> {
     if !w.level.features.slopes {
         return None;
     }
     let overhang = overhang(w, c);
-    slope_under(w.level, w.frame.origin, w.feet(c), overhang).map(|h| w.space.coord_y(h + overhang))
+    slope_under(w.level, &mut c.column, w.frame.origin, feet, overhang)
+        .map(|h| w.space.coord_y(h + overhang))
 }
 
 /// Before the y move (step 5): the band of solid tops (above, at most) that the y move skips
 /// because the slope rules under the centre own them (steps up within the overhang).
 pub(super) fn ramp_band_for_y<S: Space>(
     w: &World<S>,
-    c: &Character<S::Coord>,
+    c: &mut Character<S::Coord>,
+    feet: Vec2,
 ) -> Option<(S::Coord, S::Coord)> {
     if !w.level.features.slopes {
         return None;
     }
     let overhang = overhang(w, c);
-    slope_under(w.level, w.frame.origin, w.feet(c), overhang).map(|h| {
+    slope_under(w.level, &mut c.column, w.frame.origin, feet, overhang).map(|h| {
         (
             w.space.coord_y(h + w.frame.eps),
             w.space.coord_y(h + overhang),
@@ -124,51 +223,49 @@ pub(super) fn ramp_band_for_y<S: Space>(
     })
 }
 
-/// How far the ground under the centre may rise during the x move that started at `start`:
-/// the climb gradient times the horizontal distance, plus the tolerance (frame tiles);
+/// `c`'s feet in the frame for the slope rules ([`World::feet`]; on the grid a conversion from
+/// subpixels, so the step finds each once and hands it on), zero on a level without slopes,
+/// where nothing reads them.
+pub(super) fn feet<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> Vec2 {
+    if w.level.features.slopes {
+        w.feet(c)
+    } else {
+        Vec2::ZERO
+    }
+}
+
+/// How far the ground under the centre may rise during the x move from feet `start` to feet
+/// `now`: the climb gradient times the horizontal distance, plus the tolerance (frame tiles);
 /// 0 on a level without slopes, where nothing reads it.
-pub(super) fn rise_allow<S: Space>(
-    w: &World<S>,
-    c: &Character<S::Coord>,
-    start: &Body<S::Coord>,
-) -> f32 {
+pub(super) fn rise_allow<S: Space>(w: &World<S>, now: Vec2, start: Vec2) -> f32 {
     if !w.level.features.slopes {
         return 0.0;
     }
-    w.climb_gradient * (w.feet(c).x - w.space.feet(start).x).abs() + w.frame.eps
+    w.climb_gradient * (now.x - start.x).abs() + w.frame.eps
 }
 
-/// Step 4, the climb limit: if the ground under the centre rose more than `rise_allow` during
-/// the x move, the move is undone (back to `start`'s x) as a wall would stop it. Returns
-/// whether it was.
+/// Step 4, the climb limit: if the ground under the centre (`c`'s feet now at `feet`) rose
+/// more than `rise_allow` during the x move, the move is undone (back to `start`'s x) as a wall
+/// would stop it, which puts the feet back where they were before it. Returns whether it was.
 pub(super) fn climb_limit<S: Space>(
     w: &World<S>,
     stats: &mut SweepStats,
     c: &mut Character<S::Coord>,
     start: &Body<S::Coord>,
+    feet: Vec2,
     rise_allow: f32,
 ) -> bool {
     if !w.level.features.slopes {
         return false;
     }
     stats.slope_steps += 1;
-    let feet = w.feet(c);
-    let blocked = climb_blocked(w.level, w.frame.origin, feet.x, feet.y, rise_allow);
+    let origin = w.frame.origin;
+    let blocked = climb_blocked(w.level, &mut c.column, origin, feet.x, feet.y, rise_allow);
     if blocked {
         c.body.at[0] = start.at[0];
         c.body.remainder.x = 0.0;
     }
     blocked
-}
-
-/// The feet's height before the y move (frame tiles), for [`ground_on_slopes`]; 0 on a level
-/// without slopes, where nothing reads it.
-pub(super) fn feet_before_y<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> f32 {
-    if w.level.features.slopes {
-        w.feet(c).y
-    } else {
-        0.0
-    }
 }
 
 /// Puts `c`'s feet at frame height `y` (on the grid: [`crate::sweep::grid::Grid::round_height`],
@@ -198,7 +295,7 @@ pub(super) fn ground_on_slopes<S: Space>(
     }
     let origin = w.frame.origin;
     let mut feet = w.feet(c);
-    if let Some(g) = resolve_up(w.level, origin, &mut feet, from, rise_allow) {
+    if let Some(g) = resolve_up(w.level, &mut c.column, origin, &mut feet, from, rise_allow) {
         set_feet_y(w, c, feet.y);
         return Some((g, true));
     }
@@ -207,14 +304,14 @@ pub(super) fn ground_on_slopes<S: Space>(
         // On the grid, a fall of less than a subpixel moves nothing, and feet put on a slope
         // stand at most a subpixel above it (`Grid::round_height`): the slope is under them if
         // it is within that subpixel (the grid's "collide check one pixel down", as for solids).
-        if let Some(g) = follow_down(w.level, origin, &mut feet, unit) {
+        if let Some(g) = follow_down(w.level, &mut c.column, origin, &mut feet, unit) {
             set_feet_y(w, c, feet.y);
             return Some((g, false));
         }
     }
     if !grounded && was_grounded && dy <= 0.0 {
         let max_drop = rise_allow + w.snap_down - dy.min(0.0);
-        if let Some(g) = follow_down(w.level, origin, &mut feet, max_drop) {
+        if let Some(g) = follow_down(w.level, &mut c.column, origin, &mut feet, max_drop) {
             set_feet_y(w, c, feet.y);
             return Some((g, false));
         }

@@ -107,7 +107,17 @@ impl<C: Coord> Rect<C> {
     /// Whether the two boxes touch or overlap (inclusive, as parry2d's AABB test).
     #[inline]
     pub fn touches(&self, other: &Rect<C>) -> bool {
-        (0..2).all(|k| self.min[k] <= other.max[k] && self.max[k] >= other.min[k])
+        // Four comparisons and one branch: most boxes a move asks about are not in its way.
+        (self.min[0] <= other.max[0])
+            & (self.max[0] >= other.min[0])
+            & (self.min[1] <= other.max[1])
+            & (self.max[1] >= other.min[1])
+    }
+
+    /// Whether `other` lies inside this box (inclusive).
+    #[inline]
+    pub fn contains(&self, other: &Rect<C>) -> bool {
+        (0..2).all(|k| self.min[k] <= other.min[k] && other.max[k] <= self.max[k])
     }
 }
 
@@ -287,7 +297,7 @@ impl Space for FloatSpace {
     fn whole_move(&self, _: &mut Body<f32>, _: Axis, delta: f32, _: bool) -> f32 {
         delta
     }
-    #[inline]
+    #[inline(always)]
     fn statics<'a>(
         &'a self,
         tiles: &StaticTiles,
@@ -387,20 +397,30 @@ impl Space for DoubleSpace {
     fn whole_move(&self, _: &mut Body<f64>, _: Axis, delta: f32, _: bool) -> f64 {
         delta as f64
     }
-    #[inline]
+    #[inline(always)]
     fn statics<'a>(
         &'a self,
         tiles: &StaticTiles,
         near: &'a mut NearCache<f64>,
         swept: Rect<f64>,
     ) -> &'a [(Rect<f64>, BoxKind)] {
-        let (smin, smax) = (DVec2::from_array(swept.min), DVec2::from_array(swept.max));
-        let area = Aabb::new(
-            (smin - self.origin).as_vec2() - Vec2::splat(F64_QUERY_MARGIN),
-            (smax - self.origin).as_vec2() + Vec2::splat(F64_QUERY_MARGIN),
-        );
         let origin = self.origin;
-        near.query(tiles, area, move |t| Rect {
+        let area_of = move |r: &Rect<f64>| {
+            let (smin, smax) = (DVec2::from_array(r.min), DVec2::from_array(r.max));
+            Aabb::new(
+                (smin - origin).as_vec2() - Vec2::splat(F64_QUERY_MARGIN),
+                (smax - origin).as_vec2() + Vec2::splat(F64_QUERY_MARGIN),
+            )
+        };
+        // The region in the world, less twice the query's margin (checked by the cache).
+        let inside = move |a: &Aabb| {
+            let m = 2.0 * F64_QUERY_MARGIN as f64;
+            Rect {
+                min: (a.mins.as_dvec2() + origin + m).to_array(),
+                max: (a.maxs.as_dvec2() + origin - m).to_array(),
+            }
+        };
+        near.query_rect(tiles, swept, area_of, inside, move |t| Rect {
             min: (t.mins.as_dvec2() + origin).to_array(),
             max: (t.maxs.as_dvec2() + origin).to_array(),
         })
@@ -472,7 +492,7 @@ impl Space for GridSpace {
     }
     #[inline]
     fn to_tiles(&self, v: i64) -> f32 {
-        (v as f64 / self.grid.per_tile as f64) as f32
+        self.grid.tiles(v as f64) as f32
     }
     #[inline]
     fn whole_move(&self, b: &mut Body<i64>, axis: Axis, delta: f32, min_fall: bool) -> i64 {
@@ -488,7 +508,7 @@ impl Space for GridSpace {
         }
         n as i64
     }
-    #[inline]
+    #[inline(always)]
     fn statics<'a>(
         &'a self,
         tiles: &StaticTiles,
@@ -496,7 +516,13 @@ impl Space for GridSpace {
         swept: Rect<i64>,
     ) -> &'a [(Rect<i64>, BoxKind)] {
         let grid = self.grid;
-        near.query(tiles, self.grid.query_area(&swept), move |t| grid.box_of(t))
+        near.query_rect(
+            tiles,
+            swept,
+            move |r| grid.query_area(r),
+            move |a| grid.inside(a),
+            move |t| grid.box_of(t),
+        )
     }
     #[inline]
     fn platform_at(&self, p: &PlatformState, t: f64) -> Rect<i64> {

@@ -31,19 +31,29 @@ pub(super) fn step<S: Space>(
     let was_grounded = c.motion.grounded;
     let delta = integrate::forces_and_velocity(w, c, input, dt);
     let start = c.body;
+    // The feet the slope rules read, before and after the x move (zero without slopes).
+    let start_feet = slopes::feet(w, c);
 
     // 3. x move: sweep and snap flush; one-way boxes and the mass under a ramp do not block.
-    let ramp_top = slopes::ramp_top_for_x(w, c);
+    let ramp_top = slopes::ramp_top_for_x(w, c, start_feet);
     let mut wall = resolve::move_x(w, c, delta.x, ramp_top);
 
-    // 4. Climb limit: a slope rising faster than the steepest walkable one stops the x move.
-    let rise_allow = slopes::rise_allow(w, c, &start);
-    wall |= slopes::climb_limit(w, stats, c, &start, rise_allow);
+    // 4. Climb limit: a slope rising faster than the steepest walkable one stops the x move
+    //    (and puts the feet back where they started).
+    let moved_feet = slopes::feet(w, c);
+    let rise_allow = slopes::rise_allow(w, moved_feet, start_feet);
+    let climb_blocked = slopes::climb_limit(w, stats, c, &start, moved_feet, rise_allow);
+    wall |= climb_blocked;
+    let feet = if climb_blocked {
+        start_feet
+    } else {
+        moved_feet
+    };
 
     // 5. y move: sweep and snap flush; a one-way box blocks only a fall that started entirely
-    //    above it.
-    let from = slopes::feet_before_y(w, c);
-    let ramp_band = slopes::ramp_band_for_y(w, c);
+    //    above it. `from`: the feet's height before it, for step 6.
+    let from = feet.y;
+    let ramp_band = slopes::ramp_band_for_y(w, c, feet);
     if w.level.features.one_way || w.level.features.ladders {
         stats.one_way_steps += 1;
     }
