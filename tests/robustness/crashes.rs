@@ -502,3 +502,43 @@ fn a_chunk_beyond_tiled_s_cell_coordinates_is_named_not_called_missing() {
     assert_error(&out, "chunk at x = 2147483632");
     assert!(!stderr(&out).contains("no chunk"), "{}", stderr(&out));
 }
+
+#[cfg(unix)]
+#[test]
+fn a_side_file_that_is_not_a_regular_file_is_refused_not_ignored() {
+    // A pipe, a device, a directory or a dangling link at `MAP.toml` was skipped as "no side
+    // file", so `inspect` and `run` went on with exit 0 and without the user's settings.
+    use std::os::unix::fs::symlink;
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/maps/infinite.tmx"),
+    )
+    .unwrap();
+    let cases: [(&str, &str, fn(&std::path::Path)); 4] = [
+        ("pipe", "a named pipe (FIFO)", |p| fifo(p)),
+        ("zero", "a character device", |p| {
+            symlink("/dev/zero", p).unwrap()
+        }),
+        ("folder", "a directory", |p| std::fs::create_dir(p).unwrap()),
+        ("dangling", "No such file", |p| {
+            symlink("nowhere.toml", p).unwrap()
+        }),
+    ];
+    for (name, kind, make) in cases {
+        let map = d.join(format!("{name}.tmx"));
+        std::fs::write(&map, &text).unwrap();
+        let side = d.join(format!("{name}.toml"));
+        make(&side);
+        for command in ["inspect", "run"] {
+            let mut cmd = platbench();
+            cmd.arg(command).arg(&map);
+            if command == "run" {
+                cmd.args(["--backend", "sweep", "--out"]).arg(d.join("o"));
+            }
+            let out = output_within(cmd, 60);
+            assert_error(&out, &format!("{name}.toml"));
+            assert!(stderr(&out).contains(kind), "{}", stderr(&out));
+        }
+    }
+}

@@ -149,12 +149,13 @@ pub(crate) enum SideFailure {
     Level(LevelError),
 }
 
-/// The side file of `map` when there is one: `MAP.toml` beside it, a regular file other than
-/// the map itself (a map saved as `.toml` has none; it is not read twice).
+/// The side file of `map` when there is one: whatever is at `MAP.toml` beside it other than the
+/// map itself (a map saved as `.toml` has none; it is not read twice). Anything there counts, so
+/// that a pipe, a device, a directory or a dangling link is refused when read, not ignored.
 #[cfg_attr(not(any(feature = "tiled", feature = "ldtk")), allow(dead_code))]
 pub(crate) fn side_file_of(map: &std::path::Path) -> Option<std::path::PathBuf> {
     let side = map.with_extension("toml");
-    (side.as_path() != map && side.is_file()).then_some(side)
+    (side.as_path() != map && std::fs::symlink_metadata(&side).is_ok()).then_some(side)
 }
 
 /// The import options for `map`: those of its side file `MAP.toml` (when there is one) under
