@@ -98,6 +98,12 @@ pub(crate) const MIN_PERIOD: f64 = 1e-6;
 /// Most waypoints of one platform path: a platform's place is found by walking its legs every
 /// step, so a path's points cost every frame (real maps' paths hold a handful).
 pub(crate) const MAX_PATH_POINTS: usize = 1_000;
+/// Most changed metrics a diff lists of each change (worse, better, missing, added), and most
+/// runs `check` lists that its new run lacks: every one is counted, and `diff --format csv`
+/// and `check.csv` hold every one. A 1 GB baseline of 14 million rows the new run lacks listed
+/// them all, in a summary of 150 MB per 100 MB, and aborted at 3.4 GB under
+/// `prlimit --as=4294967296`; the built-in comparison has 18,883 rows.
+pub const MAX_LISTED_CHANGES: usize = 1_000;
 /// Most rows of a trade-off CSV given to `report --tradeoff`: `platbench sweep` writes one row
 /// per setting and scope, a few hundred (the built-in `compare/tradeoff/tradeoff.csv` holds 490),
 /// and the report's chart draws an element per row, so 2.6 million rows (108 MiB) took 3.8 GB.
@@ -145,7 +151,8 @@ pub(crate) const MAX_JSON_DEPTH: usize = 127;
 /// one within [`MAX_POLYGON_POINTS`], as much. A layer, an object, a property, a tileset's tile
 /// and a polygon's point are one object each; real maps hold some thousands. A file at every
 /// JSON limit at once (16 layers of 1,000,000 cells, 490,000 points in 49 polygons, 3.4 million
-/// more numbers) took 1.1 GB to import.
+/// more numbers) took 1.1 GB to import. A TMX map's elements (a layer's cells aside) count
+/// against it too (`level/tiled/scan.rs`): 3 million `<object/>`s took 1.2 GB.
 #[cfg(feature = "tiled")]
 pub(crate) const MAX_JSON_OBJECTS: u64 = 500_000;
 /// Most JSON values other than the cells of tile layers (which [`MAX_LAYER_CELLS`] bounds) in a

@@ -13,8 +13,10 @@ use clap::Args;
 
 use super::baseline::{baseline_dir, run_args_of, selection_of};
 use super::{out, output, Harness};
-use crate::report::check::{closing_line, line, summary_markdown, units, Unit};
-use crate::report::diff::{diff_runs, read_runs, render, DiffFormat, FailOn, Tolerance};
+use crate::report::check::{
+    closing_line, left_out_line, line, listed, summary_markdown, units, RunChanges, Unit,
+};
+use crate::report::diff::{diff_runs_each, read_runs, render, DiffFormat, FailOn, Tolerance};
 use crate::report::manifest::{content_hash, Manifest};
 
 /// The file of `check --out` that lists every run with its status.
@@ -242,11 +244,15 @@ fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
             jobs,
             Some((dir, traces)),
         )?;
-        let d = diff_runs(&base, dir, &tols, p)
+        // The runs of the new run, whose changes are gathered as the diff finds them; the
+        // diff itself keeps the first of each change and counts the rest.
+        let n = read_runs(dir)?;
+        let mut changes = RunChanges::of_runs(&n, fail_on);
+        let d = diff_runs_each(&base, dir, &tols, p, &mut |m| changes.add(m))
             .with_context(|| format!("comparing with the baseline {}", base.display()))?;
-        // The runs of each side, not their rows: what the lines list.
-        let (b, n) = (read_runs(&base)?, read_runs(dir)?);
-        let all = units(&b, &n, &d, fail_on);
+        // The runs of the baseline, not their rows: what the lines list.
+        let b = read_runs(&base)?;
+        let all = units(&b, &n, &changes, &d.traces, fail_on);
         // Only the traces of what changed stay: what `review` replays and CI uploads.
         for u in all
             .iter()
@@ -271,8 +277,13 @@ fn check_inner(h: &Harness, args: &CheckArgs) -> Result<ExitCode> {
     };
     eprintln!("ran in {:.2} s", started.elapsed().as_secs_f64());
     let mut text = String::new();
-    for u in &all {
+    let (shown, left) = listed(&all);
+    for u in shown {
         text.push_str(&line(u));
+        text.push('\n');
+    }
+    if left > 0 {
+        text.push_str(&left_out_line(left));
         text.push('\n');
     }
     out(text.trim_end());

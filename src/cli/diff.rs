@@ -41,7 +41,7 @@ pub(crate) struct DiffArgs {
 }
 
 pub(crate) fn diff(args: &DiffArgs) -> ExitCode {
-    use crate::report::diff::{diff_runs, render, DiffFormat, FailOn, Tolerance};
+    use crate::report::diff::{diff_runs_each, render, DiffFormat, FailOn, MetricDiff, Tolerance};
     let p = args.position_tolerance;
     if !(p.is_finite() && p >= 0.0) {
         eprintln!("error: --position-tolerance {p}: expected a finite number of tiles >= 0 (a NaN or infinite tolerance would pass every trace)");
@@ -91,9 +91,31 @@ pub(crate) fn diff(args: &DiffArgs) -> ExitCode {
         "csv" => DiffFormat::Csv,
         _ => DiffFormat::Text,
     };
-    match diff_runs(&args.base, &args.new, &tols, args.position_tolerance) {
+    // CSV lists every changed metric, written as found; the tables list the first
+    // MAX_LISTED_CHANGES of each change and count the rest.
+    let stdout = std::io::stdout();
+    let mut csv_out = (format == DiffFormat::Csv)
+        .then(|| csv::Writer::from_writer(std::io::BufWriter::new(stdout.lock())));
+    let mut rows = 0usize;
+    let mut each = |m: &MetricDiff| {
+        if let Some(w) = csv_out.as_mut() {
+            rows += 1;
+            let _ = w.serialize(m);
+        }
+    };
+    let result = diff_runs_each(&args.base, &args.new, &tols, p, &mut each);
+    if let Some(mut w) = csv_out.take() {
+        let _ = w.flush();
+        drop(w);
+        if rows == 0 && result.is_ok() {
+            out("");
+        }
+    }
+    match result {
         Ok(d) => {
-            out(render(&d, format).trim_end());
+            if format != DiffFormat::Csv {
+                out(render(&d, format).trim_end());
+            }
             let failures = d.failures(FailOn {
                 timing: args.fail_on_timing,
                 allow_missing: args.allow_missing,

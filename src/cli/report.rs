@@ -63,23 +63,6 @@ fn read_tradeoff(path: &std::path::Path) -> Result<Vec<crate::tradeoff::Tradeoff
     Ok(rows)
 }
 
-/// The grid of one pair of dimensions as the report draws it (`crate::report::html`'s
-/// `pair_grids`): a row per configuration and first value, a column per second value, each
-/// value as `==` tells them apart (a NaN is always a new one).
-#[derive(Default)]
-struct GridSize {
-    rows: std::collections::HashSet<(String, u64)>,
-    nan_rows: u64,
-    columns: std::collections::HashSet<u64>,
-    nan_columns: u64,
-}
-
-impl GridSize {
-    fn cells(&self) -> u64 {
-        (self.rows.len() as u64 + self.nan_rows) * (self.columns.len() as u64 + self.nan_columns)
-    }
-}
-
 /// Reads a stability.csv, refusing it at its row past [`crate::limits::MAX_STABILITY_ROWS`]
 /// or at the row that would make the report's combination grids hold more than
 /// [`crate::limits::MAX_STABILITY_GRID_CELLS`] cells together: a grid has a cell for every row
@@ -87,8 +70,8 @@ impl GridSize {
 /// millions.
 fn read_stability(path: &std::path::Path) -> Result<Vec<crate::stress::StressRow>> {
     use crate::limits::MAX_STABILITY_GRID_CELLS as MAX;
-    use crate::stress::value_key;
-    let mut grids: std::collections::HashMap<String, GridSize> = Default::default();
+    use crate::report::GridShape;
+    let mut grids: std::collections::HashMap<String, GridShape> = Default::default();
     let mut total = 0u64;
     let most = crate::limits::MAX_STABILITY_ROWS;
     read_rows_checked(path, most, |r: &crate::stress::StressRow, line| {
@@ -98,25 +81,15 @@ fn read_stability(path: &std::path::Path) -> Result<Vec<crate::stress::StressRow
         let pair = format!("{} x {}", r.dimension, r.dimension2);
         let g = grids.entry(pair.clone()).or_default();
         let before = g.cells();
-        match value_key(r.value) {
-            Some(a) => {
-                g.rows.insert((format!("{} {}", r.backend, r.config), a));
-            }
-            None => g.nan_rows += 1,
-        }
-        match value_key(r.value2.unwrap_or(f64::NAN)) {
-            Some(b) => {
-                g.columns.insert(b);
-            }
-            None => g.nan_columns += 1,
-        }
+        let config = format!("{} {}", r.backend, r.config);
+        g.add(&config, r.value, r.value2.unwrap_or(f64::NAN));
         total += g.cells() - before;
         if total > MAX {
             bail!(
                 "{}:{line}: the combination grids would hold {total} cells ({pair}: {} rows of configuration and value x {} values); expected at most {MAX} (a stability.csv written by `platbench stress` draws about 250)",
                 path.display(),
-                g.rows.len() as u64 + g.nan_rows,
-                g.columns.len() as u64 + g.nan_columns
+                g.rows.len(),
+                g.columns.len()
             );
         }
         Ok(())

@@ -3,11 +3,12 @@
 //! status (pass, worse, better, diverged, missing, new), and written as the lines CI prints,
 //! `check.csv` and a Markdown summary for a pull request.
 
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 
-use super::diff::{Change, FailOn, MetricDiff, RunDiff, RunKey, TraceChange, TraceDiff};
+use super::diff::{Change, FailOn, MetricDiff, RunKey, TraceChange, TraceDiff};
 use crate::trace::Trace;
 
 /// What happened to one scenario on one configuration.
@@ -96,13 +97,72 @@ pub(crate) fn trace_name(level: &str, scenario: &str, backend: &str, config: &st
     .file_name()
 }
 
+/// What a run the new run lacks says: the runs `check` lists no more than
+/// [`crate::limits::MAX_LISTED_CHANGES`] of (its new run's are the work it did).
+const NOT_IN_NEW: &str = "not in the new run";
+
+/// The metric changes of each run of the new run, gathered as the diff finds them
+/// ([`super::diff::diff_runs_each`]): a count of each change and the first of each, so that a
+/// baseline of any size costs memory in proportion to the new run, never to its own rows.
+pub(crate) struct RunChanges {
+    fail_on: FailOn,
+    /// By `level.scenario` and `backend config`, every run of the new run.
+    runs: HashMap<(String, String), Changed>,
+}
+
+/// One run's changes: the first [`KEPT_PER_CHANGE`] metrics of each change, and how many.
+#[derive(Default)]
+struct Changed {
+    kept: Vec<MetricDiff>,
+    counts: [usize; 5],
+}
+
+/// How many metrics of each change a run keeps to name: as many as the metric catalog holds,
+/// so that a run's every metric is named, and a file's made-up names stop there.
+fn kept_per_change() -> usize {
+    crate::metrics::registry::METRICS.len()
+}
+
+impl RunChanges {
+    /// Ready to gather the changes of the runs `new`, judged under `fail_on` (a timing counts
+    /// only with `fail_on.timing`).
+    pub(crate) fn of_runs(new: &[RunKey], fail_on: FailOn) -> Self {
+        let runs = new
+            .iter()
+            .map(|[l, s, b, c]| ((format!("{l}.{s}"), format!("{b} {c}")), Changed::default()))
+            .collect();
+        RunChanges { fail_on, runs }
+    }
+
+    /// Counts a metric's change to its run, if the run is the new run's.
+    pub(crate) fn add(&mut self, m: &MetricDiff) {
+        if !self.fail_on.timing && m.metric == "ns_per_character_step" {
+            return;
+        }
+        // The lookup borrows the labels; a run the new run lacks is not gathered.
+        let Some(c) = self.runs.get_mut(&(m.scenario.clone(), m.config.clone())) else {
+            return;
+        };
+        c.counts[m.change as usize] += 1;
+        if c.counts[m.change as usize] <= kept_per_change() {
+            c.kept.push(m.clone());
+        }
+    }
+}
+
 /// Every run of `base` and `new` (the baseline's order, then the new run's), each with its
-/// status from the diff `d` of the two under `fail_on`: a timing counts only with
-/// `fail_on.timing`, a divergence not with `fail_on.allow_divergence`, a missing metric or
-/// trace not with `fail_on.allow_missing`. The diff's changes are found per run by hash, so
-/// this takes time in proportion to the runs and changes.
-pub(crate) fn units(base: &[RunKey], new: &[RunKey], d: &RunDiff, fail_on: FailOn) -> Vec<Unit> {
-    use std::collections::{HashMap, HashSet};
+/// status from the changes gathered in `changes` and the diff's `traces` under `fail_on`: a
+/// divergence counts not with `fail_on.allow_divergence`, a missing metric or trace not with
+/// `fail_on.allow_missing`. Changes are found per run by hash, so this takes time in
+/// proportion to the runs and changes.
+pub(crate) fn units(
+    base: &[RunKey],
+    new: &[RunKey],
+    changes: &RunChanges,
+    traces: &[TraceDiff],
+    fail_on: FailOn,
+) -> Vec<Unit> {
+    use std::collections::HashSet;
     let mut out: Vec<Unit> = Vec::new();
     let in_base: HashSet<&RunKey> = base.iter().collect();
     let in_new: HashSet<&RunKey> = new.iter().collect();
@@ -121,19 +181,12 @@ pub(crate) fn units(base: &[RunKey], new: &[RunKey], d: &RunDiff, fail_on: FailO
             });
         }
     }
-    // The diff's metric changes by the labels of their run, in the diff's order; its traces'
-    // by file (the first of a name).
-    let mut metrics_of: HashMap<(&str, &str), Vec<&MetricDiff>> = HashMap::new();
-    for m in &d.metrics {
-        metrics_of
-            .entry((m.scenario.as_str(), m.config.as_str()))
-            .or_default()
-            .push(m);
-    }
+    // The diff's traces by file (the first of a name).
     let mut trace_of: HashMap<&str, &TraceDiff> = HashMap::new();
-    for t in &d.traces {
+    for t in traces {
         trace_of.entry(t.file.as_str()).or_insert(t);
     }
+    let none = Changed::default();
     for u in &mut out {
         let key: RunKey = [
             u.level.clone(),
@@ -141,25 +194,48 @@ pub(crate) fn units(base: &[RunKey], new: &[RunKey], d: &RunDiff, fail_on: FailO
             u.backend.clone(),
             u.config.clone(),
         ];
-        let (s, c) = u.labels();
-        let metrics: Vec<&MetricDiff> = metrics_of
-            .get(&(s.as_str(), c.as_str()))
-            .into_iter()
-            .flatten()
-            .copied()
-            .filter(|m| fail_on.timing || m.metric != "ns_per_character_step")
-            .collect();
+        let changed = changes.runs.get(&u.labels()).unwrap_or(&none);
         let trace = trace_of.get(u.trace.as_str()).copied();
         (u.status, u.detail) = judge(
             in_base.contains(&key),
             in_new.contains(&key),
-            &metrics,
+            changed,
             trace,
             fail_on,
         );
     }
     out
 }
+
+/// The units CI lists, in their order: every one but the runs the new run lacks past the
+/// first [`crate::limits::MAX_LISTED_CHANGES`] of them; and how many of those are left out
+/// (`check.csv` holds every run).
+pub(crate) fn listed<'a>(units: impl IntoIterator<Item = &'a Unit>) -> (Vec<&'a Unit>, usize) {
+    let (mut shown, mut absent, mut left) = (Vec::new(), 0usize, 0usize);
+    for u in units {
+        if u.status == Status::Missing && u.detail == NOT_IN_NEW {
+            absent += 1;
+            if absent > crate::limits::MAX_LISTED_CHANGES {
+                left += 1;
+                continue;
+            }
+        }
+        shown.push(u);
+    }
+    (shown, left)
+}
+
+/// The line after a list that left out `left` runs the new run lacks.
+pub(crate) fn left_out_line(left: usize) -> String {
+    format!(
+        "and {left} more runs of the baseline not in the new run (the first {} are listed; {} lists every run)",
+        crate::limits::MAX_LISTED_CHANGES,
+        UNITS_FILE
+    )
+}
+
+/// The file of `check --out` that lists every run (`cli::check::UNITS`).
+const UNITS_FILE: &str = "check.csv";
 
 /// A value as the tables show it.
 fn value(v: Option<f64>) -> String {
@@ -170,32 +246,46 @@ fn value(v: Option<f64>) -> String {
 fn judge(
     in_base: bool,
     in_new: bool,
-    metrics: &[&MetricDiff],
+    changed: &Changed,
     trace: Option<&TraceDiff>,
     fail_on: FailOn,
 ) -> (Status, String) {
     if !in_new {
-        return (Status::Missing, "not in the new run".into());
+        return (Status::Missing, NOT_IN_NEW.into());
     }
     if !in_base {
         return (Status::New, "not in the baseline".into());
     }
-    let of =
-        |c: Change| -> Vec<&&MetricDiff> { metrics.iter().filter(|m| m.change == c).collect() };
-    let list = |ms: &[&&MetricDiff]| {
+    let of = |c: Change| -> (Vec<&MetricDiff>, usize) {
+        let kept = changed.kept.iter().filter(|m| m.change == c).collect();
+        (kept, changed.counts[c as usize])
+    };
+    let list = |(ms, total): &(Vec<&MetricDiff>, usize)| {
         let mut text = ms
             .iter()
             .take(3)
             .map(|m| format!("{} {} -> {}", m.metric, value(m.base), value(m.new)))
             .collect::<Vec<_>>()
             .join(", ");
-        if ms.len() > 3 {
-            let _ = write!(text, " and {} more", ms.len() - 3);
+        if *total > 3 {
+            let _ = write!(text, " and {} more", total - 3);
+        }
+        text
+    };
+    // The names of a change's metrics, every one kept, and how many more there are.
+    let names = |(ms, total): &(Vec<&MetricDiff>, usize)| {
+        let mut text = ms
+            .iter()
+            .map(|m| m.metric.as_str())
+            .collect::<Vec<_>>()
+            .join(", ");
+        if *total > ms.len() {
+            let _ = write!(text, " and {} more", total - ms.len());
         }
         text
     };
     let worse = of(Change::Worse);
-    if !worse.is_empty() {
+    if worse.1 > 0 {
         return (Status::Worse, list(&worse));
     }
     if let Some(t) = trace {
@@ -224,26 +314,24 @@ fn judge(
         }
     }
     let missing = of(Change::Missing);
-    if !missing.is_empty() && !fail_on.allow_missing {
-        let names: Vec<&str> = missing.iter().map(|m| m.metric.as_str()).collect();
+    if missing.1 > 0 && !fail_on.allow_missing {
         return (
             Status::Missing,
-            format!("not measured now: {}", names.join(", ")),
+            format!("not measured now: {}", names(&missing)),
         );
     }
     let better = of(Change::Better);
-    if !better.is_empty() {
+    if better.1 > 0 {
         return (Status::Better, list(&better));
     }
     let added = of(Change::Added);
-    if !added.is_empty() || trace.is_some_and(|t| t.change == TraceChange::Added) {
-        let names: Vec<&str> = added.iter().map(|m| m.metric.as_str()).collect();
+    if added.1 > 0 || trace.is_some_and(|t| t.change == TraceChange::Added) {
         return (
             Status::New,
-            if names.is_empty() {
+            if added.1 == 0 {
                 "a trace the baseline lacks".into()
             } else {
-                format!("measured now only: {}", names.join(", "))
+                format!("measured now only: {}", names(&added))
             },
         );
     }
@@ -302,7 +390,7 @@ pub(crate) fn summary_markdown(units: &[Unit], notes: &[String], diff_md: &str) 
             let _ = writeln!(md, "- {n}");
         }
     }
-    let changed: Vec<&Unit> = units.iter().filter(|u| u.status != Status::Pass).collect();
+    let (changed, left) = listed(units.iter().filter(|u| u.status != Status::Pass));
     if !changed.is_empty() {
         md.push_str("\n| status | scenario | configuration | what changed |\n|---|---|---|---|\n");
         for u in changed {
@@ -316,6 +404,9 @@ pub(crate) fn summary_markdown(units: &[Unit], notes: &[String], diff_md: &str) 
                 u.config,
                 u.detail.replace('|', "\\|")
             );
+        }
+        if left > 0 {
+            let _ = writeln!(md, "\n{}", left_out_line(left));
         }
         md.push_str("\n<details><summary>Every metric and trace that changed</summary>\n\n");
         md.push_str(diff_md.trim_end());

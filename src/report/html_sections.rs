@@ -115,13 +115,55 @@ fn invariant_colour(first: Option<&str>) -> &'static str {
     }
 }
 
+/// The shape of one pair of dimensions' grid, as [`pair_grids`] draws it and `report
+/// --stability` bounds it before drawing: a row per configuration and first value, a column per
+/// second value, each value as `==` tells them apart (a NaN is always a new one).
+#[derive(Default)]
+pub(crate) struct GridShape {
+    /// The rows, in the order first seen.
+    pub(crate) rows: Vec<(String, f64)>,
+    row_keys: std::collections::HashSet<(String, u64)>,
+    /// The columns, in the order first seen (of 0 and -0, the one that sorts first).
+    pub(crate) columns: Vec<f64>,
+    column_at: std::collections::HashMap<u64, usize>,
+}
+
+impl GridShape {
+    /// Adds the cell of configuration `config` at values `a` and `b`.
+    pub(crate) fn add(&mut self, config: &str, a: f64, b: f64) {
+        use crate::stress::value_key;
+        match value_key(a) {
+            Some(ka) if !self.row_keys.insert((config.to_string(), ka)) => {}
+            _ => self.rows.push((config.to_string(), a)),
+        }
+        match value_key(b).and_then(|kb| self.column_at.get(&kb).copied().map(|i| (kb, i))) {
+            Some((_, i)) => {
+                if b.total_cmp(&self.columns[i]).is_lt() {
+                    self.columns[i] = b;
+                }
+            }
+            None => {
+                if let Some(kb) = value_key(b) {
+                    self.column_at.insert(kb, self.columns.len());
+                }
+                self.columns.push(b);
+            }
+        }
+    }
+
+    /// How many cells the grid draws, measured or not.
+    pub(crate) fn cells(&self) -> u64 {
+        self.rows.len() as u64 * self.columns.len() as u64
+    }
+}
+
 /// Each pair of dimensions' combination cells as a grid: per pair, a row per configuration and
 /// first value, a column per second value, each cell `ok` or the invariants that broke there
 /// (first broken first). Each grid is `(pair, header, rows)`. Cells are found by hash (values as
 /// `==` matches them: a NaN matches none), so a grid costs time in proportion to its size.
 pub(crate) fn pair_grids(rows: &[StressRow]) -> Vec<(String, Vec<String>, Vec<Vec<String>>)> {
     use crate::stress::{value_key, Cell};
-    use std::collections::{HashMap, HashSet};
+    use std::collections::HashMap;
     let cells = crate::stress::cells(rows);
     let mut out: Vec<(String, Vec<String>, Vec<Vec<String>>)> = Vec::new();
     let mut pairs: Vec<(&str, Vec<&Cell>)> = Vec::new();
@@ -134,26 +176,23 @@ pub(crate) fn pair_grids(rows: &[StressRow]) -> Vec<(String, Vec<String>, Vec<Ve
         pairs[i].1.push(c);
     }
     for (pair, of_pair) in pairs {
-        let mut bs: Vec<f64> = of_pair.iter().map(|c| c.b).collect();
-        bs.sort_by(f64::total_cmp);
-        bs.dedup();
-        let (da, db) = pair.split_once(" x ").unwrap_or((pair, ""));
-        let mut header = vec!["configuration".to_string(), format!("{da} \\ {db}")];
-        header.extend(bs.iter().map(|&b| format_setting(b)));
-        let mut keys: Vec<(&str, f64)> = Vec::new();
-        let mut seen: HashSet<(&str, u64)> = HashSet::new();
+        let mut shape = GridShape::default();
         // The first cell of each configuration and pair of values.
         let mut cell_at: HashMap<(&str, u64, u64), &Cell> = HashMap::new();
         for c in &of_pair {
-            if value_key(c.a).is_none_or(|a| seen.insert((&c.config, a))) {
-                keys.push((&c.config, c.a));
-            }
+            shape.add(&c.config, c.a, c.b);
             if let (Some(a), Some(b)) = (value_key(c.a), value_key(c.b)) {
                 cell_at.entry((&c.config, a, b)).or_insert(c);
             }
         }
+        let mut bs = std::mem::take(&mut shape.columns);
+        bs.sort_by(f64::total_cmp);
+        let (da, db) = pair.split_once(" x ").unwrap_or((pair, ""));
+        let mut header = vec!["configuration".to_string(), format!("{da} \\ {db}")];
+        header.extend(bs.iter().map(|&b| format_setting(b)));
         let mut grid = Vec::new();
-        for (config, a) in keys {
+        for (config, a) in &shape.rows {
+            let (config, a) = (config.as_str(), *a);
             let mut row = vec![config.to_string(), format_setting(a)];
             for &b in &bs {
                 let cell = value_key(a)

@@ -10,6 +10,7 @@ mod html_colours;
 mod html_nav;
 mod html_replay_data;
 mod html_sections;
+pub(crate) use html_sections::GridShape;
 pub(crate) mod manifest;
 pub mod notes;
 pub mod profile;

@@ -92,3 +92,34 @@ fn tile_layers_holding_more_cells_than_platbench_reads_are_refused_before_readin
     assert!(!err.contains("cells together"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
 }
+
+/// A 10 x 5 map whose object layer holds `n` empty objects, one a line from line 4.
+fn objects_map(n: usize) -> String {
+    let mut text = String::from(
+        "<?xml version=\"1.0\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" width=\"10\" height=\"5\" tilewidth=\"16\" tileheight=\"16\" infinite=\"0\">\n <objectgroup id=\"1\" name=\"coins\">\n",
+    );
+    for i in 0..n {
+        text.push_str(&format!("  <object id=\"{}\" x=\"8\" y=\"8\"/>\n", i + 1));
+    }
+    text.push_str(" </objectgroup>\n</map>\n");
+    text
+}
+
+#[test]
+fn a_tmx_map_of_more_elements_than_a_json_map_may_hold_objects_is_refused_before_reading() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("objects.tmx");
+    // The map, its object layer and MAX_JSON_OBJECTS - 2 objects are 500,000 elements
+    // (MAX_JSON_OBJECTS, src/limits.rs, shared with Tiled JSON maps); one object more passes
+    // the limit, at the line of that object: line 3 opens the layer, object k is on line 3 + k.
+    let limit = 500_000;
+    std::fs::write(&map, objects_map(limit - 2)).unwrap();
+    let out = platbench().arg("inspect").arg(&map).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("expected at most 500000"), "{err}");
+    std::fs::write(&map, objects_map(limit - 1)).unwrap();
+    let out = platbench().arg("inspect").arg(&map).output().unwrap();
+    assert_error(&out, &format!("objects.tmx:{}", 3 + limit - 1));
+    assert_error(&out, "<object> is element 500001 of the map");
+    assert_error(&out, "expected at most 500000");
+}

@@ -54,6 +54,15 @@ fn append(path: &Path, text: &str) {
     std::fs::write(path, bytes).unwrap();
 }
 
+/// Appends `gone` (rows of runs the check does not run) to the baseline `bl`'s metrics, checks
+/// against it, and returns what it printed and its --out: a run missing fails the check (exit 1).
+fn check_with_gone(bl: &Path, dir: &Path, gone: &str) -> (String, PathBuf) {
+    append(&bl.join("metrics.csv"), gone);
+    let (out, ck) = check(bl, dir, "check");
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    (String::from_utf8_lossy(&out.stdout).into_owned(), ck)
+}
+
 /// A trace row of frame `f` at x = `x` (standing on the floor).
 fn frame(f: u32, x: &str) -> String {
     format!("{f},{},0,{x},1.0,0.0,0.0,1,0.0,1.0,,0,0\n", f as f32 / 60.0)
@@ -80,10 +89,7 @@ fn check_lists_each_run_once_however_many_rows_it_has() {
             })
         })
         .collect();
-    append(&bl.join("metrics.csv"), &gone);
-    let (out, ck) = check(&bl, dir.path(), "check");
-    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    let (text, ck) = check_with_gone(&bl, dir.path(), &gone);
     // Three runs pass; the 2,000 rows make 400 runs (200 scenarios, two configurations each),
     // each listed once, missing.
     assert!(
@@ -209,5 +215,61 @@ fn accepting_copies_the_baseline_row_by_row_and_refuses_rows_it_cannot_tell_apar
     assert_eq!(
         std::fs::read_to_string(&metrics).unwrap(),
         format!("{text}{kept}")
+    );
+}
+
+#[test]
+fn check_lists_the_first_runs_the_new_run_lacks_and_counts_the_rest() {
+    let dir = tempfile::tempdir().unwrap();
+    let bl = baseline(dir.path());
+    // 1,200 runs the check does not run, one metric row each: 200 past MAX_LISTED_CHANGES
+    // (1,000, src/limits.rs), the most runs the new run lacks that `check` lists.
+    let gone: String = (0..1200)
+        .map(|k| format!("gone,s{k},sweep,default,rest_gap,0.0,tiles,0.0,0.0,,,\n"))
+        .collect();
+    let (text, ck) = check_with_gone(&bl, dir.path(), &gone);
+    assert!(
+        text.contains("3 passed, 1200 failed (0 worse, 0 diverged, 1200 missing; 0 better, 0 new)"),
+        "{text}"
+    );
+    // The first 1,000 in the baseline's order, then the count of the rest.
+    let missing: Vec<&str> = text.lines().filter(|l| l.starts_with("missing ")).collect();
+    assert_eq!(missing.len(), 1000);
+    assert!(missing[999].contains("gone.s999 "), "{}", missing[999]);
+    assert!(
+        text.contains("and 200 more runs of the baseline not in the new run"),
+        "{text}"
+    );
+    // check.csv lists every run: the header, 3 runs passing, 1,200 missing.
+    let listed = std::fs::read_to_string(ck.join("check.csv")).unwrap();
+    assert_eq!(listed.lines().count(), 1 + 1203);
+    // The summary lists as many, and its diff table the first 1,000 missing metrics of 1,200.
+    let md = std::fs::read_to_string(ck.join("summary.md")).unwrap();
+    let runs = md
+        .lines()
+        .filter(|l| l.starts_with("| missing |") && l.ends_with("| not in the new run |"));
+    assert_eq!(runs.count(), 1000);
+    assert!(
+        md.contains("and 200 more runs of the baseline not in the new run"),
+        "{md}"
+    );
+    assert!(md.contains("1200 missing, 0 added"), "{md}");
+    assert!(
+        md.contains("and 200 more changed metrics not listed"),
+        "{md}"
+    );
+    // `diff --format csv` lists every one: the header and 1,200 rows.
+    let csv = platbench()
+        .arg("diff")
+        .arg(&bl)
+        .arg(&ck)
+        .args(["--format", "csv", "--allow-divergence"])
+        .output()
+        .unwrap();
+    assert_eq!(csv.status.code(), Some(1), "{}", stderr(&csv));
+    let rows = String::from_utf8_lossy(&csv.stdout).into_owned();
+    assert_eq!(
+        rows.lines().filter(|l| l.contains(",missing,")).count(),
+        1200
     );
 }

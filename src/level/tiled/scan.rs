@@ -80,6 +80,8 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
     let mut shapes = super::points::Shapes::default();
     // Cells of every tile layer so far (width x height each), against MAX_LAYER_CELLS.
     let mut cells_read: u64 = 0;
+    // Elements other than a layer's cells, against MAX_JSON_OBJECTS.
+    let mut elements: u64 = 0;
     loop {
         let pos = reader.buffer_position();
         let event = match reader.read_event() {
@@ -89,7 +91,10 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
         };
         let empty = matches!(event, Event::Empty(_));
         match &event {
-            Event::Start(e) | Event::Empty(e) => shapes.element(e, empty, || line_of(text, pos))?,
+            Event::Start(e) | Event::Empty(e) => {
+                count_element(&mut elements, e, data.is_some(), || line_of(text, pos))?;
+                shapes.element(e, empty, || line_of(text, pos))?;
+            }
             Event::End(e) => shapes.end(e.name().as_ref()),
             _ => {}
         }
@@ -205,6 +210,34 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
             _ => {}
         }
     }
+}
+
+/// Counts an element against [`limits::MAX_JSON_OBJECTS`], as the JSON side counts its objects:
+/// the `tiled` crate holds some hundreds of bytes an element (3 million `<object/>`s, a 104 MB
+/// map, took 1.2 GB). A `<tile>` inside a layer's `<data>` is a cell, which
+/// [`limits::MAX_LAYER_CELLS`] bounds instead.
+fn count_element(
+    elements: &mut u64,
+    e: &BytesStart,
+    in_data: bool,
+    line: impl Fn() -> usize,
+) -> Result<(), ScanError> {
+    if in_data && e.name().as_ref() == b"tile" {
+        return Ok(());
+    }
+    *elements += 1;
+    if *elements > limits::MAX_JSON_OBJECTS {
+        return Err(ScanError {
+            line: line(),
+            message: format!(
+                "<{}> is element {} of the map (layers, objects, properties, tilesets' tiles; a layer's cells aside); expected at most {}, as a Tiled JSON map's objects",
+                String::from_utf8_lossy(e.name().as_ref()),
+                *elements,
+                limits::MAX_JSON_OBJECTS
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// A chunk of the layer whose data is `d`, from its `<chunk>` element at `line`: at most

@@ -105,11 +105,44 @@ pub struct TraceDiff {
     pub new: Option<(f32, f32)>,
 }
 
+/// How many metrics got each verdict, timings (`ns_per_character_step`) apart: only
+/// `--fail-on-timing` fails on them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ChangeCounts {
+    /// By whether the metric is a timing, then by [`Change`] (in its declared order).
+    counts: [[usize; 5]; 2],
+}
+
+impl ChangeCounts {
+    /// Counts one verdict.
+    pub fn add(&mut self, m: &MetricDiff) {
+        self.counts[usize::from(m.metric == "ns_per_character_step")][m.change as usize] += 1;
+    }
+
+    /// How many metrics got `change`, timings included.
+    pub fn of(&self, change: Change) -> usize {
+        self.counts[0][change as usize] + self.counts[1][change as usize]
+    }
+
+    /// How many metrics got `change`, timings only when `timing` is set.
+    pub fn failing(&self, change: Change, timing: bool) -> usize {
+        self.counts[0][change as usize]
+            + if timing {
+                self.counts[1][change as usize]
+            } else {
+                0
+            }
+    }
+}
+
 /// The comparison of two runs.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct RunDiff {
-    /// Every metric that is not `Same`.
+    /// The metrics that are not `Same`: the first [`crate::limits::MAX_LISTED_CHANGES`] of each
+    /// change, in the order found ([`RunDiff::push`]); `counts` counts every one.
     pub metrics: Vec<MetricDiff>,
+    /// How many metrics got each verdict, listed or not.
+    pub counts: ChangeCounts,
     /// How many metrics were compared.
     pub compared: usize,
     /// Every trace that diverges, is missing or was added.
@@ -132,6 +165,30 @@ pub struct FailOn {
 }
 
 impl RunDiff {
+    /// Counts a metric's verdict, and lists it if fewer than
+    /// [`crate::limits::MAX_LISTED_CHANGES`] of its change are listed: what the diff shows stays
+    /// in proportion to that, not to the files compared.
+    pub fn push(&mut self, m: MetricDiff) {
+        self.counts.add(&m);
+        if self.counts.of(m.change) <= crate::limits::MAX_LISTED_CHANGES {
+            self.metrics.push(m);
+        }
+    }
+
+    /// How many metrics were counted but not listed.
+    pub fn unlisted(&self) -> usize {
+        let all: usize = [
+            Change::Worse,
+            Change::Better,
+            Change::Missing,
+            Change::Added,
+        ]
+        .iter()
+        .map(|&c| self.counts.of(c))
+        .sum();
+        all.saturating_sub(self.metrics.len())
+    }
+
     /// Whether a metric got worse (or went missing): the regression that fails CI. Timings
     /// (`ns_per_character_step`) count only when `timing_fails` is set: they are reported, but
     /// a shared machine's noise must not fail a build by default.
@@ -148,19 +205,8 @@ impl RunDiff {
     /// metric worse beyond its tolerance, a metric or trace missing from the new run, a trace
     /// that diverges beyond the position tolerance or ends early.
     pub fn failures(&self, fail_on: FailOn) -> Vec<String> {
-        let counts_metric = |m: &&MetricDiff| fail_on.timing || m.metric != "ns_per_character_step";
-        let worse = self
-            .metrics
-            .iter()
-            .filter(counts_metric)
-            .filter(|m| m.change == Change::Worse)
-            .count();
-        let missing_metrics = self
-            .metrics
-            .iter()
-            .filter(counts_metric)
-            .filter(|m| m.change == Change::Missing)
-            .count();
+        let worse = self.counts.failing(Change::Worse, fail_on.timing);
+        let missing_metrics = self.counts.failing(Change::Missing, fail_on.timing);
         let count = |c: TraceChange| self.traces.iter().filter(|t| t.change == c).count();
         let mut out = Vec::new();
         if worse > 0 {
@@ -377,23 +423,22 @@ mod timing_tests {
     use super::*;
 
     fn diff_of(metric: &str, change: Change) -> RunDiff {
-        RunDiff {
-            metrics: vec![MetricDiff {
-                scenario: "l.s".into(),
-                config: "sweep default".into(),
-                metric: metric.into(),
-                base: Some(1.0),
-                new: Some(2.0),
-                base_frame: None,
-                new_frame: None,
-                base_q1: None,
-                base_q3: None,
-                new_q1: None,
-                new_q3: None,
-                change,
-            }],
-            ..Default::default()
-        }
+        let mut d = RunDiff::default();
+        d.push(MetricDiff {
+            scenario: "l.s".into(),
+            config: "sweep default".into(),
+            metric: metric.into(),
+            base: Some(1.0),
+            new: Some(2.0),
+            base_frame: None,
+            new_frame: None,
+            base_q1: None,
+            base_q3: None,
+            new_q1: None,
+            new_q3: None,
+            change,
+        });
+        d
     }
 
     #[test]

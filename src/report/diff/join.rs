@@ -2,12 +2,13 @@
 //! configuration and metric, traces by file name; each matched pair is judged by the rules of
 //! `compare`.
 //!
-//! Both metrics files are streamed. The baseline's rows are kept as compact records (its key
-//! as five numbered names, its numbers; about 140 bytes a row, where a row read whole took
-//! 2.2 KB), each name held once however many rows repeat it; the new run's rows are then read
-//! one at a time and judged against them as they come, and only those the baseline lacks are
-//! kept (as compact records too). Traces are compared frame by frame in lockstep
-//! ([`super::read::compare_traces`]).
+//! Both metrics files are streamed. The new run's rows are kept as compact records (its key
+//! as five numbered names, its numbers; about 100 bytes a row), each name held once however
+//! many rows repeat it; the baseline's rows are then read one at a time and judged against them
+//! as they come, in the baseline's order, each verdict handed on as it is found: a baseline of
+//! any length costs memory for the keys of its rows the new run lacks only (24 bytes each, to
+//! refuse a repeat), so `check`, whose new run is the work it did, stays in proportion to that
+//! work. Traces are compared frame by frame in lockstep ([`super::read::compare_traces`]).
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
@@ -40,6 +41,11 @@ impl Names {
         Some(id)
     }
 
+    /// The number of `name`, if it is numbered.
+    fn get(&self, name: &str) -> Option<u32> {
+        self.ids.get(name).copied()
+    }
+
     fn name(&self, id: u32) -> &str {
         self.names.get(id as usize).map_or("", |n| n)
     }
@@ -57,21 +63,27 @@ struct Values {
     q3: Option<f64>,
 }
 
-/// A baseline row as kept for the join.
-struct BaseRow {
-    values: Values,
-    reference: f64,
-    unit: u32,
-    /// Its line in the baseline's file.
-    line: u64,
-    /// The line of the new run's row with its key, once read (0: none yet).
-    new_line: u64,
-}
-
-/// A new run's row the baseline lacks, as kept until the end.
-struct AddedRow {
+/// A new run's row as kept for the join.
+struct NewRow {
     key: Key,
     values: Values,
+    /// Its line in the new run's file.
+    line: u64,
+    /// The line of the baseline's row with its key, once read (0: none yet).
+    base_line: u64,
+}
+
+/// A baseline key the new run lacks, as 128 bits of two hashes of its names: what finds a
+/// repeated key among them without holding their names.
+fn missing_key(names: [&str; 5]) -> u128 {
+    use std::hash::{DefaultHasher, Hash, Hasher};
+    let half = |salt: u8| {
+        let mut h = DefaultHasher::new();
+        salt.hash(&mut h);
+        names.hash(&mut h);
+        h.finish()
+    };
+    (u128::from(half(0)) << 64) | u128::from(half(1))
 }
 
 /// One metrics file's rows, read one at a time: `each(key, unit, values, reference, line)`.
@@ -112,19 +124,17 @@ fn key_text(names: &Names, k: &Key) -> String {
     format!("{}.{} {} {} {}", n(0), n(1), n(2), n(3), n(4))
 }
 
-/// A metric's row of the diff, before its verdict.
+/// A metric's row of the diff from the names of its key, before its verdict.
 fn metric_diff(
-    names: &Names,
-    k: &Key,
+    n: [&str; 5],
     base: Option<Values>,
     new: Option<Values>,
     change: Change,
 ) -> MetricDiff {
-    let n = |i: usize| names.name(k[i]);
     MetricDiff {
-        scenario: format!("{}.{}", n(0), n(1)),
-        config: format!("{} {}", n(2), n(3)),
-        metric: n(4).to_string(),
+        scenario: format!("{}.{}", n[0], n[1]),
+        config: format!("{} {}", n[2], n[3]),
+        metric: n[4].to_string(),
         base: base.map(|v| v.value),
         new: new.map(|v| v.value),
         base_frame: base.and_then(|v| v.frame),
@@ -135,6 +145,11 @@ fn metric_diff(
         new_q3: new.and_then(|v| v.q3),
         change,
     }
+}
+
+/// The names of a numbered key.
+fn key_names<'a>(names: &'a Names, k: &Key) -> [&'a str; 5] {
+    k.map(|id| names.name(id))
 }
 
 /// A timing row's median and quartiles; a row without quartiles (written before them, when the
@@ -148,103 +163,120 @@ fn spread(v: &Values) -> Spread {
 }
 
 /// Compares run `new` against baseline `base`. `tolerances` overrides the per-unit defaults by
-/// metric name; `position_tolerance` (tiles) decides where a trace diverges.
+/// metric name; `position_tolerance` (tiles) decides where a trace diverges. The verdicts listed
+/// are the first [`crate::limits::MAX_LISTED_CHANGES`] of each change, every one counted
+/// ([`RunDiff::counts`]); [`diff_runs_each`] hands on every one.
 pub fn diff_runs(
     base: &Path,
     new: &Path,
     tolerances: &BTreeMap<String, Tolerance>,
     position_tolerance: f32,
 ) -> Result<RunDiff, DiffError> {
+    diff_runs_each(base, new, tolerances, position_tolerance, &mut |_| {})
+}
+
+/// [`diff_runs`], handing every metric verdict that is not `Same` to `each` as it is found:
+/// the baseline's rows in its order, then the rows only the new run has, in its order.
+pub fn diff_runs_each(
+    base: &Path,
+    new: &Path,
+    tolerances: &BTreeMap<String, Tolerance>,
+    position_tolerance: f32,
+    each: &mut dyn FnMut(&MetricDiff),
+) -> Result<RunDiff, DiffError> {
     let mut names = Names::default();
-    let mut rows: Vec<BaseRow> = Vec::new();
+    let mut rows: Vec<NewRow> = Vec::new();
     let mut index: HashMap<Key, usize> = HashMap::new();
-    let mut csv = CsvRows::open(&base.join("metrics.csv"), "metrics file")?;
-    stream_metrics(
-        &mut csv,
-        &mut names,
-        |names, key, unit, values, reference, line| {
-            // A repeated key would let one of its rows go uncompared.
-            if let Some(&first) = index.get(&key) {
-                return Err(DiffError::Duplicate {
-                    path: base.join("metrics.csv"),
-                    first: rows[first].line,
-                    second: line,
-                    key: key_text(names, &key),
-                });
-            }
-            index.insert(key, rows.len());
-            rows.push(BaseRow {
-                values,
-                reference,
-                unit,
-                line,
-                new_line: 0,
-            });
-            Ok(())
-        },
-    )?;
-    let mut out = RunDiff {
-        compared: rows.len(),
-        ..RunDiff::default()
-    };
-    // The verdicts that are not Same, by the baseline row they belong to.
-    let mut changed: Vec<(usize, MetricDiff)> = Vec::new();
-    let mut added: Vec<AddedRow> = Vec::new();
-    let mut added_at: HashMap<Key, u64> = HashMap::new();
     let new_path = new.join("metrics.csv");
     let mut csv = CsvRows::open(&new_path, "metrics file")?;
-    stream_metrics(&mut csv, &mut names, |names, key, _, nv, _, line| {
+    stream_metrics(&mut csv, &mut names, |names, key, _, values, _, line| {
+        // A repeated key would let one of its rows go uncompared.
+        if let Some(&first) = index.get(&key) {
+            return Err(DiffError::Duplicate {
+                path: new_path.clone(),
+                first: rows[first].line,
+                second: line,
+                key: key_text(names, &key),
+            });
+        }
+        index.insert(key, rows.len());
+        rows.push(NewRow {
+            key,
+            values,
+            line,
+            base_line: 0,
+        });
+        Ok(())
+    })?;
+    let mut out = RunDiff::default();
+    let mut found = |out: &mut RunDiff, d: MetricDiff| {
+        each(&d);
+        out.push(d);
+    };
+    // The baseline's keys the new run lacks, with their line, to refuse a repeat.
+    let mut missing_at: HashMap<u128, u64> = HashMap::new();
+    let base_path = base.join("metrics.csv");
+    let mut csv = CsvRows::open(&base_path, "metrics file")?;
+    while csv.advance()? {
+        let line = csv.line();
+        let r: MetricRef<'_> = csv.get()?;
+        out.compared += 1;
+        let n = [r.level, r.scenario, r.backend, r.config, r.metric];
+        let bv = Values {
+            value: r.value,
+            frame: r.frame,
+            q1: r.q1,
+            q3: r.q3,
+        };
         let repeat = |first: u64| DiffError::Duplicate {
-            path: new_path.clone(),
+            path: base_path.clone(),
             first,
             second: line,
-            key: key_text(names, &key),
+            key: format!("{}.{} {} {} {}", n[0], n[1], n[2], n[3], n[4]),
         };
-        let Some(&i) = index.get(&key) else {
-            if let Some(&first) = added_at.get(&key) {
+        let ids = n.map(|name| names.get(name));
+        let at = match ids {
+            [Some(a), Some(b), Some(c), Some(d), Some(e)] => index.get(&[a, b, c, d, e]).copied(),
+            _ => None,
+        };
+        let Some(i) = at else {
+            if let Some(&first) = missing_at.get(&missing_key(n)) {
                 return Err(repeat(first));
             }
-            added_at.insert(key, line);
-            added.push(AddedRow { key, values: nv });
-            return Ok(());
+            missing_at.insert(missing_key(n), line);
+            found(&mut out, metric_diff(n, Some(bv), None, Change::Missing));
+            continue;
         };
-        let br = &mut rows[i];
-        if br.new_line != 0 {
-            return Err(repeat(br.new_line));
+        let nr = &mut rows[i];
+        if nr.base_line != 0 {
+            return Err(repeat(nr.base_line));
         }
-        br.new_line = line;
-        let (metric, unit) = (names.name(key[4]), names.name(br.unit));
-        let unit = crate::metrics::registry::get(metric).map_or(unit, |d| d.unit);
+        nr.base_line = line;
+        let unit = crate::metrics::registry::get(r.metric).map_or(r.unit, |d| d.unit);
         let tol = tolerances
-            .get(metric)
+            .get(r.metric)
             .copied()
             .unwrap_or_else(|| default_tolerance(unit));
         let change = if unit == "ns" {
             out.timings_compared += 1;
-            classify_timing(&spread(&br.values), &spread(&nv), tol)
+            classify_timing(&spread(&bv), &spread(&nr.values), tol)
         } else {
-            classify(br.values.value, nv.value, br.reference, tol)
+            classify(bv.value, nr.values.value, r.reference, tol)
         };
         if change != Change::Same {
-            changed.push((
-                i,
-                metric_diff(names, &key, Some(br.values), Some(nv), change),
-            ));
-        }
-        Ok(())
-    })?;
-    // The baseline's rows the new run lacks, then every verdict in the baseline's order.
-    for (key, &i) in &index {
-        if rows[i].new_line == 0 {
-            let d = metric_diff(&names, key, Some(rows[i].values), None, Change::Missing);
-            changed.push((i, d));
+            found(&mut out, metric_diff(n, Some(bv), Some(nr.values), change));
         }
     }
-    changed.sort_by_key(|(i, _)| *i);
-    out.metrics = changed.into_iter().map(|(_, d)| d).collect();
-    for a in &added {
-        let d = metric_diff(&names, &a.key, None, Some(a.values), Change::Added);
-        out.metrics.push(d);
+    drop(missing_at);
+    // The rows only the new run has, in its order.
+    for nr in rows.iter().filter(|nr| nr.base_line == 0) {
+        let d = metric_diff(
+            key_names(&names, &nr.key),
+            None,
+            Some(nr.values),
+            Change::Added,
+        );
+        found(&mut out, d);
     }
     let (bt, nt) = (trace_files(base)?, trace_files(new)?);
     for name in bt.iter().chain(nt.iter().filter(|n| !bt.contains(n))) {

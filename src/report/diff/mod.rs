@@ -14,9 +14,10 @@ mod render;
 mod timing;
 
 pub use compare::{
-    default_tolerance, Change, FailOn, MetricDiff, RunDiff, Tolerance, TraceChange, TraceDiff,
+    default_tolerance, Change, ChangeCounts, FailOn, MetricDiff, RunDiff, Tolerance, TraceChange,
+    TraceDiff,
 };
-pub use join::diff_runs;
+pub use join::{diff_runs, diff_runs_each};
 pub(crate) use read::CsvRows;
 pub use read::{read_metrics, read_metrics_where, read_runs, DiffError, MetricRecord, RunKey};
 pub use render::{render, DiffFormat};

@@ -60,9 +60,7 @@ pub(super) struct MetricRef<'a> {
     pub(super) value: f64,
     pub(super) unit: &'a str,
     pub(super) reference: f64,
-    /// Read so that a malformed `error` is refused as [`MetricRecord`] refuses it; not used.
-    #[serde(rename = "error")]
-    _error: f64,
+    pub(super) error: f64,
     #[serde(default)]
     pub(super) frame: Option<u32>,
     #[serde(default)]
@@ -279,7 +277,20 @@ pub fn read_metrics_where(
         if !keep([r.level, r.scenario, r.backend, r.config]) {
             continue;
         }
-        let r: MetricRecord = csv.get()?;
+        let r = MetricRecord {
+            level: r.level.into(),
+            scenario: r.scenario.into(),
+            backend: r.backend.into(),
+            config: r.config.into(),
+            metric: r.metric.into(),
+            value: r.value,
+            unit: r.unit.into(),
+            reference: r.reference,
+            error: r.error,
+            frame: r.frame,
+            q1: r.q1,
+            q3: r.q3,
+        };
         let key = (
             r.level.clone(),
             r.scenario.clone(),

@@ -39,7 +39,9 @@ fn fmt_pos(p: Option<(f32, f32)>) -> String {
     p.map_or("-".into(), |(x, y)| format!("({x}, {y})"))
 }
 
-/// Renders a diff.
+/// Renders a diff: the metrics it lists ([`RunDiff::push`]) and the counts of every one; as
+/// CSV the metrics it lists (`platbench diff --format csv` writes every one as found, with
+/// [`super::diff_runs_each`]).
 pub fn render(d: &RunDiff, format: DiffFormat) -> String {
     if format == DiffFormat::Csv {
         let mut w = csv::Writer::from_writer(Vec::new());
@@ -53,26 +55,13 @@ pub fn render(d: &RunDiff, format: DiffFormat) -> String {
             .unwrap_or_default();
     }
     let mut out = String::new();
-    let worse = d
-        .metrics
-        .iter()
-        .filter(|m| m.change == Change::Worse)
-        .count();
-    let better = d
-        .metrics
-        .iter()
-        .filter(|m| m.change == Change::Better)
-        .count();
-    let missing = d
-        .metrics
-        .iter()
-        .filter(|m| m.change == Change::Missing)
-        .count();
-    let added = d
-        .metrics
-        .iter()
-        .filter(|m| m.change == Change::Added)
-        .count();
+    let [worse, better, missing, added] = [
+        Change::Worse,
+        Change::Better,
+        Change::Missing,
+        Change::Added,
+    ]
+    .map(|c| d.counts.of(c));
     out.push_str(&format!(
         "{} metrics compared: {worse} worse, {better} better, {missing} missing, {added} added; {} traces compared, {} diverge or differ in presence\n",
         d.compared,
@@ -118,6 +107,13 @@ pub fn render(d: &RunDiff, format: DiffFormat) -> String {
         out.push('\n');
         out.push_str(&t.to_string());
         out.push('\n');
+        if d.unlisted() > 0 {
+            out.push_str(&format!(
+                "and {} more changed metrics not listed (the first {} of each change are); `platbench diff --format csv` lists every one\n",
+                d.unlisted(),
+                crate::limits::MAX_LISTED_CHANGES
+            ));
+        }
     }
     if !d.traces.is_empty() {
         let mut t = comfy_table::Table::new();
