@@ -104,6 +104,17 @@ pub(crate) const MAX_PATH_POINTS: usize = 1_000;
 /// them all, in a summary of 150 MB per 100 MB, and aborted at 3.4 GB under
 /// `prlimit --as=4294967296`; the built-in comparison has 18,883 rows.
 pub const MAX_LISTED_CHANGES: usize = 1_000;
+
+/// Rows of a metrics file `diff`, `check` and `review` read. The diff indexes the new run's rows
+/// (about 280 bytes each) to stream the baseline past them: 1,000,000 extra rows took 285 MB and
+/// a 1 GB file of 14 million would pass 4 GB. The built-in comparison writes 18,883 rows; 2
+/// million keep the index near 600 MB.
+pub const MAX_METRIC_ROWS: u64 = 2_000_000;
+
+/// Bytes of one record of a CSV file `diff`, `check`, `review` and `report` read (a metrics row
+/// or a trace frame: a few hundred bytes). A 1 GB field was read into one buffer and aborted
+/// at 3 GB under `prlimit --as=4294967296`.
+pub const MAX_CSV_RECORD_BYTES: u64 = 1024 * 1024;
 /// Most rows of a trade-off CSV given to `report --tradeoff`: `platbench sweep` writes one row
 /// per setting and scope, a few hundred (the built-in `compare/tradeoff/tradeoff.csv` holds 490),
 /// and the report's chart draws an element per row, so 2.6 million rows (108 MiB) took 3.8 GB.

@@ -515,7 +515,8 @@ fn a_side_file_that_is_not_a_regular_file_is_refused_not_ignored() {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/maps/infinite.tmx"),
     )
     .unwrap();
-    let cases: [(&str, &str, fn(&std::path::Path)); 4] = [
+    type Make = fn(&std::path::Path);
+    let cases: [(&str, &str, Make); 4] = [
         ("pipe", "a named pipe (FIFO)", |p| fifo(p)),
         ("zero", "a character device", |p| {
             symlink("/dev/zero", p).unwrap()

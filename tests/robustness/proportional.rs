@@ -142,3 +142,46 @@ fn every_command_building_worlds_of_a_large_level_takes_fewer_threads_and_says_s
         assert!(stderr(&out).contains(note), "{}: {}", args[0], stderr(&out));
     }
 }
+
+/// A finite 10 x 5 Tiled map with a one-tile tileset, a spawn, and `body` as its tile layers.
+fn small_tmx(body: &str, infinite: bool) -> String {
+    format!(
+        "<?xml version=\"1.0\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"10\" height=\"5\" tilewidth=\"16\" tileheight=\"16\" infinite=\"{}\"><tileset firstgid=\"1\" name=\"t\" tilewidth=\"16\" tileheight=\"16\" tilecount=\"1\" columns=\"1\"><image source=\"t.png\" width=\"16\" height=\"16\"/></tileset>{body}<objectgroup id=\"9\" name=\"objects\"><object id=\"1\" name=\"start\" x=\"40\" y=\"48\"><point/></object></objectgroup></map>\n",
+        u8::from(infinite)
+    )
+}
+
+#[test]
+fn a_map_of_many_layers_or_chunks_is_scanned_in_one_pass() {
+    // The map's pre-pass counted each layer's and chunk's line from the file's start, so its
+    // time grew with their square: 40,000 layers of 10 x 5 (a 7.7 MB file) and 160,000 one-cell
+    // chunks ran past 120 s. Both are within every limit (src/limits.rs) and now take seconds;
+    // the 60 s timeout guards the hang, it does not time the work.
+    let dir = tempfile::tempdir().unwrap();
+    let cells = [["0"; 40].join(","), ["1"; 10].join(",")].join(",");
+    let layers: String = (0..40_000)
+        .map(|k| format!("<layer id=\"{}\" name=\"ground{k}\" width=\"10\" height=\"5\"><data encoding=\"csv\">{cells}</data></layer>\n", k + 10))
+        .collect();
+    let chunks: String = (0..400)
+        .map(|y| {
+            let row: String = (0..400)
+                .map(|x| format!("<chunk x=\"{x}\" y=\"{y}\" width=\"1\" height=\"1\">0</chunk>"))
+                .collect();
+            row + "\n"
+        })
+        .collect();
+    let chunked = format!(
+        "<layer id=\"2\" name=\"ground\" width=\"10\" height=\"5\"><data encoding=\"csv\"><chunk x=\"0\" y=\"4\" width=\"10\" height=\"1\">{}</chunk>{chunks}</data></layer>",
+        ["1"; 10].join(",")
+    );
+    for (name, text) in [
+        ("layers.tmx", small_tmx(&layers, false)),
+        ("chunks.tmx", small_tmx(&chunked, true)),
+    ] {
+        let map = dir.path().join(name);
+        std::fs::write(&map, text).unwrap();
+        let mut cmd = platbench();
+        cmd.arg("inspect").arg(&map);
+        assert_success(&super::hostile::output_within(cmd, 60));
+    }
+}

@@ -210,3 +210,41 @@ fn an_empty_metrics_file_or_trace_is_refused_not_read_as_a_run_of_no_rows() {
     let out = diff(&a, &b, &[]);
     assert_error(&out, "l.s.sweep.csv: the file is empty");
 }
+
+#[test]
+fn a_row_longer_than_the_record_limit_is_refused_at_its_line_before_it_is_buffered() {
+    // A metrics row holding a 1 GB field was read into one buffer and aborted at 3 GB; a
+    // trace frame likewise. The limit is src/limits.rs's MAX_CSV_RECORD_BYTES (1 MiB): one
+    // byte past it, at line 3 of each file (the header is line 1), is refused there. A quoted
+    // field's newlines stay inside its record, so they do not reset the count.
+    let root = tempfile::tempdir().unwrap();
+    let long = "x".repeat(1024 * 1024);
+    let base = run_dir(
+        root.path(),
+        "base",
+        &row("rest_gap", "0.0"),
+        Some(&frames(3, "2")),
+    );
+    let quoted = format!("\"{}\"", long.replacen('x', "\n", 1000));
+    for (name, metrics, trace) in [
+        (
+            "metrics",
+            row("rest_gap", "0.0") + &row(&long, "0.0"),
+            frames(3, "2"),
+        ),
+        (
+            "quoted",
+            row("rest_gap", "0.0") + &row(&quoted, "0.0"),
+            frames(3, "2"),
+        ),
+        (
+            "trace",
+            row("rest_gap", "0.0"),
+            frames(1, "0") + &frames(1, &long),
+        ),
+    ] {
+        let new = run_dir(root.path(), name, &metrics, Some(&trace));
+        let out = diff(&base, &new, &[]);
+        assert_error(&out, "line 3: the row passes 1048576 bytes");
+    }
+}

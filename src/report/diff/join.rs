@@ -188,7 +188,7 @@ pub fn diff_runs_each(
     let mut rows: Vec<NewRow> = Vec::new();
     let mut index: HashMap<Key, usize> = HashMap::new();
     let new_path = new.join("metrics.csv");
-    let mut csv = CsvRows::open(&new_path, "metrics file")?;
+    let mut csv = CsvRows::open_metrics(&new_path)?;
     stream_metrics(&mut csv, &mut names, |names, key, _, values, _, line| {
         // A repeated key would let one of its rows go uncompared.
         if let Some(&first) = index.get(&key) {
@@ -216,7 +216,7 @@ pub fn diff_runs_each(
     // The baseline's keys the new run lacks, with their line, to refuse a repeat.
     let mut missing_at: HashMap<u128, u64> = HashMap::new();
     let base_path = base.join("metrics.csv");
-    let mut csv = CsvRows::open(&base_path, "metrics file")?;
+    let mut csv = CsvRows::open_metrics(&base_path)?;
     while csv.advance()? {
         let line = csv.line();
         let r: MetricRef<'_> = csv.get()?;

@@ -127,6 +127,16 @@ pub enum DiffError {
         /// The line of the row whose name was one too many.
         line: u64,
     },
+    /// A metrics file holds more rows than [`crate::limits::MAX_METRIC_ROWS`].
+    #[error("{path}: line {line} is row {} of the metrics file; expected at most {max} rows (the diff holds the new run's rows to compare the baseline's against them)", max + 1)]
+    TooManyRows {
+        /// The file.
+        path: PathBuf,
+        /// The line of the first row past the limit.
+        line: u64,
+        /// The most rows a metrics file may hold.
+        max: u64,
+    },
     /// A metrics file or trace is empty: no header, so no run wrote it whole (a truncated or
     /// damaged file would otherwise read as a run of no rows, and every row of the other side
     /// would pass as added or be reported missing).
@@ -156,13 +166,61 @@ fn expected_of(kind: &csv::DeserializeErrorKind) -> Option<&'static str> {
     }
 }
 
+/// A reader that refuses a CSV record longer than [`crate::limits::MAX_CSV_RECORD_BYTES`]
+/// before the CSV reader buffers it: it follows quotes, so a record is what the CSV reader
+/// reads as one, and counts lines, to say where.
+struct RecordCap<R> {
+    inner: R,
+    /// Bytes of the current record so far.
+    bytes: u64,
+    /// Whether the bytes so far leave a quoted field open.
+    quoted: bool,
+    /// The line of the current record's start (the header is line 1).
+    record_line: u64,
+    /// The line being read.
+    line: u64,
+}
+
+impl<R: std::io::Read> std::io::Read for RecordCap<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        for &b in &buf[..n] {
+            self.bytes += 1;
+            match b {
+                b'"' => self.quoted = !self.quoted,
+                b'\n' => {
+                    self.line += 1;
+                    if !self.quoted {
+                        (self.bytes, self.record_line) = (0, self.line);
+                    }
+                }
+                _ => {}
+            }
+            if self.bytes > crate::limits::MAX_CSV_RECORD_BYTES {
+                return Err(std::io::Error::new(
+                    std::io::ErrorKind::InvalidData,
+                    format!(
+                        "line {}: the row passes {} bytes; expected rows of at most that (platbench writes a few hundred bytes a row)",
+                        self.record_line,
+                        crate::limits::MAX_CSV_RECORD_BYTES
+                    ),
+                ));
+            }
+        }
+        Ok(n)
+    }
+}
+
 /// A CSV file read one record at a time into one reused buffer: memory is that of its
-/// longest row, whatever its length.
+/// longest row, at most [`crate::limits::MAX_CSV_RECORD_BYTES`].
 pub(crate) struct CsvRows {
     path: PathBuf,
-    reader: csv::Reader<crate::input::Capped>,
+    reader: csv::Reader<RecordCap<crate::input::Capped>>,
     headers: csv::StringRecord,
     record: csv::StringRecord,
+    /// Rows read so far, and the most the file may hold.
+    rows: u64,
+    max_rows: u64,
 }
 
 impl CsvRows {
@@ -170,7 +228,13 @@ impl CsvRows {
     /// names the file's kind in an error.
     pub(crate) fn open(path: &Path, what: &'static str) -> Result<Self, DiffError> {
         let file = crate::input::open(path, u64::MAX, what)?;
-        let mut reader = csv::Reader::from_reader(file);
+        let mut reader = csv::Reader::from_reader(RecordCap {
+            inner: file,
+            bytes: 0,
+            quoted: false,
+            record_line: 1,
+            line: 1,
+        });
         let headers = reader.headers().map_err(|e| Self::csv(path, e))?.clone();
         if headers.iter().all(str::is_empty) {
             return Err(DiffError::Empty {
@@ -182,6 +246,16 @@ impl CsvRows {
             reader,
             headers,
             record: csv::StringRecord::new(),
+            rows: 0,
+            max_rows: u64::MAX,
+        })
+    }
+
+    /// Opens a metrics file ([`Self::open`]) of at most [`crate::limits::MAX_METRIC_ROWS`] rows.
+    pub(crate) fn open_metrics(path: &Path) -> Result<Self, DiffError> {
+        Ok(CsvRows {
+            max_rows: crate::limits::MAX_METRIC_ROWS,
+            ..Self::open(path, "metrics file")?
         })
     }
 
@@ -199,9 +273,19 @@ impl CsvRows {
 
     /// Reads the next record; false at the end of the file.
     pub(crate) fn advance(&mut self) -> Result<bool, DiffError> {
-        self.reader
+        let more = self
+            .reader
             .read_record(&mut self.record)
-            .map_err(|e| Self::csv(&self.path, e))
+            .map_err(|e| Self::csv(&self.path, e))?;
+        self.rows += u64::from(more);
+        if self.rows > self.max_rows {
+            return Err(DiffError::TooManyRows {
+                path: self.path.clone(),
+                line: self.line(),
+                max: self.max_rows,
+            });
+        }
+        Ok(more)
     }
 
     /// The line of the current record (the header is line 1).
@@ -268,7 +352,7 @@ pub fn read_metrics_where(
     dir: &Path,
     mut keep: impl FnMut([&str; 4]) -> bool,
 ) -> Result<Vec<MetricRecord>, DiffError> {
-    let mut csv = CsvRows::open(&dir.join("metrics.csv"), "metrics file")?;
+    let mut csv = CsvRows::open_metrics(&dir.join("metrics.csv"))?;
     let mut rows: Vec<MetricRecord> = Vec::new();
     // A repeated key would let one of its rows go uncompared (the last one read wins).
     let mut seen: BTreeMap<_, u64> = BTreeMap::new();
@@ -320,7 +404,7 @@ pub type RunKey = [String; 4];
 /// The runs of `DIR/metrics.csv`, each once, in the order of its first row, read a row at a
 /// time (every row read and checked, none kept): memory is that of the runs, not the rows.
 pub fn read_runs(dir: &Path) -> Result<Vec<RunKey>, DiffError> {
-    let mut csv = CsvRows::open(&dir.join("metrics.csv"), "metrics file")?;
+    let mut csv = CsvRows::open_metrics(&dir.join("metrics.csv"))?;
     let mut seen: HashSet<RunKey> = HashSet::new();
     let mut runs: Vec<RunKey> = Vec::new();
     while csv.advance()? {
@@ -390,5 +474,31 @@ pub(super) fn compare_traces(
                 return Ok(d.finish());
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_metrics_file_past_its_row_limit_is_refused_at_the_first_row_too_many() {
+        // The limit is MAX_METRIC_ROWS (2 million, too many for a unit test to write); the
+        // count is the same with a limit of 3: three rows read, the fourth refused at line 5.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("metrics.csv");
+        std::fs::write(&path, "a,b\n1,2\n3,4\n5,6\n7,8\n").unwrap();
+        let mut rows = CsvRows {
+            max_rows: 3,
+            ..CsvRows::open(&path, "metrics file").unwrap()
+        };
+        for _ in 0..3 {
+            assert!(rows.advance().unwrap());
+        }
+        let err = rows.advance().unwrap_err().to_string();
+        assert!(
+            err.contains("line 5 is row 4 of the metrics file; expected at most 3 rows"),
+            "{err}"
+        );
     }
 }
