@@ -18,6 +18,10 @@ const STAGING: &str = ".platbench-staging-";
 /// Prefix of a replaced output moved aside for the swap: `.platbench-old-<pid>-<n>-<name>`.
 const OLD: &str = ".platbench-old-";
 
+/// The most bytes a file name holds on the systems platbench runs on (Linux's `NAME_MAX`, the
+/// limit of ext4, APFS and NTFS alike).
+const NAME_MAX: usize = 255;
+
 /// Which command wrote a directory.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Kind {
@@ -119,6 +123,16 @@ pub(crate) fn check_target_as(dir: &Path, kind: Kind, force: bool, flag: &str) -
             std::path::Component::Normal(_) => named = true,
             _ => {}
         }
+    }
+    // The previous output is moved aside as `.platbench-old-<pid>-<n>-NAME` for the swap, and a
+    // file name holds at most 255 bytes: a longer NAME was found too long only after the work.
+    let longest = NAME_MAX - format!("{OLD}{}-{}-", u32::MAX, u32::MAX).len();
+    if let Some(name) = dir.file_name().filter(|n| n.len() > longest) {
+        bail!(
+            "{flag} {}: the folder's name is {} bytes; expected at most {longest} (platbench moves a previous output aside under `{OLD}<pid>-<n>-` and its name, and a file name holds at most {NAME_MAX} bytes)",
+            dir.display(),
+            name.len()
+        );
     }
     let meta = match fs::symlink_metadata(dir) {
         Ok(m) => m,

@@ -545,3 +545,20 @@ inputs = [ { t = {t}, right = true, jump = true } ]
 }
 
 // ---- 3. diff ------------------------------------------------------------------------------
+
+#[test]
+fn an_output_name_too_long_to_move_aside_is_refused_before_any_work() {
+    // A 255-byte `--out` name was written once, then could not be replaced: the previous output
+    // is moved aside as `.platbench-old-<pid>-<n>-NAME`, past a file name's 255 bytes, and that
+    // was found only after the run. The longest name allowed is 255 less that prefix at its
+    // longest (two u32s: 37 bytes), 218; one byte more is refused at once, naming both.
+    let dir = tempfile::tempdir().unwrap();
+    let level = quick_level(dir.path());
+    let out = run_quick(&level, &dir.path().join("d".repeat(219)), &[]);
+    assert_error(&out, "the folder's name is 219 bytes; expected at most 218");
+    assert!(!dir.path().join("d".repeat(219)).exists());
+    for _ in 0..2 {
+        let out = run_quick(&level, &dir.path().join("d".repeat(218)), &[]);
+        common::assert_success(&out);
+    }
+}
