@@ -63,6 +63,7 @@ fn starts_json_value(body: &str) -> bool {
 }
 
 /// The format of `text`, the content of the file at `path` (its extension breaks a tie).
+#[cfg(feature = "tiled")]
 pub(crate) fn format_of_text(text: &str, path: &Path) -> LevelFormat {
     format_of(text, &extension(path))
 }

@@ -136,6 +136,8 @@ fn sizes_that_are_not_positive_whole_numbers_are_refused_at_their_line() {
         String::from_utf8_lossy(&out.stderr)
     );
     // The largest side: src/limits.rs MAX_TILES (no side of a 1,000,000-tile map is longer).
+    // The largest tile size: a TMX attribute's u32, as the tiled crate reads it
+    // (MAX_TILE_PIXELS in src/level/tiled/json_values.rs).
     let pixels = "a whole number of pixels from 1 to 4294967295, as Tiled writes it";
     let tiles = "a whole number of tiles from 1 to 1000000, as Tiled writes it";
     let huge = "123456789012345678901234567890";
@@ -209,7 +211,8 @@ fn a_string_where_tiled_writes_a_number_is_refused_at_its_line() {
 fn a_cell_that_is_not_a_tile_id_is_named_at_its_line_and_place() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    // Once "cell 4 is ...; expected a tile id" with no line. Cell 4 of a 3-wide layer: x = 1,
+    // Once "cell 4 is ...; expected a tile id" with no line. A tile id is a u32, as Tiled's
+    // gids are (4294967296 is one past). Cell 4 of a 3-wide layer: x = 1,
     // y = 1, on line 14.
     for (value, found) in [
         ("\"x\"", "the string \"x\""),
