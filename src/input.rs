@@ -37,12 +37,16 @@ pub enum InputError {
         what: &'static str,
     },
     /// The file is not UTF-8 text.
-    #[error("{}: it is not UTF-8 text ({reason})", path.display())]
+    #[error("{}:{line}:{column}: {}", path.display(), not_text(.found))]
     NotText {
         /// The file.
         path: PathBuf,
-        /// Where the first invalid byte is.
-        reason: String,
+        /// The 1-based line of the first byte that is not UTF-8.
+        line: usize,
+        /// Its 1-based column, in characters.
+        column: usize,
+        /// The bytes found there, in hex (`0xFF`).
+        found: String,
     },
 }
 
@@ -50,8 +54,15 @@ impl InputError {
     /// What is wrong without the file's name, for a caller whose own error names it (and says
     /// it could not read it).
     pub fn reason(&self) -> String {
-        if let InputError::Io { source, .. } = self {
-            return source.to_string();
+        match self {
+            InputError::Io { source, .. } => return source.to_string(),
+            InputError::NotText {
+                line,
+                column,
+                found,
+                ..
+            } => return format!("line {line}, column {column}: {}", not_text(found)),
+            _ => {}
         }
         let full = self.to_string();
         let path = match self {
@@ -198,10 +209,36 @@ pub fn read(path: &Path, cap: u64, what: &'static str) -> Result<Vec<u8>, InputE
 
 /// [`read`] as UTF-8 text.
 pub fn read_text(path: &Path, cap: u64, what: &'static str) -> Result<String, InputError> {
-    String::from_utf8(read(path, cap, what)?).map_err(|e| InputError::NotText {
-        path: path.to_path_buf(),
-        reason: e.utf8_error().to_string(),
+    String::from_utf8(read(path, cap, what)?).map_err(|e| {
+        let (line, column, found) = not_utf8_at(e.as_bytes(), e.utf8_error());
+        InputError::NotText {
+            path: path.to_path_buf(),
+            line,
+            column,
+            found,
+        }
     })
+}
+
+/// Where the first byte of `bytes` that is not UTF-8 is (`e` says which): its line and column
+/// (1-based, the column in characters) and the bytes found there, in hex.
+pub(crate) fn not_utf8_at(bytes: &[u8], e: std::str::Utf8Error) -> (usize, usize, String) {
+    let valid = e.valid_up_to();
+    let text = std::str::from_utf8(bytes.get(..valid).unwrap_or_default()).unwrap_or_default();
+    let (line, column) = line_column(text, valid);
+    let bad = bytes.get(valid..).unwrap_or_default();
+    let found = bad
+        .iter()
+        .take(e.error_len().unwrap_or(bad.len()).min(4))
+        .map(|b| format!("0x{b:02X}"))
+        .collect::<Vec<_>>()
+        .join(" ");
+    (line, column, found)
+}
+
+/// What a file that is not UTF-8 holds where it stops being UTF-8, and what was expected.
+pub(crate) fn not_text(found: &str) -> String {
+    format!("found byte(s) {found}, not UTF-8; expected UTF-8 text (save the file as UTF-8)")
 }
 
 /// Line and column (both 1-based, the column in characters) of byte `offset` in `text`, for an
@@ -240,6 +277,18 @@ mod tests {
         assert_eq!(super::line_column("é", 1), (1, 1));
         // Past the end: the end.
         assert_eq!(super::line_column("x\n", 99), (2, 1));
+    }
+
+    #[test]
+    fn the_first_byte_that_is_not_utf8_is_placed_by_line_and_column() {
+        let at = |b: &[u8]| {
+            let e = std::str::from_utf8(b).err().unwrap();
+            super::not_utf8_at(b, e)
+        };
+        // After 'é' (two bytes, one column) on line 2: column 3.
+        assert_eq!(at(b"a\n\xc3\xa9x\xffy"), (2, 3, "0xFF".into()));
+        // A character cut short at the end.
+        assert_eq!(at(b"ab\xe2\x82"), (1, 3, "0xE2 0x82".into()));
     }
 
     #[test]

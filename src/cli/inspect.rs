@@ -20,10 +20,12 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
     use crate::level::import::ascii_map;
     let opts = args.import.options()?;
     let p = &args.map;
-    let r = if crate::level::detect_format(p)? == crate::level::LevelFormat::Ldtk {
-        import_ldtk(p, &opts)?
-    } else {
-        import_tiled(p, &opts)?
+    let r = match crate::level::detect_format(p)? {
+        crate::level::LevelFormat::Ldtk => import_ldtk(p, &opts)?,
+        crate::level::LevelFormat::Tmx | crate::level::LevelFormat::TiledJson => {
+            import_tiled(p, &opts)?
+        }
+        crate::level::LevelFormat::Level => return Err(not_a_map(p)),
     };
     let l = &r.level;
     let mut text = format!(
@@ -135,6 +137,24 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
     }
     out(text.trim_end());
     Ok(())
+}
+
+/// A file that is no map (a platbench level, or anything neither XML nor JSON): what it starts
+/// with, where, and what `inspect` reads.
+fn not_a_map(p: &std::path::Path) -> anyhow::Error {
+    use std::io::Read;
+    let mut start = Vec::new();
+    let read = crate::input::open(p, crate::limits::MAX_INPUT_BYTES, "input file")
+        .map(|f| f.take(64 * 1024).read_to_end(&mut start));
+    if let Err(e) = read {
+        return e.into();
+    }
+    let (line, column, found) = crate::level::first_text(&String::from_utf8_lossy(&start));
+    anyhow::anyhow!(
+        "{}:{line}:{column}: found {found}, which is no map: it starts neither XML (`<`) nor a JSON object (`{{`), so it reads as a platbench level (TOML); platbench inspect expects a Tiled map (.tmx, .tmj or .json) or an LDtk project (.ldtk) and shows how it is imported (a platbench level is run as it is: platbench run {})",
+        p.display(),
+        p.display()
+    )
 }
 
 #[cfg(feature = "ldtk")]

@@ -50,6 +50,50 @@ pub(crate) fn looks_like_json(text: &str) -> bool {
         .starts_with('{')
 }
 
+/// Whether `body` (trimmed) is empty or starts a JSON value other than an object: an array, a
+/// string, a number or a literal.
+fn starts_json_value(body: &str) -> bool {
+    body.is_empty()
+        || body.starts_with([
+            '[', '"', '-', '0', '1', '2', '3', '4', '5', '6', '7', '8', '9',
+        ])
+        || ["null", "true", "false"]
+            .iter()
+            .any(|l| body.starts_with(l))
+}
+
+/// The format of `text`, the content of the file at `path` (its extension breaks a tie).
+#[cfg(feature = "tiled")]
+pub(crate) fn format_of_text(text: &str, path: &Path) -> LevelFormat {
+    format_of(text, &extension(path))
+}
+
+/// Where the first thing in `text` is (line and column, 1-based) and its start as an error shows
+/// it: `an empty file`, or its first line's first 40 characters, quoted.
+pub(crate) fn first_text(text: &str) -> (usize, usize, String) {
+    let body = text.trim_start_matches('\u{feff}').trim_start();
+    let (line, column) = crate::input::line_column(text, text.len() - body.len());
+    let first: String = body
+        .lines()
+        .next()
+        .unwrap_or_default()
+        .chars()
+        .take(40)
+        .collect();
+    let shown = if body.is_empty() {
+        "an empty file".to_string()
+    } else {
+        format!("{first:?}")
+    };
+    (line, column, shown)
+}
+
+fn extension(path: &Path) -> String {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default()
+}
+
 /// The format of the text a file starts with; `ext` (lower case) breaks the tie between Tiled
 /// JSON and LDtk when the start does not say.
 fn format_of(start: &str, ext: &str) -> LevelFormat {
@@ -58,7 +102,13 @@ fn format_of(start: &str, ext: &str) -> LevelFormat {
         return LevelFormat::Tmx;
     }
     if !looks_like_json(body) {
-        return LevelFormat::Level;
+        // Named like a JSON map but holding another JSON value, or nothing: a broken map, whose
+        // reader says what its top level is, not a level.
+        return match ext {
+            "tmj" | "json" if starts_json_value(body) => LevelFormat::TiledJson,
+            "ldtk" if starts_json_value(body) => LevelFormat::Ldtk,
+            _ => LevelFormat::Level,
+        };
     }
     if start.contains("\"__header__\"") || start.contains("\"jsonVersion\"") || ext == "ldtk" {
         LevelFormat::Ldtk
@@ -78,11 +128,10 @@ pub fn detect_format(path: &Path) -> Result<LevelFormat, InputError> {
             path: path.to_path_buf(),
             source,
         })?;
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_lowercase())
-        .unwrap_or_default();
-    Ok(format_of(&String::from_utf8_lossy(&start), &ext))
+    Ok(format_of(
+        &String::from_utf8_lossy(&start),
+        &extension(path),
+    ))
 }
 
 #[cfg(test)]
@@ -107,5 +156,16 @@ mod tests {
             LevelFormat::Level
         );
         assert_eq!(format_of("", "toml"), LevelFormat::Level);
+        // Named like a JSON map, another JSON value or nothing is a broken map, not a level.
+        for broken in ["", "null", "[]", " 5", "\"map\"", "-1"] {
+            assert_eq!(format_of(broken, "tmj"), LevelFormat::TiledJson, "{broken}");
+            assert_eq!(format_of(broken, "ldtk"), LevelFormat::Ldtk, "{broken}");
+        }
+        assert_eq!(format_of("name = \"a\"", "json"), LevelFormat::Level);
+        assert_eq!(
+            first_text("\n  name = 1\nmap"),
+            (2, 3, "\"name = 1\"".into())
+        );
+        assert_eq!(first_text(" \n"), (2, 1, "an empty file".into()));
     }
 }

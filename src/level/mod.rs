@@ -31,6 +31,7 @@ mod toml;
 
 pub use self::toml::{parse_level, parse_scenarios, side_import_options, LevelError};
 pub use features::Features;
+pub(crate) use format::first_text;
 pub use format::{detect_format, LevelFormat};
 pub use geometry::{character_box, round_height_up};
 pub(crate) use geometry::{surface_walk, SurfaceCell};

@@ -87,7 +87,7 @@ fn a_polygon_past_the_limit_is_refused_where_it_passes_in_a_map_tileset_or_templ
     // One more: refused at that point, line 6 (the third layer), before the tree is built.
     let over = layer(MAX_POLYGON_POINTS + 1);
     let want = format!(
-        "m.tmj: line 6, column {}: object 7 \"ramp\": its polygon has more than 10000 points (this is point 10001); expected at most 10000",
+        "m.tmj:6:{}: object 7 \"ramp\": its polygon has more than 10000 points (this is point 10001); expected at most 10000",
         column_past_limit(&over)
     );
     let p = write(d, "m.tmj", &map(&[over]));
@@ -147,7 +147,7 @@ fn tile_layers_past_the_cell_limits_are_refused_at_the_layer_before_the_tree_is_
     // One more: refused at the line where it starts.
     let e = error(d, &map_with(TILESET, &layers));
     assert!(
-        e.contains(&format!("m.tmj: line {}, column 1: layer \"l16\" (1000 x 1000 tiles) brings the map's tile layers to 17000000 cells together; expected at most 16000000", 4 + n)),
+        e.contains(&format!("m.tmj:{}:1: layer \"l16\" (1000 x 1000 tiles) brings the map's tile layers to 17000000 cells together; expected at most 16000000", 4 + n)),
         "{e}"
     );
     // Data of more cells than a layer may hold.
@@ -157,7 +157,9 @@ fn tile_layers_past_the_cell_limits_are_refused_at_the_layer_before_the_tree_is_
     );
     let e = error(d, &map(&[long]));
     assert!(
-        e.contains("m.tmj: line 6, column 1: layer \"long\": its data holds 1000001 cells; expected at most 1000000"),
+        e.contains(
+            "m.tmj:6:1: layer \"long\": its data holds 1000001 cells; expected at most 1000000"
+        ),
         "{e}"
     );
 }
@@ -173,7 +175,7 @@ fn json_objects_values_and_nesting_past_their_limits_are_refused_where_they_pass
     );
     let e = error(d, &map(&[junk]));
     assert!(
-        e.contains("m.tmj: line 6, column ") && e.contains("more than 500000 JSON objects"),
+        e.contains("m.tmj:6:") && e.contains("more than 500000 JSON objects"),
         "{e}"
     );
     // As many numbers as the limit outside the tile layers' data.
@@ -183,7 +185,7 @@ fn json_objects_values_and_nesting_past_their_limits_are_refused_where_they_pass
     );
     let e = error(d, &map(&[numbers]));
     assert!(
-        e.contains("m.tmj: line 6, column ")
+        e.contains("m.tmj:6:")
             && e.contains("more than 5000000 JSON values besides the cells of its tile layers"),
         "{e}"
     );
@@ -203,7 +205,7 @@ fn json_objects_values_and_nesting_past_their_limits_are_refused_where_they_pass
     let e = error(d, &map_with(TILESET, &[deep.clone(), SPAWN.into()]));
     let column = deep.find("[0,0,0").unwrap() + 1;
     assert!(
-        e.contains(&format!("m.tmj: line 4, column {column}: arrays and objects nest more than 127 deep here; expected at most 127")),
+        e.contains(&format!("m.tmj:4:{column}: arrays and objects nest more than 127 deep here; expected at most 127")),
         "{e}"
     );
 }

@@ -6,6 +6,7 @@ mod common;
 mod edges;
 mod evident_roles;
 mod json_limits;
+mod json_values;
 mod ldtk;
 mod limits;
 mod map_problems;

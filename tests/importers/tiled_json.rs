@@ -104,7 +104,7 @@ fn errors_name_the_json_layer_and_the_format() {
     // JSON syntax: the line and column.
     let e = run_error(d, "broken.tmj", "{\n \"layers\": [,]\n}");
     assert!(
-        e.contains("broken.tmj") && e.contains("line 2, column"),
+        e.contains("broken.tmj:2:") && e.contains("not Tiled JSON"),
         "{e}"
     );
     // A cell that is not a tile id: the layer and the cell.
@@ -114,7 +114,10 @@ fn errors_name_the_json_layer_and_the_format() {
         r#"{"type":"map","width":2,"height":1,"tilewidth":16,"tileheight":16,"orientation":"orthogonal",
             "layers":[{"type":"tilelayer","name":"floor","width":2,"height":1,"data":[1,"x"]}]}"#,
     );
-    assert!(e.contains("layer \"floor\": cell 1 is \"x\""), "{e}");
+    assert!(
+        e.contains("cell.tmj:2:89: layer \"floor\": cell x = 1, y = 0 (column and row from the map's top-left, as Tiled shows them; cell 1 of its data) is the string \"x\""),
+        "{e}"
+    );
     // A tileset given where a map is expected.
     let e = run_error(
         d,
@@ -131,7 +134,9 @@ fn errors_name_the_json_layer_and_the_format() {
             "layers":[{"type":"tilelayer","name":"wide","width":100000,"height":100000,"data":[0]}]}"#,
     );
     assert!(
-        e.contains("big.tmj: line 2, column 23: layer \"wide\" is 100000 x 100000 tiles; expected at most 1000000 tiles"),
+        e.contains(
+            "big.tmj:2:23: layer \"wide\" is 100000 x 100000 tiles; expected at most 1000000 tiles"
+        ),
         "{e}"
     );
     // A check of the TMX twin (data shorter than its layer) is shown at the JSON line where the

@@ -237,6 +237,31 @@ pub(crate) enum CellError {
     },
 }
 
+impl JsonError {
+    /// The line and column the error points at, if any, and what is wrong without them, for an
+    /// error shown as `FILE:LINE:COLUMN: ...`.
+    pub(crate) fn located(&self) -> Option<(usize, usize, String)> {
+        match self {
+            JsonError::Syntax(e) => {
+                let m = e.to_string();
+                let m = m.rsplit_once(" at line ").map_or(m.as_str(), |p| p.0);
+                Some((e.line(), e.column(), format!("not Tiled JSON: {m}")))
+            }
+            JsonError::Limit {
+                line,
+                column,
+                message,
+            }
+            | JsonError::Value {
+                line,
+                column,
+                message,
+            } => Some((*line, *column, message.clone())),
+            _ => None,
+        }
+    }
+}
+
 /// Why a Tiled JSON file (a map, a tileset `.tsj` or a template `.tj`) cannot be read as the XML
 /// the `tiled` crate reads (`json`).
 #[derive(Debug, thiserror::Error)]
@@ -253,6 +278,18 @@ pub(crate) enum JsonError {
         /// The 1-based column, in bytes as serde_json counts them.
         column: usize,
         /// What passes which limit, naming the layer or object.
+        message: String,
+    },
+    /// A value Tiled does not write where it is (a string for a size, a fractional width, a cell
+    /// that is not a tile id, anything but an object at the top), found by the walk
+    /// (`json_values`): where it is, what was found and what was expected.
+    #[error("line {line}, column {column}: {message}")]
+    Value {
+        /// The value's 1-based line.
+        line: usize,
+        /// Its 1-based column, in bytes as serde_json counts them.
+        column: usize,
+        /// What it is and what was expected, naming the layer or object.
         message: String,
     },
     /// JSON, but not an object at the top.

@@ -274,8 +274,8 @@ fn tileset_xml(
 }
 
 /// The top object of a JSON file walked within the limits, or why it is not one.
-fn top(text: &str) -> Result<(Map<String, Value>, Walked), JsonError> {
-    let walked = walk(text)?;
+fn top(text: &str, what: &'static str) -> Result<(Map<String, Value>, Walked), JsonError> {
+    let walked = walk(text, what)?;
     match serde_json::from_str(text).map_err(JsonError::Syntax)? {
         Value::Object(m) => Ok((m, walked)),
         _ => Err(JsonError::NotObject),
@@ -285,7 +285,7 @@ fn top(text: &str) -> Result<(Map<String, Value>, Walked), JsonError> {
 /// A JSON tileset (Tiled's `.tsj`, or `.json` from older versions) as the TSX the crate reads.
 /// `Err` says what is wrong, with the line and column of a JSON syntax error.
 pub(super) fn json_tileset_to_tsx(text: &str) -> Result<Normalized, JsonError> {
-    let v = Value::Object(top(text)?.0);
+    let v = Value::Object(top(text, "a Tiled tileset")?.0);
     let mut notes = vec!["a JSON tileset; read through its TSX equivalent".to_string()];
     let ts = tileset_xml(&v, None, &mut notes)?;
     Ok(Normalized {
@@ -297,7 +297,7 @@ pub(super) fn json_tileset_to_tsx(text: &str) -> Result<Normalized, JsonError> {
 /// A JSON template (`.tj`) as the TX the crate reads: its object, and the tileset a tile
 /// object's `gid` refers to.
 pub(super) fn json_template_to_tx(text: &str) -> Result<Normalized, JsonError> {
-    let v = Value::Object(top(text)?.0);
+    let v = Value::Object(top(text, "a Tiled template")?.0);
     let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<template>");
     if let Some(ts) = v.get("tileset") {
         out.push_str(&format!("<tileset{}/>", attrs(ts, &["firstgid", "source"])));
@@ -473,7 +473,7 @@ const MAP_ATTRS: &[&str] = &[
 /// wrong: a JSON syntax error with its line and column, a tileset or LDtk file given as a map,
 /// a cell that is not a tile id with its layer and index.
 pub(super) fn json_map_to_tmx(text: &str) -> Result<JsonMap, JsonError> {
-    let (m, walked) = top(text)?;
+    let (m, walked) = top(text, "a Tiled map")?;
     let kind = m.get("type").and_then(Value::as_str).unwrap_or("map");
     if kind != "map" || !m.contains_key("layers") {
         let mut keys: Vec<&str> = m.keys().map(String::as_str).take(8).collect();
@@ -570,8 +570,13 @@ mod tests {
         )
         .err()
         .unwrap();
-        assert!(e.to_string().contains("layer \"g\""), "{e}");
-        assert!(e.to_string().contains("cell 1 is -3"), "{e}");
+        // Found by the walk, at the cell.
+        assert!(e
+            .to_string()
+            .contains("1, column 63: layer \"g\": cell x = 1"));
+        assert!(e
+            .to_string()
+            .contains("of its data) is -3; expected a tile id"));
     }
 
     #[test]

@@ -23,10 +23,15 @@ pub(super) enum Role {
     Object,
     /// A tileset's tile.
     Tile,
-    /// `layers`, `chunks`, `objects`: arrays of layers, chunks, objects.
+    /// A tileset: an element of a map's `tilesets`, or a template's `tileset`.
+    Tileset,
+    /// A point of a polygon or polyline.
+    Point,
+    /// `layers`, `chunks`, `objects`, `tilesets`: arrays of layers, chunks, objects, tilesets.
     Layers,
     Chunks,
     Objects,
+    Tilesets,
     /// A tileset's `tiles`: an array of tiles, or (older Tiled) an object of them by id.
     Tiles,
     /// A layer's or chunk's `data` array: its cells.
@@ -54,6 +59,9 @@ pub(super) enum Key {
     Id,
     Name,
     Type,
+    Tilesets,
+    Tileset,
+    Infinite,
 }
 
 #[rustfmt::skip]
@@ -62,7 +70,8 @@ const KEYS: &[(&str, Key)] = &[
     ("object", Key::Object), ("tiles", Key::Tiles), ("data", Key::Data),
     ("polygon", Key::Polygon), ("polyline", Key::Polyline), ("width", Key::Width),
     ("height", Key::Height), ("x", Key::X), ("y", Key::Y), ("id", Key::Id),
-    ("name", Key::Name), ("type", Key::Type),
+    ("name", Key::Name), ("type", Key::Type), ("tilesets", Key::Tilesets),
+    ("tileset", Key::Tileset), ("infinite", Key::Infinite),
 ];
 
 /// The key a member's name (with its quotes) is: a long escaped name is none of them.
@@ -102,8 +111,16 @@ pub(super) struct Frame {
     pub y: Option<i64>,
     /// The cells of a layer's (its chunks' included) or a chunk's data.
     pub cells: u64,
-    /// Whether a layer has chunks.
+    /// Whether a layer has chunks, or the map (the top) is infinite.
     pub chunked: bool,
+    /// The member being read when Tiled writes a number there (`json_values`).
+    pub number: Option<&'static str>,
+    /// The first value Tiled does not write where it is: its place and what is wrong.
+    pub bad: Option<(Pos, String)>,
+    /// The first cell of its data that is not a tile id: its place, index and text.
+    pub bad_cell: Option<(Pos, u64, String)>,
+    /// The sizes that are 0, where they are (positive where Tiled's are, checked at the close).
+    pub zeros: Vec<(Pos, &'static str)>,
     /// A layer's first chunk past the limits: where it starts and what is wrong.
     pub bad_chunk: Option<(Pos, String)>,
     /// A layer's place in the map.
@@ -138,6 +155,8 @@ impl Walker<'_> {
                 Role::Chunks => (Role::Chunk, b'{'),
                 Role::Objects => (Role::Object, b'{'),
                 Role::Tiles => (Role::Tile, b'{'),
+                Role::Tilesets => (Role::Tileset, b'{'),
+                Role::Points => (Role::Point, b'{'),
                 _ => (Role::Other, open),
             }
         } else {
@@ -147,6 +166,8 @@ impl Walker<'_> {
                 (Key::Chunks, Role::Layer) => (Role::Chunks, b'['),
                 (Key::Objects, _) => (Role::Objects, b'['),
                 (Key::Object, Role::Top) => (Role::Object, b'{'),
+                (Key::Tilesets, Role::Top) => (Role::Tilesets, b'['),
+                (Key::Tileset, Role::Top) => (Role::Tileset, b'{'),
                 (Key::Tiles, _) => (Role::Tiles, open),
                 (Key::Data, Role::Layer | Role::Chunk) => (Role::Cells, b'['),
                 (Key::Polygon | Key::Polyline, Role::Object) => (Role::Points, b'['),
@@ -239,7 +260,7 @@ impl Walker<'_> {
         };
         if !matches!(
             p.role(),
-            Role::Top | Role::Layer | Role::Chunk | Role::Object | Role::Tile
+            Role::Top | Role::Layer | Role::Chunk | Role::Object | Role::Tile | Role::Tileset
         ) {
             return;
         }
@@ -264,6 +285,7 @@ impl Walker<'_> {
             Some(Key::Height) => p.height = n().map(|n| n.max(0.0) as u64),
             Some(Key::X) => p.x = n().map(|n| n as i64),
             Some(Key::Y) => p.y = n().map(|n| n as i64),
+            Some(Key::Infinite) => p.chunked |= raw == b"true",
             _ => {}
         }
     }
@@ -307,6 +329,7 @@ impl Walker<'_> {
         let Some(f) = self.stack.pop() else {
             return Ok(());
         };
+        self.check_values(&f)?;
         match f.role() {
             Role::Cells => {
                 if let Some(p) = self.stack.last_mut() {
@@ -401,8 +424,12 @@ impl Walker<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::json_walk::walk;
+    use super::super::json_walk::Walked;
     use super::*;
+
+    fn walk(text: &str) -> Result<Walked, JsonError> {
+        super::super::json_walk::walk(text, "a Tiled map")
+    }
 
     /// The walk's refusal of `text`: line, column and message.
     fn err(text: &str) -> (usize, usize, String) {

@@ -17,6 +17,7 @@ use std::collections::BTreeMap;
 
 use super::error::JsonError;
 use super::json_budget::{key_of, Frame, Key, Role};
+use super::json_values::numeric_key;
 use super::normalize::Normalized;
 
 /// A layer's place in the map: its index in the map's `layers`, then in each group's.
@@ -28,9 +29,10 @@ pub(super) struct Walked {
     pub layers: BTreeMap<LayerPath, usize>,
 }
 
-/// Walks `text` (see the module's doc): `Err` names the first thing past a limit.
-pub(super) fn walk(text: &str) -> Result<Walked, JsonError> {
-    let mut w = Walker::new(text, None);
+/// Walks `text`, which holds `what` (`a Tiled map`; see the module's doc): `Err` names the first
+/// thing past a limit, or the first value Tiled does not write where it is ([`super::json_values`]).
+pub(super) fn walk(text: &str, what: &'static str) -> Result<Walked, JsonError> {
+    let mut w = Walker::new(text, None, what);
     w.run()?;
     Ok(Walked { layers: w.layers })
 }
@@ -38,7 +40,7 @@ pub(super) fn walk(text: &str) -> Result<Walked, JsonError> {
 /// The 1-based line of cell `index` (counted from 0) of the `data` array of the layer at `path`,
 /// if the layer has such an array and the file is within the limits.
 pub(super) fn cell_line(text: &str, path: &[u32], index: u64) -> Option<usize> {
-    let mut w = Walker::new(text, Some((path.to_vec(), index)));
+    let mut w = Walker::new(text, Some((path.to_vec(), index)), "");
     w.run().ok()?;
     w.found
 }
@@ -152,6 +154,8 @@ pub(super) struct Walker<'t> {
     /// The cell [`cell_line`] looks for, and its line once found.
     target: Option<(LayerPath, u64)>,
     found: Option<usize>,
+    /// What the file holds, for an error at its top (`a Tiled map`).
+    pub what: &'static str,
 }
 
 /// A JSON string with its quotes, unescaped (as serde_json reads it; lossy where it would fail).
@@ -164,7 +168,7 @@ pub(super) fn unescape(quoted: &[u8]) -> String {
 }
 
 impl<'t> Walker<'t> {
-    fn new(text: &'t str, target: Option<(LayerPath, u64)>) -> Self {
+    fn new(text: &'t str, target: Option<(LayerPath, u64)>, what: &'static str) -> Self {
         Walker {
             b: text.as_bytes(),
             i: 0,
@@ -178,6 +182,7 @@ impl<'t> Walker<'t> {
             layers: BTreeMap::new(),
             target,
             found: None,
+            what,
         }
     }
 
@@ -238,6 +243,19 @@ impl<'t> Walker<'t> {
             self.i += 1;
         }
         &self.b[start..self.i]
+    }
+
+    /// The token or string (with its quotes) at the cursor, which it does not pass.
+    fn token_here(&mut self) -> &'t [u8] {
+        let (start, line, line_start) = (self.i, self.line, self.line_start);
+        let raw = match self.peek() {
+            Some(b'"') => self
+                .string()
+                .map_or(&self.b[start..], |(_, e)| &self.b[start..=e]),
+            _ => self.token(),
+        };
+        (self.i, self.line, self.line_start) = (start, line, line_start);
+        raw
     }
 
     /// Reads the whole text; stops early at what is not JSON (serde_json reports it) or once
@@ -306,6 +324,7 @@ impl<'t> Walker<'t> {
         if let Some(f) = self.stack.last_mut() {
             f.key = Some(key_of(quoted));
             f.key_text = (f.role() == Role::Tiles).then(|| unescape(quoted));
+            f.number = numeric_key(f.role(), &self.b[s..e]);
         }
         self.ws();
         if self.peek() != Some(b':') {
@@ -320,8 +339,15 @@ impl<'t> Walker<'t> {
     fn value(&mut self) -> Result<Option<bool>, JsonError> {
         let at = self.pos();
         let Some(c) = self.peek() else {
+            if self.stack.is_empty() && self.values == 0 {
+                return Err(self.empty(at));
+            }
             return Ok(None);
         };
+        if self.stack.is_empty() {
+            let raw = self.token_here();
+            self.check_top(at, c, raw)?;
+        }
         let parent = self.stack.last().map(Frame::role);
         if let Some(p) = self.stack.last_mut().filter(|p| p.array) {
             p.count += 1;
@@ -332,6 +358,7 @@ impl<'t> Walker<'t> {
         self.count(at, c, parent)?;
         match c {
             b'{' | b'[' => {
+                self.judge(at, c, b"");
                 self.open(at, c);
                 self.i += 1;
                 Ok(Some(true))
@@ -350,11 +377,13 @@ impl<'t> Walker<'t> {
                     self.check_text(at)?;
                 }
                 // With its quotes, for serde_json to unescape.
+                self.judge(at, c, &self.b[s - 1..e + 1]);
                 self.scalar(&self.b[s - 1..e + 1], true);
                 Ok(Some(false))
             }
             _ if c == b'-' || c.is_ascii_alphanumeric() => {
                 let raw = self.token();
+                self.judge(at, c, raw);
                 self.scalar(raw, false);
                 Ok(Some(false))
             }
@@ -394,7 +423,7 @@ mod tests {
     #[test]
     fn layers_are_found_by_their_place_and_line() {
         let t = "{\"layers\": [\n {\"type\": \"group\", \"layers\": [\n  {\"name\": \"a\", \"data\": [1,\n 2]}]},\n {\"name\": \"b\"}]}";
-        let w = walk(t).ok().unwrap();
+        let w = walk(t, "a Tiled map").ok().unwrap();
         let got: Vec<_> = w.layers.into_iter().collect();
         assert_eq!(got, vec![(vec![0], 2), (vec![0, 0], 3), (vec![1], 5)]);
         assert_eq!(cell_line(t, &[0, 0], 1), Some(4));
@@ -410,7 +439,12 @@ mod tests {
         );
         // A key spelled with escapes is the key; brackets inside strings are text.
         let t = r#"{"l\u0061yers": [{"name": "[{\"", "data": "]}"}]}"#;
-        let got: Vec<_> = walk(t).ok().unwrap().layers.into_iter().collect();
+        let got: Vec<_> = walk(t, "a Tiled map")
+            .ok()
+            .unwrap()
+            .layers
+            .into_iter()
+            .collect();
         assert_eq!(got, vec![(vec![0], 1)]);
     }
 }

@@ -26,6 +26,7 @@ mod error;
 mod gids;
 mod json;
 mod json_budget;
+mod json_values;
 mod json_walk;
 mod layers;
 mod map;

@@ -42,27 +42,37 @@ pub fn import_tiled_map_with(
     let opts = &merged;
     // Read once, within the input cap, made readable by the crate where Tiled is tolerant and
     // the crate is not, and looked at for what the crate would allocate or index before it does.
-    let raw = crate::limits::read_text_capped(path).map_err(|e| {
-        failed(
-            TiledError::Load {
-                file: file.clone(),
-                message: e.to_string(),
-            },
-            &notes,
-        )
-    })?;
+    let raw = crate::input::read_text(path, crate::limits::MAX_INPUT_BYTES, "input file").map_err(
+        |e| {
+            let (file, message) = match &e {
+                crate::input::InputError::NotText {
+                    line,
+                    column,
+                    found,
+                    ..
+                } => (
+                    format!("{file}:{line}:{column}"),
+                    crate::input::not_text(found),
+                ),
+                _ => (file.clone(), e.reason()),
+            };
+            failed(TiledError::Load { file, message }, &notes)
+        },
+    )?;
     // A JSON map (told by its content, whatever its extension) is read as its TMX twin; a line
     // of that twin is shown as the JSON line where its layer starts (a cell's own line for an
     // error at a cell), or as the part of the map it is in.
-    let (json, text) = if crate::level::format::looks_like_json(&raw) {
+    use crate::level::format::{first_text, format_of_text, LevelFormat};
+    let (json, text) = if matches!(
+        format_of_text(&raw, path),
+        LevelFormat::TiledJson | LevelFormat::Ldtk
+    ) {
         let mut j = json::json_map_to_tmx(&raw).map_err(|e| {
-            failed(
-                TiledError::Map {
-                    file: file.clone(),
-                    message: e.to_string(),
-                },
-                &notes,
-            )
+            let (file, message) = match e.located() {
+                Some((line, column, m)) => (format!("{file}:{line}:{column}"), m),
+                None => (file.clone(), e.to_string()),
+            };
+            failed(TiledError::Map { file, message }, &notes)
         })?;
         for n in &j.tmx.notes {
             notes.borrow_mut().push(TiledWarning {
@@ -73,6 +83,15 @@ pub fn import_tiled_map_with(
         }
         let tmx = std::mem::take(&mut j.tmx.text);
         (Some((j, raw)), tmx)
+    } else if format_of_text(&raw, path) == LevelFormat::Level {
+        let (line, column, found) = first_text(&raw);
+        return Err(failed(
+            TiledError::Map {
+                file: format!("{file}:{line}:{column}"),
+                message: format!("found {found}, which starts neither XML (`<`, a .tmx map) nor a JSON object (`{{`, a .tmj map); expected a Tiled map"),
+            },
+            &notes,
+        ));
     } else {
         (None, raw)
     };
@@ -250,7 +269,13 @@ fn crate_text(q: &Path) -> std::io::Result<String> {
         .map(|x| x.to_string_lossy().to_lowercase())
         .unwrap_or_default();
     let bad = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
-    let t = String::from_utf8(data).map_err(|e| bad(e.to_string()))?;
+    let t = String::from_utf8(data).map_err(|e| {
+        let (line, column, found) = crate::input::not_utf8_at(e.as_bytes(), e.utf8_error());
+        bad(format!(
+            "line {line}, column {column}: {}",
+            crate::input::not_text(&found)
+        ))
+    })?;
     let t = match ext.as_str() {
         "tsj" | "json" => {
             json::json_tileset_to_tsx(&t)
