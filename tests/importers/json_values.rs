@@ -227,3 +227,36 @@ fn a_cell_that_is_not_a_tile_id_is_named_at_its_line_and_place() {
         assert_at(&err, &place, &format!("layer \"floor\": cell x = 1, y = 1 (column and row from the map's top-left, as Tiled shows them; cell 4 of its data) is {found}; expected a tile id, a whole number from 0 to 4294967295"));
     }
 }
+
+#[test]
+fn what_tiled_writes_in_properties_and_older_tilesets_is_not_read_as_the_map_s_structure() {
+    // A class property's members named `tiles` or `objects` are the user's data, and an older
+    // tileset file has no `type` and, as an image collection, a tile size of 0: an adversary's
+    // hand-written files that Tiled writes were refused (`tile first: "x" is the string
+    // "left"`; `the map: "tileheight" is 0`). Each now imports, as before the value checks.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let class = r#"[{"name": "spawner", "type": "class", "propertytype": "Spawner", "value": {"tiles": {"first": {"x": "left", "id": true}}, "objects": [{"x": "right"}]}}]"#;
+    let text = map(&[]).replacen(
+        r#"[{"name": "width", "type": "string", "value": "wide"}]"#,
+        class,
+        1,
+    );
+    std::fs::write(
+        d.join("old.json"),
+        r#"{"columns":0,"margin":0,"name":"empty","spacing":0,"tilecount":0,"tileheight":0,"tilewidth":0,"tiles":[]}"#,
+    )
+    .unwrap();
+    let old = map(&[]).replacen(
+        r#""tilesets": ["#,
+        r#""tilesets": [{"firstgid": 100, "source": "old.json"},"#,
+        1,
+    );
+    for (name, text) in [("class.tmj", text), ("old_tileset.tmj", old)] {
+        let p = d.join(name);
+        std::fs::write(&p, &text).unwrap();
+        let out = platbench().arg("inspect").arg(&p).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{name}: {err}");
+    }
+}

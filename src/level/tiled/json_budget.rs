@@ -36,6 +36,9 @@ pub(super) enum Role {
     Tiles,
     /// A layer's or chunk's `data` array: its cells.
     Cells,
+    /// A `properties` value and everything in it: the user's own data (a class property may
+    /// hold members named `tiles` or `objects`), never read as the map's structure.
+    Properties,
     /// An object's `polygon` or `polyline`: its points.
     Points,
 }
@@ -62,6 +65,7 @@ pub(super) enum Key {
     Tilesets,
     Tileset,
     Infinite,
+    Properties,
 }
 
 #[rustfmt::skip]
@@ -71,7 +75,7 @@ const KEYS: &[(&str, Key)] = &[
     ("polygon", Key::Polygon), ("polyline", Key::Polyline), ("width", Key::Width),
     ("height", Key::Height), ("x", Key::X), ("y", Key::Y), ("id", Key::Id),
     ("name", Key::Name), ("type", Key::Type), ("tilesets", Key::Tilesets),
-    ("tileset", Key::Tileset), ("infinite", Key::Infinite),
+    ("tileset", Key::Tileset), ("infinite", Key::Infinite), ("properties", Key::Properties),
 ];
 
 /// The key a member's name (with its quotes) is: a long escaped name is none of them.
@@ -149,6 +153,9 @@ impl Walker<'_> {
         let Some(p) = self.stack.last() else {
             return if open == b'{' { Role::Top } else { Role::Other };
         };
+        if p.role() == Role::Properties {
+            return Role::Properties;
+        }
         let (role, wants) = if p.array {
             match p.role() {
                 Role::Layers => (Role::Layer, b'{'),
@@ -161,6 +168,7 @@ impl Walker<'_> {
             }
         } else {
             match (p.key.unwrap_or(Key::Other), p.role()) {
+                (Key::Properties, _) => (Role::Properties, open),
                 (_, Role::Tiles) => (Role::Tile, b'{'),
                 (Key::Layers, Role::Top | Role::Layer) => (Role::Layers, b'['),
                 (Key::Chunks, Role::Layer) => (Role::Chunks, b'['),
@@ -168,7 +176,7 @@ impl Walker<'_> {
                 (Key::Object, Role::Top) => (Role::Object, b'{'),
                 (Key::Tilesets, Role::Top) => (Role::Tilesets, b'['),
                 (Key::Tileset, Role::Top) => (Role::Tileset, b'{'),
-                (Key::Tiles, _) => (Role::Tiles, open),
+                (Key::Tiles, Role::Tileset | Role::Top) => (Role::Tiles, open),
                 (Key::Data, Role::Layer | Role::Chunk) => (Role::Cells, b'['),
                 (Key::Polygon | Key::Polyline, Role::Object) => (Role::Points, b'['),
                 _ => (Role::Other, open),

@@ -190,10 +190,13 @@ impl Walker<'_> {
                 (format!("the {}", ty.unwrap_or_default()), None)
             }
             Role::Top => {
-                let sides: &[&str] = if f.chunked {
-                    &["tilewidth", "tileheight"]
-                } else {
-                    &["width", "height", "tilewidth", "tileheight"]
+                // A file without `type` may be an older tileset, whose tile size is 0 in an
+                // image collection (and which has no width or height): only a map's is checked.
+                let sides: &[&str] = match (f.chunked, ty.is_some()) {
+                    (true, true) => &["tilewidth", "tileheight"],
+                    (true, false) => &[],
+                    (false, true) => &["width", "height", "tilewidth", "tileheight"],
+                    (false, false) => &["width", "height"],
                 };
                 ("the map".to_string(), zero(sides))
             }

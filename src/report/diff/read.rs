@@ -167,18 +167,34 @@ fn expected_of(kind: &csv::DeserializeErrorKind) -> Option<&'static str> {
 }
 
 /// A reader that refuses a CSV record longer than [`crate::limits::MAX_CSV_RECORD_BYTES`]
-/// before the CSV reader buffers it: it follows quotes, so a record is what the CSV reader
-/// reads as one, and counts lines, to say where.
+/// before the CSV reader buffers it. It follows records as the CSV reader does (a quote opens
+/// a quoted field only at a field's start, `""` inside one is a quote, a record ends at `\n`,
+/// `\r` or both outside quotes) and counts lines, to say where.
 struct RecordCap<R> {
     inner: R,
     /// Bytes of the current record so far.
     bytes: u64,
-    /// Whether the bytes so far leave a quoted field open.
-    quoted: bool,
+    /// Where the bytes so far leave the current field.
+    field: Field,
     /// The line of the current record's start (the header is line 1).
     record_line: u64,
-    /// The line being read.
+    /// The line being read (a line ends at `\n`, `\r` or both).
     line: u64,
+    /// Whether the last byte was `\r`.
+    after_cr: bool,
+}
+
+/// Where a [`RecordCap`] is in a CSV field.
+#[derive(Clone, Copy, PartialEq)]
+enum Field {
+    /// At a field's first byte.
+    Start,
+    /// Inside a field that did not open with a quote.
+    Plain,
+    /// Inside a quoted field.
+    Quoted,
+    /// Just after a quote inside a quoted field: its end, or half of `""`.
+    QuoteSeen,
 }
 
 impl<R: std::io::Read> std::io::Read for RecordCap<R> {
@@ -186,16 +202,19 @@ impl<R: std::io::Read> std::io::Read for RecordCap<R> {
         let n = self.inner.read(buf)?;
         for &b in &buf[..n] {
             self.bytes += 1;
-            match b {
-                b'"' => self.quoted = !self.quoted,
-                b'\n' => {
-                    self.line += 1;
-                    if !self.quoted {
-                        (self.bytes, self.record_line) = (0, self.line);
-                    }
+            self.line += u64::from(b == b'\r' || (b == b'\n' && !self.after_cr));
+            self.after_cr = b == b'\r';
+            self.field = match (self.field, b) {
+                (Field::Start, b'"') | (Field::QuoteSeen, b'"') => Field::Quoted,
+                (Field::Quoted, b'"') => Field::QuoteSeen,
+                (Field::Quoted, _) => Field::Quoted,
+                (_, b',') => Field::Start,
+                (_, b'\n' | b'\r') => {
+                    (self.bytes, self.record_line) = (0, self.line);
+                    Field::Start
                 }
-                _ => {}
-            }
+                _ => Field::Plain,
+            };
             if self.bytes > crate::limits::MAX_CSV_RECORD_BYTES {
                 return Err(std::io::Error::new(
                     std::io::ErrorKind::InvalidData,
@@ -231,9 +250,10 @@ impl CsvRows {
         let mut reader = csv::Reader::from_reader(RecordCap {
             inner: file,
             bytes: 0,
-            quoted: false,
+            field: Field::Start,
             record_line: 1,
             line: 1,
+            after_cr: false,
         });
         let headers = reader.headers().map_err(|e| Self::csv(path, e))?.clone();
         if headers.iter().all(str::is_empty) {
@@ -480,6 +500,46 @@ pub(super) fn compare_traces(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Reads `bytes` through a [`RecordCap`] whole: its error's text, if any.
+    fn capped(bytes: Vec<u8>) -> Result<(), String> {
+        use std::io::Read as _;
+        let mut r = RecordCap {
+            inner: bytes.as_slice(),
+            bytes: 0,
+            field: Field::Start,
+            record_line: 1,
+            line: 1,
+            after_cr: false,
+        };
+        r.read_to_end(&mut Vec::new())
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn records_end_where_the_csv_reader_ends_them() {
+        // 2 MiB of short rows (twice MAX_CSV_RECORD_BYTES) pass whatever ends their lines, and
+        // a quote in the middle of a plain field is a plain byte, as the csv crate reads it (an
+        // adversary's CR-only file and hand-edited `flat"seams` were read as one long row).
+        let rows = |end: &str| "a,flat\"seams,1\"2,\"q\"\"x\"".to_string() + end;
+        for end in ["\n", "\r", "\r\n"] {
+            assert_eq!(
+                capped(rows(end).repeat(100_000).into_bytes()),
+                Ok(()),
+                "{end:?}"
+            );
+        }
+        // A quoted field's line ends stay in its record; the row's first line is named.
+        for end in ["\n", "\r", "\r\n"] {
+            let long = format!("h{end}a,\"{}\"{end}", format!("x{end}").repeat(600_000));
+            let err = capped(long.into_bytes()).unwrap_err();
+            assert!(
+                err.starts_with("line 2: the row passes 1048576 bytes"),
+                "{end:?}: {err}"
+            );
+        }
+    }
 
     #[test]
     fn a_metrics_file_past_its_row_limit_is_refused_at_the_first_row_too_many() {
