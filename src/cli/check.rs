@@ -20,7 +20,7 @@ use crate::report::diff::{diff_runs_each, read_runs, render, DiffFormat, FailOn,
 use crate::report::manifest::{content_hash, Manifest};
 
 /// The file of `check --out` that lists every run with its status.
-pub(crate) const UNITS: &str = "check.csv";
+pub(crate) use crate::report::check::UNITS_FILE as UNITS;
 /// The Markdown summary of `check --out`.
 pub(crate) const SUMMARY: &str = "summary.md";
 /// The file of `check --out` naming the baseline the check ran against.

@@ -106,8 +106,9 @@ const NOT_IN_NEW: &str = "not in the new run";
 /// baseline of any size costs memory in proportion to the new run, never to its own rows.
 pub(crate) struct RunChanges {
     fail_on: FailOn,
-    /// By `level.scenario` and `backend config`, every run of the new run.
-    runs: HashMap<(String, String), Changed>,
+    /// By `level.scenario`, then `backend config`, every run of the new run (two levels, so a
+    /// diff's labels find their run without being copied).
+    runs: HashMap<String, HashMap<String, Changed>>,
 }
 
 /// One run's changes: the first [`KEPT_PER_CHANGE`] metrics of each change, and how many.
@@ -127,10 +128,12 @@ impl RunChanges {
     /// Ready to gather the changes of the runs `new`, judged under `fail_on` (a timing counts
     /// only with `fail_on.timing`).
     pub(crate) fn of_runs(new: &[RunKey], fail_on: FailOn) -> Self {
-        let runs = new
-            .iter()
-            .map(|[l, s, b, c]| ((format!("{l}.{s}"), format!("{b} {c}")), Changed::default()))
-            .collect();
+        let mut runs: HashMap<String, HashMap<String, Changed>> = HashMap::new();
+        for [l, s, b, c] in new {
+            runs.entry(format!("{l}.{s}"))
+                .or_default()
+                .insert(format!("{b} {c}"), Changed::default());
+        }
         RunChanges { fail_on, runs }
     }
 
@@ -139,8 +142,12 @@ impl RunChanges {
         if !self.fail_on.timing && m.metric == "ns_per_character_step" {
             return;
         }
-        // The lookup borrows the labels; a run the new run lacks is not gathered.
-        let Some(c) = self.runs.get_mut(&(m.scenario.clone(), m.config.clone())) else {
+        // A run the new run lacks is not gathered.
+        let Some(c) = self
+            .runs
+            .get_mut(m.scenario.as_str())
+            .and_then(|r| r.get_mut(m.config.as_str()))
+        else {
             return;
         };
         c.counts[m.change as usize] += 1;
@@ -194,7 +201,12 @@ pub(crate) fn units(
             u.backend.clone(),
             u.config.clone(),
         ];
-        let changed = changes.runs.get(&u.labels()).unwrap_or(&none);
+        let (s, c) = u.labels();
+        let changed = changes
+            .runs
+            .get(&s)
+            .and_then(|r| r.get(&c))
+            .unwrap_or(&none);
         let trace = trace_of.get(u.trace.as_str()).copied();
         (u.status, u.detail) = judge(
             in_base.contains(&key),
@@ -234,8 +246,8 @@ pub(crate) fn left_out_line(left: usize) -> String {
     )
 }
 
-/// The file of `check --out` that lists every run (`cli::check::UNITS`).
-const UNITS_FILE: &str = "check.csv";
+/// The file of `check --out` that lists every run.
+pub(crate) const UNITS_FILE: &str = "check.csv";
 
 /// A value as the tables show it.
 fn value(v: Option<f64>) -> String {
