@@ -51,6 +51,41 @@ pub(super) fn count_tiles(t: &TilesetInfo) -> u64 {
     }
 }
 
+/// A tile layer in the old XML cell encoding being made CSV: each `<tile gid=".."/>` a cell,
+/// and in an infinite map each `<chunk>` a CSV chunk of its own.
+struct XmlData {
+    layer: String,
+    /// Byte offset of `<data`.
+    start: usize,
+    /// The data's content as CSV so far.
+    csv: String,
+    /// Cells in the current chunk (or the layer) so far.
+    cells: u64,
+}
+
+impl XmlData {
+    fn push(&mut self, gid: &str) {
+        if self.cells > 0 {
+            self.csv.push(',');
+        }
+        self.csv.push_str(gid.trim());
+        self.cells += 1;
+    }
+
+    /// Starts a chunk whose attributes (`x`, `y`, `width`, `height`) are `attrs`, as written.
+    fn open_chunk(&mut self, attrs: &str) {
+        self.csv.push_str("<chunk");
+        self.csv.push_str(attrs);
+        self.csv.push('>');
+        self.cells = 0;
+    }
+
+    fn close_chunk(&mut self) {
+        self.csv.push_str("</chunk>");
+        self.cells = 0;
+    }
+}
+
 /// Makes a map's or tileset's XML readable by the crate (see the module docs). XML errors are
 /// left to the crate; what the crate would allocate without bound (a tilecount beyond
 /// [`limits::MAX_TILES`]) is an error with its line.
@@ -60,8 +95,9 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
     let mut notes = Vec::new();
     let mut stack: Vec<Vec<u8>> = Vec::new();
     let mut tileset: Option<TilesetInfo> = None;
-    // An XML-encoded layer: (layer name, start of <data>, gids so far).
-    let mut xml_data: Option<(String, usize, Vec<String>)> = None;
+    // An XML-encoded layer: its name, the start of its <data>, and its cells as CSV so far
+    // (an infinite map's chunks each with their own CSV).
+    let mut xml_data: Option<XmlData> = None;
     let mut layer_name = String::new();
     loop {
         let pos = reader.buffer_position();
@@ -79,20 +115,25 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
                 if name == b"tileset" {
                     close_tileset(&mut tileset, stack.len(), &mut edits, &mut notes)?;
                 }
+                if name == b"chunk" {
+                    if let Some(d) = &mut xml_data {
+                        d.close_chunk();
+                    }
+                }
                 if name == b"data" {
-                    if let Some((layer, start, gids)) = xml_data.take() {
+                    if let Some(d) = xml_data.take() {
                         let end_pos = reader.buffer_position();
-                        let lines = text[start..end_pos].matches('\n').count();
+                        let lines = text[d.start..end_pos].matches('\n').count();
                         edits.push((
-                            start,
+                            d.start,
                             end_pos,
                             format!(
                                 "<data encoding=\"csv\">{}{}</data>",
-                                gids.join(","),
+                                d.csv,
                                 "\n".repeat(lines)
                             ),
                         ));
-                        notes.push(format!("layer {layer:?} is in the old XML cell encoding; read as CSV (Tiled: Map > Map Properties > Tile Layer Format to change it)"));
+                        notes.push(format!("layer {:?} is in the old XML cell encoding; read as CSV (Tiled: Map > Map Properties > Tile Layer Format to change it)", d.layer));
                     }
                 }
                 continue;
@@ -137,14 +178,37 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
                     }
                 }
             }
-            b"tile" if parent.as_deref() == Some(b"data") => {
-                if let Some((_, _, gids)) = &mut xml_data {
-                    gids.push(attr(&e, "gid").unwrap_or_else(|| "0".into()));
+            b"tile" if matches!(parent.as_deref(), Some(b"data" | b"chunk")) => {
+                if let Some(d) = &mut xml_data {
+                    let gid = attr(&e, "gid").unwrap_or_else(|| "0".into());
+                    if gid.trim().parse::<u32>().is_err() {
+                        return Err(ScanError {
+                            line: line_of(text, pos),
+                            message: format!(
+                                "layer {:?}: a <tile> cell has gid=\"{gid}\"; expected a tile id, a whole number from 0 (no tile) to 4294967295 (a global tile id with its flip bits)",
+                                d.layer
+                            ),
+                        });
+                    }
+                    d.push(&gid);
+                }
+            }
+            b"chunk" if xml_data.is_some() => {
+                if let Some(d) = &mut xml_data {
+                    d.open_chunk(&String::from_utf8_lossy(e.attributes_raw()));
+                    if empty {
+                        d.close_chunk();
+                    }
                 }
             }
             b"layer" => layer_name = attr(&e, "name").unwrap_or_default(),
             b"data" if !empty && attr(&e, "encoding").is_none() => {
-                xml_data = Some((layer_name.clone(), pos, Vec::new()));
+                xml_data = Some(XmlData {
+                    layer: layer_name.clone(),
+                    start: pos,
+                    csv: String::new(),
+                    cells: 0,
+                });
             }
             _ => {}
         }

@@ -3,7 +3,7 @@
 //! platforms (a rectangle with a `path` naming a polyline, or a point it goes to and back).
 //! Collision shapes are read by `shapes`; everything else is a warning.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use glam::Vec2;
 use tiled::{ObjectShape, PropertyValue};
@@ -125,7 +125,8 @@ impl<'m> Importer<'m> {
                     if let Some(other) = spawn_names.get(&name) {
                         return Err(self.obj_err(o, format!("spawn name {name:?} is also the name of object {other}; expected unique spawn names (they name the scenarios)")));
                     }
-                    for key in o.properties.keys() {
+                    // The properties are a hash map: warned in name order, the same each run.
+                    for key in o.properties.keys().collect::<BTreeSet<_>>() {
                         self.warn(subject.clone(), format!("property {key:?} is not one platbench reads on a spawn point; ignored"));
                     }
                     spawn_names.insert(name.clone(), o.id());

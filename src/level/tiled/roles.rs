@@ -23,22 +23,29 @@ use crate::level::import::LayerRole;
 fn marked(t: &TileLayer) -> Option<String> {
     let mark = |lt: tiled::LayerTile| -> Option<String> {
         let tile = lt.get_tile()?;
-        tile.properties.iter().find_map(|(k, v)| {
-            (is_bool_mark(k, v) && *v == PropertyValue::BoolValue(true))
-                .then(|| format!("{k} = true"))
-        })
+        // The properties are a hash map: the least name, so the message is the same each run.
+        let marks = tile
+            .properties
+            .iter()
+            .filter(|(k, v)| is_bool_mark(k, v) && **v == PropertyValue::BoolValue(true));
+        marks.map(|(k, _)| k).min().map(|k| format!("{k} = true"))
     };
     match t {
         TileLayer::Finite(f) => (0..f.height() as i32)
             .flat_map(|y| (0..f.width() as i32).map(move |x| (x, y)))
             .find_map(|(x, y)| f.get_tile(x, y).and_then(mark)),
-        TileLayer::Infinite(inf) => inf.chunks().find_map(|(_, chunk)| {
-            let w = tiled::ChunkData::WIDTH as i32;
-            let h = tiled::ChunkData::HEIGHT as i32;
-            (0..h)
-                .flat_map(|y| (0..w).map(move |x| (x, y)))
-                .find_map(|(x, y)| chunk.get_tile(x, y).and_then(mark))
-        }),
+        // The chunks are a hash map: read top row first, as a finite layer is.
+        TileLayer::Infinite(inf) => {
+            let mut chunks: Vec<_> = inf.chunks().collect();
+            chunks.sort_by_key(|&((x, y), _)| (y, x));
+            chunks.into_iter().find_map(|(_, chunk)| {
+                let w = tiled::ChunkData::WIDTH as i32;
+                let h = tiled::ChunkData::HEIGHT as i32;
+                (0..h)
+                    .flat_map(|y| (0..w).map(move |x| (x, y)))
+                    .find_map(|(x, y)| chunk.get_tile(x, y).and_then(mark))
+            })
+        }
     }
 }
 
