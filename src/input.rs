@@ -10,13 +10,14 @@ use std::path::{Path, PathBuf};
 /// An input file that was not read, naming it.
 #[derive(Debug, thiserror::Error)]
 pub enum InputError {
-    /// The file could not be opened or read.
-    #[error("{}: cannot read it: {source}", path.display())]
+    /// The file could not be opened or read. The cause is in the message, not chained as a
+    /// source, so that a report of the chain says it once.
+    #[error("{}: cannot read it: {cause}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
         /// The cause.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// The path is a directory, a named pipe, a device or a socket.
     #[error("{}: it is {kind}; expected a regular file", path.display())]
@@ -51,11 +52,35 @@ pub enum InputError {
 }
 
 impl InputError {
+    /// The file.
+    pub fn path(&self) -> &Path {
+        match self {
+            InputError::Io { path, .. }
+            | InputError::NotAFile { path, .. }
+            | InputError::TooLarge { path, .. }
+            | InputError::NotText { path, .. } => path,
+        }
+    }
+
+    /// The error for a caller that reads the file as `what` (`level file`): text that is not
+    /// UTF-8 at its `FILE:LINE:COLUMN`, as every located error; any other fault as `cannot read
+    /// WHAT FILE: why`, the cause said once.
+    pub fn reading(&self, what: &str) -> String {
+        match self {
+            InputError::NotText { .. } => self.to_string(),
+            _ => format!(
+                "cannot read {what} {}: {}",
+                self.path().display(),
+                self.reason()
+            ),
+        }
+    }
+
     /// What is wrong without the file's name, for a caller whose own error names it (and says
     /// it could not read it).
     pub fn reason(&self) -> String {
         match self {
-            InputError::Io { source, .. } => return source.to_string(),
+            InputError::Io { cause, .. } => return cause.to_string(),
             InputError::NotText {
                 line,
                 column,
@@ -65,12 +90,7 @@ impl InputError {
             _ => {}
         }
         let full = self.to_string();
-        let path = match self {
-            InputError::Io { path, .. }
-            | InputError::NotAFile { path, .. }
-            | InputError::TooLarge { path, .. }
-            | InputError::NotText { path, .. } => path.display().to_string(),
-        };
+        let path = self.path().display().to_string();
         full.strip_prefix(&format!("{path}: "))
             .map_or_else(|| full.clone(), str::to_string)
     }
@@ -80,7 +100,7 @@ impl From<InputError> for std::io::Error {
     /// The reason alone (callers of the `std::io` readers name the file themselves).
     fn from(e: InputError) -> Self {
         let kind = match &e {
-            InputError::Io { source, .. } => source.kind(),
+            InputError::Io { cause, .. } => cause.kind(),
             InputError::NotAFile { .. } => std::io::ErrorKind::InvalidInput,
             InputError::TooLarge { .. } | InputError::NotText { .. } => {
                 std::io::ErrorKind::InvalidData
@@ -146,9 +166,9 @@ impl Read for Capped {
 /// Opens `path` for reading: a regular file (symbolic links followed) of at most `cap` bytes
 /// (`u64::MAX` for a format with no cap); `what` names the format in the error.
 pub fn open(path: &Path, cap: u64, what: &'static str) -> Result<Capped, InputError> {
-    let io = |source| InputError::Io {
+    let io = |cause| InputError::Io {
         path: path.to_path_buf(),
-        source,
+        cause,
     };
     let meta = std::fs::metadata(path).map_err(io)?;
     let check = |meta: &std::fs::Metadata| {
@@ -193,7 +213,7 @@ pub fn read(path: &Path, cap: u64, what: &'static str) -> Result<Vec<u8>, InputE
     let mut bytes = Vec::new();
     open(path, cap, what)?
         .read_to_end(&mut bytes)
-        .map_err(|source| match source.kind() {
+        .map_err(|cause| match cause.kind() {
             std::io::ErrorKind::InvalidData => InputError::TooLarge {
                 path: path.to_path_buf(),
                 cap,
@@ -201,7 +221,7 @@ pub fn read(path: &Path, cap: u64, what: &'static str) -> Result<Vec<u8>, InputE
             },
             _ => InputError::Io {
                 path: path.to_path_buf(),
-                source,
+                cause,
             },
         })?;
     Ok(bytes)

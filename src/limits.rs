@@ -303,6 +303,7 @@ pub(crate) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
 
 /// Reads a TOML level or side file of at most [`MAX_TOML_BYTES`] as UTF-8 text; the error says
 /// why without the file's name, which the caller's own error gives.
+#[cfg(feature = "tiled")]
 pub(crate) fn read_toml_capped(path: &Path) -> std::io::Result<String> {
     Ok(crate::input::read_text(
         path,

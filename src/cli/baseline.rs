@@ -45,6 +45,18 @@ pub(crate) struct BaselineArgs {
     pub(crate) import: ImportArgs,
 }
 
+/// Where the baseline directory of `given` (or the harness's) came from, as an error names it:
+/// `--baseline`, the `PLATBENCH_BASELINE` environment variable, or the harness's default.
+pub(crate) fn baseline_origin(h: &Harness, given: Option<&Path>) -> &'static str {
+    if given.is_some() {
+        "--baseline"
+    } else if std::env::var_os("PLATBENCH_BASELINE").is_some_and(|v| Path::new(&v) == h.baseline) {
+        "PLATBENCH_BASELINE"
+    } else {
+        "the harness's baseline"
+    }
+}
+
 /// The baseline directory of `given`, or the harness's.
 pub(crate) fn baseline_dir(h: &Harness, given: Option<&Path>) -> PathBuf {
     given.map_or_else(|| h.baseline.clone(), Path::to_path_buf)
@@ -68,7 +80,8 @@ pub(crate) fn baseline_help(h: &Harness, what: &str) -> String {
 pub(crate) fn baseline(h: &Harness, args: &BaselineArgs) -> Result<()> {
     let dir = baseline_dir(h, args.baseline.as_deref());
     refuse_unless_replacing(&dir, args.replace)?;
-    output::check_target_as(&dir, output::Kind::Baseline, false, "--baseline")?;
+    let origin = baseline_origin(h, args.baseline.as_deref());
+    output::check_target_as(&dir, output::Kind::Baseline, false, origin)?;
     let run = RunArgs {
         levels: args.levels.clone(),
         traces: Some(args.traces.unwrap_or(Traces::All)),

@@ -158,7 +158,9 @@ pub(crate) fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result
     // Each file's format, told by its content; a file that cannot be read is named here.
     let formats = paths
         .iter()
-        .map(|p| crate::level::detect_format(p).context("cannot read level file"))
+        .map(|p| {
+            crate::level::detect_format(p).map_err(|e| anyhow::anyhow!(e.reading("level file")))
+        })
         .collect::<Result<Vec<_>>>()?;
     let maps = formats.iter().any(|f| f.is_map());
     if let Some(name) = &import.level {
@@ -188,8 +190,12 @@ pub(crate) fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result
         let level = if format.is_map() {
             load_map(p, &opts)?
         } else {
-            let text = crate::limits::read_toml_capped(p)
-                .with_context(|| format!("cannot read level file {}", p.display()))?;
+            let text = crate::input::read_text(
+                p,
+                crate::limits::MAX_TOML_BYTES,
+                "TOML level or side file",
+            )
+            .map_err(|e| anyhow::anyhow!(e.reading("level file")))?;
             parse_level(&text, &p.display().to_string()).map_err(|e| {
                 // A file named like a map but not one reads as a level: say so, not only why
                 // the TOML failed.

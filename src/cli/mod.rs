@@ -36,7 +36,7 @@ mod tradeoff;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{Context as _, Result};
+use anyhow::Result;
 use clap::builder::PossibleValuesParser;
 use clap::{CommandFactory as _, FromArgMatches as _, Parser, Subcommand};
 
@@ -92,6 +92,23 @@ pub fn main_with_harness(harness: Harness) -> ExitCode {
     run_cli(&harness, std::env::args_os())
 }
 
+/// An error and its causes, joined by `: ` as `{:#}` does, but without a cause whose text the
+/// message already holds: an error that quotes its cause and also chains it says it once.
+pub(crate) fn said_once(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        let part = cause.to_string();
+        if text.contains(&part) {
+            continue;
+        }
+        if !text.is_empty() {
+            text.push_str(": ");
+        }
+        text.push_str(&part);
+    }
+    text
+}
+
 /// Runs the command line `args` (the program name first) on `harness`; what [`main_with`] does
 /// with the process's arguments.
 pub fn run_cli<I, T>(harness: &Harness, args: I) -> ExitCode
@@ -110,7 +127,7 @@ where
             &with_external
         }
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", said_once(&e));
             return ExitCode::from(2);
         }
     };
@@ -202,7 +219,7 @@ where
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", said_once(&e));
             ExitCode::from(2)
         }
     }
@@ -400,27 +417,82 @@ pub(crate) fn read_rows_checked<T: serde::de::DeserializeOwned>(
     mut check: impl FnMut(&T, u64) -> Result<()>,
 ) -> Result<Vec<T>> {
     let file = crate::input::open(path, crate::limits::MAX_INPUT_BYTES, "input file")?;
-    let mut r = csv::Reader::from_reader(file);
-    let not_it = || format!("{}: not the CSV this option expects", path.display());
-    let headers = r.headers().with_context(not_it)?.clone();
+    let mut r = csv::Reader::from_reader(crate::report::diff::Lines::new(file));
+    let headers = r
+        .headers()
+        .map_err(|e| csv_error(path, 1, &e, None))?
+        .clone();
     let mut record = csv::StringRecord::new();
     let mut rows = Vec::new();
-    while r.read_record(&mut record).with_context(not_it)? {
-        let line = record.position().map_or(0, |p| p.line());
+    loop {
+        let read = r.read_record(&mut record);
+        let byte = match &read {
+            Ok(_) => record.position(),
+            Err(e) => e.position(),
+        }
+        .map_or(0, csv::Position::byte);
+        let line = r.get_mut().line_of(byte);
+        if !read.map_err(|e| csv_error(path, line, &e, None))? {
+            break;
+        }
         if rows.len() == max {
             anyhow::bail!(
                 "{}:{line}: more than {max} rows; expected at most {max}",
                 path.display()
             );
         }
-        let row: T = record.deserialize(Some(&headers)).with_context(not_it)?;
+        let row: T = record
+            .deserialize(Some(&headers))
+            .map_err(|e| csv_error(path, line, &e, Some((&headers, &record))))?;
         check(&row, line)?;
         rows.push(row);
     }
     if rows.is_empty() {
-        anyhow::bail!("{}: no rows", path.display());
+        anyhow::bail!(
+            "{}: no rows; expected a header line and at least one row",
+            path.display()
+        );
     }
     Ok(rows)
+}
+
+/// A CSV error of the file `path` at its `line`: what was found and what was expected (`row`,
+/// the header and the record, names a field that did not parse).
+fn csv_error(
+    path: &std::path::Path,
+    line: u64,
+    e: &csv::Error,
+    row: Option<(&csv::StringRecord, &csv::StringRecord)>,
+) -> anyhow::Error {
+    let path = path.display();
+    match e.kind() {
+        csv::ErrorKind::Utf8 { err, .. } => anyhow::anyhow!(
+            "{path}:{line}: field {} is not UTF-8; expected UTF-8 text (save the file as UTF-8)",
+            err.field() + 1
+        ),
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => anyhow::anyhow!(
+            "{path}:{line}: found {len} fields; expected {expected_len}, as many as the header"
+        ),
+        csv::ErrorKind::Deserialize { err, .. } => {
+            let at = err.field().and_then(|f| usize::try_from(f).ok());
+            let expected = crate::report::diff::expected_of(err.kind())
+                .map_or_else(|| err.kind().to_string(), str::to_string);
+            match (at, row) {
+                (Some(at), Some((headers, record))) => anyhow::anyhow!(
+                    "{path}:{line}: field {} ({}): found {:?}; expected {expected}",
+                    at + 1,
+                    headers.get(at).unwrap_or("?"),
+                    record.get(at).unwrap_or_default()
+                ),
+                _ => anyhow::anyhow!(
+                    "{path}:{line}: {expected}; expected the CSV this option takes (as `platbench sweep` or `platbench stress` writes it)"
+                ),
+            }
+        }
+        _ => anyhow::anyhow!("{path}:{line}: not the CSV this option takes: {e}"),
+    }
 }
 
 /// Why a `--world-size` value was refused.

@@ -158,8 +158,13 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
         bail!("--accept '': an empty pattern would match every change; pass --accept-all to accept them all");
     }
     if !args.check.is_dir() {
+        let found = match std::fs::metadata(&args.check) {
+            Ok(_) => "is not a directory",
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => "does not exist",
+            Err(_) => "cannot be read",
+        };
         bail!(
-            "{} does not exist (or is not a directory); pass the --out directory of `platbench check`",
+            "{} {found}; expected the --out directory of `platbench check`",
             args.check.display()
         );
     }
@@ -215,7 +220,7 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
     // The levels and configurations draw the pages; without them the pages are left out.
     let selection = selection_of(h, &manifest, &run_args_of(&manifest, None));
     if let Err(e) = &selection {
-        eprintln!("warning: no replay pages: {e:#}");
+        eprintln!("warning: no replay pages: {}", super::said_once(e));
     }
     let pages = args.check.join("review");
     std::fs::create_dir_all(&pages)

@@ -129,7 +129,12 @@ pub(crate) fn run(h: &Harness, args: &RunArgs) -> Result<()> {
         (args.out.clone(), output::Kind::Run)
     };
     if let Some(target) = &target {
-        output::check_target(target, kind, args.force)?;
+        let flag = if args.bless {
+            super::baseline::baseline_origin(h, None)
+        } else {
+            "--out"
+        };
+        output::check_target_as(target, kind, args.force, flag)?;
     }
     let levels = args
         .select

@@ -99,10 +99,8 @@ pub(crate) fn parse(text: &str, path: &Path) -> Result<ControllerFile, ExternalE
         }
     };
     let raw: Raw = toml::from_str(text).map_err(|e| {
-        at(
-            e.span().map_or(0, |s| s.start),
-            e.message().trim().to_string(),
-        )
+        let (offset, message) = crate::level::explain_toml_error(text, &e);
+        at(offset, message)
     })?;
     let name = raw.name.get_ref();
     if name.is_empty()

@@ -124,9 +124,9 @@ pub fn detect_format(path: &Path) -> Result<LevelFormat, InputError> {
     input::open(path, crate::limits::MAX_INPUT_BYTES, "input file")?
         .take(PEEK_BYTES)
         .read_to_end(&mut start)
-        .map_err(|source| InputError::Io {
+        .map_err(|cause| InputError::Io {
             path: path.to_path_buf(),
-            source,
+            cause,
         })?;
     Ok(format_of(
         &String::from_utf8_lossy(&start),

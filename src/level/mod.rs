@@ -52,3 +52,4 @@ pub use tiled::{
     import_tiled_map, import_tiled_map_with, load_tiled_map, load_tiled_map_with, TiledError,
     TiledImport, TiledWarning,
 };
+pub(crate) use toml::explain_toml_error;

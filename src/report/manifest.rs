@@ -28,12 +28,12 @@ const KEY_DEPENDENCIES: &[&str] = &[
 #[derive(Debug, thiserror::Error)]
 pub(crate) enum ManifestError {
     /// The file is missing or unreadable.
-    #[error("cannot read the baseline manifest {path}: {source} (a baseline written by `platbench baseline` or `platbench run --bless` holds one; write the baseline again with this platbench)")]
+    #[error("cannot read the baseline manifest {path}: {cause} (a baseline written by `platbench baseline` or `platbench run --bless` holds one; write the baseline again with this platbench)")]
     Read {
         /// The file.
         path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
+        /// The cause (in the message, not chained, so that it is said once).
+        cause: std::io::Error,
     },
     /// The file is not a manifest this build reads.
     #[error("{path} is not a baseline manifest this platbench reads: {why}")]
@@ -173,11 +173,10 @@ impl Manifest {
     /// Reads `DIR/manifest.toml`.
     pub(crate) fn read(dir: &Path) -> Result<Manifest, ManifestError> {
         let path = dir.join(FILE);
-        let text =
-            crate::limits::read_text_capped(&path).map_err(|source| ManifestError::Read {
-                path: path.clone(),
-                source,
-            })?;
+        let text = crate::limits::read_text_capped(&path).map_err(|cause| ManifestError::Read {
+            path: path.clone(),
+            cause,
+        })?;
         let m: Manifest = toml::from_str(&text).map_err(|e| ManifestError::Malformed {
             path: path.clone(),
             why: e.to_string().trim().replace('\n', " "),

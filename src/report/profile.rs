@@ -162,8 +162,8 @@ pub fn parse_profile(text: &str, file: &str) -> Result<Profile, ProfileError> {
         }
     };
     let f: File = toml::from_str(text).map_err(|e| {
-        let offset = e.span().map_or(0, |s| s.start);
-        at(offset, e.message().to_string())
+        let (offset, message) = crate::level::explain_toml_error(text, &e);
+        at(offset, message)
     })?;
     let name = f.name.get_ref().trim();
     if name.is_empty() || name.chars().count() > MAX_NAME || name.chars().any(|c| c.is_control()) {

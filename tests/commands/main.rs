@@ -4,6 +4,7 @@
 mod common;
 
 mod cli;
+mod error_places;
 mod hunt;
 mod report;
 mod scale;

@@ -61,10 +61,7 @@ fn text_that_is_not_utf8_is_named_by_line_and_column_in_every_format() {
     let level = write("level8.toml", b"# a level\nname = \"\xc3\xa9\xff\"\n");
     assert_error(
         &on("run", &level, d),
-        &format!(
-            "cannot read level file {}: line 2, column 10: {not_utf8}",
-            level.display()
-        ),
+        &format!("{}:2:10: {not_utf8}", level.display()),
     );
     // A Tiled map, TMX or JSON: line 2, column 12 (after `<map name="`, `"name": "ab`).
     for (name, text) in [
@@ -95,14 +92,14 @@ fn text_that_is_not_utf8_is_named_by_line_and_column_in_every_format() {
     );
     assert_error(
         &on("inspect", &ldtk, d),
-        &format!("cannot read the LDtk file: line 2, column 9: {not_utf8}"),
+        &format!("{}:2:9: {not_utf8}", ldtk.display()),
     );
     // A map's side file: line 2, column 11 (after `edges = "o`).
     let side_map = write("side.tmx", TMX.as_bytes());
     write("side.toml", b"[import]\nedges = \"o\xffpen\"\n");
     assert_error(
         &on("run", &side_map, d),
-        &format!("cannot read the side file: line 2, column 11: {not_utf8}"),
+        &format!("{}:2:11: {not_utf8}", d.join("side.toml").display()),
     );
     // A tileset the map uses: line 2, column 32 (after `<tileset version="1.10" name="t`).
     let map = write("uses.tmx", TMX.as_bytes());

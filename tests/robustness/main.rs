@@ -12,3 +12,4 @@ mod properties;
 mod proportional;
 mod streamed;
 mod streamed_runs;
+mod worded;

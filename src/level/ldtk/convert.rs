@@ -41,7 +41,7 @@ pub(super) fn import(
             message,
         })
     };
-    let project: Project = parse_json(&read(path)?, &file)?;
+    let project: Project = parse_json(&read(path)?, &file, "an LDtk project")?;
     let (mut levels, layout) = if !project.levels.is_empty() || project.worlds.is_empty() {
         (project.levels, project.world_layout.clone())
     } else {
@@ -101,7 +101,7 @@ pub(super) fn import(
             let p = path
                 .parent()
                 .map_or_else(|| Path::new(&rel).to_path_buf(), |d| d.join(&rel));
-            let lvl: LdLevel = parse_json(&read(&p)?, &p.display().to_string())?;
+            let lvl: LdLevel = parse_json(&read(&p)?, &p.display().to_string(), "an LDtk level")?;
             levels[k].layer_instances = lvl.layer_instances;
         }
     }

@@ -24,7 +24,7 @@ mod json;
 
 use super::import::{ImportFailure, ImportOptions, ImportWarning, MapImport};
 use super::probes::{probe_scenarios, ProbeConfig};
-use super::toml::{options_beside, SideFailure};
+use super::toml::{options_beside, read_side, SideFailure};
 use super::{parse_scenarios, Level, LevelError};
 use convert::import;
 
@@ -39,8 +39,8 @@ pub enum LdtkError {
         /// The system's message.
         message: String,
     },
-    /// The file is not the JSON of an LDtk project or level.
-    #[error("{file}:{line}:{column}: not an LDtk project: {message}")]
+    /// The file is not the JSON of an LDtk project or level, or holds a value out of range.
+    #[error("{file}:{line}:{column}: {message}")]
     Json {
         /// The file.
         file: String,
@@ -59,6 +59,14 @@ pub enum LdtkError {
         /// What was found and what was expected.
         message: String,
     },
+    /// The project's side file (`MAP.toml`) could not be read.
+    #[error("{file}: cannot read this side file (the [import] table and scenarios beside an LDtk project): {message}")]
+    SideRead {
+        /// The side file.
+        file: String,
+        /// Why, without the file's name.
+        message: String,
+    },
     /// The side file's scenarios are invalid (file, line and column inside).
     #[error(transparent)]
     SideFile(#[from] LevelError),
@@ -69,13 +77,60 @@ const HOW_TO_SPAWN: &str =
 const HOW_TO_COLLIDE: &str =
     "paint the walls in an IntGrid layer, or pass --intgrid VALUE=solid or --layer NAME=collision";
 
-fn parse_json<T: for<'de> Deserialize<'de>>(text: &str, file: &str) -> Result<T, LdtkError> {
-    serde_json::from_str(text).map_err(|e| LdtkError::Json {
+/// Reads `text`, the file `file`, as the JSON of `what` (`an LDtk project`, `an LDtk level`):
+/// its top level must be an object; the error is at its line and column, said once.
+fn parse_json<T: for<'de> Deserialize<'de>>(
+    text: &str,
+    file: &str,
+    what: &str,
+) -> Result<T, LdtkError> {
+    let (line, column, first) = super::format::first_text(text);
+    if !super::format::looks_like_json(text) {
+        return Err(LdtkError::Json {
+            file: file.into(),
+            line,
+            column,
+            message: if text.trim_start_matches('\u{feff}').trim().is_empty() {
+                format!("found {first}; expected {what} (a JSON object, `{{`)")
+            } else {
+                format!("found {first} at the top level; expected {what} (a JSON object, `{{`)")
+            },
+        });
+    }
+    serde_json::from_str(text).map_err(|e| json_error(&e, file, what))
+}
+
+/// A JSON error at its place, its message without the parser's own "at line L column C" (the
+/// error's prefix says where); a syntax error says the file is not JSON, a wrong or
+/// out-of-range value says only what it is and what was expected.
+fn json_error(e: &serde_json::Error, file: &str, what: &str) -> LdtkError {
+    let full = e.to_string();
+    let at = format!(" at line {} column {}", e.line(), e.column());
+    let bare = full.strip_suffix(&at).unwrap_or(&full);
+    // serde's own words for a value of the wrong shape; any other data error is platbench's
+    // (a limit), which is about an LDtk file, not a sign it is none.
+    const SHAPE: [&str; 7] = [
+        "invalid type",
+        "invalid value",
+        "invalid length",
+        "unknown variant",
+        "unknown field",
+        "missing field",
+        "duplicate field",
+    ];
+    let message = match e.classify() {
+        serde_json::error::Category::Data if !SHAPE.iter().any(|p| bare.starts_with(p)) => {
+            bare.to_string()
+        }
+        serde_json::error::Category::Data => format!("not {what}: {bare}"),
+        _ => format!("not valid JSON ({bare}); expected {what}"),
+    };
+    LdtkError::Json {
         file: file.into(),
         line: e.line(),
-        column: e.column(),
-        message: e.to_string(),
-    })
+        column: e.column().max(1),
+        message,
+    }
 }
 
 /// Loads an LDtk project as a runnable level with the command line's overrides: its geometry,
@@ -93,17 +148,9 @@ pub fn load_ldtk_with(
     } = import_ldtk_with(path, opts)?;
     if let Some(side) = crate::level::toml::side_file_of(path) {
         let fail = |error: LdtkError, warnings| ImportFailure { error, warnings };
-        let text = match crate::limits::read_toml_capped(&side) {
+        let text = match read_side(&side) {
             Ok(t) => t,
-            Err(e) => {
-                return Err(fail(
-                    LdtkError::Read {
-                        file: side.display().to_string(),
-                        message: e.to_string(),
-                    },
-                    warnings,
-                ))
-            }
+            Err(e) => return Err(fail(side_error(e), warnings)),
         };
         match parse_scenarios(&text, &side.display().to_string(), &level) {
             Ok(s) => level.scenarios = s,
@@ -156,10 +203,7 @@ pub fn import_ldtk_with(
     let mut warnings = Vec::new();
     // The side file's [import] table, under the command line's flags.
     let merged = options_beside(path, opts).map_err(|e| ImportFailure {
-        error: match e {
-            SideFailure::Read { file, message } => LdtkError::Read { file, message },
-            SideFailure::Level(e) => LdtkError::SideFile(e),
-        },
+        error: side_error(e),
         warnings: Vec::new(),
     })?;
     match import(path, &merged, &mut warnings) {
@@ -172,9 +216,34 @@ pub fn import_ldtk_with(
     }
 }
 
+/// A side file's failure as the project's error: it names the side file, not the project.
+fn side_error(e: SideFailure) -> LdtkError {
+    match e {
+        SideFailure::Read { file, message } => LdtkError::SideRead { file, message },
+        SideFailure::Level(e) => LdtkError::SideFile(e),
+    }
+}
+
 fn read(path: &Path) -> Result<String, LdtkError> {
-    crate::limits::read_text_capped(path).map_err(|e| LdtkError::Read {
-        file: path.display().to_string(),
-        message: e.to_string(),
+    use crate::input::InputError;
+    crate::input::read_text(path, crate::limits::MAX_INPUT_BYTES, "input file").map_err(|e| {
+        let file = path.display().to_string();
+        match e {
+            InputError::NotText {
+                line,
+                column,
+                found,
+                ..
+            } => LdtkError::Json {
+                file,
+                line,
+                column,
+                message: crate::input::not_text(&found),
+            },
+            e => LdtkError::Read {
+                file,
+                message: e.reason(),
+            },
+        }
     })
 }

@@ -35,6 +35,12 @@ impl Locator<'_> {
         }
     }
 
+    /// The TOML parser's error `e`, at its place, in words that name what was found.
+    pub(super) fn toml(&self, e: &toml::de::Error) -> LevelError {
+        let (offset, message) = super::syntax::explain(self.text, e);
+        self.err(offset, message)
+    }
+
     pub(super) fn at(&self, span: &Range<usize>, message: impl Into<String>) -> LevelError {
         self.err(span.start, message)
     }

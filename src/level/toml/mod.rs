@@ -29,6 +29,7 @@ mod platforms;
 mod scenarios;
 mod side;
 mod strings;
+mod syntax;
 #[cfg(test)]
 mod tests;
 
@@ -36,7 +37,8 @@ pub use error::LevelError;
 pub use scenarios::parse_scenarios;
 pub use side::side_import_options;
 #[cfg(any(feature = "tiled", feature = "ldtk"))]
-pub(crate) use side::{options_beside, side_file_of, SideFailure};
+pub(crate) use side::{options_beside, read_side, side_file_of, SideFailure};
+pub(crate) use syntax::explain as explain_toml_error;
 
 use error::Locator;
 use legend::parse_legend;
@@ -64,10 +66,7 @@ struct RawLevel {
 pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
     let loc = Locator { file, text };
     budget::check_budget(&loc)?;
-    let raw: RawLevel = toml::from_str(text).map_err(|e| {
-        let offset = e.span().map_or(0, |s| s.start);
-        loc.err(offset, e.message().trim().to_string())
-    })?;
+    let raw: RawLevel = toml::from_str(text).map_err(|e| loc.toml(&e))?;
 
     let legend = parse_legend(&loc, &raw.legend)?;
     let (width, height, tiles) = parse_map(&loc, &raw.map, &legend)?;

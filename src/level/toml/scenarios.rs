@@ -79,10 +79,7 @@ pub fn parse_scenarios(
 ) -> Result<Vec<ScenarioSpec>, LevelError> {
     let loc = Locator { file, text };
     super::budget::check_budget(&loc)?;
-    let raw: RawScenarioFile = toml::from_str(text).map_err(|e| {
-        let offset = e.span().map_or(0, |s| s.start);
-        loc.err(offset, e.message().trim().to_string())
-    })?;
+    let raw: RawScenarioFile = toml::from_str(text).map_err(|e| loc.toml(&e))?;
     scenarios(&loc, level, &raw.scenario)
 }
 

@@ -57,10 +57,7 @@ pub fn side_import_options(
 ) -> Result<ImportOptions, LevelError> {
     let loc = Locator { file, text };
     super::budget::check_budget(&loc)?;
-    let raw: RawSide = toml::from_str(text).map_err(|e| {
-        let offset = e.span().map_or(0, |s| s.start);
-        loc.err(offset, e.message().trim().to_string())
-    })?;
+    let raw: RawSide = toml::from_str(text).map_err(|e| loc.toml(&e))?;
     let Some(raw) = raw.import else {
         return Ok(cli.clone());
     };
@@ -102,6 +99,16 @@ pub fn side_import_options(
     for (k, v) in &raw.tile_properties {
         o.tile_properties
             .push((k.clone(), kind("tile_properties", k, v)?));
+    }
+    if let Some(s) = raw.spawns.get(crate::limits::MAX_SPAWNS) {
+        return Err(loc.at(
+            &s.span(),
+            format!(
+                "spawns: this is spawn point {} of the side file; expected at most {} (each spawn makes up to five probe scenarios)",
+                crate::limits::MAX_SPAWNS + 1,
+                crate::limits::MAX_SPAWNS
+            ),
+        ));
     }
     for s in &raw.spawns {
         let [x, y] = *s.get_ref();
@@ -169,11 +176,38 @@ pub(crate) fn options_beside(
         return Ok(cli.clone());
     };
     let file = side.display().to_string();
-    let text = crate::limits::read_toml_capped(&side).map_err(|e| SideFailure::Read {
-        file: file.clone(),
-        message: e.to_string(),
-    })?;
+    let text = read_side(&side)?;
     side_import_options(&text, &file, cli).map_err(SideFailure::Level)
+}
+
+/// The text of the side file `side`: text that is not UTF-8 is an error at its line and column,
+/// as any other fault of the file; a file that cannot be read at all says why.
+#[cfg_attr(not(any(feature = "tiled", feature = "ldtk")), allow(dead_code))]
+pub(crate) fn read_side(side: &std::path::Path) -> Result<String, SideFailure> {
+    use crate::input::InputError;
+    let file = side.display().to_string();
+    crate::input::read_text(
+        side,
+        crate::limits::MAX_TOML_BYTES,
+        "TOML level or side file",
+    )
+    .map_err(|e| match e {
+        InputError::NotText {
+            line,
+            column,
+            found,
+            ..
+        } => SideFailure::Level(LevelError {
+            file,
+            line,
+            column,
+            message: crate::input::not_text(&found),
+        }),
+        e => SideFailure::Read {
+            file,
+            message: e.reason(),
+        },
+    })
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@
 
 mod compare;
 mod join;
+mod lines;
 mod read;
 mod render;
 mod timing;
@@ -18,6 +19,7 @@ pub use compare::{
     TraceDiff,
 };
 pub use join::{diff_runs, diff_runs_each};
-pub(crate) use read::CsvRows;
+pub(crate) use lines::Lines;
+pub(crate) use read::{expected_of, CsvRows};
 pub use read::{read_metrics, read_metrics_where, read_runs, DiffError, MetricRecord, RunKey};
 pub use render::{render, DiffFormat};

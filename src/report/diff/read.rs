@@ -72,13 +72,13 @@ pub(super) struct MetricRef<'a> {
 /// Why a run directory could not be compared.
 #[derive(Debug, thiserror::Error)]
 pub enum DiffError {
-    /// A file could not be read.
-    #[error("cannot read {path}: {source}")]
+    /// A file could not be read (the cause in the message, not chained, so it is said once).
+    #[error("cannot read {path}: {cause}")]
     Io {
         /// The file.
         path: PathBuf,
         /// The cause.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// A file is not a regular file, or cannot be opened.
     #[error(transparent)]
@@ -146,17 +146,17 @@ pub enum DiffError {
         path: PathBuf,
     },
     /// A CSV file is malformed.
-    #[error("{path}: {source}")]
+    #[error("{path}: {cause}")]
     Csv {
         /// The file.
         path: PathBuf,
-        /// The cause, with its line.
-        source: csv::Error,
+        /// The cause, with its line (in the message, not chained, so it is said once).
+        cause: csv::Error,
     },
 }
 
 /// What a field that failed to parse was expected to hold, by the parser that refused it.
-fn expected_of(kind: &csv::DeserializeErrorKind) -> Option<&'static str> {
+pub(crate) fn expected_of(kind: &csv::DeserializeErrorKind) -> Option<&'static str> {
     use csv::DeserializeErrorKind as K;
     match kind {
         K::ParseFloat(_) => Some("a number (NaN and inf are numbers too)"),
@@ -234,7 +234,9 @@ impl<R: std::io::Read> std::io::Read for RecordCap<R> {
 /// longest row, at most [`crate::limits::MAX_CSV_RECORD_BYTES`].
 pub(crate) struct CsvRows {
     path: PathBuf,
-    reader: csv::Reader<RecordCap<crate::input::Capped>>,
+    reader: csv::Reader<super::Lines<RecordCap<crate::input::Capped>>>,
+    /// The line of the current record (the header is line 1), by [`super::Lines`].
+    line: u64,
     headers: csv::StringRecord,
     record: csv::StringRecord,
     /// Rows read so far, and the most the file may hold.
@@ -247,14 +249,14 @@ impl CsvRows {
     /// names the file's kind in an error.
     pub(crate) fn open(path: &Path, what: &'static str) -> Result<Self, DiffError> {
         let file = crate::input::open(path, u64::MAX, what)?;
-        let mut reader = csv::Reader::from_reader(RecordCap {
+        let mut reader = csv::Reader::from_reader(super::Lines::new(RecordCap {
             inner: file,
             bytes: 0,
             field: Field::Start,
             record_line: 1,
             line: 1,
             after_cr: false,
-        });
+        }));
         let headers = reader.headers().map_err(|e| Self::csv(path, e))?.clone();
         if headers.iter().all(str::is_empty) {
             return Err(DiffError::Empty {
@@ -264,6 +266,7 @@ impl CsvRows {
         Ok(CsvRows {
             path: path.to_path_buf(),
             reader,
+            line: 1,
             headers,
             record: csv::StringRecord::new(),
             rows: 0,
@@ -279,10 +282,10 @@ impl CsvRows {
         })
     }
 
-    fn csv(path: &Path, source: csv::Error) -> DiffError {
+    fn csv(path: &Path, cause: csv::Error) -> DiffError {
         DiffError::Csv {
             path: path.to_path_buf(),
-            source,
+            cause,
         }
     }
 
@@ -298,6 +301,8 @@ impl CsvRows {
             .read_record(&mut self.record)
             .map_err(|e| Self::csv(&self.path, e))?;
         self.rows += u64::from(more);
+        let byte = self.record.position().map_or(0, csv::Position::byte);
+        self.line = self.reader.get_mut().line_of(byte);
         if self.rows > self.max_rows {
             return Err(DiffError::TooManyRows {
                 path: self.path.clone(),
@@ -310,7 +315,7 @@ impl CsvRows {
 
     /// The line of the current record (the header is line 1).
     pub(crate) fn line(&self) -> u64 {
-        self.record.position().map_or(0, |p| p.line())
+        self.line
     }
 
     /// The current record as a `T` (which may borrow from it); a field that does not parse is
@@ -448,9 +453,9 @@ pub fn read_runs(dir: &Path) -> Result<Vec<RunKey>, DiffError> {
 /// The names of the trace files (`*.csv`) of `DIR/traces`, sorted.
 pub(super) fn trace_files(dir: &Path) -> Result<Vec<String>, DiffError> {
     let tdir = dir.join("traces");
-    let entries = std::fs::read_dir(&tdir).map_err(|source| DiffError::Io {
+    let entries = std::fs::read_dir(&tdir).map_err(|cause| DiffError::Io {
         path: tdir.clone(),
-        source,
+        cause,
     })?;
     let mut names: Vec<String> = Vec::new();
     for e in entries.filter_map(|e| e.ok()) {

@@ -1,0 +1,113 @@
+//! The TOML parser's errors put in platbench's words where its own say too little: a duplicate
+//! key is named with the line that set it first, and a control character is named by its code
+//! point, with what TOML allows instead, rather than as the token the parser wanted next.
+
+/// Where in `text` the parser's error `e` is (a byte offset) and what it says: the parser's own
+/// message, made to name what was found and what was expected where it does not.
+pub(crate) fn explain(text: &str, e: &toml::de::Error) -> (usize, String) {
+    let span = e.span().unwrap_or(0..0);
+    let message = e.message().trim();
+    if let Some(c) = control_at(text, span.start) {
+        return (
+            span.start,
+            format!(
+                "found the control character U+{:04X}, which TOML allows nowhere but as an escape in a basic string; expected text (tab is the only control character allowed as it is; write \\u{:04X} in a \"...\" string)",
+                u32::from(c),
+                u32::from(c)
+            ),
+        );
+    }
+    if let Some(field) = message.strip_prefix("missing field ") {
+        if text.trim_start_matches('\u{feff}').trim().is_empty() {
+            return (
+                0,
+                format!("found an empty file; expected TOML that sets {field}"),
+            );
+        }
+    }
+    if message == "duplicate key" {
+        let key = text.get(span.clone()).unwrap_or_default().trim();
+        let first = first_definition(text, span.start, key)
+            .map(|line| format!(", first set at line {line}"))
+            .unwrap_or_default();
+        return (
+            span.start,
+            format!("duplicate key `{key}`{first}; expected each key once in a table"),
+        );
+    }
+    (span.start, message.to_string())
+}
+
+/// The control character (other than tab, line feed and carriage return) at byte `offset` of
+/// `text`, if that is what is there.
+fn control_at(text: &str, offset: usize) -> Option<char> {
+    let c = text.get(offset..)?.chars().next()?;
+    (c.is_control() && !matches!(c, '\t' | '\n' | '\r')).then_some(c)
+}
+
+/// The 1-based line, before byte `before` of `text` and after the last table header (`[...]`)
+/// there, on which `key` is set (`key =` at the line's start); `None` when it is not found that
+/// simply (a dotted or quoted key), and the error then names the key alone.
+fn first_definition(text: &str, before: usize, key: &str) -> Option<usize> {
+    if key.is_empty() {
+        return None;
+    }
+    let head = text.get(..before)?;
+    let mut found = None;
+    for (i, line) in head.lines().enumerate() {
+        let t = line.trim_start();
+        if t.starts_with('[') {
+            found = None;
+        } else if t
+            .strip_prefix(key)
+            .is_some_and(|rest| rest.trim_start().starts_with('='))
+            && found.is_none()
+        {
+            found = Some(i + 1);
+        }
+    }
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::explain;
+
+    fn err(text: &str) -> (usize, String) {
+        let e = toml::from_str::<toml::Table>(text).unwrap_err();
+        explain(text, &e)
+    }
+
+    #[test]
+    fn a_duplicate_key_is_named_with_its_first_line() {
+        let text = "[a]\nx = 1\n[b]\nx = 1\ny = 2\nx = 3\n";
+        let (at, m) = err(text);
+        assert_eq!(crate::input::line_column(text, at), (6, 1), "{m}");
+        // Line 4 sets x in [b]; line 2's x is another table's.
+        assert!(m.contains("duplicate key `x`, first set at line 4"), "{m}");
+    }
+
+    #[test]
+    fn an_empty_file_is_said_to_be_one() {
+        #[derive(serde::Deserialize, Debug)]
+        #[allow(dead_code)]
+        struct Needs {
+            map: String,
+        }
+        let e = toml::from_str::<Needs>("\n").unwrap_err();
+        let (at, m) = explain("\n", &e);
+        assert_eq!(
+            (at, m.as_str()),
+            (0, "found an empty file; expected TOML that sets `map`")
+        );
+    }
+
+    #[test]
+    fn a_control_character_is_named_by_its_code_point() {
+        let text = "m = \"\"\"\nab\0c\n\"\"\"\n";
+        let (at, m) = err(text);
+        assert_eq!(crate::input::line_column(text, at), (2, 3), "{m}");
+        assert!(m.starts_with("found the control character U+0000"), "{m}");
+        assert!(m.contains("expected text"), "{m}");
+    }
+}

@@ -1,0 +1,202 @@
+//! Issue 40's unclear errors, part five: a cause said twice (an I/O error quoted in the message
+//! and chained again), raw TOML parser words (`duplicate key` without the key, a NUL reported
+//! as the token the parser wanted), an LDtk limit called "not an LDtk project" with its place
+//! given twice, an empty or `null` project at column 0, a side file's bad bytes blamed on the
+//! project, and 1,001 spawns of a side file blamed on the map. Each now exits 2 naming the
+//! file, the line and column, what was found and what was expected, once. Every file here is
+//! written for these tests.
+
+#![cfg(all(feature = "tiled", feature = "ldtk"))]
+
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+use crate::common::platbench;
+
+use super::hostile::{assert_error, stderr};
+
+fn cmd(args: &[&std::ffi::OsStr]) -> Output {
+    platbench().args(args).output().unwrap()
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, bytes).unwrap();
+    p
+}
+
+/// Fails unless the error names `file` and says `cause` exactly once.
+fn assert_once(out: &Output, file: &Path, cause: &str) {
+    assert_error(out, &file.display().to_string());
+    let err = stderr(out);
+    assert_eq!(err.matches(cause).count(), 1, "{cause:?} once in: {err}");
+}
+
+#[test]
+fn a_file_that_cannot_be_read_is_named_with_its_cause_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let missing = d.join("missing.toml");
+    let out_dir = d.join("out");
+    let missing_dir = d.join("nowhere");
+    let enoent = "No such file or directory";
+    let runs: [Vec<&std::ffi::OsStr>; 5] = [
+        vec!["run".as_ref(), missing.as_os_str()],
+        vec!["inspect".as_ref(), missing.as_os_str()],
+        vec![
+            "report".as_ref(),
+            "--tradeoff".as_ref(),
+            missing.as_os_str(),
+            "--out".as_ref(),
+            out_dir.as_os_str(),
+        ],
+        vec![
+            "diff".as_ref(),
+            missing_dir.as_os_str(),
+            missing_dir.as_os_str(),
+        ],
+        vec![
+            "check".as_ref(),
+            "--baseline".as_ref(),
+            missing_dir.as_os_str(),
+        ],
+    ];
+    for args in &runs {
+        let out = cmd(args);
+        let named = if args[0] == "diff" || args[0] == "check" {
+            &missing_dir
+        } else {
+            &missing
+        };
+        assert_once(&out, named, enoent);
+    }
+    // A directory where a file is expected: said once, with what was expected.
+    for command in ["run", "inspect"] {
+        let out = cmd(&[command.as_ref(), d.as_os_str()]);
+        assert_once(&out, d, "it is a directory; expected a regular file");
+    }
+    // An unreadable file (permission denied), unless this runs as root, who reads it anyway.
+    let locked = write(d, "locked.toml", b"name = \"a\"\n");
+    let made = std::process::Command::new("chmod")
+        .arg("000")
+        .arg(&locked)
+        .status();
+    assert!(made.is_ok_and(|s| s.success()), "chmod");
+    if std::fs::read(&locked).is_err() {
+        for command in ["run", "inspect"] {
+            let out = cmd(&[command.as_ref(), locked.as_os_str()]);
+            assert_once(&out, &locked, "Permission denied");
+        }
+    }
+}
+
+#[test]
+fn toml_errors_name_the_key_and_the_character_found() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let level = "name = \"ok\"\nmap = \"\"\"\n..\n##\n\"\"\"\n[[scenario]]\nname = \"s\"\nspawn = [0.5, 1.0]\nduration = 1.0\nduration = 2.0\n";
+    let dup = write(d, "dup.toml", level.as_bytes());
+    // `duration` is set on line 9 and again on line 10, column 1.
+    assert_error(
+        &cmd(&["run".as_ref(), dup.as_os_str()]),
+        &format!(
+            "{}:10:1: duplicate key `duration`, first set at line 9; expected each key once in a table",
+            dup.display()
+        ),
+    );
+    // A NUL on line 3, column 3 of a multi-line string.
+    let nul = write(
+        d,
+        "nul.toml",
+        b"name = \"ok\"\nmap = \"\"\"\n..\0.\n##\n\"\"\"\n",
+    );
+    let out = cmd(&["run".as_ref(), nul.as_os_str()]);
+    assert_error(
+        &out,
+        &format!("{}:3:3: found the control character U+0000", nul.display()),
+    );
+    assert!(stderr(&out).contains("expected text"), "{}", stderr(&out));
+}
+
+#[test]
+fn ldtk_errors_say_what_is_wrong_once_at_one_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // A layer one cell wider than src/limits.rs MAX_TILES (1,000,000): over a limit, not "not an
+    // LDtk project", its place said once (line 1, just after the number).
+    let text = r#"{"levels":[{"identifier":"a","worldX":0,"worldY":0,"pxWid":16,"pxHei":16,"layerInstances":[{"__identifier":"g","__type":"IntGrid","__cWid":1000001,"__cHei":1,"__gridSize":16,"intGridCsv":[1]}]}]}"#;
+    let column = text.find("1000001").unwrap() + "1000001".len();
+    let wide = write(d, "wide.ldtk", text.as_bytes());
+    let out = cmd(&["inspect".as_ref(), wide.as_os_str()]);
+    assert_error(
+        &out,
+        &format!(
+            "{}:1:{column}: a layer of 1000001 cells across; expected at most 1000000",
+            wide.display()
+        ),
+    );
+    let err = stderr(&out);
+    assert!(
+        !err.contains("not an LDtk project") && !err.contains(" at line "),
+        "{err}"
+    );
+    // An empty file, and one whose top level is null.
+    let empty = write(d, "empty.ldtk", b"");
+    assert_error(
+        &cmd(&["inspect".as_ref(), empty.as_os_str()]),
+        &format!(
+            "{}:1:1: found an empty file; expected an LDtk project (a JSON object",
+            empty.display()
+        ),
+    );
+    let null = write(d, "null.ldtk", b"\n null\n");
+    assert_error(
+        &cmd(&["run".as_ref(), null.as_os_str()]),
+        &format!(
+            "{}:2:2: found \"null\" at the top level; expected an LDtk project (a JSON object",
+            null.display()
+        ),
+    );
+    // A project's side file that is not UTF-8: the side file at its line and column (line 2,
+    // column 11, after `edges = "o`), not "cannot read the LDtk file".
+    let maps = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/maps");
+    let project = d.join("world.ldtk");
+    std::fs::copy(maps.join("world.ldtk"), &project).unwrap();
+    let side = write(d, "world.toml", b"[import]\nedges = \"o\xffpen\"\n");
+    let out = cmd(&["inspect".as_ref(), project.as_os_str()]);
+    assert_error(
+        &out,
+        &format!(
+            "{}:2:11: found byte(s) 0xFF, not UTF-8; expected UTF-8 text",
+            side.display()
+        ),
+    );
+    assert!(!stderr(&out).contains("LDtk file"), "{}", stderr(&out));
+}
+
+#[test]
+fn a_side_file_with_too_many_spawns_is_named_at_the_one_too_many() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let maps = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/maps");
+    let map = d.join("showcase.tmx");
+    std::fs::copy(maps.join("showcase.tmx"), &map).unwrap();
+    std::fs::copy(maps.join("terrain.tsx"), d.join("terrain.tsx")).unwrap();
+    // One spawn a line from line 3: spawn 1,001 (one past src/limits.rs MAX_SPAWNS) is on line
+    // 1,003, at column 3.
+    let spawns: String = (0..1001).map(|_| "  [3.5, 2.0],\n").collect();
+    let side = write(
+        d,
+        "showcase.toml",
+        format!("[import]\nspawns = [\n{spawns}]\n").as_bytes(),
+    );
+    for command in ["inspect", "run"] {
+        assert_error(
+            &cmd(&[command.as_ref(), map.as_os_str()]),
+            &format!(
+                "{}:1003:3: spawns: this is spawn point 1001 of the side file; expected at most 1000",
+                side.display()
+            ),
+        );
+    }
+}
