@@ -18,4 +18,5 @@ mod tiled;
 mod tiled_errors;
 mod tiled_json;
 mod tiled_runs;
+mod tiled_written;
 mod validation;

@@ -51,6 +51,30 @@ pub(super) fn count_tiles(t: &TilesetInfo) -> u64 {
     }
 }
 
+/// A tile layer in the old XML cell encoding (`<tile gid=".."/>` per cell), being read.
+struct XmlData {
+    layer: String,
+    /// Where its `<data>` starts and its start tag ends.
+    start: usize,
+    tag_end: usize,
+    /// The gids of the layer, or of the chunk being read.
+    gids: Vec<String>,
+    /// Whether it holds chunks (an infinite map's layer), each made CSV on its own.
+    chunked: bool,
+    /// Where the open chunk's content starts.
+    chunk: Option<usize>,
+}
+
+/// `gids` as CSV followed by as many line breaks as `was` held, so later lines keep their
+/// numbers.
+fn csv_on_lines(gids: &[String], was: &str) -> String {
+    format!(
+        "{}{}",
+        gids.join(","),
+        "\n".repeat(was.matches('\n').count())
+    )
+}
+
 /// Makes a map's or tileset's XML readable by the crate (see the module docs). XML errors are
 /// left to the crate; what the crate would allocate without bound (a tilecount beyond
 /// [`limits::MAX_TILES`]) is an error with its line.
@@ -60,8 +84,7 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
     let mut notes = Vec::new();
     let mut stack: Vec<Vec<u8>> = Vec::new();
     let mut tileset: Option<TilesetInfo> = None;
-    // An XML-encoded layer: (layer name, start of <data>, gids so far).
-    let mut xml_data: Option<(String, usize, Vec<String>)> = None;
+    let mut xml_data: Option<XmlData> = None;
     let mut layer_name = String::new();
     loop {
         let pos = reader.buffer_position();
@@ -79,20 +102,30 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
                 if name == b"tileset" {
                     close_tileset(&mut tileset, stack.len(), &mut edits, &mut notes)?;
                 }
+                if name == b"chunk" {
+                    if let Some(x) = &mut xml_data {
+                        if let Some(start) = x.chunk.take() {
+                            // A chunk's cells become CSV inside it, on the same lines.
+                            let end = pos;
+                            edits.push((start, end, csv_on_lines(&x.gids, &text[start..end])));
+                            x.gids.clear();
+                        }
+                    }
+                }
                 if name == b"data" {
-                    if let Some((layer, start, gids)) = xml_data.take() {
+                    if let Some(x) = xml_data.take() {
                         let end_pos = reader.buffer_position();
-                        let lines = text[start..end_pos].matches('\n').count();
-                        edits.push((
-                            start,
-                            end_pos,
-                            format!(
-                                "<data encoding=\"csv\">{}{}</data>",
-                                gids.join(","),
-                                "\n".repeat(lines)
-                            ),
-                        ));
-                        notes.push(format!("layer {layer:?} is in the old XML cell encoding; read as CSV (Tiled: Map > Map Properties > Tile Layer Format to change it)"));
+                        if x.chunked {
+                            edits.push((x.start, x.tag_end, "<data encoding=\"csv\">".into()));
+                        } else {
+                            let inner = csv_on_lines(&x.gids, &text[x.start..end_pos]);
+                            edits.push((
+                                x.start,
+                                end_pos,
+                                format!("<data encoding=\"csv\">{inner}</data>"),
+                            ));
+                        }
+                        notes.push(format!("layer {:?} is in the old XML cell encoding; read as CSV (Tiled: Map > Map Properties > Tile Layer Format to change it)", x.layer));
                     }
                 }
                 continue;
@@ -137,14 +170,27 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
                     }
                 }
             }
-            b"tile" if parent.as_deref() == Some(b"data") => {
-                if let Some((_, _, gids)) = &mut xml_data {
-                    gids.push(attr(&e, "gid").unwrap_or_else(|| "0".into()));
+            b"tile" if matches!(parent.as_deref(), Some(b"data" | b"chunk")) => {
+                if let Some(x) = &mut xml_data {
+                    x.gids.push(attr(&e, "gid").unwrap_or_else(|| "0".into()));
+                }
+            }
+            b"chunk" if !empty => {
+                if let Some(x) = &mut xml_data {
+                    x.chunked = true;
+                    x.chunk = Some(reader.buffer_position());
                 }
             }
             b"layer" => layer_name = attr(&e, "name").unwrap_or_default(),
             b"data" if !empty && attr(&e, "encoding").is_none() => {
-                xml_data = Some((layer_name.clone(), pos, Vec::new()));
+                xml_data = Some(XmlData {
+                    layer: layer_name.clone(),
+                    start: pos,
+                    tag_end: reader.buffer_position(),
+                    gids: Vec::new(),
+                    chunked: false,
+                    chunk: None,
+                });
             }
             _ => {}
         }
@@ -197,6 +243,7 @@ fn close_tileset(
     };
     if count > limits::MAX_TILES {
         return Err(ScanError {
+            column: None,
             line: t.line,
             message: format!(
                 "tileset {:?} has {count} tiles; expected at most {} (the most tiles platbench reads)",
