@@ -18,5 +18,6 @@ mod tiled;
 mod tiled_errors;
 mod tiled_json;
 mod tiled_runs;
+mod tiled_twins;
 mod tiled_written;
 mod validation;

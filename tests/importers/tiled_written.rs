@@ -1,154 +1,225 @@
-//! Files as Tiled writes them import: the old XML cell encoding in an infinite map's chunks,
-//! and an infinite map's empty layer (no chunks, 0 x 0), each against its CSV twin; and what
-//! the import says is the same each run, although the crate keeps properties in hash maps.
-
-#![cfg(all(
-    feature = "rapier",
-    feature = "box2d",
-    feature = "tiled",
-    feature = "ldtk"
-))]
+//! Issue 40: maps as Tiled writes them are read, not refused (an infinite JSON map's empty
+//! layer, an infinite map in the old XML cell format), and a map's bad numbers, gids and chunk
+//! sizes are named at their line (and the attribute's column) instead of the `tiled` crate's
+//! bare "Error parsing attribute 'width'" or a silently dropped tile.
+#![cfg(feature = "tiled")]
 
 use std::path::Path;
 
-use platbench::level::{import_tiled_map_with, Edges, ImportOptions};
+use platbench::level::{import_tiled_map, Tile};
 
-use super::tiled::shipped;
+/// A tileset of one 16 px tile (gid 1), embedded; written for these tests.
+const TILESET: &str = r#"<tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"><image source="t.png" width="16" height="16"/></tileset>"#;
 
-fn open_edges() -> ImportOptions {
-    ImportOptions {
-        edges: Some(Edges::Open),
-        ..ImportOptions::default()
-    }
-}
-
-/// The level's tiles as the level format writes them, top row first.
-fn grid_of(path: &Path) -> String {
-    let r = import_tiled_map_with(path, &open_edges())
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    platbench::level::import::ascii_map(&r.level).0
-}
-
-/// tests/maps/infinite.tmx with its CSV chunk written as Tiled's old XML cells: one
-/// `<tile gid=".."/>` per cell (`<tile/>` for an empty one), no `encoding` attribute.
-fn as_xml_cells(csv_map: &str) -> String {
-    let open = csv_map
-        .find("<data encoding=\"csv\">")
-        .expect("a CSV layer");
-    let chunk = csv_map[open..]
-        .find('>')
-        .map(|k| open + k + 1)
-        .expect("<data>");
-    let body_start = csv_map[chunk..]
-        .find('>')
-        .map(|k| chunk + k + 1)
-        .expect("<chunk>");
-    let body_end = csv_map[body_start..]
-        .find("</chunk>")
-        .map(|k| body_start + k)
-        .expect("</chunk>");
-    let cells: String = csv_map[body_start..body_end]
-        .split(',')
-        .map(|c| match c.trim() {
-            "0" => "<tile/>\n".to_string(),
-            gid => format!("<tile gid=\"{gid}\"/>\n"),
-        })
-        .collect();
+/// A 4 x 2 map: `tileset` on line 3, `layer` from line 4, `objects` after it.
+fn tmx(map_attrs: &str, tileset: &str, layer: &str, objects: &str) -> String {
     format!(
-        "{}<data>{}{cells}{}",
-        &csv_map[..open],
-        &csv_map[chunk..body_start],
-        &csv_map[body_end..]
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" {map_attrs} tilewidth=\"16\" tileheight=\"16\">\n{tileset}\n{layer}\n<objectgroup id=\"5\" name=\"objects\">\n{objects}\n</objectgroup>\n</map>\n"
     )
 }
 
-#[test]
-fn an_infinite_map_in_the_old_xml_cell_encoding_imports_as_its_csv_twin() {
-    let dir = tempfile::tempdir().unwrap();
-    let csv = std::fs::read_to_string(shipped("infinite.tmx")).unwrap();
-    let xml = as_xml_cells(&csv);
-    assert!(xml.contains("<tile gid=\"1\"/>") && !xml.contains("encoding=\"csv\""));
-    let path = dir.path().join("xml_cells.tmx");
-    std::fs::write(&path, &xml).unwrap();
-    // Before: "its data holds 1 comma-separated cells; expected exactly 600 cells" (the
-    // chunks were dropped when the cells became CSV).
-    assert_eq!(grid_of(&path), grid_of(&shipped("infinite.tmx")));
+const FLOOR: &str = r#"<layer id="1" name="ground" width="4" height="2"><data encoding="csv">0,0,0,0,1,1,1,1</data></layer>"#;
+const START: &str = r#"<object id="1" name="start" x="24" y="16"><point/></object>"#;
+
+fn write(dir: &Path, name: &str, text: &str) -> std::path::PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
 }
 
-#[test]
-fn a_bad_gid_in_the_old_xml_cell_encoding_is_named_at_its_line() {
+/// The import's error as the CLI shows it.
+fn error(name: &str, text: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
-    let csv = std::fs::read_to_string(shipped("infinite.tmx")).unwrap();
-    let xml = as_xml_cells(&csv).replacen("<tile gid=\"1\"/>", "<tile gid=\"x\"/>", 1);
-    let line = 1 + xml[..xml.find("gid=\"x\"").unwrap()].matches('\n').count();
-    let path = dir.path().join("bad_gid.tmx");
-    std::fs::write(&path, &xml).unwrap();
-    let Err(e) = import_tiled_map_with(&path, &open_edges()) else {
-        panic!("a bad gid is refused");
+    let p = write(dir.path(), name, text);
+    let Err(e) = import_tiled_map(&p) else {
+        panic!("the map should be refused");
     };
-    let e = e.to_string();
-    for part in [
-        format!("bad_gid.tmx:{line}"),
-        "layer \"Tile Layer 1\"".to_string(),
-        "gid=\"x\"; expected a tile id".to_string(),
-    ] {
-        assert!(e.contains(&part), "{part:?} not in {e}");
-    }
-    assert!(!e.contains("CSV"), "the file has no CSV: {e}");
+    let shown = e.to_string();
+    // Every error names the file first.
+    let file = p.display().to_string();
+    assert!(shown.starts_with(&file), "{shown}");
+    shown[file.len()..].to_string()
 }
 
 #[test]
-fn an_infinite_maps_empty_layer_imports() {
-    // Tiled writes a tile layer of an infinite map that holds nothing as "chunks": [] with
-    // width and height 0 (tests/maps/infinite.json is the same map with its one chunk).
-    let dir = tempfile::tempdir().unwrap();
-    let text = std::fs::read_to_string(shipped("infinite.json")).unwrap();
-    let mut map: serde_json::Value = serde_json::from_str(&text).unwrap();
-    let layers = map["layers"].as_array_mut().unwrap();
-    layers.push(serde_json::json!({
-        "id": 9, "name": "empty", "type": "tilelayer", "chunks": [], "width": 0, "height": 0,
-        "startx": 0, "starty": 0, "x": 0, "y": 0, "opacity": 1, "visible": true
-    }));
-    let path = dir.path().join("empty_layer.tmj");
-    std::fs::write(&path, serde_json::to_string_pretty(&map).unwrap()).unwrap();
-    // Before: "its data holds 1 comma-separated cells; expected exactly 0 cells".
-    assert_eq!(grid_of(&path), grid_of(&shipped("infinite.json")));
-}
-
-#[test]
-fn a_spawns_unread_properties_are_warned_about_in_name_order() {
-    // The tiled crate keeps properties in a hash map, whose order changes from run to run:
-    // the warnings follow the names, so `inspect` says the same each time. Eight properties
-    // given in reverse: a hash order that happened to be sorted would pass 1 time in 40,320.
-    let names = ["h", "g", "f", "e", "d", "c", "b", "a"];
-    let props: String = names
-        .iter()
-        .map(|n| format!(r#"<property name="{n}" value="1"/>"#))
-        .collect();
-    let objects = format!(
-        r#"<object id="1" name="s" class="spawn" x="8" y="16"><properties>{props}</properties><point/></object>"#
+fn an_infinite_json_maps_empty_layer_is_read() {
+    // Tiled 1.11 writes a layer with nothing drawn as 0 x 0 with no chunks.
+    let chunk = format!("[{}]", ["1"; 256].join(","));
+    let text = format!(
+        r#"{{"type":"map","version":"1.10","orientation":"orthogonal","renderorder":"right-down","infinite":true,"width":3,"height":2,"tilewidth":16,"tileheight":16,"nextlayerid":3,"nextobjectid":1,
+"layers":[{{"id":1,"name":"collision","type":"tilelayer","width":16,"height":16,"startx":0,"starty":0,"x":0,"y":0,"opacity":1,"visible":true,"chunks":[{{"x":0,"y":0,"width":16,"height":16,"data":{chunk}}}]}},
+{{"id":2,"name":"empty","type":"tilelayer","chunks":[],"width":0,"height":0,"startx":0,"starty":0,"x":0,"y":0,"opacity":1,"visible":true}}],
+"tilesets":[{{"firstgid":1,"name":"t","tilewidth":16,"tileheight":16,"tilecount":1,"columns":1,"image":"t.png","imagewidth":16,"imageheight":16,"margin":0,"spacing":0}}]}}"#
     );
-    let r = super::tiled::MapText {
-        objects: &objects,
-        ..Default::default()
+    let dir = tempfile::tempdir().unwrap();
+    let r = import_tiled_map(&write(dir.path(), "m.tmj", &text));
+    assert!(r.is_ok(), "{}", r.err().unwrap());
+}
+
+#[test]
+fn an_infinite_map_in_the_old_xml_cell_format_is_read_chunk_by_chunk() {
+    // Two 2 x 2 chunks of <tile> elements, as Tiled writes a layer with no encoding.
+    let tiles = |gid: &str| format!("<tile gid=\"{gid}\"/>\n").repeat(4);
+    let layer = format!(
+        "<layer id=\"1\" name=\"ground\" width=\"4\" height=\"2\"><data>\n<chunk x=\"0\" y=\"0\" width=\"2\" height=\"2\">\n{}</chunk>\n<chunk x=\"2\" y=\"0\" width=\"2\" height=\"2\">\n{}</chunk>\n</data></layer>",
+        tiles("1"),
+        tiles("1")
+    );
+    let text = tmx(
+        "width=\"4\" height=\"2\" infinite=\"1\"",
+        TILESET,
+        &layer,
+        START,
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let r = import_tiled_map(&write(dir.path(), "m.tmx", &text));
+    let i = r.unwrap_or_else(|e| panic!("{e}"));
+    // 4 x 2 solid cells from the two chunks (the walls added at the open sides aside).
+    let l = &i.level;
+    let solid = (0..l.width as i64)
+        .flat_map(|x| (0..l.height as i64).map(move |y| (x, y)))
+        .filter(|&(x, y)| l.tile(x, y) == Tile::Solid)
+        .count();
+    // 8 from the chunks, plus the walls added at the open sides (as tall as the map).
+    assert_eq!(solid, 8 + 2 * l.height as usize, "{solid} solid cells");
+    // A short chunk is still refused, at the chunk's line (5).
+    let short = text.replacen("<tile gid=\"1\"/>\n", "", 1);
+    let e = error("m.tmx", &short);
+    assert!(
+        e.starts_with(":5: ") && e.contains("chunk at x = 0, y = 0: its data holds 3"),
+        "{e}"
+    );
+    // A bad gid in the old format is its tile element's, at line and column.
+    let bad = text.replacen("<tile gid=\"1\"/>", "<tile gid=\"x\"/>", 1);
+    let e = error("m.tmx", &bad);
+    assert!(
+        e.starts_with(":6:7: ") && e.contains("<tile>: attribute \"gid\" is \"x\""),
+        "{e}"
+    );
+}
+
+#[test]
+fn bad_numbers_are_named_at_their_attribute() {
+    let map = "width=\"4\" height=\"2\"";
+    // (what the file holds, where the error points, what it says): the columns are those of
+    // the attribute in the lines `tmx` writes.
+    let cases = [
+        (tmx("width=\"4O\" height=\"2\"", TILESET, FLOOR, START), ":2:71: ", "<map>: attribute \"width\" is \"4O\"; expected a whole number"),
+        (tmx("width=\"\" height=\"2\"", TILESET, FLOOR, START), ":2:71: ", "attribute \"width\" is \"\""),
+        (tmx(map, &TILESET.replace("firstgid=\"1\"", "firstgid=\"\""), FLOOR, START), ":3:10: ", "tileset \"t\": attribute \"firstgid\" is \"\""),
+        (tmx(map, TILESET, FLOOR, &START.replace("id=\"1\"", "id=\"x\"")), ":6:9: ", "attribute \"id\" is \"x\""),
+        (tmx(map, TILESET, FLOOR, &START.replace("x=\"24\"", "x=\"2a4\"")), ":6:29: ", "object 1 \"start\": attribute \"x\" is \"2a4\"; expected a number"),
+        (tmx(map, TILESET, FLOOR, r#"<object id="2" x="0" y="0"><polygon points="0,0 1,a 2,2"/></object>"#), ":6:37: ", "attribute \"points\" has point 2 \"1,a\""),
+        (tmx(map, TILESET, FLOOR, r#"<properties><property name="n" type="int" value="zz"/></properties>"#), ":6:43: ", "property \"n\": attribute \"value\" is \"zz\"; expected a whole number from -2147483648"),
+        (tmx(map, TILESET, &FLOOR.replace("height=\"2\"", "height=\"-2\""), START), ":4:39: ", "layer \"ground\": attribute \"height\" is \"-2\""),
+    ];
+    for (text, at, says) in cases {
+        let e = error("m.tmx", &text);
+        assert!(e.starts_with(at) && e.contains(says), "{at} {says}: {e}");
     }
-    .import()
-    .unwrap();
-    let warned: Vec<String> = r
-        .warnings
-        .iter()
-        .map(ToString::to_string)
-        .filter(|w| w.contains("on a spawn point"))
-        .collect();
-    let order: Vec<&str> = names.iter().rev().copied().collect();
-    let found: Vec<&str> = warned
-        .iter()
-        .filter_map(|w| {
-            order
-                .iter()
-                .copied()
-                .find(|n| w.contains(&format!("\"{n}\"")))
-        })
-        .collect();
-    assert_eq!(found, order, "{warned:#?}");
+}
+
+#[test]
+fn a_chunk_without_cells_says_its_size() {
+    let layer = r#"<layer id="1" name="ground" width="4" height="2"><data encoding="csv">
+<chunk x="0" y="0" width="0" height="16"></chunk></data></layer>"#;
+    let e = error(
+        "m.tmx",
+        &tmx(
+            "width=\"4\" height=\"2\" infinite=\"1\"",
+            TILESET,
+            layer,
+            START,
+        ),
+    );
+    assert!(
+        e.starts_with(":5: ")
+            && e.contains("the chunk is 0 x 16 tiles; expected a width and height of at least 1"),
+        "{e}"
+    );
+    let neg = layer.replace("width=\"0\"", "width=\"-1\"");
+    let e = error(
+        "m.tmx",
+        &tmx(
+            "width=\"4\" height=\"2\" infinite=\"1\"",
+            TILESET,
+            &neg,
+            START,
+        ),
+    );
+    assert!(e.contains("<chunk>: attribute \"width\" is \"-1\""), "{e}");
+}
+
+#[test]
+fn tiles_in_no_tileset_are_refused_not_dropped() {
+    // Cells of gid 1 with no tileset: the crate would drop them without a word.
+    let e = error("m.tmx", &tmx("width=\"4\" height=\"2\"", "", FLOOR, START));
+    assert!(
+        e.starts_with(":4: ")
+            && e.contains(
+                "cell 5 (x = 0, y = 1) of its CSV data is gid 1, but the map has no tileset"
+            ),
+        "{e}"
+    );
+    // Below the first tileset's firstgid (here 5): in none either.
+    let e = error(
+        "m.tmx",
+        &tmx(
+            "width=\"4\" height=\"2\"",
+            &TILESET.replace("firstgid=\"1\"", "firstgid=\"5\""),
+            FLOOR,
+            START,
+        ),
+    );
+    assert!(
+        e.contains("gid 1, below the first tileset's firstgid 5"),
+        "{e}"
+    );
+    // A tile object whose gid is past its tileset's one tile.
+    let obj = r#"<object id="1" name="start" gid="99" x="24" y="32" width="16" height="16"/>"#;
+    let e = error(
+        "m.tmx",
+        &tmx("width=\"4\" height=\"2\"", TILESET, FLOOR, obj),
+    );
+    assert!(
+        e.starts_with(":6: ") && e.contains("object 1 \"start\": its tile is gid 99 (tile 98 of tileset \"t\"), which names no tile; expected a gid of the map's tilesets: 1 to 1 (\"t\")"),
+        "{e}"
+    );
+}
+
+#[test]
+fn an_object_error_gives_the_objects_line() {
+    // A spawn rotated: refused, at its object's line (7: the second object).
+    let objs = format!("{START}\n<object id=\"2\" name=\"spawn\" x=\"24\" y=\"16\" rotation=\"45\"><point/></object>");
+    let e = error(
+        "m.tmx",
+        &tmx("width=\"4\" height=\"2\"", TILESET, FLOOR, &objs),
+    );
+    assert!(
+        e.starts_with(":7: ") && e.contains("object 2 \"spawn\""),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_json_template_that_refers_to_itself_is_named_at_its_template_key() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "self.tj",
+        "{\"type\": \"template\",\n \"object\": {\"name\": \"o\", \"width\": 16, \"height\": 16,\n  \"template\": \"self.tj\"}}",
+    );
+    let objs = format!("{START}\n<object id=\"2\" template=\"self.tj\" x=\"8\" y=\"8\"/>");
+    let p = write(
+        dir.path(),
+        "m.tmx",
+        &tmx("width=\"4\" height=\"2\"", TILESET, FLOOR, &objs),
+    );
+    let e = import_tiled_map(&p).err().unwrap().to_string();
+    // Line 3 of self.tj holds its "template" key (its XML twin's line 2 was named before).
+    let at = format!(
+        "{}:3: object template \"self.tj\" refers back",
+        dir.path().join("self.tj").display()
+    );
+    assert!(e.starts_with(&at), "{e}");
 }

@@ -172,6 +172,7 @@ fn tiled_recursion_is_an_error_naming_the_file_and_line() {
 #[test]
 fn bad_tile_data_is_named_with_its_layer_and_line() {
     let dir = tempfile::tempdir().unwrap();
+    // The map has no tileset, so its cells are 0 (a gid would be in no tileset, refused first).
     let head = "<?xml version=\"1.0\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" width=\"4\" height=\"2\" tilewidth=\"16\" tileheight=\"16\" infinite=\"{inf}\">\n <layer id=\"1\" name=\"walls\" width=\"4\" height=\"2\">\n  <data encoding=\"{enc}\">\n";
     let cases = [
         // Once "Invalid symbol 64, offset 0.": the layer, the line and the character.
@@ -185,21 +186,21 @@ fn bad_tile_data_is_named_with_its_layer_and_line() {
         (
             "0",
             "csv",
-            "0,0,0,0,\n1,x,1,1",
+            "0,0,0,0,\n0,x,0,0",
             "csv.tmx:6: layer \"walls\": cell 6 (x = 1, y = 1) of its CSV data is \"x\"",
         ),
         // Once "number too large to fit in target type".
         (
             "0",
             "csv",
-            "0,0,0,0,\n1,1,1,4294967296",
+            "0,0,0,0,\n0,0,0,4294967296",
             "big.tmx:6: layer \"walls\": cell 8 (x = 3, y = 1) of its CSV data is 4294967296, more than 4294967295",
         ),
         // Once "Invalid tile found in map being parsed": the chunk, short of its cells.
         (
             "1",
             "csv",
-            "<chunk x=\"0\" y=\"0\" width=\"2\" height=\"2\">1,1,1</chunk>",
+            "<chunk x=\"0\" y=\"0\" width=\"2\" height=\"2\">0,0,0</chunk>",
             "chunk.tmx:5: layer \"walls\", chunk at x = 0, y = 0: its data holds 3 comma-separated cells; expected exactly 4 cells",
         ),
     ];

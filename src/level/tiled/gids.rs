@@ -19,12 +19,49 @@ impl<'m> Importer<'m> {
     ) -> Result<(), TiledError> {
         let ts = lt.get_tileset();
         let id = lt.id();
-        if ts.get_tile(id).is_some() || (ts.image.is_some() && id < ts.tilecount) {
+        if names_tile(ts, id) {
             return Ok(());
         }
+        let (found, ranges) = self.no_tile(lt.tileset_index(), ts, id);
+        let line = cell_line(self.text, layer, (x, y));
+        Err(TiledError::Layer {
+            file: line.map_or(self.file.clone(), |l| (self.cell_at)(l, (x, y))),
+            layer: layer.into(),
+            message: format!(
+                "cell x = {x}, y = {y} (column and row from the map's top-left, as Tiled shows them) holds {found}, which names no tile; expected 0 (no tile) or a gid of the map's tilesets: {}",
+                ranges
+            ),
+        })
+    }
+
+    /// Whether the tile of object `o`, if it has one, is a tile of its tileset; if not, the
+    /// error names the object and its gid, as for a cell.
+    pub(super) fn check_object_tile(&self, o: &tiled::Object) -> Result<(), TiledError> {
+        let (Some(t), Some(data)) = (o.get_tile(), o.tile_data()) else {
+            return Ok(());
+        };
+        let ts = t.get_tileset();
+        let id = data.id();
+        let tiled::TilesetLocation::Map(index) = data.tileset_location() else {
+            // A template's own tileset: the crate has already read its tile.
+            return Ok(());
+        };
+        if names_tile(ts, id) {
+            return Ok(());
+        }
+        let (found, ranges) = self.no_tile(*index, ts, id);
+        Err(self.obj_err(
+            o,
+            format!("its tile is {found}, which names no tile; expected a gid of the map's tilesets: {ranges}"),
+        ))
+    }
+
+    /// Tile `id` of the map's tileset `index` as found (with its gid), and the gids each of the
+    /// map's tilesets holds.
+    fn no_tile(&self, index: usize, ts: &tiled::Tileset, id: u32) -> (String, String) {
         let first = tileset_firstgids(self.text);
         let gid = |k: usize, id: u32| first.get(k).map(|f| u64::from(*f) + u64::from(id));
-        let found = match gid(lt.tileset_index(), id) {
+        let found = match gid(index, id) {
             Some(g) => format!("gid {g} (tile {id} of tileset {:?})", ts.name),
             None => format!("tile {id} of tileset {:?}", ts.name),
         };
@@ -44,16 +81,13 @@ impl<'m> Importer<'m> {
                 }
             })
             .collect();
-        let line = cell_line(self.text, layer, (x, y));
-        Err(TiledError::Layer {
-            file: line.map_or(self.file.clone(), |l| (self.cell_at)(l, (x, y))),
-            layer: layer.into(),
-            message: format!(
-                "cell x = {x}, y = {y} (column and row from the map's top-left, as Tiled shows them) holds {found}, which names no tile; expected 0 (no tile) or a gid of the map's tilesets: {}",
-                ranges.join(", ")
-            ),
-        })
+        (found, ranges.join(", "))
     }
+}
+
+/// Whether tile `id` is one of tileset `ts`'s: a tile it lists, or a cell of its image.
+fn names_tile(ts: &tiled::Tileset, id: u32) -> bool {
+    ts.get_tile(id).is_some() || (ts.image.is_some() && id < ts.tilecount)
 }
 
 /// The `firstgid` of each of the map's tilesets, in the file's order (the `tiled` crate's).

@@ -21,6 +21,8 @@ use std::path::Path;
 use tiled::{ObjectShape, PropertyValue};
 
 mod approx;
+mod attrs;
+mod base64;
 mod cells;
 mod error;
 mod gids;

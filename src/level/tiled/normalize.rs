@@ -51,39 +51,28 @@ pub(super) fn count_tiles(t: &TilesetInfo) -> u64 {
     }
 }
 
-/// A tile layer in the old XML cell encoding being made CSV: each `<tile gid=".."/>` a cell,
-/// and in an infinite map each `<chunk>` a CSV chunk of its own.
+/// A tile layer in the old XML cell encoding (`<tile gid=".."/>` per cell), being read.
 struct XmlData {
     layer: String,
-    /// Byte offset of `<data`.
+    /// Where its `<data>` starts and its start tag ends.
     start: usize,
-    /// The data's content as CSV so far.
-    csv: String,
-    /// Cells in the current chunk (or the layer) so far.
-    cells: u64,
+    tag_end: usize,
+    /// The gids of the layer, or of the chunk being read.
+    gids: Vec<String>,
+    /// Whether it holds chunks (an infinite map's layer), each made CSV on its own.
+    chunked: bool,
+    /// Where the open chunk's content starts.
+    chunk: Option<usize>,
 }
 
-impl XmlData {
-    fn push(&mut self, gid: &str) {
-        if self.cells > 0 {
-            self.csv.push(',');
-        }
-        self.csv.push_str(gid.trim());
-        self.cells += 1;
-    }
-
-    /// Starts a chunk whose attributes (`x`, `y`, `width`, `height`) are `attrs`, as written.
-    fn open_chunk(&mut self, attrs: &str) {
-        self.csv.push_str("<chunk");
-        self.csv.push_str(attrs);
-        self.csv.push('>');
-        self.cells = 0;
-    }
-
-    fn close_chunk(&mut self) {
-        self.csv.push_str("</chunk>");
-        self.cells = 0;
-    }
+/// `gids` as CSV followed by as many line breaks as `was` held, so later lines keep their
+/// numbers.
+fn csv_on_lines(gids: &[String], was: &str) -> String {
+    format!(
+        "{}{}",
+        gids.join(","),
+        "\n".repeat(was.matches('\n').count())
+    )
 }
 
 /// Makes a map's or tileset's XML readable by the crate (see the module docs). XML errors are
@@ -95,8 +84,6 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
     let mut notes = Vec::new();
     let mut stack: Vec<Vec<u8>> = Vec::new();
     let mut tileset: Option<TilesetInfo> = None;
-    // An XML-encoded layer: its name, the start of its <data>, and its cells as CSV so far
-    // (an infinite map's chunks each with their own CSV).
     let mut xml_data: Option<XmlData> = None;
     let mut layer_name = String::new();
     loop {
@@ -116,24 +103,29 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
                     close_tileset(&mut tileset, stack.len(), &mut edits, &mut notes)?;
                 }
                 if name == b"chunk" {
-                    if let Some(d) = &mut xml_data {
-                        d.close_chunk();
+                    if let Some(x) = &mut xml_data {
+                        if let Some(start) = x.chunk.take() {
+                            // A chunk's cells become CSV inside it, on the same lines.
+                            let end = pos;
+                            edits.push((start, end, csv_on_lines(&x.gids, &text[start..end])));
+                            x.gids.clear();
+                        }
                     }
                 }
                 if name == b"data" {
-                    if let Some(d) = xml_data.take() {
+                    if let Some(x) = xml_data.take() {
                         let end_pos = reader.buffer_position();
-                        let lines = text[d.start..end_pos].matches('\n').count();
-                        edits.push((
-                            d.start,
-                            end_pos,
-                            format!(
-                                "<data encoding=\"csv\">{}{}</data>",
-                                d.csv,
-                                "\n".repeat(lines)
-                            ),
-                        ));
-                        notes.push(format!("layer {:?} is in the old XML cell encoding; read as CSV (Tiled: Map > Map Properties > Tile Layer Format to change it)", d.layer));
+                        if x.chunked {
+                            edits.push((x.start, x.tag_end, "<data encoding=\"csv\">".into()));
+                        } else {
+                            let inner = csv_on_lines(&x.gids, &text[x.start..end_pos]);
+                            edits.push((
+                                x.start,
+                                end_pos,
+                                format!("<data encoding=\"csv\">{inner}</data>"),
+                            ));
+                        }
+                        notes.push(format!("layer {:?} is in the old XML cell encoding; read as CSV (Tiled: Map > Map Properties > Tile Layer Format to change it)", x.layer));
                     }
                 }
                 continue;
@@ -179,26 +171,14 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
                 }
             }
             b"tile" if matches!(parent.as_deref(), Some(b"data" | b"chunk")) => {
-                if let Some(d) = &mut xml_data {
-                    let gid = attr(&e, "gid").unwrap_or_else(|| "0".into());
-                    if gid.trim().parse::<u32>().is_err() {
-                        return Err(ScanError {
-                            line: line_of(text, pos),
-                            message: format!(
-                                "layer {:?}: a <tile> cell has gid=\"{gid}\"; expected a tile id, a whole number from 0 (no tile) to 4294967295 (a global tile id with its flip bits)",
-                                d.layer
-                            ),
-                        });
-                    }
-                    d.push(&gid);
+                if let Some(x) = &mut xml_data {
+                    x.gids.push(attr(&e, "gid").unwrap_or_else(|| "0".into()));
                 }
             }
-            b"chunk" if xml_data.is_some() => {
-                if let Some(d) = &mut xml_data {
-                    d.open_chunk(&String::from_utf8_lossy(e.attributes_raw()));
-                    if empty {
-                        d.close_chunk();
-                    }
+            b"chunk" if !empty => {
+                if let Some(x) = &mut xml_data {
+                    x.chunked = true;
+                    x.chunk = Some(reader.buffer_position());
                 }
             }
             b"layer" => layer_name = attr(&e, "name").unwrap_or_default(),
@@ -206,8 +186,10 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
                 xml_data = Some(XmlData {
                     layer: layer_name.clone(),
                     start: pos,
-                    csv: String::new(),
-                    cells: 0,
+                    tag_end: reader.buffer_position(),
+                    gids: Vec::new(),
+                    chunked: false,
+                    chunk: None,
                 });
             }
             _ => {}
@@ -261,6 +243,7 @@ fn close_tileset(
     };
     if count > limits::MAX_TILES {
         return Err(ScanError {
+            column: None,
             line: t.line,
             message: format!(
                 "tileset {:?} has {count} tiles; expected at most {} (the most tiles platbench reads)",

@@ -6,8 +6,10 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use glam::Vec2;
+use quick_xml::events::Event;
 use tiled::{ObjectShape, PropertyValue};
 
+use super::scan::{attr, line_of};
 use super::{kind_of, names, shape_name, Importer, TiledError};
 use crate::level::import::names::{is_end_name, is_spawn_name};
 use crate::level::import::spawns::{inside_solid_note, lift_onto_ground};
@@ -42,9 +44,12 @@ impl<'m> Importer<'m> {
         )
     }
 
+    /// An error about object `o`, at the line of its `<object>` (a JSON map's: where its
+    /// layer starts).
     pub(super) fn obj_err(&self, o: &tiled::Object, message: String) -> TiledError {
+        let line = object_line(self.text, o.id());
         TiledError::Object {
-            file: self.file.clone(),
+            file: line.map_or(self.file.clone(), |l| (self.cell_at)(l, (-1, -1))),
             id: o.id(),
             name: o.name.clone(),
             message,
@@ -74,6 +79,7 @@ impl<'m> Importer<'m> {
             }
             let mut ignored = 0;
             for o in &l.objects {
+                self.check_object_tile(o)?;
                 let subject = format!("object {} {:?}", o.id(), o.name);
                 let class = o.user_type.as_str();
                 let by_class = is_spawn_name(class);
@@ -419,5 +425,27 @@ impl<'m> Importer<'m> {
             },
             one_way,
         })
+    }
+}
+
+/// The line of the map's `<object id="ID">` (not a tileset tile's collision shape), if any.
+fn object_line(text: &str, id: u32) -> Option<usize> {
+    let mut reader = quick_xml::Reader::from_str(text);
+    let mut in_tileset = 0usize;
+    loop {
+        let pos = reader.buffer_position();
+        match reader.read_event() {
+            Ok(Event::Start(e)) if e.name().as_ref() == b"tileset" => in_tileset += 1,
+            Ok(Event::End(e)) if e.name().as_ref() == b"tileset" => in_tileset -= 1,
+            Ok(Event::Start(e) | Event::Empty(e))
+                if in_tileset == 0
+                    && e.name().as_ref() == b"object"
+                    && attr(&e, "id").is_some_and(|v| v.parse() == Ok(id)) =>
+            {
+                return Some(line_of(text, pos));
+            }
+            Ok(Event::Eof) | Err(_) => return None,
+            _ => {}
+        }
     }
 }

@@ -54,6 +54,7 @@ impl Shapes {
                         format!(" (a collision shape of tile {t})")
                     });
                     return Err(ScanError {
+                        column: None,
                         line: line(),
                         message: format!(
                             "{}{tile}: its {what} has {points} points; expected at most {} (a ramp has 3 or 4 corners, a drawn outline some dozens)",

@@ -7,7 +7,9 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use super::{json, normalize, points, refs, scan, Importer, TiledError, TiledImport, TiledWarning};
+use super::{
+    attrs, json, normalize, points, refs, scan, Importer, TiledError, TiledImport, TiledWarning,
+};
 use crate::level::import::{ImportFailure, ImportOptions};
 use crate::level::toml::{options_beside, SideFailure};
 
@@ -108,6 +110,19 @@ pub fn import_tiled_map_with(
             .map_or_else(|| file.clone(), |l| format!("{file}:{l}")),
         None => format!("{file}:{line}"),
     };
+    // A TMX map's numbers, named at their line and column before the crate reads them.
+    if json.is_none() {
+        attrs::check_attributes(&text).map_err(|e| {
+            let column = e.column.map_or(String::new(), |c| format!(":{c}"));
+            failed(
+                TiledError::Map {
+                    file: format!("{file}:{}{column}", e.line),
+                    message: e.message,
+                },
+                &notes,
+            )
+        })?;
+    }
     let norm = normalize::normalize_xml(&text).map_err(|e| {
         failed(
             TiledError::Map {
@@ -178,6 +193,10 @@ pub fn import_tiled_map_with(
                 (n.text, n.notes)
             }
             ("tsx", Ok(t)) => {
+                attrs::check_attributes(&t).map_err(|e| {
+                    let column = e.column.unwrap_or(1);
+                    bad(format!("line {}, column {column}: {}", e.line, e.message))
+                })?;
                 let n = normalize::normalize_xml(&t)
                     .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?;
                 (n.text, n.notes)

@@ -55,6 +55,29 @@ struct Walk<'a> {
 }
 
 impl Walk<'_> {
+    /// Where reference `r` of the file at `path` is: its line, or for a JSON tileset or
+    /// template (read as its XML twin, whose lines are not the file's) the line of its
+    /// `template` or `source` key in the JSON. The map's own lines are placed by the caller.
+    fn place(&self, path: &Path, r: &Reference) -> String {
+        let shown = path.display().to_string();
+        let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase());
+        let json = matches!(ext.as_deref(), Some("tj" | "tsj" | "json"));
+        if self.chain.len() < 2 || !json {
+            return format!("{shown}:{}", r.line);
+        }
+        let key = if r.what == "tileset" {
+            "source"
+        } else {
+            "template"
+        };
+        let raw = crate::limits::read_capped(path).ok();
+        let raw = raw.as_deref().and_then(|b| std::str::from_utf8(b).ok());
+        match raw.and_then(|t| json_key_line(t, key, &r.target)) {
+            Some(line) => format!("{shown}:{line}"),
+            None => shown,
+        }
+    }
+
     fn visit(&mut self, path: &Path, text: &str) -> Result<(), RefError> {
         let shown = path.display().to_string();
         let refs = scan_file(text).map_err(|e| RefError {
@@ -67,7 +90,7 @@ impl Walk<'_> {
                 .parent()
                 .map_or_else(|| PathBuf::from(&r.target), |d| d.join(&r.target));
             let k = key(&target);
-            let at = format!("{shown}:{}", r.line);
+            let at = self.place(path, &r);
             if let Some(pos) = self.chain.iter().position(|(c, _)| *c == k) {
                 let mut names: Vec<&str> =
                     self.chain[pos..].iter().map(|(_, n)| n.as_str()).collect();
@@ -108,6 +131,16 @@ impl Walk<'_> {
         }
         Ok(())
     }
+}
+
+/// The line of the first `"KEY": "VALUE"` in JSON `text`.
+fn json_key_line(text: &str, key: &str, value: &str) -> Option<usize> {
+    let quoted = format!("\"{key}\"");
+    text.match_indices(&quoted).find_map(|(at, _)| {
+        let rest = text[at + quoted.len()..].trim_start().strip_prefix(':')?;
+        let mut strings = serde_json::Deserializer::from_str(rest).into_iter::<String>();
+        (strings.next()?.ok()? == value).then(|| line_of(text, at))
+    })
 }
 
 /// The same file however it is spelled (`a.tx`, `./a.tx`, a symbolic link): its canonical path
@@ -153,6 +186,7 @@ fn scan_file(text: &str) -> Result<Vec<Reference>, ScanError> {
             depth += 1;
             if depth > limits::MAX_XML_DEPTH {
                 return Err(ScanError {
+                    column: None,
                     line: line(),
                     message: format!(
                         "<{}> is nested {depth} elements deep; expected at most {}",
@@ -166,6 +200,7 @@ fn scan_file(text: &str) -> Result<Vec<Reference>, ScanError> {
                 if groups.len() > limits::MAX_GROUP_DEPTH {
                     let group = attr(&e, "name").unwrap_or_default();
                     return Err(ScanError {
+                        column: None,
                         line: line(),
                         message: format!(
                             "group layer {group:?} is nested {} groups deep; expected group layers nested at most {} deep",

@@ -7,16 +7,17 @@
 //! layer or line ("invalid digit found in string", "Invalid symbol 64, offset 0.",
 //! "Invalid tile found in map being parsed") is named here with both.
 
-use std::io::Read;
-
 use quick_xml::events::{BytesStart, Event};
 
+use super::base64::{base64_decode, inflated_len, not_base64};
 use crate::limits;
 
 /// What is wrong with the map, and the 1-based line where it is.
 pub(super) struct ScanError {
     /// The line of the element at fault.
     pub line: usize,
+    /// The 1-based column (in bytes) of the attribute at fault, where one is.
+    pub column: Option<usize>,
     /// What was found and what was expected.
     pub message: String,
 }
@@ -72,9 +73,9 @@ impl<'t> Lines<'t> {
 }
 
 /// The tile layer whose `<data>` is being read, or one chunk of an infinite map's layer.
-struct Data {
+pub(super) struct Data {
     /// `layer "NAME"`, or `layer "NAME", chunk at x = X, y = Y`.
-    place: String,
+    pub(super) place: String,
     /// `layer` or `chunk`.
     unit: &'static str,
     cells: u64,
@@ -83,9 +84,11 @@ struct Data {
     origin: (i64, i64),
     encoding: Option<String>,
     compression: Option<String>,
-    line: usize,
-    text: String,
+    pub(super) line: usize,
+    pub(super) text: String,
     chunked: bool,
+    /// The lowest `firstgid` of the map's tilesets (`None`: the map has none).
+    first_gid: Option<u32>,
 }
 
 /// The line of the first XML syntax error in `text`, if it has one.
@@ -116,6 +119,9 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
     // Elements other than a layer's cells, against MAX_JSON_OBJECTS.
     let mut elements: u64 = 0;
     let mut lines = Lines::new(text);
+    // The lowest firstgid of the map's tilesets: a gid below it is in no tileset.
+    let mut first_gid: Option<u32> = None;
+    let mut depth = 0usize;
     loop {
         let pos = reader.buffer_position();
         let event = match reader.read_event() {
@@ -124,6 +130,11 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
             Err(_) => return Ok(sources),
         };
         let empty = matches!(event, Event::Empty(_));
+        match &event {
+            Event::Start(e) if e.name().as_ref() != b"map" || depth > 0 => depth += 1,
+            Event::End(_) => depth = depth.saturating_sub(1),
+            _ => {}
+        }
         match &event {
             Event::Start(e) | Event::Empty(e) => {
                 count_element(&mut elements, e, data.is_some(), || line_of(text, pos))?;
@@ -139,12 +150,31 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                     if let Some(s) = attr(&e, "source") {
                         sources.push(s);
                     }
+                    // A map's own tileset (depth 1 once it is open), not a template's.
+                    if depth == usize::from(!empty) {
+                        let f = attr(&e, "firstgid").and_then(|v| v.parse::<u32>().ok());
+                        first_gid = first_gid.min(f).or(first_gid).or(f);
+                    }
+                }
+                b"object" => {
+                    if let Some(g) = attr(&e, "gid").and_then(|v| v.parse::<u32>().ok()) {
+                        if let Some(why) = no_tileset(g, first_gid) {
+                            let id = attr(&e, "id").unwrap_or_default();
+                            let name = attr(&e, "name").unwrap_or_default();
+                            return Err(ScanError {
+                                column: None,
+                                line: line_of(text, pos),
+                                message: format!("object {id} {name:?}: its tile is {why}"),
+                            });
+                        }
+                    }
                 }
                 b"map" => {
                     let dim = |n: &str| attr(&e, n).and_then(|v| v.trim().parse::<u64>().ok());
                     if let (Some(w), Some(h)) = (dim("width"), dim("height")) {
                         if w.saturating_mul(h) > limits::MAX_TILES {
                             return Err(ScanError {
+                                column: None,
                                 line: line_of(text, pos),
                                 message: format!(
                                     "the map is {w} x {h} tiles; expected at most {} tiles (checked before reading its layers)",
@@ -160,6 +190,7 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                     let (w, h) = (dim("width").unwrap_or(0), dim("height").unwrap_or(0));
                     if w.saturating_mul(h) > limits::MAX_TILES {
                         return Err(ScanError {
+                            column: None,
                             line: line_of(text, pos),
                             message: format!(
                                 "layer {name:?} is {w} x {h} tiles; expected at most {} tiles",
@@ -170,6 +201,7 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                     cells_read = cells_read.saturating_add(w * h);
                     if cells_read > limits::MAX_LAYER_CELLS {
                         return Err(ScanError {
+                            column: None,
                             line: line_of(text, pos),
                             message: format!(
                                 "layer {name:?} ({w} x {h} tiles) brings the map's tile layers to {cells_read} cells together; expected at most {} (each layer's cells are held while the map is read)",
@@ -192,6 +224,7 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                             line: lines.at(pos),
                             text: String::new(),
                             chunked: false,
+                            first_gid,
                         });
                     }
                 }
@@ -262,6 +295,7 @@ fn count_element(
     *elements += 1;
     if *elements > limits::MAX_JSON_OBJECTS {
         return Err(ScanError {
+            column: None,
             line: line(),
             message: format!(
                 "<{}> is element {} of the map (layers, objects, properties, tilesets' tiles; a layer's cells aside); expected at most {}, as a Tiled JSON map's objects",
@@ -279,16 +313,22 @@ fn count_element(
 fn chunk_data(d: &Data, e: &BytesStart, line: usize) -> Result<Data, ScanError> {
     let int = |n: &str| attr(e, n).and_then(|v| v.trim().parse::<i64>().ok());
     let (x, y) = (int("x").unwrap_or(0), int("y").unwrap_or(0));
-    let (w, h) = (
-        int("width").unwrap_or(0).max(0) as u64,
-        int("height").unwrap_or(0).max(0) as u64,
-    );
     let place = format!("{}, chunk at x = {x}, y = {y}", d.place);
+    let (w, h) = (int("width").unwrap_or(0), int("height").unwrap_or(0));
+    if w < 1 || h < 1 {
+        return Err(ScanError {
+            column: None,
+            line,
+            message: format!("{place}: the chunk is {w} x {h} tiles; expected a width and height of at least 1 (Tiled writes chunks of 16 x 16 tiles)"),
+        });
+    }
+    let (w, h) = (w as u64, h as u64);
     // Tiled's cells are i32: a chunk reaching past them is dropped by the reader, which then
     // finds no chunk at all.
     let fits = |at: i64, len: u64| at >= i32::MIN as i64 && at + len as i64 <= i32::MAX as i64;
     if !(fits(x, w) && fits(y, h)) {
         return Err(ScanError {
+            column: None,
             line,
             message: format!(
                 "{place}: the chunk ({w} x {h} tiles) reaches beyond Tiled's cell coordinates; expected chunks within -2147483648 to 2147483646"
@@ -297,6 +337,7 @@ fn chunk_data(d: &Data, e: &BytesStart, line: usize) -> Result<Data, ScanError> 
     }
     if w.saturating_mul(h) > limits::MAX_TILES {
         return Err(ScanError {
+            column: None,
             line,
             message: format!(
                 "{place}: the chunk is {w} x {h} tiles; expected at most {} tiles",
@@ -315,6 +356,7 @@ fn chunk_data(d: &Data, e: &BytesStart, line: usize) -> Result<Data, ScanError> 
         line,
         text: String::new(),
         chunked: false,
+        first_gid: d.first_gid,
     })
 }
 
@@ -325,6 +367,7 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
     }
     let err = |found: String| {
         ScanError {
+        column: None,
         line: d.line,
         message: format!(
             "{}: its data holds {found}; expected exactly {} cells, one per cell of the {} (was the file cut short, or the {} resized by hand?)",
@@ -334,13 +377,15 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
     };
     match (d.encoding.as_deref(), d.compression.as_deref()) {
         (Some("csv"), None) => {
-            // Empty data (an infinite map's layer with no chunks, 0 x 0) holds no cell.
-            let empty = d.text.trim().is_empty();
-            let n = if empty { 0 } else { d.text.split(',').count() } as u64;
+            // No text is no cells (a 0 x 0 layer of an infinite map, as Tiled writes it).
+            let n = match d.text.trim() {
+                "" => 0,
+                t => t.split(',').count() as u64,
+            };
             if n != d.cells {
                 return Err(err(format!("{n} comma-separated cells")));
             }
-            if !empty {
+            if n > 0 {
                 csv_cells(d)?;
             }
         }
@@ -380,8 +425,21 @@ fn csv_cells(d: &Data) -> Result<(), ScanError> {
     let mut line = d.line;
     for (k, cell) in d.text.split(',').enumerate() {
         let value = cell.trim();
+        let lead = cell.len() - cell.trim_start().len();
+        if let Some(why) = value.parse().ok().and_then(|g| no_tileset(g, d.first_gid)) {
+            return Err(ScanError {
+                column: None,
+                line: line + cell[..lead].matches('\n').count(),
+                message: format!(
+                    "{}: cell {} (x = {}, y = {}) of its CSV data is {why}",
+                    d.place,
+                    k + 1,
+                    d.origin.0 + (k as u64 % d.width.max(1)) as i64,
+                    d.origin.1 + (k as u64 / d.width.max(1)) as i64,
+                ),
+            });
+        }
         if value.parse::<u32>().is_err() {
-            let lead = cell.len() - cell.trim_start().len();
             line += cell[..lead].matches('\n').count();
             let found = if value.is_empty() {
                 "empty".to_string()
@@ -391,6 +449,7 @@ fn csv_cells(d: &Data) -> Result<(), ScanError> {
                 format!("{value:?}")
             };
             return Err(ScanError {
+                column: None,
                 line,
                 message: format!(
                     "{}: cell {} (x = {}, y = {}) of its CSV data is {found}; expected a tile id, a whole number from 0 (no tile) to 4294967295 (a global tile id with its flip bits)",
@@ -406,114 +465,30 @@ fn csv_cells(d: &Data) -> Result<(), ScanError> {
     Ok(())
 }
 
-/// What is wrong with a layer's base64 data that [`base64_decode`] refused: the first
-/// character outside the alphabet (whitespace inside the data included, which the crate does
-/// not skip), or a length that is not a multiple of 4.
-fn not_base64(d: &Data) -> ScanError {
-    let text = d.text.trim();
-    let lead = d.text.len() - d.text.trim_start().len();
-    let bad = text
-        .char_indices()
-        .find(|&(_, c)| !(c.is_ascii_alphanumeric() || c == '+' || c == '/' || c == '='));
-    let early_pad = text
-        .char_indices()
-        .find(|&(at, c)| c == '=' && !text[at..].trim_start_matches('=').is_empty());
-    let line_at = |at: usize| d.line + d.text[..lead + at].matches('\n').count();
-    let (line, found) = match (bad, early_pad) {
-        (Some((at, c)), _) => (line_at(at), format!("{c:?} at character {}", at + 1)),
-        (None, _) if !text.len().is_multiple_of(4) => (
-            d.line,
-            format!("{} characters, not a multiple of 4", text.len()),
-        ),
-        (None, Some((at, _))) => (
-            line_at(at),
-            format!("'=' padding at character {} before its end", at + 1),
-        ),
-        (None, None) => (
-            d.line,
-            "a last character whose unused bits are not zero".to_string(),
-        ),
-    };
-    ScanError {
-        line,
-        message: format!(
-            "{}: its base64 data holds {found}; expected standard base64 (A-Z, a-z, 0-9, '+', '/', '=' padding) with no space or line break inside, as Tiled writes it",
-            d.place
-        ),
+/// Why gid `bits` (flip bits aside, as the crate masks them) is in none of the map's
+/// tilesets, whose lowest `firstgid` is `first`: the crate would drop such a tile unseen.
+fn no_tileset(bits: u32, first: Option<u32>) -> Option<String> {
+    let gid = bits & 0x1FFF_FFFF;
+    let expected = "expected 0 (no tile) or a gid of the map's tilesets";
+    match first {
+        _ if gid == 0 => None,
+        None => Some(format!(
+            "gid {gid}, but the map has no tileset; {expected} (add the tileset the map was drawn with)"
+        )),
+        Some(f) if gid < f => Some(format!(
+            "gid {gid}, below the first tileset's firstgid {f}; {expected}, from {f}"
+        )),
+        Some(_) => None,
     }
-}
-
-/// How many bytes `r` inflates to, reading at most one byte more than `expected` (so a small
-/// layer that inflates to gigabytes is found after `expected + 1` bytes). A corrupt stream
-/// counts what it gave; the crate reports the corruption.
-fn inflated_len(r: impl Read, expected: u64) -> u64 {
-    let mut counted = 0u64;
-    let mut buf = [0u8; 8192];
-    let mut r = r.take(expected + 1);
-    while let Ok(n) = r.read(&mut buf) {
-        if n == 0 {
-            break;
-        }
-        counted += n as u64;
-    }
-    counted
-}
-
-/// Standard base64 with padding, whitespace ignored; `None` if it is not base64.
-fn base64_decode(text: &str) -> Option<Vec<u8>> {
-    let value = |c: u8| -> Option<u32> {
-        Some(match c {
-            b'A'..=b'Z' => c - b'A',
-            b'a'..=b'z' => c - b'a' + 26,
-            b'0'..=b'9' => c - b'0' + 52,
-            b'+' => 62,
-            b'/' => 63,
-            _ => return None,
-        } as u32)
-    };
-    let clean: Vec<u8> = text.bytes().filter(|b| !b.is_ascii_whitespace()).collect();
-    if !clean.len().is_multiple_of(4) {
-        return None;
-    }
-    let mut out = Vec::with_capacity(clean.len() / 4 * 3);
-    for quad in clean.chunks_exact(4) {
-        let pad = quad.iter().rev().take_while(|&&b| b == b'=').count();
-        if pad > 2 {
-            return None;
-        }
-        let mut acc = 0u32;
-        for &b in &quad[..4 - pad] {
-            acc = (acc << 6) | value(b)?;
-        }
-        acc <<= 6 * pad as u32;
-        let bytes = acc.to_be_bytes();
-        // Padding only at the end, and no bits left over before it (as the crate decodes).
-        if pad > 0
-            && (out.len() + 3 < clean.len() / 4 * 3 || bytes[4 - pad..].iter().any(|&b| b != 0))
-        {
-            return None;
-        }
-        out.extend_from_slice(&bytes[1..4 - pad]);
-    }
-    Some(out)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn base64_round_trips() {
-        assert_eq!(base64_decode("AQAAAA==").unwrap(), vec![1, 0, 0, 0]);
-        assert_eq!(base64_decode(" AQID\nBA== ").unwrap(), vec![1, 2, 3, 4]);
-        assert_eq!(base64_decode("AQIDBAUG").unwrap(), vec![1, 2, 3, 4, 5, 6]);
-        assert!(base64_decode("A").is_none());
-        assert!(base64_decode("A*==").is_none());
-    }
-
     fn map(w: u32, h: u32, data: &str, encoding: &str) -> String {
         format!(
-            "<?xml version=\"1.0\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" width=\"{w}\" height=\"{h}\" tilewidth=\"16\" tileheight=\"16\">\n<layer id=\"1\" name=\"ground\" width=\"{w}\" height=\"{h}\">\n<data {encoding}>{data}</data>\n</layer>\n</map>\n"
+            "<?xml version=\"1.0\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" width=\"{w}\" height=\"{h}\" tilewidth=\"16\" tileheight=\"16\"><tileset firstgid=\"1\" name=\"t\" tilewidth=\"16\" tileheight=\"16\" tilecount=\"1\"/>\n<layer id=\"1\" name=\"ground\" width=\"{w}\" height=\"{h}\">\n<data {encoding}>{data}</data>\n</layer>\n</map>\n"
         )
     }
 
