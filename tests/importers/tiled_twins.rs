@@ -1,6 +1,7 @@
 //! Files as Tiled writes them import to the same level as their CSV twins (the old XML cell
 //! encoding in an infinite map's chunks, an infinite map's empty layer), and what the import
-//! says is the same each run, although the `tiled` crate keeps properties in hash maps.
+//! says is the same each run, although the `tiled` crate keeps properties in hash maps; an
+//! unset colour property (value "") imports.
 
 #![cfg(all(
     feature = "rapier",
@@ -129,4 +130,29 @@ fn a_spawns_unread_properties_are_warned_about_in_name_order() {
         })
         .collect();
     assert_eq!(found, order, "{warned:#?}");
+}
+
+#[test]
+fn a_colour_property_left_unset_imports() {
+    // Tiled writes a colour property with no colour as value="" (the tiled crate refused it:
+    // "Unknown property value type 'color'"); a set one beside it is read as before.
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(shipped("showcase.tmx")).unwrap();
+    let props = r##"<properties>
+  <property name="tint" type="color" value=""/>
+  <property name="sky" type="color" value="#ff80a0c0"/>"##;
+    let text = text.replacen("<properties>", props, 1);
+    assert!(text.contains("name=\"tint\""));
+    let path = dir.path().join("unset_colour.tmx");
+    std::fs::write(&path, &text).unwrap();
+    // The showcase's external tileset, beside it.
+    std::fs::copy(shipped("terrain.tsx"), dir.path().join("terrain.tsx")).unwrap();
+    assert_eq!(grid_of(&path), grid_of(&shipped("showcase.tmx")));
+    let r = import_tiled_map_with(&path, &open_edges()).unwrap();
+    let said: Vec<String> = r.warnings.iter().map(ToString::to_string).collect();
+    assert!(
+        said.iter()
+            .any(|w| w.contains("\"tint\" is a colour left unset")),
+        "{said:#?}"
+    );
 }

@@ -181,6 +181,23 @@ pub(super) fn normalize_xml(text: &str) -> Result<Normalized, ScanError> {
                     x.chunk = Some(reader.buffer_position());
                 }
             }
+            // Tiled writes a colour property left unset as value=""; the crate refuses a colour
+            // that short, so it is read as the empty string it is (platbench reads no colour).
+            b"property"
+                if attr(&e, "type").as_deref() == Some("color")
+                    && attr(&e, "value").is_some_and(|v| v.chars().count() <= 1) =>
+            {
+                let tag = &text[pos..reader.buffer_position()];
+                if let Some(at) = tag
+                    .find("type=\"color\"")
+                    .or_else(|| tag.find("type='color'"))
+                {
+                    let colour = pos + at + "type=\"".len();
+                    edits.push((colour, colour + "color".len(), "string".into()));
+                    let name = attr(&e, "name").unwrap_or_default();
+                    notes.push(format!("property {name:?} is a colour left unset (value \"\"); read as an empty string"));
+                }
+            }
             b"layer" => layer_name = attr(&e, "name").unwrap_or_default(),
             b"data" if !empty && attr(&e, "encoding").is_none() => {
                 xml_data = Some(XmlData {
