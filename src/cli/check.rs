@@ -185,7 +185,7 @@ pub(crate) fn check(h: &Harness, args: &CheckArgs) -> ExitCode {
     match check_inner(h, args) {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {}", super::said_once(&e));
+            eprintln!("error: {e:#}");
             ExitCode::from(2)
         }
     }

@@ -92,23 +92,6 @@ pub fn main_with_harness(harness: Harness) -> ExitCode {
     run_cli(&harness, std::env::args_os())
 }
 
-/// An error and its causes, joined by `: ` as `{:#}` does, but without a cause whose text the
-/// message already holds: an error that quotes its cause and also chains it says it once.
-pub(crate) fn said_once(e: &anyhow::Error) -> String {
-    let mut text = String::new();
-    for cause in e.chain() {
-        let part = cause.to_string();
-        if text.contains(&part) {
-            continue;
-        }
-        if !text.is_empty() {
-            text.push_str(": ");
-        }
-        text.push_str(&part);
-    }
-    text
-}
-
 /// Runs the command line `args` (the program name first) on `harness`; what [`main_with`] does
 /// with the process's arguments.
 pub fn run_cli<I, T>(harness: &Harness, args: I) -> ExitCode
@@ -127,7 +110,7 @@ where
             &with_external
         }
         Err(e) => {
-            eprintln!("error: {}", said_once(&e));
+            eprintln!("error: {e:#}");
             return ExitCode::from(2);
         }
     };
@@ -219,7 +202,7 @@ where
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {}", said_once(&e));
+            eprintln!("error: {e:#}");
             ExitCode::from(2)
         }
     }

@@ -220,7 +220,7 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
     // The levels and configurations draw the pages; without them the pages are left out.
     let selection = selection_of(h, &manifest, &run_args_of(&manifest, None));
     if let Err(e) = &selection {
-        eprintln!("warning: no replay pages: {}", super::said_once(e));
+        eprintln!("warning: no replay pages: {e:#}");
     }
     let pages = args.check.join("review");
     std::fs::create_dir_all(&pages)

@@ -417,6 +417,9 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
     Ok(())
 }
 
+/// What a CSV cell must be.
+const TILE_ID: &str = "expected a tile id, a whole number from 0 (no tile) to 4294967295 (a global tile id with its flip bits)";
+
 /// Checks that each cell of a CSV layer is a tile id, as the crate parses it (a `u32`), so a
 /// bad cell is named with its layer, line and place instead of the crate's bare "invalid digit
 /// found in string".
@@ -425,34 +428,22 @@ fn csv_cells(d: &Data) -> Result<(), ScanError> {
     let mut line = d.line;
     for (k, cell) in d.text.split(',').enumerate() {
         let value = cell.trim();
-        let lead = cell.len() - cell.trim_start().len();
-        if let Some(why) = value.parse().ok().and_then(|g| no_tileset(g, d.first_gid)) {
+        // Parsed once: a tile id the crate reads, in one of the map's tilesets.
+        let why = match value.parse::<u32>() {
+            Ok(gid) => no_tileset(gid, d.first_gid),
+            Err(_) if value.is_empty() => Some(format!("empty; {TILE_ID}")),
+            Err(_) if value.bytes().all(|b| b.is_ascii_digit()) => {
+                Some(format!("{value}, more than 4294967295; {TILE_ID}"))
+            }
+            Err(_) => Some(format!("{value:?}; {TILE_ID}")),
+        };
+        if let Some(why) = why {
+            let lead = cell.len() - cell.trim_start().len();
             return Err(ScanError {
                 column: None,
                 line: line + cell[..lead].matches('\n').count(),
                 message: format!(
                     "{}: cell {} (x = {}, y = {}) of its CSV data is {why}",
-                    d.place,
-                    k + 1,
-                    d.origin.0 + (k as u64 % d.width.max(1)) as i64,
-                    d.origin.1 + (k as u64 / d.width.max(1)) as i64,
-                ),
-            });
-        }
-        if value.parse::<u32>().is_err() {
-            line += cell[..lead].matches('\n').count();
-            let found = if value.is_empty() {
-                "empty".to_string()
-            } else if value.bytes().all(|b| b.is_ascii_digit()) {
-                format!("{value}, more than 4294967295")
-            } else {
-                format!("{value:?}")
-            };
-            return Err(ScanError {
-                column: None,
-                line,
-                message: format!(
-                    "{}: cell {} (x = {}, y = {}) of its CSV data is {found}; expected a tile id, a whole number from 0 (no tile) to 4294967295 (a global tile id with its flip bits)",
                     d.place,
                     k + 1,
                     d.origin.0 + (k as u64 % d.width.max(1)) as i64,
