@@ -132,9 +132,23 @@ fn a_chunk_without_cells_says_its_size() {
             START,
         ),
     );
+    // Line 5, column 20: the chunk's `width` attribute.
     assert!(
-        e.starts_with(":5: ")
+        e.starts_with(":5:20: ")
             && e.contains("the chunk is 0 x 16 tiles; expected a width and height of at least 1"),
+        "{e}"
+    );
+    // A height of 0 is named at `height` (column 31).
+    let flat = layer.replace("width=\"0\" height=\"16\"", "width=\"16\" height=\"0\"");
+    let map = tmx(
+        "width=\"4\" height=\"2\" infinite=\"1\"",
+        TILESET,
+        &flat,
+        START,
+    );
+    let e = error("m.tmx", &map);
+    assert!(
+        e.starts_with(":5:31: ") && e.contains("16 x 0 tiles"),
         "{e}"
     );
     let neg = layer.replace("width=\"0\"", "width=\"-1\"");
@@ -156,11 +170,35 @@ fn tiles_in_no_tileset_are_refused_not_dropped() {
     let e = error("m.tmx", &tmx("width=\"4\" height=\"2\"", "", FLOOR, START));
     assert!(
         e.starts_with(":4: ")
-            && e.contains(
-                "cell 5 (x = 0, y = 1) of its CSV data is gid 1, but the map has no tileset"
-            ),
+            && e.contains("cell 5 (x = 0, y = 1) of its data is gid 1, but the map has no tileset"),
         "{e}"
     );
+    // The same cells in base64, plain and zlib-compressed (encoded with Python's base64 and
+    // zlib from the little-endian gids 0,0,0,0,1,1,1,1): the same cell named.
+    for (attrs, data, what) in [
+        (
+            r#"encoding="base64""#,
+            "AAAAAAAAAAAAAAAAAAAAAAEAAAABAAAAAQAAAAEAAAA=",
+            "its base64 data",
+        ),
+        (
+            r#"encoding="base64" compression="zlib""#,
+            "eNpjYEAFjGgYAABIAAU=",
+            "its zlib-compressed base64 data",
+        ),
+    ] {
+        let layer = format!(
+            r#"<layer id="1" name="ground" width="4" height="2"><data {attrs}>{data}</data></layer>"#
+        );
+        let e = error("m.tmx", &tmx("width=\"4\" height=\"2\"", "", &layer, START));
+        assert!(
+            e.starts_with(":4: ")
+                && e.contains(&format!(
+                    "cell 5 (x = 0, y = 1) of {what} is gid 1, but the map has no tileset"
+                )),
+            "{e}"
+        );
+    }
     // Below the first tileset's firstgid (here 5): in none either.
     let e = error(
         "m.tmx",
@@ -222,4 +260,47 @@ fn a_json_template_that_refers_to_itself_is_named_at_its_template_key() {
         dir.path().join("self.tj").display()
     );
     assert!(e.starts_with(&at), "{e}");
+}
+
+#[test]
+fn a_tileset_files_faults_are_named_at_its_own_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = write(
+        dir.path(),
+        "m.tmx",
+        &tmx(
+            "width=\"4\" height=\"2\"",
+            r#"<tileset firstgid="1" source="t.tsx"/>"#,
+            FLOOR,
+            START,
+        ),
+    );
+    let tsx = |attrs: &str, tiles: &str| {
+        format!("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<tileset version=\"1.10\" name=\"t\" {attrs} tilecount=\"1\" columns=\"1\">\n<image source=\"t.png\" width=\"16\" height=\"16\"/>\n{tiles}</tileset>\n")
+    };
+    let shown = |tileset: &str| {
+        write(dir.path(), "t.tsx", tileset);
+        let Err(e) = import_tiled_map(&map) else {
+            panic!("the map should be refused");
+        };
+        e.to_string()
+    };
+    // A tile width that is not a number: at its attribute, line 2 column 34, in t.tsx.
+    let e = shown(&tsx("tilewidth=\"1x6\" tileheight=\"16\"", ""));
+    assert!(
+        e.contains("t.tsx:2:34: ")
+            && e.contains("attribute \"tilewidth\" is \"1x6\"; expected a whole number")
+            && e.contains("(the map ")
+            && e.contains("m.tmx refers to it)"),
+        "{e}"
+    );
+    // More elements than a Tiled JSON map may hold objects (limits::MAX_JSON_OBJECTS,
+    // 500,000): the tileset element, its image and 499,998 tiles fill it; the next tile (on
+    // line 500,002: tile k is on line 3 + k) is one too many.
+    let tiles = "<tile id=\"0\"/>\n".repeat(500_000);
+    let e = shown(&tsx("tilewidth=\"16\" tileheight=\"16\"", &tiles));
+    assert!(
+        e.contains("t.tsx:500002: ") && e.contains("<tile> is element 500001 of the tileset file"),
+        "{e}"
+    );
 }

@@ -74,6 +74,9 @@ fn table(name: &[u8], parent: &[u8]) -> (&'static [(&'static str, Kind, bool)], 
         (b"tileset", _) => (
             &[
                 ("firstgid", U32, true),
+                ("tilewidth", U32, true),
+                ("tileheight", U32, true),
+                ("tilecount", U32, false),
                 ("spacing", U32, false),
                 ("margin", U32, false),
                 ("columns", U32, false),
@@ -156,7 +159,7 @@ fn element_name(e: &BytesStart, name: &[u8]) -> String {
 }
 
 /// The 1-based line and column of byte offset `at` in `text`.
-fn line_col(text: &str, at: usize) -> (usize, usize) {
+pub(super) fn line_col(text: &str, at: usize) -> (usize, usize) {
     let before = &text.as_bytes()[..at.min(text.len())];
     let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
     let start = before
@@ -168,7 +171,7 @@ fn line_col(text: &str, at: usize) -> (usize, usize) {
 
 /// The byte offset in `text` of attribute `key` of the element starting at `pos` (the
 /// element's own offset if it is not found).
-fn attr_offset(text: &str, pos: usize, e: &BytesStart, key: &str) -> usize {
+pub(super) fn attr_offset(text: &str, pos: usize, e: &BytesStart, key: &str) -> usize {
     let raw: &[u8] = e;
     let k = key.as_bytes();
     let found = (1..raw.len().saturating_sub(k.len())).find(|&i| {
@@ -213,13 +216,19 @@ pub(super) fn check_attributes(text: &str) -> Result<(), ScanError> {
             .flatten()
             .map(|k| ("value", k, true));
         let layer_attrs = if is_layer { LAYER } else { &[] };
-        // A tileset file's own `<tileset>` has no firstgid; the map's tilesets need one.
+        // A tileset file's own `<tileset>` has no firstgid; the map's tilesets need one, and
+        // one that names its file (`source`) has nothing else.
         let in_file = name == b"tileset" && parent != b"map";
+        let by_source = name == b"tileset" && attr(&e, "source").is_some();
+        let optional = |key: &str| match key {
+            "firstgid" => in_file,
+            _ => by_source,
+        };
         for &(key, kind, required) in attrs.iter().chain(layer_attrs).chain(property.iter()) {
             let value = attr(&e, key);
             let bad = match &value {
                 Some(v) => !kind.accepts(v),
-                None => required && !in_file,
+                None => required && !optional(key),
             };
             if !bad {
                 continue;

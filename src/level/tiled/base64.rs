@@ -1,6 +1,6 @@
 //! A tile layer's base64 data as the `tiled` crate decodes it, checked before it does: what is
-//! not base64 (named at its character and line), and how far compressed data inflates (read no
-//! further than the layer's cells).
+//! not base64 (named at its character and line), how far compressed data inflates (read no
+//! further than the layer's cells), and which cell first holds a gid the crate would drop.
 
 use std::io::Read;
 
@@ -44,20 +44,36 @@ pub(super) fn not_base64(d: &Data) -> ScanError {
     }
 }
 
-/// How many bytes `r` inflates to, reading at most one byte more than `expected` (so a small
-/// layer that inflates to gigabytes is found after `expected + 1` bytes). A corrupt stream
-/// counts what it gave; the crate reports the corruption.
-pub(super) fn inflated_len(r: impl Read, expected: u64) -> u64 {
+/// How many bytes `r` gives (inflated, if it is a decoder), reading at most one byte more than
+/// `expected` (so a small layer that inflates to gigabytes is found after `expected + 1`
+/// bytes), and the first cell (its index and gid, little-endian as the crate reads it) that
+/// `bad` refuses. A corrupt stream counts what it gave; the crate reports the corruption.
+pub(super) fn read_cells(
+    r: impl Read,
+    expected: u64,
+    mut bad: impl FnMut(u32) -> bool,
+) -> (u64, Option<(u64, u32)>) {
     let mut counted = 0u64;
+    let mut first_bad = None;
+    let mut cell = [0u8; 4];
     let mut buf = [0u8; 8192];
     let mut r = r.take(expected + 1);
     while let Ok(n) = r.read(&mut buf) {
         if n == 0 {
             break;
         }
-        counted += n as u64;
+        for &b in &buf[..n] {
+            cell[(counted % 4) as usize] = b;
+            counted += 1;
+            if counted.is_multiple_of(4) && first_bad.is_none() {
+                let gid = u32::from_le_bytes(cell);
+                if bad(gid) {
+                    first_bad = Some((counted / 4 - 1, gid));
+                }
+            }
+        }
     }
-    counted
+    (counted, first_bad)
 }
 
 /// Standard base64 with padding, whitespace ignored; `None` if it is not base64.
@@ -110,5 +126,15 @@ mod tests {
         assert_eq!(base64_decode("AQIDBAUG").unwrap(), vec![1, 2, 3, 4, 5, 6]);
         assert!(base64_decode("A").is_none());
         assert!(base64_decode("A*==").is_none());
+    }
+
+    #[test]
+    fn cells_are_read_little_endian_and_the_first_bad_one_is_named() {
+        let bytes = [0u8, 0, 0, 0, 7, 0, 0, 0, 1, 1, 0, 0, 9, 0, 0, 0];
+        // Cell 1 holds gid 7, cell 2 gid 257: the first over 5 is cell 1.
+        assert_eq!(read_cells(&bytes[..], 16, |g| g > 5), (16, Some((1, 7))));
+        assert_eq!(read_cells(&bytes[..], 16, |_| false), (16, None));
+        // Read no further than one byte past what the layer holds.
+        assert_eq!(read_cells(&bytes[..], 8, |_| false).0, 9);
     }
 }

@@ -24,6 +24,7 @@ mod approx;
 mod attrs;
 mod base64;
 mod cells;
+mod elements;
 mod error;
 mod gids;
 mod json;

@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use super::{
-    attrs, json, normalize, points, refs, scan, Importer, TiledError, TiledImport, TiledWarning,
+    attrs, elements, json, normalize, points, refs, scan, Importer, TiledError, TiledImport,
+    TiledWarning,
 };
 use crate::level::import::{ImportFailure, ImportOptions};
 use crate::level::toml::{options_beside, SideFailure};
@@ -139,11 +140,18 @@ pub fn import_tiled_map_with(
             message: n,
         });
     }
+    // A column is given where the text the scan reads is the file's own (a TMX map the
+    // normalizer left as it was).
+    let columns = json.is_none() && norm.text == text;
     let text = norm.text;
     let sources = scan::scan_map(&text).map_err(|e| {
+        let file = match e.column.filter(|_| columns) {
+            Some(c) => format!("{}:{c}", at(e.line)),
+            None => at(e.line),
+        };
         failed(
             TiledError::Map {
-                file: at(e.line),
+                file,
                 message: e.message,
             },
             &notes,
@@ -193,18 +201,15 @@ pub fn import_tiled_map_with(
                 (n.text, n.notes)
             }
             ("tsx", Ok(t)) => {
-                attrs::check_attributes(&t).map_err(|e| {
-                    let column = e.column.unwrap_or(1);
-                    bad(format!("line {}, column {column}: {}", e.line, e.message))
-                })?;
-                let n = normalize::normalize_xml(&t)
-                    .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?;
+                elements::check_element_count(&t, "the tileset file").map_err(located)?;
+                attrs::check_attributes(&t).map_err(located)?;
+                let n = normalize::normalize_xml(&t).map_err(located)?;
                 (n.text, n.notes)
             }
             // A template (`.tx`): read as it is, its shapes counted first.
             (_, Ok(t)) => {
-                points::check_points(&t)
-                    .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?;
+                elements::check_element_count(&t, "the template file").map_err(located)?;
+                points::check_points(&t).map_err(located)?;
                 return Ok(std::io::Cursor::new(data));
             }
             _ => return Ok(std::io::Cursor::new(data)),
@@ -212,7 +217,7 @@ pub fn import_tiled_map_with(
         // Each shape's points counted before the crate reads them (the line is the XML's; a
         // JSON tileset's shape is named by its object and tile).
         points::check_points(&out.0).map_err(|e| match ext.as_str() {
-            "tsx" => bad(format!("line {}: {}", e.line, e.message)),
+            "tsx" => located(e),
             _ => bad(e.message),
         })?;
         for n in out.1 {
@@ -242,6 +247,50 @@ pub fn import_tiled_map_with(
     }
 }
 
+/// A tileset's or template's fault found before the crate reads the file, with its place: it
+/// passes through the crate's loader as an I/O error, and [`load_error`] names the file at it.
+#[derive(Debug)]
+struct Located {
+    line: usize,
+    column: Option<usize>,
+    message: String,
+}
+
+impl Located {
+    /// `:LINE` or `:LINE:COLUMN`, to follow the file's name.
+    fn place(&self) -> String {
+        match self.column {
+            Some(c) => format!(":{}:{c}", self.line),
+            None => format!(":{}", self.line),
+        }
+    }
+}
+
+impl std::fmt::Display for Located {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "line {}: {}", self.line, self.message)
+    }
+}
+
+impl std::error::Error for Located {}
+
+/// A scan's finding in a tileset or template, as the reader's I/O error.
+fn located(e: scan::ScanError) -> std::io::Error {
+    let l = Located {
+        line: e.line,
+        column: e.column,
+        message: e.message,
+    };
+    std::io::Error::new(std::io::ErrorKind::InvalidData, l)
+}
+
+/// The place of a reader's error, where the reader found one.
+fn place_of<'a>(err: &'a (dyn std::error::Error + Send + Sync + 'static)) -> Option<&'a Located> {
+    err.downcast_ref::<std::io::Error>()?
+        .get_ref()?
+        .downcast_ref::<Located>()
+}
+
 /// The crate's error with the file it was reading: an external tileset or template that fails
 /// on its own is named; otherwise the map, with the line of an XML syntax error.
 fn load_error(
@@ -253,6 +302,12 @@ fn load_error(
 ) -> TiledError {
     let file = path.display().to_string();
     if let tiled::Error::ResourceLoadingError { path: p, err } = &e {
+        if let Some(l) = place_of(err.as_ref()) {
+            return TiledError::Load {
+                file: format!("{}{}", p.display(), l.place()),
+                message: format!("{} (the map {file} refers to it)", l.message),
+            };
+        }
         return TiledError::Load {
             file: p.display().to_string(),
             message: format!("cannot read it ({err}); the map {file} refers to it"),
@@ -263,12 +318,15 @@ fn load_error(
         let p = sibling(path, s);
         let reader = |q: &Path| crate_text(q).map(|t| std::io::Cursor::new(t.into_bytes()));
         if let Err(te) = tiled::Loader::with_reader(reader).load_tsx_tileset(&p) {
-            let message = match te {
-                tiled::Error::ResourceLoadingError { err, .. } => err.to_string(),
-                other => explain(&other),
+            let (place, message) = match te {
+                tiled::Error::ResourceLoadingError { err, .. } => match place_of(err.as_ref()) {
+                    Some(l) => (l.place(), l.message.clone()),
+                    None => (String::new(), err.to_string()),
+                },
+                other => (String::new(), explain(&other)),
             };
             return TiledError::Load {
-                file: p.display().to_string(),
+                file: format!("{}{place}", p.display()),
                 message: format!("{message} (a tileset the map {file} uses)"),
             };
         }
@@ -306,11 +364,7 @@ fn crate_text(q: &Path) -> std::io::Result<String> {
                 .map_err(|e| bad(e.to_string()))?
                 .text
         }
-        _ => {
-            normalize::normalize_xml(&t)
-                .map_err(|e| bad(format!("line {}: {}", e.line, e.message)))?
-                .text
-        }
+        _ => normalize::normalize_xml(&t).map_err(located)?.text,
     };
     Ok(t)
 }

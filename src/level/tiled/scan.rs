@@ -9,7 +9,8 @@
 
 use quick_xml::events::{BytesStart, Event};
 
-use super::base64::{base64_decode, inflated_len, not_base64};
+use super::base64::{base64_decode, not_base64, read_cells};
+use super::elements::count_element;
 use crate::limits;
 
 /// What is wrong with the map, and the 1-based line where it is.
@@ -137,7 +138,9 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
         }
         match &event {
             Event::Start(e) | Event::Empty(e) => {
-                count_element(&mut elements, e, data.is_some(), || line_of(text, pos))?;
+                count_element(&mut elements, e, data.is_some(), "the map", || {
+                    line_of(text, pos)
+                })?;
                 shapes.element(e, empty, || line_of(text, pos))?;
             }
             Event::End(e) => shapes.end(e.name().as_ref()),
@@ -232,7 +235,13 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
                     // An infinite map's chunk: checked on its own, as the crate reads it.
                     if let Some(d) = &mut data {
                         d.chunked = true;
-                        let c = chunk_data(d, &e, lines.at(pos))?;
+                        let at = |key: &str| {
+                            super::attrs::line_col(
+                                text,
+                                super::attrs::attr_offset(text, pos, &e, key),
+                            )
+                        };
+                        let c = chunk_data(d, &e, lines.at(pos), at)?;
                         if empty {
                             check_data(&c)?;
                         } else {
@@ -279,45 +288,23 @@ pub(super) fn scan_map(text: &str) -> Result<Vec<String>, ScanError> {
     }
 }
 
-/// Counts an element against [`limits::MAX_JSON_OBJECTS`], as the JSON side counts its objects:
-/// the `tiled` crate holds some hundreds of bytes an element (3 million `<object/>`s, a 104 MB
-/// map, took 1.2 GB). A `<tile>` inside a layer's `<data>` is a cell, which
-/// [`limits::MAX_LAYER_CELLS`] bounds instead.
-fn count_element(
-    elements: &mut u64,
+/// A chunk of the layer whose data is `d`, from its `<chunk>` element at `line` (`at` gives
+/// the line and column of one of its attributes): at most [`limits::MAX_TILES`] cells, so its
+/// data is inflated no further than that.
+fn chunk_data(
+    d: &Data,
     e: &BytesStart,
-    in_data: bool,
-    line: impl Fn() -> usize,
-) -> Result<(), ScanError> {
-    if in_data && e.name().as_ref() == b"tile" {
-        return Ok(());
-    }
-    *elements += 1;
-    if *elements > limits::MAX_JSON_OBJECTS {
-        return Err(ScanError {
-            column: None,
-            line: line(),
-            message: format!(
-                "<{}> is element {} of the map (layers, objects, properties, tilesets' tiles; a layer's cells aside); expected at most {}, as a Tiled JSON map's objects",
-                String::from_utf8_lossy(e.name().as_ref()),
-                *elements,
-                limits::MAX_JSON_OBJECTS
-            ),
-        });
-    }
-    Ok(())
-}
-
-/// A chunk of the layer whose data is `d`, from its `<chunk>` element at `line`: at most
-/// [`limits::MAX_TILES`] cells, so its data is inflated no further than that.
-fn chunk_data(d: &Data, e: &BytesStart, line: usize) -> Result<Data, ScanError> {
+    line: usize,
+    at: impl Fn(&str) -> (usize, usize),
+) -> Result<Data, ScanError> {
     let int = |n: &str| attr(e, n).and_then(|v| v.trim().parse::<i64>().ok());
     let (x, y) = (int("x").unwrap_or(0), int("y").unwrap_or(0));
     let place = format!("{}, chunk at x = {x}, y = {y}", d.place);
     let (w, h) = (int("width").unwrap_or(0), int("height").unwrap_or(0));
     if w < 1 || h < 1 {
+        let (line, column) = at(if w < 1 { "width" } else { "height" });
         return Err(ScanError {
-            column: None,
+            column: Some(column),
             line,
             message: format!("{place}: the chunk is {w} x {h} tiles; expected a width and height of at least 1 (Tiled writes chunks of 16 x 16 tiles)"),
         });
@@ -327,8 +314,9 @@ fn chunk_data(d: &Data, e: &BytesStart, line: usize) -> Result<Data, ScanError> 
     // finds no chunk at all.
     let fits = |at: i64, len: u64| at >= i32::MIN as i64 && at + len as i64 <= i32::MAX as i64;
     if !(fits(x, w) && fits(y, h)) {
+        let (line, column) = at(if fits(x, w) { "y" } else { "x" });
         return Err(ScanError {
-            column: None,
+            column: Some(column),
             line,
             message: format!(
                 "{place}: the chunk ({w} x {h} tiles) reaches beyond Tiled's cell coordinates; expected chunks within -2147483648 to 2147483646"
@@ -336,8 +324,9 @@ fn chunk_data(d: &Data, e: &BytesStart, line: usize) -> Result<Data, ScanError> 
         });
     }
     if w.saturating_mul(h) > limits::MAX_TILES {
+        let (line, column) = at("width");
         return Err(ScanError {
-            column: None,
+            column: Some(column),
             line,
             message: format!(
                 "{place}: the chunk is {w} x {h} tiles; expected at most {} tiles",
@@ -396,10 +385,13 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
                 return Err(not_base64(d));
             };
             let expected = d.cells.saturating_mul(4);
-            let len = match compression {
-                None => bytes.len() as u64,
-                Some("zlib") => inflated_len(flate2::read::ZlibDecoder::new(&bytes[..]), expected),
-                Some("gzip") => inflated_len(flate2::read::GzDecoder::new(&bytes[..]), expected),
+            let bad = |gid| no_tileset(gid, d.first_gid).is_some();
+            let (len, first_bad) = match compression {
+                None => read_cells(&bytes[..], expected, bad),
+                Some("zlib") => {
+                    read_cells(flate2::read::ZlibDecoder::new(&bytes[..]), expected, bad)
+                }
+                Some("gzip") => read_cells(flate2::read::GzDecoder::new(&bytes[..]), expected, bad),
                 // zstd and unknown compressions: the crate refuses them.
                 Some(_) => return Ok(()),
             };
@@ -410,6 +402,14 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
                     format!("{len} bytes ({} cells of 4 bytes)", len / 4)
                 };
                 return Err(err(found));
+            }
+            if let Some((k, gid)) = first_bad {
+                let why = no_tileset(gid, d.first_gid).unwrap_or_default();
+                let data = match compression {
+                    Some(c) => format!("{c}-compressed base64 data"),
+                    None => "base64 data".to_string(),
+                };
+                return Err(cell_error(d, d.line, k, &data, &why));
             }
         }
         _ => {}
@@ -429,31 +429,41 @@ fn csv_cells(d: &Data) -> Result<(), ScanError> {
     for (k, cell) in d.text.split(',').enumerate() {
         let value = cell.trim();
         // Parsed once: a tile id the crate reads, in one of the map's tilesets.
-        let why = match value.parse::<u32>() {
-            Ok(gid) => no_tileset(gid, d.first_gid),
-            Err(_) if value.is_empty() => Some(format!("empty; {TILE_ID}")),
-            Err(_) if value.bytes().all(|b| b.is_ascii_digit()) => {
-                Some(format!("{value}, more than 4294967295; {TILE_ID}"))
-            }
-            Err(_) => Some(format!("{value:?}; {TILE_ID}")),
+        // A gid in no tileset is said of the layer's "data": a JSON map's array and the XML
+        // cell encoding reach here as CSV too.
+        let (what, why) = match value.parse::<u32>() {
+            Ok(gid) => ("data", no_tileset(gid, d.first_gid)),
+            Err(_) if value.is_empty() => ("CSV data", Some(format!("empty; {TILE_ID}"))),
+            Err(_) if value.bytes().all(|b| b.is_ascii_digit()) => (
+                "CSV data",
+                Some(format!("{value}, more than 4294967295; {TILE_ID}")),
+            ),
+            Err(_) => ("CSV data", Some(format!("{value:?}; {TILE_ID}"))),
         };
         if let Some(why) = why {
             let lead = cell.len() - cell.trim_start().len();
-            return Err(ScanError {
-                column: None,
-                line: line + cell[..lead].matches('\n').count(),
-                message: format!(
-                    "{}: cell {} (x = {}, y = {}) of its CSV data is {why}",
-                    d.place,
-                    k + 1,
-                    d.origin.0 + (k as u64 % d.width.max(1)) as i64,
-                    d.origin.1 + (k as u64 / d.width.max(1)) as i64,
-                ),
-            });
+            let line = line + cell[..lead].matches('\n').count();
+            return Err(cell_error(d, line, k as u64, what, &why));
         }
         line += cell.matches('\n').count();
     }
     Ok(())
+}
+
+/// Cell `k` of `d`'s data (`what`: `CSV data`, `base64 data`, …) is wrong, as `why` says; the
+/// cell is placed in Tiled's columns and rows.
+fn cell_error(d: &Data, line: usize, k: u64, what: &str, why: &str) -> ScanError {
+    ScanError {
+        column: None,
+        line,
+        message: format!(
+            "{}: cell {} (x = {}, y = {}) of its {what} is {why}",
+            d.place,
+            k + 1,
+            d.origin.0 + (k % d.width.max(1)) as i64,
+            d.origin.1 + (k / d.width.max(1)) as i64,
+        ),
+    }
 }
 
 /// Why gid `bits` (flip bits aside, as the crate masks them) is in none of the map's
