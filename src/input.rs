@@ -261,6 +261,21 @@ pub(crate) fn not_text(found: &str) -> String {
     format!("found byte(s) {found}, not UTF-8; expected UTF-8 text (save the file as UTF-8)")
 }
 
+/// `s` quoted as an error shows what it found: whole up to 100 characters (a long layer name
+/// of a real map is 40 to 60), else its first 40, `…` and its length, so a 100 MB name is not
+/// echoed whole.
+pub(crate) fn quoted(s: &str) -> String {
+    const WHOLE: usize = 100;
+    const SHOWN: usize = 40;
+    match s.char_indices().nth(WHOLE) {
+        None => format!("{s:?}"),
+        Some(_) => {
+            let at = s.char_indices().nth(SHOWN).map_or(s.len(), |(at, _)| at);
+            format!("{:?}… ({} bytes)", &s[..at], s.len())
+        }
+    }
+}
+
 /// Line and column (both 1-based, the column in characters) of byte `offset` in `text`, for an
 /// error that points into a file. An offset past the end or inside a character names the place
 /// just before it, never panics.

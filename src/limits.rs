@@ -171,6 +171,10 @@ pub(crate) const MAX_JSON_OBJECTS: u64 = 500_000;
 /// and more (60 million numbers outside a layer's data took 2 GB). 5,000,000 take about 320 MB.
 #[cfg(feature = "tiled")]
 pub(crate) const MAX_JSON_VALUES: u64 = 5_000_000;
+/// Longest level or scenario name, in bytes: a name is part of every trace file's name
+/// (`LEVEL.SCENARIO.BACKEND.CONFIG.csv`), which a file system holds to 255 bytes, and is copied
+/// into every run's rows; Tiled and LDtk name their objects in a few words.
+pub(crate) const MAX_NAME_BYTES: usize = 64;
 /// Most spawn points of one map (Tiled or LDtk): each spawn makes up to five probe scenarios
 /// (27 s of game time, 1,620 frames at 60 Hz), and real maps hold a handful; 1,000 spawns make
 /// 5,000 scenarios and 1.6 million frames per configuration, within [`MAX_LEVEL_FRAMES`].

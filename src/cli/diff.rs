@@ -86,6 +86,16 @@ pub(crate) fn diff(args: &DiffArgs) -> ExitCode {
             }
         }
     }
+    // A file given for a run is named as such, not as its `metrics.csv` that is not there.
+    for (which, dir) in [("BASE", &args.base), ("NEW", &args.new)] {
+        if dir.exists() && !dir.is_dir() {
+            eprintln!(
+                "error: {which} {} is a file, not a directory; expected the --out directory of `platbench run` (it holds metrics.csv and traces/)",
+                dir.display()
+            );
+            return ExitCode::from(2);
+        }
+    }
     let format = match args.format.as_str() {
         "md" => DiffFormat::Markdown,
         "csv" => DiffFormat::Csv,

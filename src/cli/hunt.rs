@@ -29,7 +29,7 @@ pub(crate) struct HuntArgs {
     budget: f64,
     /// The seed the cases are drawn from: the same seed gives the same cases and findings on
     /// any machine and any number of threads (within the budget).
-    #[arg(long, value_name = "N", default_value = "0")]
+    #[arg(long, value_name = "N", default_value = "0", value_parser = parse_seed, allow_negative_numbers = true)]
     seed: u64,
     /// Run this many generated cases (rounded up to rounds of 8) instead of stopping at the
     /// budget alone: a hunt whose findings are the same wherever it runs.
@@ -47,8 +47,20 @@ fn parse_budget(s: &str) -> std::result::Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 && v <= 1e7 => Ok(v),
         Ok(v) => Err(format!("{v} is not a number of seconds in (0, 1e7]")),
-        Err(e) => Err(format!("{s:?} is not a number of seconds: {e}")),
+        Err(_) => Err(format!(
+            "found {s:?}; expected a number of seconds in (0, 1e7]"
+        )),
     }
+}
+
+/// A seed: any whole number a `u64` holds.
+fn parse_seed(s: &str) -> std::result::Result<u64, String> {
+    s.trim().parse::<u64>().map_err(|_| {
+        format!(
+            "found {s:?}; expected a whole number from 0 to {}",
+            u64::MAX
+        )
+    })
 }
 
 /// The `platbench run` line that shows a finding written to `file` in `dir`.

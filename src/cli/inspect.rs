@@ -43,8 +43,8 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
     text.push_str("\nlayers:\n");
     for layer in &r.layers {
         text.push_str(&format!(
-            "  {:?} ({}{}): {} — {}\n",
-            layer.name,
+            "  {} ({}{}): {} — {}\n",
+            crate::input::quoted(&layer.name),
             layer.kind,
             if layer.empty { ", empty" } else { "" },
             layer.role.name(),
@@ -53,17 +53,28 @@ pub(crate) fn inspect(args: &InspectArgs) -> Result<()> {
     }
     // Where a convention or a default decided, the line that says what the game means.
     let guessed: Vec<_> = r.layers.iter().filter(|l| l.is_guess()).collect();
-    if !guessed.is_empty() {
+    // A name longer than a line is not echoed into the suggestion whole.
+    const LONGEST_SHOWN: usize = 200;
+    let (shown, long): (Vec<&&_>, Vec<&&_>) =
+        guessed.iter().partition(|l| l.name.len() <= LONGEST_SHOWN);
+    if !long.is_empty() {
+        text.push_str(&format!(
+            "
+{} guessed layer(s) have names over {LONGEST_SHOWN} bytes, left out of the lines below: rename them in the map to set their role in a side file\n",
+            long.len()
+        ));
+    }
+    if !shown.is_empty() {
         // A world's levels repeat their layers' names: one entry per name.
-        let mut entries: Vec<String> = Vec::new();
-        for e in guessed.iter().map(|l| l.side_file_entry()) {
-            if !entries.contains(&e) {
-                entries.push(e);
-            }
-        }
+        let mut seen = std::collections::HashSet::new();
+        let entries: Vec<String> = shown
+            .iter()
+            .map(|l| l.side_file_entry())
+            .filter(|e| seen.insert(e.clone()))
+            .collect();
         text.push_str(&format!(
             "\nguessed: {} layer(s), by name or by default; to make them certain, or to say what your game reads instead, edit and put in {}:\n  [import]\n  layers = {{ {} }}\n",
-            guessed.len(),
+            shown.len(),
             p.with_extension("toml").display(),
             entries.join(", ")
         ));

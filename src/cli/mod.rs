@@ -378,12 +378,8 @@ pub(crate) fn out(text: &str) {
     let _ = writeln!(stdout, "{text}");
 }
 
-/// Reads every row of a CSV file written by `platbench sweep` or `platbench stress`.
-pub(crate) fn read_rows<T: serde::de::DeserializeOwned>(path: &std::path::Path) -> Result<Vec<T>> {
-    read_rows_capped(path, usize::MAX)
-}
-
-/// [`read_rows`], refusing the file at its row past `max` (before reading further).
+/// Reads every row of a CSV file platbench wrote (`sweep`, `stress`, `check`), refusing the
+/// file at its row past `max` (before reading further).
 pub(crate) fn read_rows_capped<T: serde::de::DeserializeOwned>(
     path: &std::path::Path,
     max: usize,
@@ -447,35 +443,8 @@ fn csv_error(
     e: &csv::Error,
     row: Option<(&csv::StringRecord, &csv::StringRecord)>,
 ) -> anyhow::Error {
-    let path = path.display();
-    match e.kind() {
-        csv::ErrorKind::Utf8 { err, .. } => anyhow::anyhow!(
-            "{path}:{line}: field {} is not UTF-8; expected UTF-8 text (save the file as UTF-8)",
-            err.field() + 1
-        ),
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => anyhow::anyhow!(
-            "{path}:{line}: found {len} fields; expected {expected_len}, as many as the header"
-        ),
-        csv::ErrorKind::Deserialize { err, .. } => {
-            let at = err.field().and_then(|f| usize::try_from(f).ok());
-            let expected = crate::report::diff::expected_of(err.kind())
-                .map_or_else(|| err.kind().to_string(), str::to_string);
-            match (at, row) {
-                (Some(at), Some((headers, record))) => anyhow::anyhow!(
-                    "{path}:{line}: field {} ({}): found {:?}; expected {expected}",
-                    at + 1,
-                    headers.get(at).unwrap_or("?"),
-                    record.get(at).unwrap_or_default()
-                ),
-                _ => anyhow::anyhow!(
-                    "{path}:{line}: {expected}; expected the CSV this option takes (as `platbench sweep` or `platbench stress` writes it)"
-                ),
-            }
-        }
-        _ => anyhow::anyhow!("{path}:{line}: not the CSV this option takes: {e}"),
-    }
+    let (at, message) = crate::report::diff::worded(e, row);
+    anyhow::anyhow!("{}:{}: {message}", path.display(), at.unwrap_or(line))
 }
 
 /// Why a `--world-size` value was refused.

@@ -177,7 +177,20 @@ pub(crate) fn review(h: &Harness, args: &ReviewArgs) -> Result<()> {
         );
     }
     let units_path = args.check.join(UNITS);
-    let units: Vec<Unit> = super::read_rows(&units_path)?;
+    // A trace is named by its run; a row naming another file (`../x.csv`, an absolute path)
+    // would have the review replace a file outside the baseline.
+    let units: Vec<Unit> = super::read_rows_checked(&units_path, usize::MAX, |u: &Unit, line| {
+        let named = crate::report::check::trace_name(&u.level, &u.scenario, &u.backend, &u.config);
+        if u.trace != named {
+            bail!(
+                "{}:{line}: the run {} names the trace {}; expected {named:?}, the name `platbench check` gives its trace (was the file edited? run the check again)",
+                units_path.display(),
+                u.id(),
+                crate::input::quoted(&u.trace)
+            );
+        }
+        Ok(())
+    })?;
     let base = baseline_dir(h, args.baseline.as_deref());
     // Held until the review returns: two reviews at once would each write the baseline they
     // read, and the later would lose the earlier's acceptances.

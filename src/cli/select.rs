@@ -30,12 +30,12 @@ pub(crate) struct Selection {
     /// Override every scenario's time step, in seconds (`stress`: the step of every probe but
     /// those of its dt dimension; `sweep`: of every setting but those that set their own dt,
     /// labelled `dt=`).
-    #[arg(long, value_name = "SECONDS")]
+    #[arg(long, value_name = "SECONDS", value_parser = parse_seconds, allow_negative_numbers = true)]
     pub(crate) dt: Option<f32>,
     /// The overlap tolerance of the configurations that have one (the sweep's epsilon), in
     /// tiles (`stress` still varies it in its epsilon dimension; `sweep` keeps it on the
     /// settings that set their own, labelled `epsilon=`).
-    #[arg(long, value_name = "TILES")]
+    #[arg(long, value_name = "TILES", value_parser = parse_tiles, allow_negative_numbers = true)]
     pub(crate) epsilon: Option<f32>,
     /// Run only these levels or scenarios: LEVEL or LEVEL.SCENARIO (repeat or comma-separate;
     /// `platbench levels` lists the built-in ones). `stress` runs its own probe levels and
@@ -330,6 +330,26 @@ pub(crate) fn jobs_within_memory_noted(asked: usize, tiles: u64) -> usize {
         );
     }
     jobs
+}
+
+/// A time step: seconds as a number (`0.0166`) or a fraction (`1/60`, divided in f32 as
+/// the built-in default is). Its range is checked with the scenario's.
+fn parse_seconds(s: &str) -> Result<f32, String> {
+    let v = |t: &str| t.trim().parse::<f32>().ok();
+    let value = match s.split_once('/') {
+        Some((a, b)) => v(a).zip(v(b)).map(|(a, b)| a / b),
+        None => v(s),
+    };
+    value.ok_or_else(|| {
+        format!("found {s:?}; expected seconds, a number such as 0.0166 or a fraction such as 1/60")
+    })
+}
+
+/// A length in tiles, a number; its range is checked with the configuration's.
+fn parse_tiles(s: &str) -> Result<f32, String> {
+    s.trim()
+        .parse::<f32>()
+        .map_err(|_| format!("found {s:?}; expected a number of tiles such as 0.001"))
 }
 
 #[cfg(test)]

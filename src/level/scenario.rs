@@ -161,10 +161,11 @@ impl ScenarioSpec {
     }
 }
 
-/// Whether `name` can name a level or scenario: non-empty ASCII letters, digits, '_' or '-',
+/// Whether `name` can name a level or scenario: 1 to 64 ASCII letters, digits, '_' or '-',
 /// since it names output files (and '.' separates the parts of a trace file's name).
 pub fn valid_name(name: &str) -> bool {
     !name.is_empty()
+        && name.len() <= crate::limits::MAX_NAME_BYTES
         && name
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')

@@ -35,6 +35,12 @@ pub(crate) enum ManifestError {
         /// The cause (in the message, not chained, so that it is said once).
         cause: std::io::Error,
     },
+    /// The baseline given is a file.
+    #[error("the baseline {path} is a file, not a directory; expected a baseline directory (written by `platbench baseline` or `platbench run --bless`)")]
+    NotADirectory {
+        /// The file.
+        path: PathBuf,
+    },
     /// The file is not a manifest this build reads.
     #[error("{path} is not a baseline manifest this platbench reads: {why}")]
     Malformed {
@@ -173,6 +179,11 @@ impl Manifest {
     /// Reads `DIR/manifest.toml`.
     pub(crate) fn read(dir: &Path) -> Result<Manifest, ManifestError> {
         let path = dir.join(FILE);
+        if dir.exists() && !dir.is_dir() {
+            return Err(ManifestError::NotADirectory {
+                path: dir.to_path_buf(),
+            });
+        }
         let text = crate::limits::read_text_capped(&path).map_err(|cause| ManifestError::Read {
             path: path.clone(),
             cause,

@@ -289,3 +289,49 @@ fn a_review_holds_the_baseline_locked() {
     assert_ne!(std::fs::read(bl.join("metrics.csv")).unwrap(), before);
     assert!(!lock.exists());
 }
+
+#[test]
+fn a_review_touches_no_file_a_check_row_names_outside_its_folders() {
+    // Issue 40: a `check.csv` row whose trace names `../../victim.csv` (or an absolute path)
+    // had `review --accept-all` delete that file and write an HTML page beside it.
+    let (dir, level) = setup();
+    let b = dir.path().join("b");
+    assert_eq!(
+        cli(&harness(false, &b), &["baseline", path(&level)]),
+        ExitCode::SUCCESS
+    );
+    let after = harness(true, &b);
+    let ck = dir.path().join("check");
+    assert_eq!(
+        cli(&after, &["check", "--out", path(&ck)]),
+        ExitCode::from(1)
+    );
+    let victim = dir.path().join("victim.csv");
+    std::fs::write(&victim, "a user's file\n").unwrap();
+    let units = ck.join("check.csv");
+    let text = std::fs::read_to_string(&units).unwrap();
+    let b_metrics = std::fs::read(b.join("metrics.csv")).unwrap();
+    for named in ["../../victim.csv", victim.to_str().unwrap()] {
+        // Every row's trace: the sixth column (level, scenario, backend, config, status,
+        // trace, detail).
+        let edited: String = text
+            .lines()
+            .enumerate()
+            .map(|(i, l)| {
+                let mut f: Vec<&str> = l.split(',').collect();
+                if i > 0 {
+                    f[5] = named;
+                }
+                f.join(",") + "\n"
+            })
+            .collect();
+        std::fs::write(&units, edited).unwrap();
+        assert_eq!(
+            cli(&after, &["review", path(&ck), "--accept-all"]),
+            ExitCode::from(2)
+        );
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "a user's file\n");
+        assert!(!dir.path().join("victim.html").exists());
+        assert_eq!(std::fs::read(b.join("metrics.csv")).unwrap(), b_metrics);
+    }
+}

@@ -46,7 +46,7 @@ fn a_bad_csv_row_is_placed_at_its_line_whatever_the_line_ends() {
             .unwrap();
         let err = stderr_of(&out);
         let want = format!(
-            "{}: line 3, field 6 (value): found \"abc\"; expected a number",
+            "{}:3: field 6 (value): found \"abc\"; expected a number",
             metrics.display()
         );
         assert!(err.contains(&want), "{name}: {want:?} in: {err}");
@@ -115,4 +115,106 @@ fn a_baseline_name_too_long_is_blamed_on_where_it_came_from() {
         "{err}"
     );
     assert!(!Path::new(&long).exists());
+}
+
+/// Runs `cmd`, which must exit 2 with `want` in its error.
+fn fails_with(cmd: &mut std::process::Command, want: &str) {
+    let err = stderr_of(&cmd.output().unwrap());
+    assert!(err.contains(want), "{want:?} in: {err}");
+}
+
+#[test]
+fn a_column_the_header_lacks_is_said_at_the_header() {
+    // Issue 40: a metrics file without its `level` column was "CSV deserialize error: record 1
+    // (line: 2, byte: 63): missing field `level`"; a trade-off file given to --stability the
+    // same at line 2.
+    let dir = tempfile::tempdir().unwrap();
+    let run = dir.path().join("run");
+    std::fs::create_dir_all(run.join("traces")).unwrap();
+    let metrics = run.join("metrics.csv");
+    let header = METRICS_HEADER.replacen("level,", "lvl,", 1);
+    std::fs::write(&metrics, joined(&[&header, METRICS_ROW], "\n")).unwrap();
+    let want = format!("{}:1: the header has no column `level`", metrics.display());
+    fails_with(platbench().arg("diff").arg(&run).arg(&run), &want);
+    let tradeoff = dir.path().join("tradeoff.csv");
+    std::fs::write(&tradeoff, joined(&[TRADEOFF_HEADER, TRADEOFF_ROW], "\n")).unwrap();
+    let want = format!("{}:1: the header has no column `", tradeoff.display());
+    let report = dir.path().join("report");
+    fails_with(
+        platbench()
+            .arg("report")
+            .arg("--stability")
+            .arg(&tradeoff)
+            .arg("--out")
+            .arg(report),
+        &want,
+    );
+}
+
+#[test]
+fn an_option_value_that_does_not_parse_says_what_was_expected() {
+    // Issue 40: `--seed -1` said "invalid digit found in string", `--dt 1/60` "invalid float
+    // literal"; a time step may now be written as a fraction.
+    for (args, want) in [
+        (
+            &["hunt", "--seed", "-1"][..],
+            "found \"-1\"; expected a whole number from 0 to 18446744073709551615",
+        ),
+        (
+            &["run", "--dt", "1/6o"][..],
+            "found \"1/6o\"; expected seconds, a number such as 0.0166 or a fraction such as 1/60",
+        ),
+        (
+            &["run", "--epsilon", "tiny"][..],
+            "found \"tiny\"; expected a number of tiles",
+        ),
+    ] {
+        fails_with(platbench().args(args), want);
+    }
+    // `--dt 1/60` runs as `--dt 0.016666668` (1/60 in f32) does: the same metrics.
+    let dir = tempfile::tempdir().unwrap();
+    let level = dir.path().join("tiny.toml");
+    let text = "map = \"\"\"\n......\n######\n\"\"\"\n\n[[scenario]]\nname = \"fall\"\nspawn = [1.5, 1.0]\nduration = 1.0\n";
+    std::fs::write(&level, text).unwrap();
+    let metrics = |dt: &str| {
+        let out_dir = dir.path().join(dt.replace('/', "_"));
+        let out = platbench()
+            .args(["run", "--backend", "sweep", "--dt", dt, "--out"])
+            .arg(&out_dir)
+            .arg(&level)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        std::fs::read(out_dir.join("metrics.csv")).unwrap()
+    };
+    assert_eq!(metrics("1/60"), metrics("0.016666668"));
+}
+
+#[test]
+fn a_file_given_for_a_directory_is_named_as_such() {
+    // Issue 40: `diff FILE FILE` said "FILE/metrics.csv: cannot read it: Not a directory" and
+    // `check --baseline FILE` named FILE/manifest.toml.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("afile");
+    std::fs::write(&file, "x").unwrap();
+    let want = format!(
+        "BASE {} is a file, not a directory; expected the --out directory",
+        file.display()
+    );
+    fails_with(platbench().arg("diff").arg(&file).arg(&file), &want);
+    let want = format!("the baseline {} is a file, not a directory", file.display());
+    let ck = dir.path().join("ck");
+    fails_with(
+        platbench()
+            .arg("check")
+            .arg("--baseline")
+            .arg(&file)
+            .arg("--out")
+            .arg(ck),
+        &want,
+    );
 }

@@ -464,7 +464,7 @@ fn diff_fails_on_a_repeated_key_a_nan_reference_and_a_third_tolerance() {
             .unwrap()
     };
     let out = diff(&base, &repeated, &[]);
-    assert_error(&out, "line 3 repeats line 2");
+    assert_error(&out, ":3: the row repeats line 2");
     // BASE's reference is NaN and NEW's value moved far: a difference, exit 1 (it was 0).
     let nan_base = write(
         "nan_base",

@@ -65,7 +65,7 @@ fn a_malformed_metric_far_down_is_named_by_file_line_field_and_what_was_expected
     assert_error(
         &diff(&base, &new, &[]),
         &format!(
-            "{}: line 6, field 6 (value): found \"tall\"; expected a number",
+            "{}:6: field 6 (value): found \"tall\"; expected a number",
             new.join("metrics.csv").display()
         ),
     );
@@ -75,7 +75,7 @@ fn a_malformed_metric_far_down_is_named_by_file_line_field_and_what_was_expected
     assert_error(
         &diff(&odd, &base, &[]),
         &format!(
-            "{}: line 6, field 10 (frame): found \"-3\"; expected a whole number",
+            "{}:6: field 10 (frame): found \"-3\"; expected a whole number",
             odd.join("metrics.csv").display()
         ),
     );
@@ -92,12 +92,12 @@ fn a_repeat_far_from_its_first_row_names_both_lines_in_either_file() {
     // rest_gap (line 2) again at line 5: in the new run's file, then in the baseline's.
     let repeated = format!("{rows}{}", row("rest_gap", "0.5"));
     let new = run_dir(dir.path(), "new", &repeated, None);
-    assert_error(&diff(&base, &new, &[]), "line 5 repeats line 2");
-    assert_error(&diff(&new, &base, &[]), "line 5 repeats line 2");
+    assert_error(&diff(&base, &new, &[]), ":5: the row repeats line 2");
+    assert_error(&diff(&new, &base, &[]), ":5: the row repeats line 2");
     // A repeat of a row the baseline lacks (an added row) too.
     let added = format!("{rows}{}{}", row("air_time", "1"), row("air_time", "2"));
     let new = run_dir(dir.path(), "added", &added, None);
-    assert_error(&diff(&base, &new, &[]), "line 6 repeats line 5");
+    assert_error(&diff(&base, &new, &[]), ":6: the row repeats line 5");
 }
 
 #[test]
@@ -176,7 +176,7 @@ fn a_trace_differing_only_at_its_last_frame_is_found_and_a_bad_row_past_a_diverg
     let trace = bad.join("traces/l.s.sweep.csv");
     assert_error(
         &diff(&base, &bad, &[]),
-        &format!("{}: line 201, field 4 (x): found \"oops\"", trace.display()),
+        &format!("{}:201: field 4 (x): found \"oops\"", trace.display()),
     );
     // One row short at the end: truncated at the 199 rows both have.
     let cut = run_dir(dir.path(), "cut", &m, Some(&frames(199, "198")));

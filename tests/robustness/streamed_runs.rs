@@ -109,10 +109,7 @@ fn check_lists_each_run_once_however_many_rows_it_has() {
     );
     let (out, _) = check(&bl, dir.path(), "check");
     // 36 rows of the baseline's own, 2,000 appended, the header: the damaged row is line 2038.
-    assert_error(
-        &out,
-        "metrics.csv: line 2038, field 6 (value): found \"tall\"",
-    );
+    assert_error(&out, "metrics.csv:2038: field 6 (value): found \"tall\"");
 }
 
 #[test]
@@ -159,10 +156,7 @@ fn review_reads_the_runs_it_shows_to_the_end_of_each_file() {
     );
     let out = review("--accept-all");
     // The header and the run's 36 rows: the damaged row is line 38.
-    assert_error(
-        &out,
-        "metrics.csv: line 38, field 6 (value): found \"tall\"",
-    );
+    assert_error(&out, "metrics.csv:38: field 6 (value): found \"tall\"");
     assert_eq!(std::fs::read(bl.join("metrics.csv")).unwrap(), before);
 }
 

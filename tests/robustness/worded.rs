@@ -200,3 +200,30 @@ fn a_side_file_with_too_many_spawns_is_named_at_the_one_too_many() {
         );
     }
 }
+
+#[test]
+fn a_long_name_is_refused_and_quoted_short() {
+    // Issue 40: a 20 MB level name was copied into every run (3.7 GB, then an abort) and a
+    // 300-byte scenario name failed only when its trace file was written. Names are at most
+    // 64 bytes (limits::MAX_NAME_BYTES); the error quotes 40 characters of a long one.
+    let dir = tempfile::tempdir().unwrap();
+    let long = "n".repeat(100_000);
+    let level = format!("name = \"{long}\"\nmap = \"\"\"\n......\n######\n\"\"\"\n");
+    let p = write(dir.path(), "long.toml", level.as_bytes());
+    let out = cmd(&["run".as_ref(), p.as_os_str()]);
+    assert_error(&out, "long.toml:");
+    let err = stderr(&out);
+    assert!(
+        err.contains("(100000 bytes) must be 1 to 64 ASCII letters") && err.len() < 1_000,
+        "{err}"
+    );
+    let scenario = format!(
+        "name = \"e\"\nmap = \"\"\"\n......\n######\n\"\"\"\n\n[[scenario]]\nname = \"{}\"\nspawn = [1.5, 1.0]\nduration = 1.0\n",
+        "w".repeat(300)
+    );
+    let p = write(dir.path(), "scen.toml", scenario.as_bytes());
+    let out = cmd(&["run".as_ref(), p.as_os_str()]);
+    // Line 8, column 8: the scenario's name value.
+    assert_error(&out, "scen.toml:8:8: scenario name");
+    assert!(stderr(&out).contains("(300 bytes)"), "{}", stderr(&out));
+}

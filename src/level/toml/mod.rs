@@ -80,7 +80,11 @@ pub fn parse_level(text: &str, file: &str) -> Result<Level, LevelError> {
     if !super::valid_name(&name) {
         return Err(loc.err(
             0,
-            format!("level name {name:?} must be non-empty ASCII letters, digits, '_' or '-' (it names output files)"),
+            format!(
+                "level name {} must be 1 to {} ASCII letters, digits, '_' or '-' (it names output files)",
+                crate::input::quoted(&name),
+                crate::limits::MAX_NAME_BYTES
+            ),
         ));
     }
     let mut level = Level::from_tiles(&name, width, height, tiles);

@@ -143,7 +143,11 @@ fn parse_scenario(loc: &Locator, s: &RawScenario) -> Result<ScenarioSpec, LevelE
     if !valid_name(&name) {
         return Err(loc.at(
             &s.name.span(),
-            format!("scenario name {name:?} must be non-empty ASCII letters, digits, '_' or '-' (it names output files)"),
+            format!(
+                "scenario name {} must be 1 to {} ASCII letters, digits, '_' or '-' (it names output files)",
+                crate::input::quoted(&name),
+                crate::limits::MAX_NAME_BYTES
+            ),
         ));
     }
     let duration = positive(loc, &s.duration.span(), "duration", *s.duration.get_ref())?;

@@ -8,6 +8,7 @@
 //! tables, Markdown or CSV.
 
 mod compare;
+mod csv_words;
 mod join;
 mod lines;
 mod read;
@@ -18,8 +19,9 @@ pub use compare::{
     default_tolerance, Change, ChangeCounts, FailOn, MetricDiff, RunDiff, Tolerance, TraceChange,
     TraceDiff,
 };
+pub(crate) use csv_words::{expected_of, worded};
 pub use join::{diff_runs, diff_runs_each};
 pub(crate) use lines::Lines;
-pub(crate) use read::{expected_of, CsvRows};
+pub(crate) use read::CsvRows;
 pub use read::{read_metrics, read_metrics_where, read_runs, DiffError, MetricRecord, RunKey};
 pub use render::{render, DiffFormat};

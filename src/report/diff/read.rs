@@ -84,7 +84,7 @@ pub enum DiffError {
     #[error(transparent)]
     Input(#[from] crate::input::InputError),
     /// Two rows of a metrics file share their key.
-    #[error("{path}: line {second} repeats line {first} ({key}); expected one row per level, scenario, backend, configuration and metric")]
+    #[error("{path}:{second}: the row repeats line {first} ({key}); expected one row per level, scenario, backend, configuration and metric")]
     Duplicate {
         /// The file.
         path: PathBuf,
@@ -103,7 +103,7 @@ pub enum DiffError {
         path: PathBuf,
     },
     /// A field of a CSV row does not hold what its column does.
-    #[error("{path}: line {line}, field {field} ({column}): found {found:?}; expected {expected}")]
+    #[error("{path}:{line}: field {field} ({column}): found {found:?}; expected {expected}")]
     Field {
         /// The file.
         path: PathBuf,
@@ -120,7 +120,7 @@ pub enum DiffError {
     },
     /// The two metrics files name more distinct levels, scenarios, backends, configurations,
     /// metrics and units together than the join numbers (`u32::MAX`).
-    #[error("{path}: line {line}: more than {} distinct names in the two metrics files; expected fewer (the diff numbers each name in 32 bits)", u32::MAX)]
+    #[error("{path}:{line}: more than {} distinct names in the two metrics files; expected fewer (the diff numbers each name in 32 bits)", u32::MAX)]
     TooManyNames {
         /// The file.
         path: PathBuf,
@@ -128,7 +128,7 @@ pub enum DiffError {
         line: u64,
     },
     /// A metrics file holds more rows than [`crate::limits::MAX_METRIC_ROWS`].
-    #[error("{path}: line {line} is row {} of the metrics file; expected at most {max} rows (the diff holds the new run's rows to compare the baseline's against them)", max + 1)]
+    #[error("{path}:{line}: this is row {} of the metrics file; expected at most {max} rows in either run's metrics file (the diff holds the new run's rows to compare the baseline's against them)", max + 1)]
     TooManyRows {
         /// The file.
         path: PathBuf,
@@ -146,24 +146,15 @@ pub enum DiffError {
         path: PathBuf,
     },
     /// A CSV file is malformed.
-    #[error("{path}: {cause}")]
+    #[error("{path}:{line}: {message}")]
     Csv {
         /// The file.
         path: PathBuf,
-        /// The cause, with its line (in the message, not chained, so it is said once).
-        cause: csv::Error,
+        /// The line at fault (the header is line 1).
+        line: u64,
+        /// What was found and what was expected.
+        message: String,
     },
-}
-
-/// What a field that failed to parse was expected to hold, by the parser that refused it.
-pub(crate) fn expected_of(kind: &csv::DeserializeErrorKind) -> Option<&'static str> {
-    use csv::DeserializeErrorKind as K;
-    match kind {
-        K::ParseFloat(_) => Some("a number (NaN and inf are numbers too)"),
-        K::ParseInt(_) => Some("a whole number 0 or more within the column's range, or nothing where the column allows it"),
-        K::ParseBool(_) => Some("true or false"),
-        _ => None,
-    }
 }
 
 /// A reader that refuses a CSV record longer than [`crate::limits::MAX_CSV_RECORD_BYTES`]
@@ -257,7 +248,10 @@ impl CsvRows {
             line: 1,
             after_cr: false,
         }));
-        let headers = reader.headers().map_err(|e| Self::csv(path, e))?.clone();
+        let headers = reader
+            .headers()
+            .map_err(|e| Self::csv(path, 1, &e, None))?
+            .clone();
         if headers.iter().all(str::is_empty) {
             return Err(DiffError::Empty {
                 path: path.to_path_buf(),
@@ -282,10 +276,18 @@ impl CsvRows {
         })
     }
 
-    fn csv(path: &Path, cause: csv::Error) -> DiffError {
+    /// `e`, met at `line`, worded ([`super::worded`]).
+    fn csv(
+        path: &Path,
+        line: u64,
+        e: &csv::Error,
+        row: Option<(&csv::StringRecord, &csv::StringRecord)>,
+    ) -> DiffError {
+        let (at, message) = super::worded(e, row);
         DiffError::Csv {
             path: path.to_path_buf(),
-            cause,
+            line: at.unwrap_or(line),
+            message,
         }
     }
 
@@ -296,10 +298,10 @@ impl CsvRows {
 
     /// Reads the next record; false at the end of the file.
     pub(crate) fn advance(&mut self) -> Result<bool, DiffError> {
-        let more = self
-            .reader
-            .read_record(&mut self.record)
-            .map_err(|e| Self::csv(&self.path, e))?;
+        let more = self.reader.read_record(&mut self.record).map_err(|e| {
+            let byte = e.position().map_or(0, csv::Position::byte);
+            Self::csv(&self.path, self.reader.get_mut().line_of(byte), &e, None)
+        })?;
         self.rows += u64::from(more);
         let byte = self.record.position().map_or(0, csv::Position::byte);
         self.line = self.reader.get_mut().line_of(byte);
@@ -328,7 +330,7 @@ impl CsvRows {
 
     fn field_error(&self, e: csv::Error) -> DiffError {
         if let csv::ErrorKind::Deserialize { err, .. } = e.kind() {
-            let expected = expected_of(err.kind());
+            let expected = super::expected_of(err.kind());
             let at = err.field().and_then(|f| usize::try_from(f).ok());
             if let (Some(expected), Some(at)) = (expected, at) {
                 return DiffError::Field {
@@ -341,7 +343,8 @@ impl CsvRows {
                 };
             }
         }
-        Self::csv(&self.path, e)
+        let row = Some((&self.headers, &self.record));
+        Self::csv(&self.path, self.line(), &e, row)
     }
 
     /// The next record as an owned `T`, or `None` at the end of the file.
@@ -562,7 +565,7 @@ mod tests {
         }
         let err = rows.advance().unwrap_err().to_string();
         assert!(
-            err.contains("line 5 is row 4 of the metrics file; expected at most 3 rows"),
+            err.contains(":5: this is row 4 of the metrics file; expected at most 3 rows"),
             "{err}"
         );
     }
