@@ -14,6 +14,7 @@ use crate::motion::Input;
 
 /// Step 1: enters the ladder state if the input and position allow it, clamping x to the
 /// ladder's centre. Runs only on levels with ladders.
+#[inline]
 pub(super) fn enter<S: Space>(
     w: &World<S>,
     stats: &mut SweepStats,
@@ -32,6 +33,7 @@ pub(super) fn enter<S: Space>(
 
 /// The last step: leaves the ladder state when the character is past the ladder's top, off
 /// it, or on the ground while climbing down.
+#[inline]
 pub(super) fn leave<S: Space>(w: &World<S>, c: &mut Character<S::Coord>, input: &Input) {
     // Off a ladder there is nothing to leave (the shared rule's own first test), and the feet
     // need not be found.

@@ -178,7 +178,10 @@ impl<C: Coord> Sweep<C> {
 
 /// What the box's side facing `toward` (one storage unit along `axis`, signed) rests against:
 /// [`move_axis`] by it, undone unless the box stayed where it was (flush against what stopped
-/// it). The grid's "collide check one pixel down".
+/// it). The grid's "collide check one pixel down". Inlined, so that the probe of each axis
+/// move is specialised for its axis and its one-unit move (as a call it cost a step on the
+/// grid more than the x move itself).
+#[inline(always)]
 pub(crate) fn touching<S: Space>(
     o: &Obstacles<'_, S>,
     near: &mut NearCache<S::Coord>,
@@ -213,11 +216,12 @@ fn step_move<S: Space>(
     let o = w.obstacles();
     let d = w.space.whole_move(&mut c.body, axis, delta, min_fall);
     let mut hit = move_axis(&o, &mut c.near, &mut c.body, axis, d, &skip);
-    if axis == Axis::Y && d == S::Coord::default() && delta < 0.0 {
-        // A fall of less than a subpixel this step moves nothing (only on the grid: in float a
-        // nonzero move always moves): the ground is there if the box rests on it (Celeste's
-        // "collide check one pixel down"). A move of a subpixel or more that ends on a face
-        // has already reported it.
+    let zero = S::Coord::default();
+    if S::Coord::UNIT != zero && axis == Axis::Y && d == zero && delta < 0.0 {
+        // A fall of less than a subpixel this step moves nothing (only on the grid, whose
+        // `UNIT` is not 0: in float a nonzero move always moves, and the test folds away): the
+        // ground is there if the box rests on it (Celeste's "collide check one pixel down"). A
+        // move of a subpixel or more that ends on a face has already reported it.
         hit = touching(&o, &mut c.near, &mut c.body, axis, -S::Coord::UNIT, &skip);
     }
     if hit.is_some() {

@@ -54,6 +54,8 @@ pub(crate) struct Column {
 
 impl Column {
     /// [`Level::surface_at`] (level coordinates), reading the cells through this column.
+    /// Inlined into each rule, so that a lookup of kept rows costs no call.
+    #[inline(always)]
     fn surface_at(
         &mut self,
         level: &Level,
@@ -191,6 +193,7 @@ fn overhang<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> f32 {
 /// Before the x move (step 3): the highest top, as a coordinate of the storage, of a solid the
 /// x move skips because it lies within the overhang above the slope under the centre (the mass
 /// under a ramp); `None` when no slope is under the centre or the level has none.
+#[inline]
 pub(super) fn ramp_top_for_x<S: Space>(
     w: &World<S>,
     c: &mut Character<S::Coord>,
@@ -206,6 +209,7 @@ pub(super) fn ramp_top_for_x<S: Space>(
 
 /// Before the y move (step 5): the band of solid tops (above, at most) that the y move skips
 /// because the slope rules under the centre own them (steps up within the overhang).
+#[inline]
 pub(super) fn ramp_band_for_y<S: Space>(
     w: &World<S>,
     c: &mut Character<S::Coord>,
@@ -226,6 +230,7 @@ pub(super) fn ramp_band_for_y<S: Space>(
 /// `c`'s feet in the frame for the slope rules ([`World::feet`]; on the grid a conversion from
 /// subpixels, so the step finds each once and hands it on), zero on a level without slopes,
 /// where nothing reads them.
+#[inline]
 pub(super) fn feet<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> Vec2 {
     if w.level.features.slopes {
         w.feet(c)
@@ -237,6 +242,7 @@ pub(super) fn feet<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> Vec2 {
 /// How far the ground under the centre may rise during the x move from feet `start` to feet
 /// `now`: the climb gradient times the horizontal distance, plus the tolerance (frame tiles);
 /// 0 on a level without slopes, where nothing reads it.
+#[inline]
 pub(super) fn rise_allow<S: Space>(w: &World<S>, now: Vec2, start: Vec2) -> f32 {
     if !w.level.features.slopes {
         return 0.0;
@@ -247,6 +253,7 @@ pub(super) fn rise_allow<S: Space>(w: &World<S>, now: Vec2, start: Vec2) -> f32 
 /// Step 4, the climb limit: if the ground under the centre (`c`'s feet now at `feet`) rose
 /// more than `rise_allow` during the x move, the move is undone (back to `start`'s x) as a wall
 /// would stop it, which puts the feet back where they were before it. Returns whether it was.
+#[inline]
 pub(super) fn climb_limit<S: Space>(
     w: &World<S>,
     stats: &mut SweepStats,
@@ -281,6 +288,7 @@ fn set_feet_y<S: Space>(w: &World<S>, c: &mut Character<S::Coord>, y: f32) {
 /// back on a surface within the drop that walking down the steepest walkable slope at this
 /// speed gives (plus `snap_down` and this step's fall). Returns the ground stood on, and
 /// whether it is the resolve-up case (which replaces a one-way landing).
+#[inline]
 pub(super) fn ground_on_slopes<S: Space>(
     w: &World<S>,
     c: &mut Character<S::Coord>,

@@ -6,6 +6,10 @@
 //! no stage is written twice. Moving platforms are the step's last part, run once for every
 //! platform after every character has stepped (the seed: "update platforms *after* all other
 //! objects"; [`super::platforms`]).
+//!
+//! The stages are `#[inline]`: each begins by testing whether the level has its feature
+//! (slopes, ladders), and as a call its prologue cost more than that test on the levels
+//! without it.
 
 use glam::Vec2;
 
