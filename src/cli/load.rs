@@ -170,6 +170,12 @@ pub(crate) fn load_levels_with(paths: &[PathBuf], import: &ImportArgs) -> Result
             );
         }
     }
+    let ldtk = formats.contains(&crate::level::LevelFormat::Ldtk);
+    if maps && !ldtk && !import.intgrid.is_empty() {
+        eprintln!(
+            "warning: --intgrid names LDtk IntGrid values, and no .ldtk file is given, so it changes nothing; a Tiled map's tiles are set with --layer NAME=ROLE"
+        );
+    }
     if !maps
         && (!import.layers.is_empty()
             || import.tile_layers.is_some()

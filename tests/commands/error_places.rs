@@ -218,3 +218,22 @@ fn a_file_given_for_a_directory_is_named_as_such() {
         &want,
     );
 }
+
+#[test]
+fn an_option_that_changes_nothing_on_the_files_given_says_so() {
+    // Issue 40: `--intgrid` on a Tiled map ran without a word; `--level` on one warned.
+    let map = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/maps/showcase.tmx");
+    let dir = tempfile::tempdir().unwrap();
+    let out = platbench()
+        .args(["run", "--backend", "sweep", "--intgrid", "1=solid", "--out"])
+        .arg(dir.path().join("run"))
+        .arg(&map)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("warning: --intgrid names LDtk IntGrid values, and no .ldtk file is given, so it changes nothing"),
+        "{err}"
+    );
+}
