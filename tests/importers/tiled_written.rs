@@ -304,3 +304,20 @@ fn a_tileset_files_faults_are_named_at_its_own_line() {
         "{e}"
     );
 }
+
+#[test]
+fn corrupt_compressed_data_is_called_corrupt() {
+    // Issue 40: a zlib stream that is not deflate read as "holds 0 bytes … was the file cut
+    // short". The data: a zlib header (78 9C) and four 0xFF bytes, in base64.
+    let layer = r#"<layer id="1" name="ground" width="4" height="2"><data encoding="base64" compression="zlib">eJz/////</data></layer>"#;
+    let e = error(
+        "m.tmx",
+        &tmx("width=\"4\" height=\"2\"", TILESET, layer, START),
+    );
+    assert!(
+        e.starts_with(":4: ")
+            && e.contains("layer \"ground\": its zlib-compressed data is corrupt: it inflates to 0 bytes, then")
+            && e.contains("expected zlib data that inflates to 8 cells of 4 bytes"),
+        "{e}"
+    );
+}

@@ -46,22 +46,25 @@ pub(super) fn not_base64(d: &Data) -> ScanError {
 
 /// How many bytes `r` gives (inflated, if it is a decoder), reading at most one byte more than
 /// `expected` (so a small layer that inflates to gigabytes is found after `expected + 1`
-/// bytes), and the first cell (its index and gid, little-endian as the crate reads it) that
-/// `bad` refuses. A corrupt stream counts what it gave; the crate reports the corruption.
+/// bytes), the first cell (its index and gid, little-endian as the crate reads it) that `bad`
+/// refuses, and why the stream broke off, if it did (a corrupt compressed stream).
 pub(super) fn read_cells(
     r: impl Read,
     expected: u64,
     mut bad: impl FnMut(u32) -> bool,
-) -> (u64, Option<(u64, u32)>) {
+) -> (u64, Option<(u64, u32)>, Option<std::io::Error>) {
     let mut counted = 0u64;
     let mut first_bad = None;
     let mut cell = [0u8; 4];
     let mut buf = [0u8; 8192];
     let mut r = r.take(expected + 1);
-    while let Ok(n) = r.read(&mut buf) {
-        if n == 0 {
-            break;
-        }
+    loop {
+        let n = match r.read(&mut buf) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return (counted, first_bad, Some(e)),
+        };
         for &b in &buf[..n] {
             cell[(counted % 4) as usize] = b;
             counted += 1;
@@ -73,7 +76,7 @@ pub(super) fn read_cells(
             }
         }
     }
-    (counted, first_bad)
+    (counted, first_bad, None)
 }
 
 /// Standard base64 with padding, whitespace ignored; `None` if it is not base64.
@@ -132,9 +135,14 @@ mod tests {
     fn cells_are_read_little_endian_and_the_first_bad_one_is_named() {
         let bytes = [0u8, 0, 0, 0, 7, 0, 0, 0, 1, 1, 0, 0, 9, 0, 0, 0];
         // Cell 1 holds gid 7, cell 2 gid 257: the first over 5 is cell 1.
-        assert_eq!(read_cells(&bytes[..], 16, |g| g > 5), (16, Some((1, 7))));
-        assert_eq!(read_cells(&bytes[..], 16, |_| false), (16, None));
+        let (n, bad, broke) = read_cells(&bytes[..], 16, |g| g > 5);
+        assert_eq!((n, bad, broke.is_none()), (16, Some((1, 7)), true));
+        assert_eq!(read_cells(&bytes[..], 16, |_| false).1, None);
         // Read no further than one byte past what the layer holds.
         assert_eq!(read_cells(&bytes[..], 8, |_| false).0, 9);
+        // A zlib stream whose data is not deflate breaks off with an error.
+        let corrupt = [0x78u8, 0x9c, 0xff, 0xff, 0xff, 0xff];
+        let (_, _, broke) = read_cells(flate2::read::ZlibDecoder::new(&corrupt[..]), 16, |_| false);
+        assert!(broke.is_some());
     }
 }

@@ -1,7 +1,8 @@
 //! A cell whose tile id (gid) names no tile of the map's tilesets: the error names the layer,
 //! the cell as Tiled shows it (column and row from the map's top-left), the line of the map
 //! where the cell is written (a JSON map's: the cell's line in its layer's `data` array, else
-//! the line where the layer starts), the gid and the gids the map's tilesets hold.
+//! the line where the layer starts), the gid and the gids the map's tilesets hold. Also why a
+//! gid is below every tileset, as the scan checks before the crate reads the map.
 
 use quick_xml::events::Event;
 
@@ -193,5 +194,22 @@ fn cell_line(text: &str, path: &str, (x, y): (i64, i64)) -> Option<usize> {
             Event::Eof => return None,
             _ => {}
         }
+    }
+}
+
+/// Why gid `bits` (flip bits aside, as the crate masks them) is in none of the map's
+/// tilesets, whose lowest `firstgid` is `first`: the crate would drop such a tile unseen.
+pub(super) fn no_tileset(bits: u32, first: Option<u32>) -> Option<String> {
+    let gid = bits & 0x1FFF_FFFF;
+    let expected = "expected 0 (no tile) or a gid of the map's tilesets";
+    match first {
+        _ if gid == 0 => None,
+        None => Some(format!(
+            "gid {gid}, but the map has no tileset; {expected} (add the tileset the map was drawn with)"
+        )),
+        Some(f) if gid < f => Some(format!(
+            "gid {gid}, below the first tileset's firstgid {f}; {expected}, from {f}"
+        )),
+        Some(_) => None,
     }
 }

@@ -11,6 +11,7 @@ use quick_xml::events::{BytesStart, Event};
 
 use super::base64::{base64_decode, not_base64, read_cells};
 use super::elements::count_element;
+use super::gids::no_tileset;
 use crate::limits;
 
 /// What is wrong with the map, and the 1-based line where it is.
@@ -386,7 +387,7 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
             };
             let expected = d.cells.saturating_mul(4);
             let bad = |gid| no_tileset(gid, d.first_gid).is_some();
-            let (len, first_bad) = match compression {
+            let (len, first_bad, broke) = match compression {
                 None => read_cells(&bytes[..], expected, bad),
                 Some("zlib") => {
                     read_cells(flate2::read::ZlibDecoder::new(&bytes[..]), expected, bad)
@@ -395,6 +396,16 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
                 // zstd and unknown compressions: the crate refuses them.
                 Some(_) => return Ok(()),
             };
+            if let (Some(e), Some(c)) = (broke, compression) {
+                return Err(ScanError {
+                    column: None,
+                    line: d.line,
+                    message: format!(
+                        "{}: its {c}-compressed data is corrupt: it inflates to {len} bytes, then {e}; expected {c} data that inflates to {} cells of 4 bytes (was the file cut short or edited by hand?)",
+                        d.place, d.cells
+                    ),
+                });
+            }
             if len != expected {
                 let found = if len > expected {
                     format!("more than {expected} bytes ({} cells)", d.cells)
@@ -463,23 +474,6 @@ fn cell_error(d: &Data, line: usize, k: u64, what: &str, why: &str) -> ScanError
             d.origin.0 + (k % d.width.max(1)) as i64,
             d.origin.1 + (k / d.width.max(1)) as i64,
         ),
-    }
-}
-
-/// Why gid `bits` (flip bits aside, as the crate masks them) is in none of the map's
-/// tilesets, whose lowest `firstgid` is `first`: the crate would drop such a tile unseen.
-fn no_tileset(bits: u32, first: Option<u32>) -> Option<String> {
-    let gid = bits & 0x1FFF_FFFF;
-    let expected = "expected 0 (no tile) or a gid of the map's tilesets";
-    match first {
-        _ if gid == 0 => None,
-        None => Some(format!(
-            "gid {gid}, but the map has no tileset; {expected} (add the tileset the map was drawn with)"
-        )),
-        Some(f) if gid < f => Some(format!(
-            "gid {gid}, below the first tileset's firstgid {f}; {expected}, from {f}"
-        )),
-        Some(_) => None,
     }
 }
 
