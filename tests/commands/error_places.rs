@@ -220,6 +220,7 @@ fn a_file_given_for_a_directory_is_named_as_such() {
 }
 
 #[test]
+#[cfg(feature = "tiled")]
 fn an_option_that_changes_nothing_on_the_files_given_says_so() {
     // Issue 40: `--intgrid` on a Tiled map ran without a word; `--level` on one warned.
     let map = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/maps/showcase.tmx");
