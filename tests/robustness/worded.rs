@@ -227,3 +227,46 @@ fn a_long_name_is_refused_and_quoted_short() {
     assert_error(&out, "scen.toml:8:8: scenario name");
     assert!(stderr(&out).contains("(300 bytes)"), "{}", stderr(&out));
 }
+
+#[test]
+fn a_number_array_of_the_wrong_length_is_refused_at_its_value() {
+    // Issue 40: `spawn = [1.5, 1.0, 2.0]` ran with the third number dropped (serde reads the
+    // first two of a longer array); a platform's five-number rect likewise.
+    let dir = tempfile::tempdir().unwrap();
+    let level = |scenario_line: &str, platform: &str| {
+        format!("name = \"e\"\nmap = \"\"\"\n......\n######\n\"\"\"\n{platform}\n[[scenario]]\nname = \"w\"\n{scenario_line}\nduration = 1.0\n")
+    };
+    for (name, text, at, found) in [
+        (
+            "spawn3.toml",
+            level("spawn = [1.5, 1.0, 2.0]", ""),
+            "spawn3.toml:9:9: ",
+            "3 numbers; expected exactly 2",
+        ),
+        (
+            "spawn1.toml",
+            level("spawn = [1.5]", ""),
+            "spawn1.toml:9:9: ",
+            "1 number; expected exactly 2",
+        ),
+        (
+            "rect5.toml",
+            level(
+                "spawn = [1.5, 1.0]",
+                "[[platform]]\nrect = [0, 0, 1, 1, 9]\n",
+            ),
+            "rect5.toml:7:8: ",
+            "5 numbers; expected exactly 4",
+        ),
+    ] {
+        let p = write(dir.path(), name, text.as_bytes());
+        let out = cmd(&[
+            "run".as_ref(),
+            "--backend".as_ref(),
+            "sweep".as_ref(),
+            p.as_os_str(),
+        ]);
+        assert_error(&out, at);
+        assert!(stderr(&out).contains(found), "{name}: {}", stderr(&out));
+    }
+}

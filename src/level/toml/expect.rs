@@ -28,7 +28,9 @@ pub(super) struct RawExpect {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawReach {
+    #[serde(default, deserialize_with = "super::exact::opt_spanned")]
     x: Option<Spanned<[f64; 2]>>,
+    #[serde(default, deserialize_with = "super::exact::opt_spanned")]
     y: Option<Spanned<[f64; 2]>>,
     by: Option<Spanned<f64>>,
     by_frame: Option<Spanned<u32>>,

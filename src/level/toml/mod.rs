@@ -19,6 +19,7 @@ use super::Level;
 
 mod budget;
 mod error;
+mod exact;
 mod expect;
 #[cfg(test)]
 mod expect_tests;
@@ -52,6 +53,7 @@ use scenarios::{scenarios, RawScenario};
 struct RawLevel {
     name: Option<String>,
     description: Option<String>,
+    #[serde(default, deserialize_with = "exact::opt_spanned")]
     origin: Option<Spanned<[f64; 2]>>,
     #[serde(default)]
     legend: BTreeMap<Spanned<String>, Spanned<toml::Value>>,

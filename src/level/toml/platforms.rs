@@ -14,7 +14,9 @@ use super::numbers::{coord, period, ranged};
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawPlatform {
+    #[serde(deserialize_with = "super::exact::array")]
     rect: [f64; 4],
+    #[serde(default, deserialize_with = "super::exact::opt_list")]
     path: Option<Vec<[f64; 2]>>,
     speed: Option<f64>,
     sine: Option<RawSine>,
@@ -26,6 +28,7 @@ pub(super) struct RawPlatform {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawSine {
+    #[serde(deserialize_with = "super::exact::array")]
     amplitude: [f64; 2],
     period: f64,
 }

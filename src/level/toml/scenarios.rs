@@ -23,10 +23,13 @@ use super::numbers::{coord, finite, positive, ranged, vec2};
 #[serde(deny_unknown_fields)]
 pub(super) struct RawScenario {
     name: Spanned<String>,
+    #[serde(deserialize_with = "super::exact::spanned")]
     spawn: Spanned<[f64; 2]>,
     duration: Spanned<f64>,
     dt: Option<Spanned<f64>>,
+    #[serde(default, deserialize_with = "super::exact::opt_spanned")]
     size: Option<Spanned<[f64; 2]>>,
+    #[serde(default, deserialize_with = "super::exact::opt_spanned")]
     velocity: Option<Spanned<[f64; 2]>>,
     #[serde(default)]
     inputs: Vec<Spanned<RawInput>>,

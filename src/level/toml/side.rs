@@ -41,7 +41,7 @@ struct RawImport {
     intgrid: BTreeMap<String, Spanned<String>>,
     #[serde(default)]
     tile_properties: BTreeMap<String, Spanned<String>>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::exact::spanned_list")]
     spawns: Vec<Spanned<[f32; 2]>>,
     #[serde(default)]
     edges: Option<Spanned<String>>,
