@@ -24,6 +24,23 @@ pub(crate) fn explain(text: &str, e: &toml::de::Error) -> (usize, String) {
                 format!("found an empty file; expected TOML that sets {field}"),
             );
         }
+        // The span is the table that lacks the key: its header, or the file's top.
+        let line = text
+            .get(span.start..)
+            .and_then(|t| t.lines().next())
+            .unwrap_or_default()
+            .trim();
+        let table = if line.starts_with('[') {
+            format!("the table {line}")
+        } else if span.start == 0 {
+            "the file's top level".to_string()
+        } else {
+            "this table".to_string()
+        };
+        return (
+            span.start,
+            format!("{table} does not set {field}; expected it set: the key is required there"),
+        );
     }
     if message == "duplicate key" {
         let key = text.get(span.clone()).unwrap_or_default().trim();
@@ -99,6 +116,37 @@ mod tests {
         assert_eq!(
             (at, m.as_str()),
             (0, "found an empty file; expected TOML that sets `map`")
+        );
+    }
+
+    #[test]
+    fn a_missing_key_names_the_table_that_lacks_it() {
+        #[derive(serde::Deserialize, Debug)]
+        #[allow(dead_code)]
+        struct Scenario {
+            name: String,
+            spawn: [f64; 2],
+        }
+        #[derive(serde::Deserialize, Debug)]
+        #[allow(dead_code)]
+        struct Level {
+            map: String,
+            scenario: Vec<Scenario>,
+        }
+        let text = "name = \"e\"\n[[scenario]]\nname = \"w\"\nspawn = [1, 1]\n";
+        let (at, m) = explain(text, &toml::from_str::<Level>(text).unwrap_err());
+        assert_eq!(at, 0, "{m}");
+        assert!(
+            m.starts_with("the file's top level does not set `map`"),
+            "{m}"
+        );
+        let text = "map = \"#\"\n\n[[scenario]]\nname = \"w\"\n";
+        let (at, m) = explain(text, &toml::from_str::<Level>(text).unwrap_err());
+        // Line 3: the header of the table without `spawn`.
+        assert_eq!(crate::input::line_column(text, at), (3, 1), "{m}");
+        assert!(
+            m.starts_with("the table [[scenario]] does not set `spawn`"),
+            "{m}"
         );
     }
 
