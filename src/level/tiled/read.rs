@@ -113,16 +113,18 @@ pub fn import_tiled_map_with(
     };
     // A TMX map's numbers, named at their line and column before the crate reads them.
     if json.is_none() {
-        attrs::check_attributes(&text).map_err(|e| {
-            let column = e.column.map_or(String::new(), |c| format!(":{c}"));
-            failed(
-                TiledError::Map {
-                    file: format!("{file}:{}{column}", e.line),
-                    message: e.message,
-                },
-                &notes,
-            )
-        })?;
+        elements::check_attribute_counts(&text)
+            .and_then(|()| attrs::check_attributes(&text))
+            .map_err(|e| {
+                let column = e.column.map_or(String::new(), |c| format!(":{c}"));
+                failed(
+                    TiledError::Map {
+                        file: format!("{file}:{}{column}", e.line),
+                        message: e.message,
+                    },
+                    &notes,
+                )
+            })?;
     }
     let norm = normalize::normalize_xml(&text).map_err(|e| {
         failed(
@@ -364,7 +366,10 @@ fn crate_text(q: &Path) -> std::io::Result<String> {
                 .map_err(|e| bad(e.to_string()))?
                 .text
         }
-        _ => normalize::normalize_xml(&t).map_err(located)?.text,
+        _ => {
+            elements::check_attribute_counts(&t).map_err(located)?;
+            normalize::normalize_xml(&t).map_err(located)?.text
+        }
     };
     Ok(t)
 }

@@ -23,9 +23,11 @@ pub(super) struct ScanError {
     pub message: String,
 }
 
-/// An attribute's value, unescaped.
+/// An attribute's value, unescaped (the first, should the name be repeated). Read without
+/// quick-xml's duplicate check, which compares each attribute with every one before it.
 pub(super) fn attr(e: &BytesStart, name: &str) -> Option<String> {
     e.attributes()
+        .with_checks(false)
         .filter_map(|a| a.ok())
         .find(|a| a.key.as_ref() == name.as_bytes())
         .and_then(|a| a.unescape_value().ok().map(|v| v.into_owned()))

@@ -1,0 +1,69 @@
+//! Hostile Tiled XML (issue 40, the adversary's F2, F5, F10, F16, F6/F7, F9, F21, F22): each
+//! ends in one error that names the file, line and column, what was found and what was
+//! expected, or in a finished run. Every map, tileset and template is written by the test.
+
+#![cfg(feature = "tiled")]
+
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+use crate::common::platbench;
+
+use super::hostile::{assert_error, stderr};
+
+/// A 6 x 4 map of one ground row, its tileset `ts.tsx` beside it, and `objects` (XML lines in
+/// its object layer) with a spawn first. `map_attrs` are added to `<map>`.
+fn write_map(dir: &Path, name: &str, map_attrs: &str, objects: &str) -> PathBuf {
+    let ts = dir.join("ts.tsx");
+    std::fs::write(
+        &ts,
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<tileset version=\"1.10\" name=\"t\" tilewidth=\"16\" tileheight=\"16\" tilecount=\"1\" columns=\"1\">\n <image source=\"t.png\" width=\"16\" height=\"16\"/>\n</tileset>\n",
+    )
+    .unwrap();
+    let path = dir.join(name);
+    std::fs::write(
+        &path,
+        format!(
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"6\" height=\"4\" tilewidth=\"16\" tileheight=\"16\" infinite=\"0\" nextlayerid=\"4\" nextobjectid=\"5\"{map_attrs}>\n <tileset firstgid=\"1\" source=\"ts.tsx\"/>\n <layer id=\"1\" name=\"ground\" width=\"6\" height=\"4\">\n  <data encoding=\"csv\">\n0,0,0,0,0,0,\n0,0,0,0,0,0,\n0,0,0,0,0,0,\n1,1,1,1,1,1\n</data>\n </layer>\n <objectgroup id=\"3\" name=\"objects\">\n  <object id=\"1\" name=\"start\" class=\"spawn\" x=\"40\" y=\"48\"><point/></object>\n{objects}\n </objectgroup>\n</map>\n"
+        ),
+    )
+    .unwrap();
+    path
+}
+
+fn inspect(path: &Path) -> Output {
+    platbench().arg("inspect").arg(path).output().unwrap()
+}
+
+#[test]
+fn an_element_of_thousands_of_attributes_is_refused_at_the_first_past_the_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    // 20,000 attributes on <map> took 6.7 s (quadratic); 64 is MAX_XML_ATTRIBUTES in
+    // src/limits.rs, so attribute 65 is the first refused. The map's own 10 come first.
+    let many: String = (0..20_000).map(|i| format!(" a{i}=\"1\"")).collect();
+    let map = write_map(dir.path(), "many.tmx", &many, "");
+    let out = inspect(&map);
+    assert_error(&out, "many.tmx:2:");
+    assert_error(
+        &out,
+        "<map> has 20010 attributes (attribute 65 is \"a54\"); expected at most 64",
+    );
+    // The same in a tileset the map uses: the tileset is named, at its line.
+    let ts = dir.path().join("many.tsx");
+    std::fs::write(
+        &ts,
+        format!("<?xml version=\"1.0\"?>\n<tileset name=\"t\" tilewidth=\"16\" tileheight=\"16\" tilecount=\"1\" columns=\"1\"{many}>\n</tileset>\n"),
+    )
+    .unwrap();
+    let text = std::fs::read_to_string(write_map(dir.path(), "uses.tmx", "", ""))
+        .unwrap()
+        .replace("ts.tsx", "many.tsx");
+    std::fs::write(dir.path().join("uses.tmx"), text).unwrap();
+    let out = inspect(&dir.path().join("uses.tmx"));
+    assert_error(&out, "many.tsx:2:");
+    assert_error(&out, "<tileset> has 20005 attributes");
+    // At the limit the map is read.
+    let at: String = (0..54).map(|i| format!(" a{i}=\"1\"")).collect();
+    let out = inspect(&write_map(dir.path(), "at.tmx", &at, ""));
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}
