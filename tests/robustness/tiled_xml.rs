@@ -67,3 +67,32 @@ fn an_element_of_thousands_of_attributes_is_refused_at_the_first_past_the_limit(
     let out = inspect(&write_map(dir.path(), "at.tmx", &at, ""));
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
 }
+
+#[test]
+fn a_tileset_or_template_given_as_the_level_is_named_as_such() {
+    let dir = tempfile::tempdir().unwrap();
+    write_map(dir.path(), "m.tmx", "", "");
+    let tx = dir.path().join("t.tx");
+    std::fs::write(
+        &tx,
+        "<?xml version=\"1.0\"?>\n<template>\n <object width=\"16\" height=\"16\"/>\n</template>\n",
+    )
+    .unwrap();
+    for (file, root, what) in [
+        ("ts.tsx", "tileset", "a Tiled tileset"),
+        ("t.tx", "template", "a Tiled object template"),
+    ] {
+        let out = platbench()
+            .arg("run")
+            .arg(dir.path().join(file))
+            .output()
+            .unwrap();
+        assert_error(
+            &out,
+            &format!("{file}:2:1: the root element is <{root}> ({what}"),
+        );
+        assert_error(&out, "expected <map>, a Tiled map");
+        // The crate's "missing or not a number" gloss said something false here.
+        assert!(!stderr(&out).contains("not a number"), "{}", stderr(&out));
+    }
+}

@@ -111,6 +111,22 @@ pub fn import_tiled_map_with(
             .map_or_else(|| file.clone(), |l| format!("{file}:{l}")),
         None => format!("{file}:{line}"),
     };
+    // A tileset or template given as the level: the crate reads only maps.
+    if let Some((root, at)) = scan::root_element(&text).filter(|(r, _)| r != "map") {
+        let (line, column) = attrs::line_col(&text, at);
+        let what = match root.as_str() {
+            "tileset" => "a Tiled tileset, which maps use for their tiles",
+            "template" => "a Tiled object template, which maps' objects use",
+            _ => "not a Tiled map",
+        };
+        return Err(failed(
+            TiledError::Map {
+                file: format!("{file}:{line}:{column}"),
+                message: format!("the root element is <{root}> ({what}); expected <map>, a Tiled map (give the map that uses it)"),
+            },
+            &notes,
+        ));
+    }
     // A TMX map's numbers, named at their line and column before the crate reads them.
     if json.is_none() {
         elements::check_attribute_counts(&text)

@@ -106,6 +106,22 @@ pub(super) fn xml_error_line(text: &str) -> Option<usize> {
     }
 }
 
+/// The name of the document's root element and its byte offset (`None` if the XML is broken
+/// before it, which the crate reports).
+pub(super) fn root_element(text: &str) -> Option<(String, usize)> {
+    let mut reader = quick_xml::Reader::from_str(text);
+    loop {
+        let pos = reader.buffer_position();
+        match reader.read_event() {
+            Ok(Event::Start(e) | Event::Empty(e)) => {
+                return Some((String::from_utf8_lossy(e.name().as_ref()).into_owned(), pos))
+            }
+            Ok(Event::Eof) | Err(_) => return None,
+            Ok(_) => {}
+        }
+    }
+}
+
 /// Checks the map's size, every tile layer's data length and the points of every polygon and
 /// polyline ([`super::points`]), and returns the `source` of each
 /// external tileset. The XML's own errors are left to the `tiled` crate (and
