@@ -96,3 +96,62 @@ fn a_tileset_or_template_given_as_the_level_is_named_as_such() {
         assert!(!stderr(&out).contains("not a number"), "{}", stderr(&out));
     }
 }
+
+#[test]
+fn a_firstgid_of_0_is_refused_at_its_column_without_contradiction() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = write_map(dir.path(), "m.tmx", "", "");
+    let text = std::fs::read_to_string(&map)
+        .unwrap()
+        .replace("firstgid=\"1\"", "firstgid=\"0\"");
+    std::fs::write(&map, text).unwrap();
+    let out = inspect(&map);
+    // Line 3, `<tileset ` is 10 bytes after the space that indents it.
+    assert_error(&out, "m.tmx:3:11: <tileset>: attribute \"firstgid\" is \"0\"; expected a whole number from 1 to 4294967295");
+    // It once said "expected 0 (no tile) or … gids 0 to 0".
+    assert!(!stderr(&out).contains("0 to 0"), "{}", stderr(&out));
+}
+
+#[test]
+fn numbers_past_f32_are_named_with_their_attribute_and_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let range =
+        "expected a number such as 16, -2.5 or 1e3, finite within f32's range (-3.4e38 to 3.4e38)";
+    // 1e39 and 1e308 are finite as text but infinite as f32; inf is what the crate reads.
+    for (value, attr) in [("1e39", "x"), ("1e308", "y"), ("inf", "width")] {
+        let objects = format!(
+            "  <object id=\"2\" name=\"wall\" x=\"0\" y=\"0\" width=\"16\" height=\"16\"/>"
+        )
+        .replace(
+            &format!(" {attr}=\"{}\"", if attr == "width" { "16" } else { "0" }),
+            &format!(" {attr}=\"{value}\""),
+        );
+        let map = write_map(dir.path(), "m.tmx", "", &objects);
+        let out = inspect(&map);
+        assert_error(&out, &format!("m.tmx:14:"));
+        assert_error(
+            &out,
+            &format!("object 2 \"wall\": attribute \"{attr}\" is \"{value}\"; {range}"),
+        );
+    }
+    // A layer's offset of 1e39 once became inf and dropped every cell of the layer.
+    let map = write_map(dir.path(), "o.tmx", "", "");
+    let text = std::fs::read_to_string(&map)
+        .unwrap()
+        .replace("name=\"ground\"", "name=\"ground\" offsetx=\"1e39\"");
+    std::fs::write(&map, text).unwrap();
+    let out = inspect(&map);
+    // ` <layer id="1" name="ground" ` is 29 bytes before it.
+    assert_error(
+        &out,
+        &format!("o.tmx:4:30: layer \"ground\": attribute \"offsetx\" is \"1e39\"; {range}"),
+    );
+    // A float property (a platform's speed) the same.
+    let objects = "  <object id=\"2\" name=\"lift\" x=\"0\" y=\"0\" width=\"16\" height=\"16\">\n   <properties><property name=\"speed\" type=\"float\" value=\"1e39\"/></properties>\n  </object>";
+    let out = inspect(&write_map(dir.path(), "s.tmx", "", objects));
+    assert_error(&out, "s.tmx:15:");
+    assert_error(
+        &out,
+        &format!("property \"speed\": attribute \"value\" is \"1e39\"; {range}"),
+    );
+}
