@@ -155,3 +155,51 @@ fn numbers_past_f32_are_named_with_their_attribute_and_range() {
         &format!("property \"speed\": attribute \"value\" is \"1e39\"; {range}"),
     );
 }
+
+#[test]
+fn malformed_xml_entities_and_cut_files_are_named_at_their_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, text: &str| {
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    let full = std::fs::read_to_string(write_map(dir.path(), "m.tmx", "", "")).unwrap();
+    // An entity no DTD-less XML defines, and a character reference of no character: the
+    // crate said "Unrecognized escape symbol" and "Null character entity" with no place.
+    for (entity, name) in [("&bogus;", "e.tmx"), ("&#0;", "z.tmx")] {
+        let p = write(
+            name,
+            &full.replace("name=\"start\"", &format!("name=\"s{entity}\"")),
+        );
+        let out = inspect(&p);
+        // `  <object id="1" name="s` is 24 bytes before the `&` on line 13.
+        assert_error(
+            &out,
+            &format!("{name}:13:25: <object>: attribute \"name\" holds {entity:?}; expected &amp;"),
+        );
+    }
+    // A map cut short, inside an element and after one: the crate said "Document ended before
+    // we expected." or gave its reader's byte position.
+    let cut = &full[..full.find("<objectgroup").unwrap() + 20];
+    let out = inspect(&write("cut.tmx", cut));
+    assert_error(
+        &out,
+        "cut.tmx:12:2: the file ends inside the element that starts here",
+    );
+    let out = inspect(&write("open.tmx", &full.replace("</map>\n", "")));
+    assert_error(&out, "open.tmx:16:1: the file ends before <map> (opened on line 2) is closed; expected </map> (was the file cut short?)");
+    // A tileset cut short is named, not the map that uses it.
+    write(
+        "ts.tsx",
+        "<?xml version=\"1.0\"?>\n<tileset name=\"t\" tilewid",
+    );
+    let out = inspect(&dir.path().join("m.tmx"));
+    assert_error(&out, "ts.tsx:2:1:");
+    assert_error(&out, "the file ends inside");
+    // A property type Tiled does not write: the crate said "Unknown property value type".
+    let objects = "  <object id=\"2\" name=\"o\" x=\"0\" y=\"0\" width=\"16\" height=\"16\">\n   <properties><property name=\"p\" type=\"bogus\" value=\"1\"/></properties>\n  </object>";
+    let out = inspect(&write_map(dir.path(), "p.tmx", "", objects));
+    assert_error(&out, "p.tmx:15:");
+    assert_error(&out, "property \"p\": attribute \"type\" is \"bogus\"; expected one of string, int, float, bool, color, file, object, class");
+}

@@ -152,6 +152,31 @@ fn property_kind(e: &BytesStart) -> Option<Kind> {
     }
 }
 
+/// The value types Tiled writes in a `<property>`'s `type`; the crate refuses any other
+/// ("Unknown property value type 'bogus'", with no line).
+const PROPERTY_TYPES: [&str; 8] = [
+    "string", "int", "float", "bool", "color", "file", "object", "class",
+];
+
+/// Refuses a `<property>` whose `type` is none of [`PROPERTY_TYPES`], at its column.
+fn check_property_type(text: &str, pos: usize, e: &BytesStart) -> Result<(), ScanError> {
+    match attr(e, "type") {
+        Some(t) if !PROPERTY_TYPES.contains(&t.as_str()) => {
+            let (line, column) = line_col(text, attr_offset(text, pos, e, "type"));
+            Err(ScanError {
+                line,
+                column: Some(column),
+                message: format!(
+                    "{}: attribute \"type\" is {t:?}; expected one of {}",
+                    element_name(e, b"property"),
+                    PROPERTY_TYPES.join(", ")
+                ),
+            })
+        }
+        _ => Ok(()),
+    }
+}
+
 /// How an element is named in an error: `<map>`, `layer "ground"`, `object 4 "start"`.
 fn element_name(e: &BytesStart, name: &[u8]) -> String {
     let tag = String::from_utf8_lossy(name);
@@ -215,6 +240,9 @@ pub(super) fn check_attributes(text: &str) -> Result<(), ScanError> {
         let (attrs, is_layer) = table(&name, parent);
         if is_layer {
             layer = attr(&e, "name").unwrap_or_default();
+        }
+        if name == b"property" {
+            check_property_type(text, pos, &e)?;
         }
         let property = (name == b"property")
             .then(|| property_kind(&e))

@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use super::{
-    attrs, elements, json, normalize, points, refs, scan, Importer, TiledError, TiledImport,
-    TiledWarning,
+    attrs, elements, json, normalize, points, refs, scan, wellformed, Importer, TiledError,
+    TiledImport, TiledWarning,
 };
 use crate::level::import::{ImportFailure, ImportOptions};
 use crate::level::toml::{options_beside, SideFailure};
@@ -129,7 +129,7 @@ pub fn import_tiled_map_with(
     }
     // A TMX map's numbers, named at their line and column before the crate reads them.
     if json.is_none() {
-        elements::check_attribute_counts(&text)
+        wellformed::check_xml(&text)
             .and_then(|()| attrs::check_attributes(&text))
             .map_err(|e| {
                 let column = e.column.map_or(String::new(), |c| format!(":{c}"));
@@ -219,6 +219,7 @@ pub fn import_tiled_map_with(
                 (n.text, n.notes)
             }
             ("tsx", Ok(t)) => {
+                wellformed::check_xml(&t).map_err(located)?;
                 elements::check_element_count(&t, "the tileset file").map_err(located)?;
                 attrs::check_attributes(&t).map_err(located)?;
                 let n = normalize::normalize_xml(&t).map_err(located)?;
@@ -226,6 +227,7 @@ pub fn import_tiled_map_with(
             }
             // A template (`.tx`): read as it is, its shapes counted first.
             (_, Ok(t)) => {
+                wellformed::check_xml(&t).map_err(located)?;
                 elements::check_element_count(&t, "the template file").map_err(located)?;
                 points::check_points(&t).map_err(located)?;
                 return Ok(std::io::Cursor::new(data));
@@ -383,7 +385,7 @@ fn crate_text(q: &Path) -> std::io::Result<String> {
                 .text
         }
         _ => {
-            elements::check_attribute_counts(&t).map_err(located)?;
+            wellformed::check_xml(&t).map_err(located)?;
             normalize::normalize_xml(&t).map_err(located)?.text
         }
     };
