@@ -203,3 +203,22 @@ fn malformed_xml_entities_and_cut_files_are_named_at_their_line_and_column() {
     assert_error(&out, "p.tmx:15:");
     assert_error(&out, "property \"p\": attribute \"type\" is \"bogus\"; expected one of string, int, float, bool, color, file, object, class");
 }
+
+#[test]
+fn a_platforms_path_error_is_at_the_platforms_line() {
+    let dir = tempfile::tempdir().unwrap();
+    // Object 2 on line 14 names a path, object 999, that is not in the map: once said with
+    // no line at all.
+    let objects = "  <object id=\"2\" name=\"lift\" x=\"0\" y=\"0\" width=\"16\" height=\"16\">\n   <properties><property name=\"path\" type=\"object\" value=\"999\"/><property name=\"speed\" type=\"float\" value=\"1\"/></properties>\n  </object>";
+    let out = platbench()
+        .arg("run")
+        .arg(write_map(dir.path(), "m.tmx", "", objects))
+        .args(["--backend", "sweep", "--out"])
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    assert_error(
+        &out,
+        "m.tmx:14: object 2 \"lift\": its path names object 999, which is not in any object layer",
+    );
+}

@@ -295,9 +295,10 @@ impl<'m> Importer<'m> {
         used_paths: &mut Vec<u32>,
     ) -> Result<Platform, TiledError> {
         let (tw, th) = (self.map.tile_width as f32, self.map.tile_height as f32);
-        let file = self.file.clone();
+        let (file, text, cell_at) = (self.file.clone(), self.text, self.cell_at);
+        // At the object's line, as [`Importer::obj_err`] places it.
         let obj_err = |o: &tiled::Object, message: String| TiledError::Object {
-            file: file.clone(),
+            file: object_line(text, o.id()).map_or(file.clone(), |l| cell_at(l, (-1, -1))),
             id: o.id(),
             name: o.name.clone(),
             message,

@@ -161,6 +161,7 @@ pub fn import_tiled_map_with(
     // A column is given where the text the scan reads is the file's own (a TMX map the
     // normalizer left as it was).
     let columns = json.is_none() && norm.text == text;
+    let norm_same = columns;
     let text = norm.text;
     let sources = scan::scan_map(&text).map_err(|e| {
         let file = match e.column.filter(|_| columns) {
@@ -179,14 +180,22 @@ pub fn import_tiled_map_with(
     // would follow until the stack overflows.
     let load = |p: &Path| crate_text(p).ok();
     refs::check_references(path, &text, &load).map_err(|e| {
-        // A reference in the map itself is shown at the map's line, or its JSON layer.
-        let in_map = e
-            .file
-            .strip_prefix(&format!("{file}:"))
-            .and_then(|l| l.parse::<usize>().ok());
+        // A reference in the map itself is shown at the map's line and column, or its JSON
+        // layer (whose twin's columns are not the file's).
+        let in_map = e.file.strip_prefix(&format!("{file}:")).and_then(|lc| {
+            let (l, c) = lc.split_once(':').unwrap_or((lc, ""));
+            Some((l.parse::<usize>().ok()?, c.to_string()))
+        });
+        let shown = match in_map {
+            Some((l, c)) if json.is_none() && norm_same && !c.is_empty() => {
+                format!("{}:{c}", at(l))
+            }
+            Some((l, _)) => at(l),
+            None => e.file,
+        };
         failed(
             TiledError::Map {
-                file: in_map.map_or(e.file, at),
+                file: shown,
                 message: e.message,
             },
             &notes,
