@@ -119,16 +119,15 @@ fn numbers_past_f32_are_named_with_their_attribute_and_range() {
         "expected a number such as 16, -2.5 or 1e3, finite within f32's range (-3.4e38 to 3.4e38)";
     // 1e39 and 1e308 are finite as text but infinite as f32; inf is what the crate reads.
     for (value, attr) in [("1e39", "x"), ("1e308", "y"), ("inf", "width")] {
-        let objects = format!(
+        let objects =
             "  <object id=\"2\" name=\"wall\" x=\"0\" y=\"0\" width=\"16\" height=\"16\"/>"
-        )
-        .replace(
-            &format!(" {attr}=\"{}\"", if attr == "width" { "16" } else { "0" }),
-            &format!(" {attr}=\"{value}\""),
-        );
+                .replace(
+                    &format!(" {attr}=\"{}\"", if attr == "width" { "16" } else { "0" }),
+                    &format!(" {attr}=\"{value}\""),
+                );
         let map = write_map(dir.path(), "m.tmx", "", &objects);
         let out = inspect(&map);
-        assert_error(&out, &format!("m.tmx:14:"));
+        assert_error(&out, "m.tmx:14:");
         assert_error(
             &out,
             &format!("object 2 \"wall\": attribute \"{attr}\" is \"{value}\"; {range}"),
