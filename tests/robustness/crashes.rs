@@ -119,7 +119,7 @@ fn tiled_recursion_is_an_error_naming_the_file_and_line() {
     for command in ["run", "inspect", "report", "sweep"] {
         // Guards the stack overflow (exit 134) in every command that reads a map: the loop
         // is named where it closes, self.tx line 3, with the chain it went round.
-        assert_error(&on_map(command, &d.join("self.tmx")), "self.tx:3: object template \"self.tx\" refers back to self.tx, which is already being read (self.tx -> self.tx)");
+        assert_error(&on_map(command, &d.join("self.tmx")), "self.tx:3:19: object template \"self.tx\" refers back to self.tx, which is already being read (self.tx -> self.tx)");
     }
     // Two templates that use each other.
     std::fs::write(d.join("a.tx"), template("b.tx")).unwrap();
@@ -128,7 +128,7 @@ fn tiled_recursion_is_an_error_naming_the_file_and_line() {
     // Guards the overflow through a second file: closed in b.tx, both files in the chain.
     assert_error(
         &on_map("run", &d.join("pair.tmx")),
-        "b.tx:3: object template \"a.tx\" refers back to a.tx, which is already being read (a.tx -> b.tx -> a.tx)",
+        "b.tx:3:19: object template \"a.tx\" refers back to a.tx, which is already being read (a.tx -> b.tx -> a.tx)",
     );
     // A tileset whose tile's collision object uses a template of that tileset's tile.
     std::fs::write(
@@ -149,7 +149,7 @@ fn tiled_recursion_is_an_error_naming_the_file_and_line() {
     // Guards the overflow through a tileset: the template's reference back to it, at its line.
     assert_error(
         &on_map("run", &d.join("ts.tmx")),
-        "t.tx:3: tileset \"t.tsx\" refers back to t.tsx, which is already being read (t.tsx -> t.tx -> t.tsx)",
+        "t.tx:3:24: tileset \"t.tsx\" refers back to t.tsx, which is already being read (t.tsx -> t.tx -> t.tsx)",
     );
     // Group layers nested 100,000 deep (1.7 MB).
     let n = 100_000;

@@ -12,4 +12,5 @@ mod properties;
 mod proportional;
 mod streamed;
 mod streamed_runs;
+mod tiled_xml;
 mod worded;

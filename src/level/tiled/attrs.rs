@@ -10,6 +10,8 @@ use super::scan::{attr, ScanError};
 #[derive(Clone, Copy)]
 enum Kind {
     U32,
+    /// A tileset's `firstgid`: gid 0 is the empty cell, so a tileset's tiles start at 1.
+    FirstGid,
     I32,
     F32,
     Bool,
@@ -20,8 +22,10 @@ impl Kind {
     fn accepts(self, v: &str) -> bool {
         match self {
             Kind::U32 => v.parse::<u32>().is_ok(),
+            Kind::FirstGid => v.parse::<u32>().is_ok_and(|g| g > 0),
             Kind::I32 => v.parse::<i32>().is_ok(),
-            Kind::F32 => v.parse::<f32>().is_ok(),
+            // The crate reads "1e39" and "inf" as infinity, which no place or size can be.
+            Kind::F32 => v.parse::<f32>().is_ok_and(f32::is_finite),
             Kind::Bool => v.parse::<bool>().is_ok(),
             Kind::Color => v.parse::<tiled::Color>().is_ok(),
         }
@@ -30,8 +34,9 @@ impl Kind {
     fn expected(self) -> &'static str {
         match self {
             Kind::U32 => "a whole number from 0 to 4294967295",
+            Kind::FirstGid => "a whole number from 1 to 4294967295 (gid 0 is the empty cell; Tiled starts a map's first tileset at 1)",
             Kind::I32 => "a whole number from -2147483648 to 2147483647",
-            Kind::F32 => "a number such as 16, -2.5 or 1e3",
+            Kind::F32 => "a number such as 16, -2.5 or 1e3, finite within f32's range (-3.4e38 to 3.4e38)",
             Kind::Bool => "true or false",
             Kind::Color => "a colour such as #ff8800 or #80ff8800",
         }
@@ -73,7 +78,7 @@ fn table(name: &[u8], parent: &[u8]) -> (&'static [(&'static str, Kind, bool)], 
         ),
         (b"tileset", _) => (
             &[
-                ("firstgid", U32, true),
+                ("firstgid", FirstGid, true),
                 ("tilewidth", U32, true),
                 ("tileheight", U32, true),
                 ("tilecount", U32, false),
@@ -147,6 +152,31 @@ fn property_kind(e: &BytesStart) -> Option<Kind> {
     }
 }
 
+/// The value types Tiled writes in a `<property>`'s `type`; the crate refuses any other
+/// ("Unknown property value type 'bogus'", with no line).
+const PROPERTY_TYPES: [&str; 8] = [
+    "string", "int", "float", "bool", "color", "file", "object", "class",
+];
+
+/// Refuses a `<property>` whose `type` is none of [`PROPERTY_TYPES`], at its column.
+fn check_property_type(text: &str, pos: usize, e: &BytesStart) -> Result<(), ScanError> {
+    match attr(e, "type") {
+        Some(t) if !PROPERTY_TYPES.contains(&t.as_str()) => {
+            let (line, column) = line_col(text, attr_offset(text, pos, e, "type"));
+            Err(ScanError {
+                line,
+                column: Some(column),
+                message: format!(
+                    "{}: attribute \"type\" is {t:?}; expected one of {}",
+                    element_name(e, b"property"),
+                    PROPERTY_TYPES.join(", ")
+                ),
+            })
+        }
+        _ => Ok(()),
+    }
+}
+
 /// How an element is named in an error: `<map>`, `layer "ground"`, `object 4 "start"`.
 fn element_name(e: &BytesStart, name: &[u8]) -> String {
     let tag = String::from_utf8_lossy(name);
@@ -210,6 +240,9 @@ pub(super) fn check_attributes(text: &str) -> Result<(), ScanError> {
         let (attrs, is_layer) = table(&name, parent);
         if is_layer {
             layer = attr(&e, "name").unwrap_or_default();
+        }
+        if name == b"property" {
+            check_property_type(text, pos, &e)?;
         }
         let property = (name == b"property")
             .then(|| property_kind(&e))
@@ -275,7 +308,7 @@ fn check_points(text: &str, pos: usize, e: &BytesStart) -> Result<(), ScanError>
         line,
         column: Some(column),
         message: format!(
-            "<{}>: attribute \"points\" has point {} {point:?}; expected x,y pairs of numbers one space apart, such as \"0,0 16,0 16,16\"",
+            "<{}>: attribute \"points\" has point {} {point:?}; expected x,y pairs of finite numbers (within f32's range, -3.4e38 to 3.4e38) one space apart, such as \"0,0 16,0 16,16\"",
             String::from_utf8_lossy(e.name().as_ref()),
             k + 1
         ),

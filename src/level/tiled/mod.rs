@@ -42,6 +42,7 @@ mod roles;
 mod scan;
 mod shapes;
 mod tiles;
+mod wellformed;
 
 pub use error::TiledError;
 pub use read::import_tiled_map_with;

@@ -56,6 +56,36 @@ impl<'m> Importer<'m> {
         }
     }
 
+    /// An object whose place or size the crate read as infinite (a number past f32's range,
+    /// such as 1e39, in a JSON map; a TMX map's is refused at its column first): names the
+    /// first such value, or the sum that overflows.
+    pub(super) fn overflow_err(&self, o: &tiled::Object, sum: Vec2) -> TiledError {
+        let size = match o.shape {
+            ObjectShape::Rect { width, height } | ObjectShape::Ellipse { width, height } => {
+                vec![("width", width), ("height", height)]
+            }
+            _ => vec![],
+        };
+        let bad = [("x", o.x), ("y", o.y)]
+            .into_iter()
+            .chain(size)
+            .find(|(_, v)| !v.is_finite());
+        let message = match bad {
+            Some((key, v)) => format!(
+                "its {key} is read as {v}, beyond f32's range; expected a finite number from -3.4e38 to 3.4e38 (pixels)"
+            ),
+            None => format!(
+                "its place, x = {} and y = {} plus its size, overflows f32 to ({}, {}) tiles; expected an object within {} tiles of the map's corner",
+                o.x,
+                o.y,
+                sum.x,
+                sum.y,
+                crate::limits::MAX_COORD
+            ),
+        };
+        self.obj_err(o, message)
+    }
+
     /// Spawn points and platforms from the object layers; everything else is warned about.
     /// Returns the spawns and where each came from.
     pub(super) fn objects(
@@ -230,7 +260,7 @@ impl<'m> Importer<'m> {
             }
         };
         if !(feet.x.is_finite() && feet.y.is_finite()) {
-            return Err(self.obj_err(o, "its position is not finite".into()));
+            return Err(self.overflow_err(o, feet));
         }
         let (w, h) = (level.width as f32, level.height as f32);
         if !(feet.x >= 0.0 && feet.x <= w && feet.y >= 0.0 && feet.y <= h) {
@@ -265,9 +295,10 @@ impl<'m> Importer<'m> {
         used_paths: &mut Vec<u32>,
     ) -> Result<Platform, TiledError> {
         let (tw, th) = (self.map.tile_width as f32, self.map.tile_height as f32);
-        let file = self.file.clone();
+        let (file, text, cell_at) = (self.file.clone(), self.text, self.cell_at);
+        // At the object's line, as [`Importer::obj_err`] places it.
         let obj_err = |o: &tiled::Object, message: String| TiledError::Object {
-            file: file.clone(),
+            file: object_line(text, o.id()).map_or(file.clone(), |l| cell_at(l, (-1, -1))),
             id: o.id(),
             name: o.name.clone(),
             message,

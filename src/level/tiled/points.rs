@@ -36,6 +36,7 @@ impl Shapes {
             shape @ (b"polygon" | b"polyline") => {
                 let points = e
                     .attributes()
+                    .with_checks(false)
                     .filter_map(|a| a.ok())
                     .find(|a| a.key.as_ref() == b"points")
                     .map_or(0, |a| {

@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use super::{
-    attrs, elements, json, normalize, points, refs, scan, Importer, TiledError, TiledImport,
-    TiledWarning,
+    attrs, elements, json, normalize, points, refs, scan, wellformed, Importer, TiledError,
+    TiledImport, TiledWarning,
 };
 use crate::level::import::{ImportFailure, ImportOptions};
 use crate::level::toml::{options_beside, SideFailure};
@@ -111,18 +111,36 @@ pub fn import_tiled_map_with(
             .map_or_else(|| file.clone(), |l| format!("{file}:{l}")),
         None => format!("{file}:{line}"),
     };
+    // A tileset or template given as the level: the crate reads only maps.
+    if let Some((root, at)) = scan::root_element(&text).filter(|(r, _)| r != "map") {
+        let (line, column) = attrs::line_col(&text, at);
+        let what = match root.as_str() {
+            "tileset" => "a Tiled tileset, which maps use for their tiles",
+            "template" => "a Tiled object template, which maps' objects use",
+            _ => "not a Tiled map",
+        };
+        return Err(failed(
+            TiledError::Map {
+                file: format!("{file}:{line}:{column}"),
+                message: format!("the root element is <{root}> ({what}); expected <map>, a Tiled map (give the map that uses it)"),
+            },
+            &notes,
+        ));
+    }
     // A TMX map's numbers, named at their line and column before the crate reads them.
     if json.is_none() {
-        attrs::check_attributes(&text).map_err(|e| {
-            let column = e.column.map_or(String::new(), |c| format!(":{c}"));
-            failed(
-                TiledError::Map {
-                    file: format!("{file}:{}{column}", e.line),
-                    message: e.message,
-                },
-                &notes,
-            )
-        })?;
+        wellformed::check_xml(&text)
+            .and_then(|()| attrs::check_attributes(&text))
+            .map_err(|e| {
+                let column = e.column.map_or(String::new(), |c| format!(":{c}"));
+                failed(
+                    TiledError::Map {
+                        file: format!("{file}:{}{column}", e.line),
+                        message: e.message,
+                    },
+                    &notes,
+                )
+            })?;
     }
     let norm = normalize::normalize_xml(&text).map_err(|e| {
         failed(
@@ -143,6 +161,7 @@ pub fn import_tiled_map_with(
     // A column is given where the text the scan reads is the file's own (a TMX map the
     // normalizer left as it was).
     let columns = json.is_none() && norm.text == text;
+    let norm_same = columns;
     let text = norm.text;
     let sources = scan::scan_map(&text).map_err(|e| {
         let file = match e.column.filter(|_| columns) {
@@ -161,14 +180,22 @@ pub fn import_tiled_map_with(
     // would follow until the stack overflows.
     let load = |p: &Path| crate_text(p).ok();
     refs::check_references(path, &text, &load).map_err(|e| {
-        // A reference in the map itself is shown at the map's line, or its JSON layer.
-        let in_map = e
-            .file
-            .strip_prefix(&format!("{file}:"))
-            .and_then(|l| l.parse::<usize>().ok());
+        // A reference in the map itself is shown at the map's line and column, or its JSON
+        // layer (whose twin's columns are not the file's).
+        let in_map = e.file.strip_prefix(&format!("{file}:")).and_then(|lc| {
+            let (l, c) = lc.split_once(':').unwrap_or((lc, ""));
+            Some((l.parse::<usize>().ok()?, c.to_string()))
+        });
+        let shown = match in_map {
+            Some((l, c)) if json.is_none() && norm_same && !c.is_empty() => {
+                format!("{}:{c}", at(l))
+            }
+            Some((l, _)) => at(l),
+            None => e.file,
+        };
         failed(
             TiledError::Map {
-                file: in_map.map_or(e.file, at),
+                file: shown,
                 message: e.message,
             },
             &notes,
@@ -201,6 +228,7 @@ pub fn import_tiled_map_with(
                 (n.text, n.notes)
             }
             ("tsx", Ok(t)) => {
+                wellformed::check_xml(&t).map_err(located)?;
                 elements::check_element_count(&t, "the tileset file").map_err(located)?;
                 attrs::check_attributes(&t).map_err(located)?;
                 let n = normalize::normalize_xml(&t).map_err(located)?;
@@ -208,6 +236,7 @@ pub fn import_tiled_map_with(
             }
             // A template (`.tx`): read as it is, its shapes counted first.
             (_, Ok(t)) => {
+                wellformed::check_xml(&t).map_err(located)?;
                 elements::check_element_count(&t, "the template file").map_err(located)?;
                 points::check_points(&t).map_err(located)?;
                 return Ok(std::io::Cursor::new(data));
@@ -364,7 +393,10 @@ fn crate_text(q: &Path) -> std::io::Result<String> {
                 .map_err(|e| bad(e.to_string()))?
                 .text
         }
-        _ => normalize::normalize_xml(&t).map_err(located)?.text,
+        _ => {
+            wellformed::check_xml(&t).map_err(located)?;
+            normalize::normalize_xml(&t).map_err(located)?.text
+        }
     };
     Ok(t)
 }

@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 
 use quick_xml::events::Event;
 
+use super::attrs::{attr_offset, line_col};
 use super::scan::{attr, line_of, ScanError};
 use crate::limits;
 
@@ -25,6 +26,8 @@ pub(super) struct RefError {
 /// A file another file refers to, and the line of the reference.
 struct Reference {
     line: usize,
+    /// The 1-based column of the `template` or `source` attribute.
+    column: usize,
     /// `object template` or `tileset`.
     what: &'static str,
     target: String,
@@ -63,7 +66,7 @@ impl Walk<'_> {
         let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase());
         let json = matches!(ext.as_deref(), Some("tj" | "tsj" | "json"));
         if self.chain.len() < 2 || !json {
-            return format!("{shown}:{}", r.line);
+            return format!("{shown}:{}:{}", r.line, r.column);
         }
         let key = if r.what == "tileset" {
             "source"
@@ -113,7 +116,7 @@ impl Walk<'_> {
                 return Err(RefError {
                     file: at,
                     message: format!(
-                        "{} {:?} is the {}th file in a chain of references from the map; expected at most {} (a template or tileset that refers to the next, and so on)",
+                        "{} {:?} is file {} in a chain of references from the map; expected at most {} (a template or tileset that refers to the next, and so on)",
                         r.what,
                         r.target,
                         self.chain.len() + 1,
@@ -212,13 +215,15 @@ fn scan_file(text: &str) -> Result<Vec<Reference>, ScanError> {
             }
         }
         let reference = match tag.as_ref() {
-            b"object" => attr(&e, "template").map(|t| ("object template", t)),
-            b"tileset" => attr(&e, "source").map(|s| ("tileset", s)),
+            b"object" => attr(&e, "template").map(|t| ("object template", "template", t)),
+            b"tileset" => attr(&e, "source").map(|s| ("tileset", "source", s)),
             _ => None,
         };
-        if let Some((what, target)) = reference {
+        if let Some((what, key, target)) = reference {
+            let (line, column) = line_col(text, attr_offset(text, pos, &e, key));
             refs.push(Reference {
-                line: line(),
+                line,
+                column,
                 what,
                 target,
             });
@@ -246,13 +251,14 @@ mod tests {
         // Itself.
         std::fs::write(d.join("a.tx"), TX.replace("{T}", "a.tx")).unwrap();
         let e = check(d, map).unwrap_err();
-        assert!(e.file.ends_with("a.tx:3"), "{e:?}");
+        // ` <object ` is 9 bytes before `template`.
+        assert!(e.file.ends_with("a.tx:3:10"), "{e:?}");
         assert!(e.message.contains("a.tx -> a.tx"), "{e:?}");
         // Through another template, spelled differently.
         std::fs::write(d.join("a.tx"), TX.replace("{T}", "b.tx")).unwrap();
         std::fs::write(d.join("b.tx"), TX.replace("{T}", "./a.tx")).unwrap();
         let e = check(d, map).unwrap_err();
-        assert!(e.file.ends_with("b.tx:3"), "{e:?}");
+        assert!(e.file.ends_with("b.tx:3:10"), "{e:?}");
         assert!(e.message.contains("a.tx -> b.tx -> a.tx"), "{e:?}");
         // A template used twice that refers to nothing: no cycle.
         std::fs::write(d.join("b.tx"), TX.replace(" template=\"{T}\"", "")).unwrap();

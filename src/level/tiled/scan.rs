@@ -24,9 +24,11 @@ pub(super) struct ScanError {
     pub message: String,
 }
 
-/// An attribute's value, unescaped.
+/// An attribute's value, unescaped (the first, should the name be repeated). Read without
+/// quick-xml's duplicate check, which compares each attribute with every one before it.
 pub(super) fn attr(e: &BytesStart, name: &str) -> Option<String> {
     e.attributes()
+        .with_checks(false)
         .filter_map(|a| a.ok())
         .find(|a| a.key.as_ref() == name.as_bytes())
         .and_then(|a| a.unescape_value().ok().map(|v| v.into_owned()))
@@ -101,6 +103,22 @@ pub(super) fn xml_error_line(text: &str) -> Option<usize> {
             Ok(Event::Eof) => return None,
             Ok(_) => {}
             Err(_) => return Some(line_of(text, reader.buffer_position())),
+        }
+    }
+}
+
+/// The name of the document's root element and its byte offset (`None` if the XML is broken
+/// before it, which the crate reports).
+pub(super) fn root_element(text: &str) -> Option<(String, usize)> {
+    let mut reader = quick_xml::Reader::from_str(text);
+    loop {
+        let pos = reader.buffer_position();
+        match reader.read_event() {
+            Ok(Event::Start(e) | Event::Empty(e)) => {
+                return Some((String::from_utf8_lossy(e.name().as_ref()).into_owned(), pos))
+            }
+            Ok(Event::Eof) | Err(_) => return None,
+            Ok(_) => {}
         }
     }
 }

@@ -80,9 +80,7 @@ impl<'m> Importer<'m> {
                         let a = self.to_level(x, y + height);
                         let b = self.to_level(x + width, y);
                         if !(a.is_finite() && b.is_finite()) {
-                            return Err(
-                                self.obj_err(o, "its position or size is not finite".into())
-                            );
+                            return Err(self.overflow_err(o, if a.is_finite() { b } else { a }));
                         }
                         self.box_cells(a, b, tile, &mut outside, &mut snapped)
                     }
