@@ -42,6 +42,11 @@ impl fmt::Display for LevelFormat {
 /// How much of a file is looked at: LDtk writes `__header__` and `jsonVersion` first.
 const PEEK_BYTES: u64 = 64 * 1024;
 
+/// What a JSON map or project that starts with a byte order mark is told: serde_json reads
+/// none ("expected value" at 1:1), and Tiled and LDtk write none.
+#[cfg(any(feature = "tiled", feature = "ldtk"))]
+pub(crate) const JSON_BOM: &str = "found a byte order mark (U+FEFF) before the JSON; expected the JSON to start at `{` (Tiled and LDtk write none: save the file as UTF-8 without a BOM)";
+
 /// Whether text is JSON rather than XML or TOML: its first character, after a byte-order mark
 /// and white space, opens an object.
 pub(crate) fn looks_like_json(text: &str) -> bool {

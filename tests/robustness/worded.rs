@@ -270,3 +270,17 @@ fn a_number_array_of_the_wrong_length_is_refused_at_its_value() {
         assert!(stderr(&out).contains(found), "{name}: {}", stderr(&out));
     }
 }
+
+#[test]
+fn a_json_map_or_project_with_a_byte_order_mark_is_told_so() {
+    // Issue 40: serde_json said "expected value" at 1:1 and nothing of the BOM.
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["m.tmj", "p.ldtk"] {
+        let p = write(dir.path(), name, "\u{feff}{\"type\": \"map\"}".as_bytes());
+        let out = cmd(&["inspect".as_ref(), p.as_os_str()]);
+        assert_error(
+            &out,
+            &format!("{name}:1:1: found a byte order mark (U+FEFF) before the JSON"),
+        );
+    }
+}

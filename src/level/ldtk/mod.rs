@@ -97,6 +97,14 @@ fn parse_json<T: for<'de> Deserialize<'de>>(
             },
         });
     }
+    if text.starts_with('\u{feff}') {
+        return Err(LdtkError::Json {
+            file: file.into(),
+            line: 1,
+            column: 1,
+            message: super::format::JSON_BOM.into(),
+        });
+    }
     serde_json::from_str(text).map_err(|e| json_error(&e, file, what))
 }
 

@@ -70,6 +70,11 @@ pub fn import_tiled_map_with(
         format_of_text(&raw, path),
         LevelFormat::TiledJson | LevelFormat::Ldtk
     ) {
+        if raw.starts_with('\u{feff}') {
+            let message = crate::level::format::JSON_BOM.to_string();
+            let file = format!("{file}:1:1");
+            return Err(failed(TiledError::Map { file, message }, &notes));
+        }
         let mut j = json::json_map_to_tmx(&raw).map_err(|e| {
             let (file, message) = match e.located() {
                 Some((line, column, m)) => (format!("{file}:{line}:{column}"), m),
