@@ -46,13 +46,13 @@ pub(super) fn not_base64(d: &Data) -> ScanError {
 
 /// How many bytes `r` gives (inflated, if it is a decoder), reading at most one byte more than
 /// `expected` (so a small layer that inflates to gigabytes is found after `expected + 1`
-/// bytes), the first cell (its index and gid, little-endian as the crate reads it) that `bad`
-/// refuses, and why the stream broke off, if it did (a corrupt compressed stream).
+/// bytes), the first cell (its index, and why, of gids read little-endian as the crate reads
+/// them) that `bad` refuses, and why the stream broke off, if it did (a corrupt compressed stream).
 pub(super) fn read_cells(
     r: impl Read,
     expected: u64,
-    mut bad: impl FnMut(u32) -> bool,
-) -> (u64, Option<(u64, u32)>, Option<std::io::Error>) {
+    mut bad: impl FnMut(u32) -> Option<String>,
+) -> (u64, Option<(u64, String)>, Option<std::io::Error>) {
     let mut counted = 0u64;
     let mut first_bad = None;
     let mut cell = [0u8; 4];
@@ -70,9 +70,7 @@ pub(super) fn read_cells(
             counted += 1;
             if counted.is_multiple_of(4) && first_bad.is_none() {
                 let gid = u32::from_le_bytes(cell);
-                if bad(gid) {
-                    first_bad = Some((counted / 4 - 1, gid));
-                }
+                first_bad = bad(gid).map(|why| (counted / 4 - 1, why));
             }
         }
     }
@@ -135,14 +133,18 @@ mod tests {
     fn cells_are_read_little_endian_and_the_first_bad_one_is_named() {
         let bytes = [0u8, 0, 0, 0, 7, 0, 0, 0, 1, 1, 0, 0, 9, 0, 0, 0];
         // Cell 1 holds gid 7, cell 2 gid 257: the first over 5 is cell 1.
-        let (n, bad, broke) = read_cells(&bytes[..], 16, |g| g > 5);
-        assert_eq!((n, bad, broke.is_none()), (16, Some((1, 7)), true));
-        assert_eq!(read_cells(&bytes[..], 16, |_| false).1, None);
+        let over_5 = |g: u32| (g > 5).then(|| format!("gid {g}"));
+        let (n, bad, broke) = read_cells(&bytes[..], 16, over_5);
+        assert_eq!(
+            (n, bad, broke.is_none()),
+            (16, Some((1, "gid 7".into())), true)
+        );
+        assert_eq!(read_cells(&bytes[..], 16, |_| None).1, None);
         // Read no further than one byte past what the layer holds.
-        assert_eq!(read_cells(&bytes[..], 8, |_| false).0, 9);
+        assert_eq!(read_cells(&bytes[..], 8, |_| None).0, 9);
         // A zlib stream whose data is not deflate breaks off with an error.
         let corrupt = [0x78u8, 0x9c, 0xff, 0xff, 0xff, 0xff];
-        let (_, _, broke) = read_cells(flate2::read::ZlibDecoder::new(&corrupt[..]), 16, |_| false);
+        let (_, _, broke) = read_cells(flate2::read::ZlibDecoder::new(&corrupt[..]), 16, |_| None);
         assert!(broke.is_some());
     }
 }

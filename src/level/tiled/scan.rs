@@ -404,7 +404,7 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
                 return Err(not_base64(d));
             };
             let expected = d.cells.saturating_mul(4);
-            let bad = |gid| no_tileset(gid, d.first_gid).is_some();
+            let bad = |gid| no_tileset(gid, d.first_gid);
             let (len, first_bad, broke) = match compression {
                 None => read_cells(&bytes[..], expected, bad),
                 Some("zlib") => {
@@ -432,8 +432,7 @@ fn check_data(d: &Data) -> Result<(), ScanError> {
                 };
                 return Err(err(found));
             }
-            if let Some((k, gid)) = first_bad {
-                let why = no_tileset(gid, d.first_gid).unwrap_or_default();
+            if let Some((k, why)) = first_bad {
                 let data = match compression {
                     Some(c) => format!("{c}-compressed base64 data"),
                     None => "base64 data".to_string(),
