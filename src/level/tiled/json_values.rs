@@ -7,7 +7,7 @@
 //! object's place and size, a layer's offset), and property values stay what they are.
 
 use super::error::JsonError;
-use super::json_budget::{Frame, Role};
+use super::json_budget::{Frame, Key, Role};
 use super::json_walk::{Pos, Walker};
 use crate::limits;
 
@@ -84,6 +84,24 @@ fn describe(c: u8, raw: &[u8]) -> String {
     }
 }
 
+/// What Tiled writes under a key that holds no number, as an error says it.
+const BOOL: &str = "true or false";
+const ARRAY: &str = "an array";
+const DATA: &str = "an array of tile ids or a base64 string";
+
+/// The key's name and what Tiled writes under it, for the keys whose wrong type the `tiled`
+/// crate would read as absent or describe as something else (issue 40, F11 and F12).
+fn kind(role: Role, key: Key) -> Option<(&'static str, &'static str)> {
+    match (role, key) {
+        (Role::Top, Key::Infinite) => Some(("infinite", BOOL)),
+        (Role::Top, Key::Tilesets) => Some(("tilesets", ARRAY)),
+        (Role::Top | Role::Layer, Key::Layers) => Some(("layers", ARRAY)),
+        (Role::Layer, Key::Objects) => Some(("objects", ARRAY)),
+        (Role::Layer | Role::Chunk, Key::Data) => Some(("data", DATA)),
+        _ => None,
+    }
+}
+
 /// What a tile layer's cell must be.
 const CELL_EXPECTED: &str = "expected a tile id, a whole number from 0 to 4294967295";
 
@@ -145,12 +163,27 @@ impl Walker<'_> {
             }
             return;
         }
-        let Some(key) = p.number else {
-            return;
-        };
         if p.bad.is_some() {
             return;
         }
+        if let Some((key, expected)) = p.key.and_then(|k| kind(p.role(), k)) {
+            let ok = match expected {
+                BOOL => matches!(raw, b"true" | b"false"),
+                ARRAY => c == b'[',
+                _ => c == b'[' || c == b'"',
+            };
+            if !ok {
+                let found = describe(c, raw);
+                p.bad = Some((
+                    at,
+                    format!("{key:?} is {found}; expected {expected}, as Tiled writes it"),
+                ));
+            }
+            return;
+        }
+        let Some(key) = p.number else {
+            return;
+        };
         let found = describe(c, raw);
         if !matches!(c, b'-' | b'0'..=b'9') {
             p.bad = Some((
