@@ -260,3 +260,64 @@ fn what_tiled_writes_in_properties_and_older_tilesets_is_not_read_as_the_map_s_s
         assert_eq!(out.status.code(), Some(0), "{name}: {err}");
     }
 }
+
+#[test]
+fn a_value_of_a_type_tiled_never_writes_is_refused_at_its_place() {
+    // Each was read by the `tiled` crate as absent, as another value or with its bare words
+    // (issue 40: `"infinite": "false"`, `layers` null or an object, a point's flag a string,
+    // a bool property "yes" ran with exit 0 or said "Invalid property value" with no place).
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let base = map(&[]);
+    let spawn = r#"{"id": 1, "name": "spawn", "point": true, "x": 8.5, "y": 16}"#;
+    let tileset = r#"{"firstgid": 1, "name": "t","#;
+    let wide = r#""type": "string", "value": "wide""#;
+    #[rustfmt::skip]
+    let cases: [(&str, &str, usize, &str, &str); 11] = [
+        (r#""infinite": false"#, r#""infinite": "false""#, 2, r#""false""#,
+         r#"the map: "infinite" is the string "false"; expected true or false, as Tiled writes it"#),
+        (r#""layers": ["#, r#""layers": null, "l": ["#, 10, "null",
+         r#"the map: "layers" is null; expected an array, as Tiled writes it"#),
+        (r#""tilesets": ["#, r#""tilesets": "t.tsx", "t": ["#, 8, r#""t.tsx""#,
+         r#"the map: "tilesets" is the string "t.tsx"; expected an array, as Tiled writes it"#),
+        (r#""objects": ["#, r#""objects": {}, "o": ["#, 15, "{}",
+         r#"layer "spawns": "objects" is an object; expected an array, as Tiled writes it"#),
+        (r#""data": ["#, r#""data": {"a": 1}, "d": ["#, 13, "{",
+         r#"layer "floor": "data" is an object; expected an array of tile ids or a base64 string, as Tiled writes it"#),
+        (r#""point": true"#, r#""point": "true""#, 15, r#""true""#,
+         r#"object 1 "spawn": "point" is the string "true"; expected true or false, as Tiled writes it"#),
+        (wide, r#""type": "bool", "value": "yes""#, 3, r#""yes""#,
+         r#"the map: property "width" of type "bool": "value" is the string "yes"; expected true or false"#),
+        (wide, r#""type": "int", "value": 1.5"#, 3, "1.5",
+         r#"the map: property "width" of type "int": "value" is 1.5; expected a whole number from -2147483648 to 2147483647"#),
+        // A member written twice: serde_json keeps the second, Tiled's reader may not.
+        (r#""height": 2,"#, r#""height": 2, "height": 3,"#, 5, r#""height": 3"#,
+         r#"the map: "height" is written a second time here; expected each member once, as Tiled writes it (JSON readers differ in which of the two they keep)"#),
+        (r#""type": "tilelayer""#, r#""type": "tiles""#, 11, r#""tiles""#,
+         r#"layer "floor": "type" is the string "tiles"; expected tilelayer, objectgroup, imagelayer or group, as Tiled writes it"#),
+        (tileset, r#"{"name": "t","#, 9, "{",
+         r#"tileset "t" has no "firstgid"; expected the gid of its first tile, a whole number from 1 to 4294967295, as Tiled writes it in every tileset of a map or template"#),
+    ];
+    assert!(base.contains(spawn));
+    for (from, to, line, needle, want) in cases {
+        assert!(base.contains(from), "{from}");
+        let text = base.replacen(from, to, 1);
+        let err = error(d, "inspect", "m.tmj", &text);
+        assert_at(&err, &at("m.tmj", &text, line, needle), want);
+    }
+    // What Tiled writes there is read: a bool property that is true, an older map's
+    // properties written as an object ({"name": value}, Tiled before 1.2).
+    for (from, to) in [
+        (wide, r#""type": "bool", "value": true"#),
+        (
+            r#"[{"name": "width", "type": "string", "value": "wide"}]"#,
+            r#"{"description": "old"}"#,
+        ),
+    ] {
+        let p = d.join("fine.tmj");
+        std::fs::write(&p, base.replacen(from, to, 1)).unwrap();
+        let out = platbench().arg("inspect").arg(&p).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{to}: {err}");
+    }
+}

@@ -116,6 +116,13 @@ fn toml_errors_name_the_key_and_the_character_found() {
         &format!("{}:3:3: found the control character U+0000", nul.display()),
     );
     assert!(stderr(&out).contains("expected text"), "{}", stderr(&out));
+    // Issue 40: a file cut inside its map's `"""` said only "invalid multi-line basic
+    // string, expected `\"`" at the file's end; now at the quotes that open it, line 2, col 7.
+    let cut = write(d, "cut.toml", b"name = \"ok\"\nmap = \"\"\"\n..\n#");
+    assert_error(
+        &cmd(&["run".as_ref(), cut.as_os_str()]),
+        &format!("{}:2:7: the multi-line string opened here (\"\"\") is never closed: the file ends inside it", cut.display()),
+    );
 }
 
 #[test]

@@ -141,15 +141,28 @@ fn table(name: &[u8], parent: &[u8]) -> (&'static [(&'static str, Kind, bool)], 
 
 /// The kind a `<property>`'s value is parsed as, by its `type`.
 fn property_kind(e: &BytesStart) -> Option<Kind> {
-    match attr(e, "type").as_deref() {
+    value_kind(attr(e, "type").as_deref(), attr(e, "value").as_deref())
+}
+
+/// The kind a property of type `ty` holding `value` is parsed as.
+fn value_kind(ty: Option<&str>, value: Option<&str>) -> Option<Kind> {
+    match ty {
         Some("int") => Some(I32),
         Some("float") => Some(F32),
         Some("bool") => Some(Bool),
         // The crate reads a colour of one character or none as empty.
-        Some("color") if attr(e, "value").is_some_and(|v| v.len() > 1) => Some(Color),
+        Some("color") if value.is_some_and(|v| v.len() > 1) => Some(Color),
         Some("object") => Some(U32),
         _ => None,
     }
+}
+
+/// What a property of type `ty` must hold when the crate would refuse `value` (its text as a
+/// TMX attribute); `None` when it reads it.
+pub(super) fn property_problem(ty: &str, value: &str) -> Option<&'static str> {
+    value_kind(Some(ty), Some(value))
+        .filter(|k| !k.accepts(value))
+        .map(Kind::expected)
 }
 
 /// The value types Tiled writes in a `<property>`'s `type`; the crate refuses any other

@@ -6,9 +6,10 @@
 //! Tiled's are; a tile layer's cells tile ids. Floats stay floats where Tiled writes them (an
 //! object's place and size, a layer's offset), and property values stay what they are.
 
+use super::attrs::property_problem;
 use super::error::JsonError;
-use super::json_budget::{Frame, Key, Role};
-use super::json_walk::{Pos, Walker};
+use super::json_frame::{Frame, Key, Role};
+use super::json_walk::{unescape, Pos, Walker};
 use crate::limits;
 
 /// The keys under which Tiled writes a number, by what the object holding them is. The top is
@@ -88,6 +89,7 @@ fn describe(c: u8, raw: &[u8]) -> String {
 const BOOL: &str = "true or false";
 const ARRAY: &str = "an array";
 const DATA: &str = "an array of tile ids or a base64 string";
+const LAYER_TYPES: &str = "tilelayer, objectgroup, imagelayer or group";
 
 /// The key's name and what Tiled writes under it, for the keys whose wrong type the `tiled`
 /// crate would read as absent or describe as something else (issue 40, F11 and F12).
@@ -98,7 +100,22 @@ fn kind(role: Role, key: Key) -> Option<(&'static str, &'static str)> {
         (Role::Top | Role::Layer, Key::Layers) => Some(("layers", ARRAY)),
         (Role::Layer, Key::Objects) => Some(("objects", ARRAY)),
         (Role::Layer | Role::Chunk, Key::Data) => Some(("data", DATA)),
+        (Role::Object, Key::Point) => Some(("point", BOOL)),
+        (Role::Object, Key::Ellipse) => Some(("ellipse", BOOL)),
+        (Role::Layer | Role::Object, Key::Visible) => Some(("visible", BOOL)),
         _ => None,
+    }
+}
+
+/// A property's value as the translation to TMX writes it in `value="..."`: a string
+/// unescaped, another scalar as written; an array or object as a bracket, which no typed
+/// property reads.
+fn as_attribute(c: u8, raw: &[u8]) -> String {
+    match c {
+        b'"' => unescape(raw),
+        b'{' | b'[' => char::from(c).to_string(),
+        b'n' if raw == b"null" => String::new(),
+        _ => String::from_utf8_lossy(raw).into_owned(),
     }
 }
 
@@ -164,6 +181,26 @@ impl Walker<'_> {
             return;
         }
         if p.bad.is_some() {
+            return;
+        }
+        if p.role() == Role::Layer && p.key == Some(Key::Type) {
+            let known = [
+                &b"\"tilelayer\""[..],
+                b"\"objectgroup\"",
+                b"\"imagelayer\"",
+                b"\"group\"",
+            ];
+            if !known.contains(&raw) {
+                let found = describe(c, raw);
+                p.bad = Some((
+                    at,
+                    format!("\"type\" is {found}; expected {LAYER_TYPES}, as Tiled writes it"),
+                ));
+            }
+            return;
+        }
+        if p.role() == Role::Property && p.key == Some(Key::Value) {
+            p.value = Some((at, describe(c, raw), as_attribute(c, raw)));
             return;
         }
         if let Some((key, expected)) = p.key.and_then(|k| kind(p.role(), k)) {
@@ -234,6 +271,9 @@ impl Walker<'_> {
                 ("the map".to_string(), zero(sides))
             }
             Role::Layer => {
+                if f.seen & Key::Type.bit() == 0 && f.bad.is_none() {
+                    return Err(value_error(f.start, format!("layer {name:?} has no \"type\"; expected {LAYER_TYPES}, as Tiled writes it")));
+                }
                 let tiles = ty == Some("tilelayer") && !f.chunked;
                 let zero = zero(&["width", "height"]).filter(|_| tiles);
                 (format!("layer {name:?}"), zero)
@@ -261,7 +301,14 @@ impl Walker<'_> {
                 format!("tile {}", f.id.as_deref().unwrap_or_default()),
                 None,
             ),
-            Role::Tileset => (format!("tileset {name:?}"), None),
+            Role::Tileset => {
+                let label = format!("tileset {name:?}");
+                if f.seen & Key::FirstGid.bit() == 0 && f.bad.is_none() {
+                    return Err(value_error(f.start, format!("{label} has no \"firstgid\"; expected the gid of its first tile, a whole number from 1 to 4294967295, as Tiled writes it in every tileset of a map or template")));
+                }
+                (label, None)
+            }
+            Role::Property => return self.check_property(f),
             Role::Point => ("a point of a polygon or polyline".to_string(), None),
             _ => return Ok(()),
         };
@@ -270,6 +317,50 @@ impl Walker<'_> {
             .or_else(|| f.bad_cell.as_ref().map(|c| cell_problem(f, c, (0, 0))));
         match bad {
             Some((at, m)) => Err(value_error(at, format!("{label}: {m}"))),
+            None => Ok(()),
+        }
+    }
+
+    /// A property whose value its type does not read (`"type": "bool", "value": "yes"`), named
+    /// with what holds it, at the value's place.
+    fn check_property(&self, f: &Frame) -> Result<(), JsonError> {
+        let name = f.name.as_deref().unwrap_or_default();
+        let holder = self
+            .stack
+            .iter()
+            .rev()
+            .find(|p| !p.array && p.role() != Role::Properties);
+        let of = match holder {
+            Some(h) if h.role() == Role::Top => "the map: ".to_string(),
+            Some(h) if h.role() == Role::Layer => {
+                format!("layer {:?}: ", h.name.as_deref().unwrap_or_default())
+            }
+            Some(h) if h.role() == Role::Object => format!(
+                "object {} {:?}: ",
+                h.id.as_deref().unwrap_or_default(),
+                h.name.as_deref().unwrap_or_default()
+            ),
+            Some(h) if h.role() == Role::Tile => {
+                format!("tile {}: ", h.id.as_deref().unwrap_or_default())
+            }
+            Some(h) if h.role() == Role::Tileset => {
+                format!("tileset {:?}: ", h.name.as_deref().unwrap_or_default())
+            }
+            _ => String::new(),
+        };
+        if let Some((at, m)) = &f.bad {
+            return Err(value_error(*at, format!("{of}property {name:?}: {m}")));
+        }
+        let (Some(ty), Some((at, found, text))) = (f.ty.as_deref(), &f.value) else {
+            return Ok(());
+        };
+        match property_problem(ty, text) {
+            Some(expected) => Err(value_error(
+                *at,
+                format!(
+                "{of}property {name:?} of type {ty:?}: \"value\" is {found}; expected {expected}"
+            ),
+            )),
             None => Ok(()),
         }
     }

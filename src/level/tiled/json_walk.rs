@@ -16,7 +16,7 @@
 use std::collections::BTreeMap;
 
 use super::error::JsonError;
-use super::json_budget::{key_of, Frame, Key, Role};
+use super::json_frame::{key_of, Frame, Key, Role};
 use super::json_values::numeric_key;
 use super::normalize::Normalized;
 
@@ -316,13 +316,22 @@ impl<'t> Walker<'t> {
         if self.peek() != Some(b'"') {
             return false;
         }
+        let at = self.pos();
         let Some((s, e)) = self.string() else {
             return false;
         };
         let quoted = &self.b[s - 1..e + 1];
         self.text_bytes += (e - s) as u64;
         if let Some(f) = self.stack.last_mut() {
-            f.key = Some(key_of(quoted));
+            let key = key_of(quoted);
+            if key != Key::Other && f.role() != Role::Properties {
+                if f.seen & key.bit() != 0 && f.bad.is_none() {
+                    let name = String::from_utf8_lossy(&self.b[s..e]);
+                    f.bad = Some((at, format!("{name:?} is written a second time here; expected each member once, as Tiled writes it (JSON readers differ in which of the two they keep)")));
+                }
+                f.seen |= key.bit();
+            }
+            f.key = Some(key);
             f.key_text = (f.role() == Role::Tiles).then(|| unescape(quoted));
             f.number = numeric_key(f.role(), &self.b[s..e]);
         }
@@ -422,7 +431,7 @@ mod tests {
 
     #[test]
     fn layers_are_found_by_their_place_and_line() {
-        let t = "{\"layers\": [\n {\"type\": \"group\", \"layers\": [\n  {\"name\": \"a\", \"data\": [1,\n 2]}]},\n {\"name\": \"b\"}]}";
+        let t = "{\"layers\": [\n {\"type\": \"group\", \"layers\": [\n  {\"type\": \"tilelayer\", \"name\": \"a\", \"data\": [1,\n 2]}]},\n {\"type\": \"objectgroup\", \"name\": \"b\"}]}";
         let w = walk(t, "a Tiled map").ok().unwrap();
         let got: Vec<_> = w.layers.into_iter().collect();
         assert_eq!(got, vec![(vec![0], 2), (vec![0, 0], 3), (vec![1], 5)]);
@@ -438,7 +447,7 @@ mod tests {
             "a\"b\\A\u{1F600}"
         );
         // A key spelled with escapes is the key; brackets inside strings are text.
-        let t = r#"{"l\u0061yers": [{"name": "[{\"", "data": "]}"}]}"#;
+        let t = r#"{"l\u0061yers": [{"type": "tilelayer", "name": "[{\"", "data": "]}"}]}"#;
         let got: Vec<_> = walk(t, "a Tiled map")
             .ok()
             .unwrap()

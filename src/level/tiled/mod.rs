@@ -29,6 +29,7 @@ mod error;
 mod gids;
 mod json;
 mod json_budget;
+mod json_frame;
 mod json_values;
 mod json_walk;
 mod layers;

@@ -52,7 +52,39 @@ pub(crate) fn explain(text: &str, e: &toml::de::Error) -> (usize, String) {
             format!("duplicate key `{key}`{first}; expected each key once in a table"),
         );
     }
+    if let Some(unclosed) = unclosed_string(text, span.start, message) {
+        return unclosed;
+    }
     (span.start, message.to_string())
+}
+
+/// A string the file or its line ends inside (the parser: "invalid multi-line basic string,
+/// expected `\"`"), said at its opening quotes: where it starts, what closes it.
+fn unclosed_string(text: &str, at: usize, message: &str) -> Option<(usize, String)> {
+    let kind = message.strip_prefix("invalid ")?;
+    let quote = match kind {
+        "multi-line basic string, expected `\"`" => "\"\"\"",
+        "multi-line literal string, expected `'`" => "'''",
+        "basic string, expected `\"`" => "\"",
+        "literal string, expected `'`" => "'",
+        _ => return None,
+    };
+    let rest = text.get(at..)?;
+    if quote.len() == 3 {
+        // Only the end of the file leaves a multi-line string open.
+        if !rest.is_empty() {
+            return None;
+        }
+        let open = text.get(..at)?.rfind(quote)?;
+        return Some((open, format!("the multi-line string opened here ({quote}) is never closed: the file ends inside it; expected {quote} to close it (was the file cut short?)")));
+    }
+    if !(rest.is_empty() || rest.starts_with(['\n', '\r'])) {
+        return None;
+    }
+    let line_start = text.get(..at)?.rfind('\n').map_or(0, |k| k + 1);
+    let open = line_start + text.get(line_start..at)?.rfind(quote)?;
+    let many = if quote == "\"" { "\"\"\"" } else { "'''" };
+    Some((open, format!("the string opened here ({quote}) is not closed on its line; expected {quote} before the line ends (a string of several lines is written between {many} and {many})")))
 }
 
 /// The control character (other than tab, line feed and carriage return) at byte `offset` of
@@ -146,6 +178,25 @@ mod tests {
         assert_eq!(crate::input::line_column(text, at), (3, 1), "{m}");
         assert!(
             m.starts_with("the table [[scenario]] does not set `spawn`"),
+            "{m}"
+        );
+    }
+
+    #[test]
+    fn a_string_left_open_is_named_where_it_opens() {
+        // Once the parser's "invalid multi-line basic string, expected `\"`" at the file's end.
+        let text = "name = \"a\"\nmap = \"\"\"\n###\n";
+        let (at, m) = err(text);
+        assert_eq!(at, text.find("\"\"\"").unwrap());
+        assert!(
+            m.contains("is never closed: the file ends inside it"),
+            "{m}"
+        );
+        let text = "name = 'a\nmap = 1\n";
+        let (at, m) = err(text);
+        assert_eq!(at, 7);
+        assert!(
+            m.contains("not closed on its line; expected ' before"),
             "{m}"
         );
     }
