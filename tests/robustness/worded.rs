@@ -75,18 +75,29 @@ fn a_file_that_cannot_be_read_is_named_with_its_cause_once() {
         let out = cmd(&[command.as_ref(), d.as_os_str()]);
         assert_once(&out, d, "it is a directory; expected a regular file");
     }
-    // An unreadable file (permission denied), unless this runs as root, who reads it anyway.
+    // An unreadable file (permission denied). Root reads it anyway, so as root (CI) platbench
+    // runs as user 65534 (`setpriv`, util-linux), from a copy in a folder that user may enter.
+    use std::os::unix::fs::PermissionsExt;
+    let open = std::fs::Permissions::from_mode(0o755);
+    std::fs::set_permissions(d, open).unwrap();
     let locked = write(d, "locked.toml", b"name = \"a\"\n");
-    let made = std::process::Command::new("chmod")
-        .arg("000")
-        .arg(&locked)
-        .status();
-    assert!(made.is_ok_and(|s| s.success()), "chmod");
-    if std::fs::read(&locked).is_err() {
-        for command in ["run", "inspect"] {
-            let out = cmd(&[command.as_ref(), locked.as_os_str()]);
-            assert_once(&out, &locked, "Permission denied");
-        }
+    std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o000)).unwrap();
+    let root = std::fs::read(&locked).is_ok();
+    let bin = d.join("platbench");
+    if root {
+        std::fs::copy(env!("CARGO_BIN_EXE_platbench"), &bin).unwrap();
+    }
+    for command in ["run", "inspect"] {
+        let mut c = if root {
+            let mut c = std::process::Command::new("setpriv");
+            c.args(["--reuid=65534", "--regid=65534", "--clear-groups"])
+                .arg(&bin);
+            c
+        } else {
+            platbench()
+        };
+        let out = c.arg(command).arg(&locked).output().unwrap();
+        assert_once(&out, &locked, "Permission denied");
     }
 }
 
