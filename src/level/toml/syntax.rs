@@ -82,9 +82,29 @@ fn unclosed_string(text: &str, at: usize, message: &str) -> Option<(usize, Strin
         return None;
     }
     let line_start = text.get(..at)?.rfind('\n').map_or(0, |k| k + 1);
-    let open = line_start + text.get(line_start..at)?.rfind(quote)?;
+    let open = line_start + open_quote(text.get(line_start..at)?)?;
     let many = if quote == "\"" { "\"\"\"" } else { "'''" };
     Some((open, format!("the string opened here ({quote}) is not closed on its line; expected {quote} before the line ends (a string of several lines is written between {many} and {many})")))
+}
+
+/// Where the string left open at the end of `line` starts: quotes are followed from the line's
+/// start (a basic string's `\\"` is no quote, a `'` inside `"..."` none either, `#` outside a
+/// string starts a comment).
+fn open_quote(line: &str) -> Option<usize> {
+    let mut open: Option<(usize, u8)> = None;
+    let mut escaped = false;
+    for (k, b) in line.bytes().enumerate() {
+        match open {
+            Some((_, b'"')) if escaped => escaped = false,
+            Some((_, b'"')) if b == b'\\' => escaped = true,
+            Some((_, q)) if b == q => open = None,
+            Some(_) => {}
+            None if b == b'#' => return None,
+            None if matches!(b, b'"' | b'\'') => open = Some((k, b)),
+            None => {}
+        }
+    }
+    open.map(|(k, _)| k)
 }
 
 /// The control character (other than tab, line feed and carriage return) at byte `offset` of
@@ -199,6 +219,10 @@ mod tests {
             m.contains("not closed on its line; expected ' before"),
             "{m}"
         );
+        // An escaped quote inside is not where the string opens.
+        let text = "x = 1\n\"a b\" = \"say \\\"hi\n";
+        let (at, m) = err(text);
+        assert_eq!(at, text.find("\"say").unwrap(), "{m}");
     }
 
     #[test]
