@@ -6,6 +6,7 @@ mod common;
 mod crashes;
 mod hostile;
 mod hostile_inputs;
+mod ldtk_values;
 mod located;
 mod memory;
 mod properties;

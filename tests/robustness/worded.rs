@@ -149,7 +149,7 @@ fn ldtk_errors_say_what_is_wrong_once_at_one_place() {
     assert_error(
         &out,
         &format!(
-            "{}:1:{column}: a layer of 1000001 cells across; expected at most 1000000",
+            "{}:1:{column}: a layer of 1000001 cells across; expected 0 to 1000000",
             wide.display()
         ),
     );

@@ -9,6 +9,7 @@ use std::path::Path;
 use glam::Vec2;
 
 use super::json::{LdLevel, Project};
+use super::values;
 use super::{parse_json, read, LdtkError, HOW_TO_COLLIDE, HOW_TO_SPAWN};
 use crate::level::import::names::{
     is_spawn_name, role_from_name, says, HAZARD_WORDS, LADDER_WORDS, ONE_WAY_WORDS,
@@ -42,6 +43,9 @@ pub(super) fn import(
         })
     };
     let project: Project = parse_json(&read(path)?, &file, "an LDtk project")?;
+    for m in values::unused_options(&project.defs, opts) {
+        warn("project", m);
+    }
     let (mut levels, layout) = if !project.levels.is_empty() || project.worlds.is_empty() {
         (project.levels, project.world_layout.clone())
     } else {
@@ -98,11 +102,8 @@ pub(super) fn import(
                     levels[k].identifier
                 )));
             };
-            let p = path
-                .parent()
-                .map_or_else(|| Path::new(&rel).to_path_buf(), |d| d.join(&rel));
-            let lvl: LdLevel = parse_json(&read(&p)?, &p.display().to_string(), "an LDtk level")?;
-            levels[k].layer_instances = lvl.layer_instances;
+            let layers = super::external_level(path, &levels[k].identifier, &rel)?;
+            levels[k].layer_instances = Some(layers);
         }
     }
     let single = picked.len() == 1;
@@ -143,6 +144,13 @@ pub(super) fn import(
                     ))
                 })
         };
+        let (lw, lh) = ((l.px_wid + grid - 1) / grid, (l.px_hei + grid - 1) / grid);
+        if lw.saturating_mul(lh) as u64 > crate::limits::MAX_TILES {
+            return Err(perr(format!(
+                "level {:?} is {lw} x {lh} cells of {grid} pixels (pxWid {}, pxHei {}); expected at most {} cells",
+                l.identifier, l.px_wid, l.px_hei, crate::limits::MAX_TILES
+            )));
+        }
         x0 = x0.min(ox.div_euclid(grid));
         y0 = y0.min(oy.div_euclid(grid));
         x1 = x1.max(far(ox, l.px_wid)?);
@@ -150,9 +158,12 @@ pub(super) fn import(
     }
     let (w, h) = ((x1 - x0).max(0) as u64, (y1 - y0).max(0) as u64);
     if w == 0 || h == 0 || w.saturating_mul(h) > crate::limits::MAX_TILES {
+        let what = match single {
+            true => format!("level {:?}", levels[picked[0]].identifier),
+            false => format!("the world its {} levels span", picked.len()),
+        };
         return Err(perr(format!(
-            "the {} is {w} x {h} cells of {grid} pixels; expected 1 to {} cells",
-            if single { "level" } else { "world" },
+            "{what} is {w} x {h} cells of {grid} pixels; expected 1 to {} cells",
             crate::limits::MAX_TILES
         )));
     }
@@ -224,6 +235,7 @@ pub(super) fn import(
             };
             match layer.kind.as_str() {
                 "IntGrid" => {
+                    let names = values::defined(&project.defs, layer, &lname).map_err(&perr)?;
                     let by_name = role_from_name(&layer.identifier);
                     let named_platforms = says(&layer.identifier, &["platform", "platforms"]);
                     let (role, why) = if let Some(r) = opts.role_of(&layer.identifier) {
@@ -271,24 +283,6 @@ pub(super) fn import(
                     if role == LayerRole::Decoration || role == LayerRole::Objects {
                         continue;
                     }
-                    let names: Vec<(i64, String)> = project
-                        .defs
-                        .layers
-                        .iter()
-                        .find(|d| d.uid == layer.layer_def_uid)
-                        .map(|d| {
-                            d.int_grid_values
-                                .iter()
-                                .enumerate()
-                                .map(|(i, v)| {
-                                    (
-                                        v.value.unwrap_or(i as i64 + 1),
-                                        v.identifier.clone().unwrap_or_default(),
-                                    )
-                                })
-                                .collect()
-                        })
-                        .unwrap_or_default();
                     let kind_of = |v: i64| -> (Tile, Option<String>) {
                         let name = names
                             .iter()
@@ -340,6 +334,8 @@ pub(super) fn import(
                         if idx < 0 || idx >= cw * ch {
                             continue;
                         }
+                        values::check_cell(&names, &lname, (idx % cw, idx / cw), v)
+                            .map_err(&perr)?;
                         let (t, note) = kind_of(v);
                         if let Some(n) = note {
                             if !noted.contains(&v) {
@@ -393,12 +389,8 @@ pub(super) fn import(
                         if boxes && collision_entity(e) {
                             // Its box, the pivot placing it, to the nearest cell edges.
                             let (x, y) = (
-                                e.px.first().copied().unwrap_or(0.0)
-                                    - e.pivot.first().copied().unwrap_or(0.0) * e.width
-                                    + (ox + layer.px_offset_x) as f64,
-                                e.px.get(1).copied().unwrap_or(0.0)
-                                    - e.pivot.get(1).copied().unwrap_or(0.0) * e.height
-                                    + (oy + layer.px_offset_y) as f64,
+                                e.px[0] - e.pivot[0] * e.width + (ox + layer.px_offset_x) as f64,
+                                e.px[1] - e.pivot[1] * e.height + (oy + layer.px_offset_y) as f64,
                             );
                             let g = grid as f64;
                             let cell = |v: f64, o: i64| (v / g).round() as i64 - o;
@@ -427,14 +419,8 @@ pub(super) fn import(
                             others += 1;
                             continue;
                         }
-                        let (px, py) = (
-                            e.px.first().copied().unwrap_or(0.0),
-                            e.px.get(1).copied().unwrap_or(0.0),
-                        );
-                        let (pvx, pvy) = (
-                            e.pivot.first().copied().unwrap_or(0.0),
-                            e.pivot.get(1).copied().unwrap_or(0.0),
-                        );
+                        let (px, py) = (e.px[0], e.px[1]);
+                        let (pvx, pvy) = (e.pivot[0], e.pivot[1]);
                         // Feet: the bottom centre of the box the pivot places.
                         let fx =
                             px - pvx * e.width + e.width * 0.5 + (ox + layer.px_offset_x) as f64;

@@ -21,6 +21,7 @@ use serde::Deserialize;
 mod convert;
 mod grid;
 mod json;
+mod values;
 
 use super::import::{ImportFailure, ImportOptions, ImportWarning, MapImport};
 use super::probes::{probe_scenarios, ProbeConfig};
@@ -230,6 +231,45 @@ fn side_error(e: SideFailure) -> LdtkError {
         SideFailure::Read { file, message } => LdtkError::SideRead { file, message },
         SideFailure::Level(e) => LdtkError::SideFile(e),
     }
+}
+
+/// The layers of level `level` of the project at `project`, from its external file `rel`
+/// (`externalRelPath`, beside the project): the file must be another one, readable, and hold
+/// the level's `layerInstances`; each error names the project and the level that points there.
+fn external_level(
+    project: &Path,
+    level: &str,
+    rel: &str,
+) -> Result<Vec<json::LayerInstance>, LdtkError> {
+    let p = project
+        .parent()
+        .map_or_else(|| Path::new(rel).to_path_buf(), |d| d.join(rel));
+    let file = p.display().to_string();
+    let named = format!(
+        "level {level:?} of {} names it in externalRelPath {rel:?}",
+        project.display()
+    );
+    let same = p.canonicalize().ok().zip(project.canonicalize().ok());
+    if same.is_some_and(|(a, b)| a == b) {
+        return Err(LdtkError::Project {
+            file: project.display().to_string(),
+            message: format!("level {level:?}: externalRelPath {rel:?} is the project itself; expected the level's own file (.ldtkl), which LDtk writes beside the project"),
+        });
+    }
+    let text = read(&p).map_err(|e| match e {
+        LdtkError::Read { file, message } => LdtkError::Read {
+            file,
+            message: format!("{message} ({named})"),
+        },
+        e => e,
+    })?;
+    let lvl: json::LdLevel = parse_json(&text, &file, "an LDtk level")?;
+    lvl.layer_instances.ok_or_else(|| LdtkError::Project {
+        file,
+        message: format!(
+            "holds no layerInstances; expected an LDtk level's JSON with its layers ({named})"
+        ),
+    })
 }
 
 fn read(path: &Path) -> Result<String, LdtkError> {

@@ -1,0 +1,103 @@
+//! What an IntGrid layer's cells may hold, from the project's layer definitions: the values
+//! each layer defines and their names (which `--intgrid` and the names' words read), a layer
+//! whose definition is missing, a cell holding a value its layer does not define, and an
+//! `--intgrid` value no layer defines. LDtk removes a value's cells when the value is deleted,
+//! so a project it saved holds none of these.
+
+use super::json::{Defs, LayerInstance};
+use crate::level::import::ImportOptions;
+
+/// The values layer `layer` (named `lname` in errors) defines, each with its name (empty when
+/// unnamed); none for a project without layer definitions (written by hand), whose values are
+/// read without names. A layer whose `layerDefUid` names no definition is an error.
+pub(super) fn defined(
+    defs: &Defs,
+    layer: &LayerInstance,
+    lname: &str,
+) -> Result<Vec<(i64, String)>, String> {
+    if defs.layers.is_empty() {
+        return Ok(Vec::new());
+    }
+    let Some(def) = defs.layers.iter().find(|d| d.uid == layer.layer_def_uid) else {
+        let uids: Vec<String> = defs.layers.iter().map(|d| d.uid.to_string()).collect();
+        return Err(format!(
+            "layer {lname:?}: its layerDefUid {} names no layer definition; expected the uid of one of the project's (defs.layers: {})",
+            layer.layer_def_uid,
+            uids.join(", ")
+        ));
+    };
+    Ok(def
+        .int_grid_values
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let name = v.identifier.clone().unwrap_or_default();
+            (v.value.unwrap_or(i as i64 + 1), name)
+        })
+        .collect())
+}
+
+/// An error unless `v`, the value of cell `(x, y)` (the layer's column and row from its
+/// top-left, as LDtk shows them) is one the layer defines (`values`, none to check).
+pub(super) fn check_cell(
+    values: &[(i64, String)],
+    lname: &str,
+    (x, y): (i64, i64),
+    v: i64,
+) -> Result<(), String> {
+    if values.is_empty() || values.iter().any(|(n, _)| *n == v) {
+        return Ok(());
+    }
+    Err(format!(
+        "layer {lname:?}: cell x = {x}, y = {y} holds IntGrid value {v}, which the layer's definition does not list; expected 0 (empty) or one of {} (LDtk removes a value's cells when the value is deleted)",
+        listed(values)
+    ))
+}
+
+/// `1 "Wall", 2 "Platform", 3`: values and their names.
+fn listed(values: &[(i64, String)]) -> String {
+    let each = values.iter().map(|(v, n)| match n.is_empty() {
+        true => v.to_string(),
+        false => format!("{v} {n:?}"),
+    });
+    each.collect::<Vec<_>>().join(", ")
+}
+
+/// The `--intgrid` keys (a value's number or name) that no IntGrid layer definition of the
+/// project defines, each with what the project defines: they change nothing. None for a
+/// project without definitions, whose values have no names to check.
+pub(super) fn unused_options(defs: &Defs, opts: &ImportOptions) -> Vec<String> {
+    let values: Vec<(i64, String)> = defs
+        .layers
+        .iter()
+        .flat_map(|d| {
+            (d.int_grid_values.iter().enumerate())
+                .map(|(i, v)| (v.value.unwrap_or(i as i64 + 1), v.identifier.clone()))
+        })
+        .map(|(v, n)| (v, n.unwrap_or_default()))
+        .fold(Vec::new(), |mut all, v| {
+            if !all.contains(&v) {
+                all.push(v);
+            }
+            all
+        });
+    if values.is_empty() {
+        return Vec::new();
+    }
+    let norm = crate::level::import::normalize;
+    opts.intgrid
+        .iter()
+        .map(|(key, _)| key)
+        .filter(|key| {
+            !values.iter().any(|(v, n)| {
+                key.trim() == v.to_string() || (!n.is_empty() && norm(key) == norm(n))
+            })
+        })
+        .map(|key| {
+            format!(
+                "--intgrid {key}: no IntGrid value of the project is {key} or named so; it changes nothing (the values: {})",
+                listed(&values)
+            )
+        })
+        .collect()
+}
