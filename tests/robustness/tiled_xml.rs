@@ -221,3 +221,83 @@ fn a_platforms_path_error_is_at_the_platforms_line() {
         "m.tmx:14: object 2 \"lift\": its path names object 999, which is not in any object layer",
     );
 }
+
+#[test]
+fn tilesets_numbered_twice_and_unread_encodings_are_refused_where_written() {
+    // Issue 40, F21/F22: each ran with exit 0 (two tilesets at one firstgid, a tile described
+    // twice, a template's tile naming none) or said the crate's words with no line or layer.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let base = std::fs::read_to_string(write_map(d, "base.tmx", "", "")).unwrap();
+    let ts = std::fs::read_to_string(d.join("ts.tsx")).unwrap();
+    let map = |name: &str, text: String| {
+        let p = d.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    let tileset = "<tileset firstgid=\"1\" source=\"ts.tsx\"/>";
+    let cases = [
+        (
+            "twice.tmx",
+            base.replace(tileset, &format!("{tileset}\n {tileset}")),
+            // The second tileset's firstgid: line 4, column 11 (after " <tileset ").
+            "twice.tmx:4:11: tileset \"ts.tsx\": attribute \"firstgid\" is 1, where tileset \"ts.tsx\" (line 3) starts too",
+        ),
+        (
+            "lzma.tmx",
+            base.replace("<data encoding=\"csv\">", "<data encoding=\"base64\" compression=\"lzma\">"),
+            "lzma.tmx:5:27: layer \"ground\", <data>: attribute \"compression\" is \"lzma\"; expected csv, or base64 with no compression, zlib or gzip",
+        ),
+        (
+            "hex.tmx",
+            base.replace("encoding=\"csv\"", "encoding=\"hex\""),
+            "hex.tmx:5:9: layer \"ground\", <data>: attribute \"encoding\" is \"hex\"",
+        ),
+        (
+            "zero.tmx",
+            base.replace("tilewidth=\"16\" tileheight=\"16\" infinite", "tilewidth=\"0\" tileheight=\"16\" infinite"),
+            "zero.tmx:2:92: <map>: attribute \"tilewidth\" is \"0\"; expected a whole number of pixels from 1 to 4294967295",
+        ),
+    ];
+    for (name, text, want) in cases {
+        assert_error(&inspect(&map(name, text)), want);
+    }
+    // A tile described twice in the tileset: its second `id`, line 5, column 8.
+    let dup = ts.replace(
+        " <image",
+        " <tile id=\"0\" type=\"solid\"/>\n <tile id=\"0\" type=\"oneway\"/>\n <image",
+    );
+    std::fs::write(d.join("dup.tsx"), dup).unwrap();
+    let out = inspect(&map("dup.tmx", base.replace("ts.tsx", "dup.tsx")));
+    assert_error(
+        &out,
+        "dup.tsx:4:8: cannot load the Tiled map: tileset \"t\": tile 0 is described a second time (first at line 3)",
+    );
+    // A template whose object's gid names no tile of its tileset (gid 4294967295: every flip
+    // bit and id 0x1FFFFFFE), as a map object's already was.
+    std::fs::write(
+        d.join("tile.tx"),
+        "<?xml version=\"1.0\"?>\n<template>\n <tileset firstgid=\"1\" source=\"ts.tsx\"/>\n <object gid=\"4294967295\" width=\"16\" height=\"16\"/>\n</template>\n",
+    )
+    .unwrap();
+    let uses = write_map(
+        d,
+        "tpl.tmx",
+        "",
+        "  <object id=\"2\" template=\"tile.tx\" x=\"16\" y=\"16\"/>",
+    );
+    assert_error(
+        &inspect(&uses),
+        "object 2 \"\": its template's tile is tile 536870910 of tileset \"t\", which names no tile; expected a tile of that tileset (ids 0 to 0)",
+    );
+    // A tile past the image's tilecount is kept, as Tiled keeps it: a warning, exit 0.
+    let over = ts.replace(" <image", " <tile id=\"5\" type=\"solid\"/>\n <image");
+    std::fs::write(d.join("over.tsx"), over).unwrap();
+    let out = inspect(&map("over.tmx", base.replace("ts.tsx", "over.tsx")));
+    assert!(out.status.success(), "{}", stderr(&out));
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        said.contains("tile(s) 5 are past its image's 1 tiles (tilecount)"),
+        "{said}"
+    );
+}

@@ -16,6 +16,11 @@ enum Kind {
     F32,
     Bool,
     Color,
+    /// A map's tile size: Tiled's is at least one pixel.
+    Pixels,
+    /// A `<data>`'s `encoding` and `compression`: what the crate reads.
+    Encoding,
+    Compression,
 }
 
 impl Kind {
@@ -28,6 +33,9 @@ impl Kind {
             Kind::F32 => v.parse::<f32>().is_ok_and(f32::is_finite),
             Kind::Bool => v.parse::<bool>().is_ok(),
             Kind::Color => v.parse::<tiled::Color>().is_ok(),
+            Kind::Pixels => v.parse::<u32>().is_ok_and(|p| p > 0),
+            Kind::Encoding => matches!(v, "csv" | "base64"),
+            Kind::Compression => matches!(v, "zlib" | "gzip"),
         }
     }
 
@@ -39,6 +47,8 @@ impl Kind {
             Kind::F32 => "a number such as 16, -2.5 or 1e3, finite within f32's range (-3.4e38 to 3.4e38)",
             Kind::Bool => "true or false",
             Kind::Color => "a colour such as #ff8800 or #80ff8800",
+            Kind::Pixels => "a whole number of pixels from 1 to 4294967295",
+            Kind::Encoding | Kind::Compression => "csv, or base64 with no compression, zlib or gzip, which the tiled crate reads (in Tiled: Map > Map Properties > Tile Layer Format)",
         }
     }
 }
@@ -65,8 +75,8 @@ fn table(name: &[u8], parent: &[u8]) -> (&'static [(&'static str, Kind, bool)], 
             &[
                 ("width", U32, true),
                 ("height", U32, true),
-                ("tilewidth", U32, true),
-                ("tileheight", U32, true),
+                ("tilewidth", Pixels, true),
+                ("tileheight", Pixels, true),
                 ("skewx", I32, false),
                 ("skewy", I32, false),
                 ("parallaxoriginx", F32, false),
@@ -115,6 +125,13 @@ fn table(name: &[u8], parent: &[u8]) -> (&'static [(&'static str, Kind, bool)], 
             false,
         ),
         (b"tile", b"data" | b"chunk") => (&[("gid", U32, false)], false),
+        (b"data", _) => (
+            &[
+                ("encoding", Encoding, false),
+                ("compression", Compression, false),
+            ],
+            false,
+        ),
         (b"tile", b"tileset") => (
             &[
                 ("id", U32, true),

@@ -43,13 +43,23 @@ impl<'m> Importer<'m> {
         };
         let ts = t.get_tileset();
         let id = data.id();
-        let tiled::TilesetLocation::Map(index) = data.tileset_location() else {
-            // A template's own tileset: the crate has already read its tile.
-            return Ok(());
-        };
         if names_tile(ts, id) {
             return Ok(());
         }
+        let tiled::TilesetLocation::Map(index) = data.tileset_location() else {
+            // A template's own tileset, which the map's gids do not number.
+            return Err(self.obj_err(
+                o,
+                format!(
+                    "its template's tile is tile {id} of tileset {:?}, which names no tile; expected a tile of that tileset ({})",
+                    ts.name,
+                    match last_tile(ts) {
+                        Some(l) => format!("ids 0 to {l}"),
+                        None => "it has none".into(),
+                    }
+                ),
+            ));
+        };
         let (found, ranges) = self.no_tile(*index, ts, id);
         Err(self.obj_err(
             o,
@@ -71,18 +81,22 @@ impl<'m> Importer<'m> {
             .tilesets()
             .iter()
             .enumerate()
-            .map(|(k, t)| {
-                let last = match t.image {
-                    Some(_) => t.tilecount.checked_sub(1),
-                    None => t.tiles().map(|(i, _)| i).max(),
-                };
-                match (gid(k, 0), last.and_then(|l| gid(k, l))) {
+            .map(
+                |(k, t)| match (gid(k, 0), last_tile(t).and_then(|l| gid(k, l))) {
                     (Some(a), Some(b)) => format!("{a} to {b} ({:?})", t.name),
                     _ => format!("none ({:?}, which has no tiles)", t.name),
-                }
-            })
+                },
+            )
             .collect();
         (found, ranges.join(", "))
+    }
+}
+
+/// The highest tile id of tileset `ts`: its image's last cell, or the highest it lists.
+fn last_tile(ts: &tiled::Tileset) -> Option<u32> {
+    match ts.image {
+        Some(_) => ts.tilecount.checked_sub(1),
+        None => ts.tiles().map(|(i, _)| i).max(),
     }
 }
 

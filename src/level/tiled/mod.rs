@@ -43,6 +43,7 @@ mod roles;
 mod scan;
 mod shapes;
 mod tiles;
+mod tileset_ids;
 mod wellformed;
 
 pub use error::TiledError;

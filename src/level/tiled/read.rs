@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use super::{
-    attrs, elements, json, normalize, points, refs, scan, wellformed, Importer, TiledError,
-    TiledImport, TiledWarning,
+    attrs, elements, json, normalize, points, refs, scan, tileset_ids, wellformed, Importer,
+    TiledError, TiledImport, TiledWarning,
 };
 use crate::level::import::{ImportFailure, ImportOptions};
 use crate::level::toml::{options_beside, SideFailure};
@@ -168,7 +168,9 @@ pub fn import_tiled_map_with(
     let columns = json.is_none() && norm.text == text;
     let norm_same = columns;
     let text = norm.text;
-    let sources = scan::scan_map(&text).map_err(|e| {
+    let checked = scan::scan_map(&text)
+        .and_then(|s| tileset_ids::check_tileset_ids(&text).map(|notes| (s, notes)));
+    let (sources, id_notes) = checked.map_err(|e| {
         let file = match e.column.filter(|_| columns) {
             Some(c) => format!("{}:{c}", at(e.line)),
             None => at(e.line),
@@ -181,6 +183,13 @@ pub fn import_tiled_map_with(
             &notes,
         )
     })?;
+    for n in id_notes {
+        notes.borrow_mut().push(TiledWarning {
+            file: file.clone(),
+            subject: "map".into(),
+            message: n,
+        });
+    }
     // Templates and tilesets that loop back, and groups nested without end, which the crate
     // would follow until the stack overflows.
     let load = |p: &Path| crate_text(p).ok();
@@ -236,7 +245,9 @@ pub fn import_tiled_map_with(
                 wellformed::check_xml(&t).map_err(located)?;
                 elements::check_element_count(&t, "the tileset file").map_err(located)?;
                 attrs::check_attributes(&t).map_err(located)?;
-                let n = normalize::normalize_xml(&t).map_err(located)?;
+                let over = tileset_ids::check_tileset_ids(&t).map_err(located)?;
+                let mut n = normalize::normalize_xml(&t).map_err(located)?;
+                n.notes.extend(over);
                 (n.text, n.notes)
             }
             // A template (`.tx`): read as it is, its shapes counted first.
