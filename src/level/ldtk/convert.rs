@@ -284,11 +284,7 @@ pub(super) fn import(
                         continue;
                     }
                     let kind_of = |v: i64| -> (Tile, Option<String>) {
-                        let name = names
-                            .iter()
-                            .find(|(n, _)| *n == v)
-                            .map(|(_, s)| s.as_str())
-                            .unwrap_or("");
+                        let name = names.name(v);
                         if let Some((_, t)) = opts.intgrid.iter().rev().find(|(key, _)| {
                             key.trim() == v.to_string()
                                 || (!name.is_empty() && normalize(key) == normalize(name))
@@ -334,8 +330,7 @@ pub(super) fn import(
                         if idx < 0 || idx >= cw * ch {
                             continue;
                         }
-                        values::check_cell(&names, &lname, (idx % cw, idx / cw), v)
-                            .map_err(&perr)?;
+                        (names.check_cell(&lname, (idx % cw, idx / cw), v)).map_err(&perr)?;
                         let (t, note) = kind_of(v);
                         if let Some(n) = note {
                             if !noted.contains(&v) {

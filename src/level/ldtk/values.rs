@@ -4,19 +4,17 @@
 //! `--intgrid` value no layer defines. LDtk removes a value's cells when the value is deleted,
 //! so a project it saved holds none of these.
 
+use std::collections::HashMap;
+
 use super::json::{Defs, LayerInstance};
 use crate::level::import::ImportOptions;
 
 /// The values layer `layer` (named `lname` in errors) defines, each with its name (empty when
 /// unnamed); none for a project without layer definitions (written by hand), whose values are
 /// read without names. A layer whose `layerDefUid` names no definition is an error.
-pub(super) fn defined(
-    defs: &Defs,
-    layer: &LayerInstance,
-    lname: &str,
-) -> Result<Vec<(i64, String)>, String> {
+pub(super) fn defined(defs: &Defs, layer: &LayerInstance, lname: &str) -> Result<Defined, String> {
     if defs.layers.is_empty() {
-        return Ok(Vec::new());
+        return Ok(Defined::default());
     }
     let Some(def) = defs.layers.iter().find(|d| d.uid == layer.layer_def_uid) else {
         let uids: Vec<String> = defs.layers.iter().map(|d| d.uid.to_string()).collect();
@@ -26,32 +24,49 @@ pub(super) fn defined(
             uids.join(", ")
         ));
     };
-    Ok(def
-        .int_grid_values
-        .iter()
-        .enumerate()
+    let list: Vec<(i64, String)> = (def.int_grid_values.iter().enumerate())
         .map(|(i, v)| {
             let name = v.identifier.clone().unwrap_or_default();
             (v.value.unwrap_or(i as i64 + 1), name)
         })
-        .collect())
+        .collect();
+    // The first of a value defined twice names it, as a search of the list would.
+    let mut by_value = HashMap::new();
+    for (k, (v, _)) in list.iter().enumerate() {
+        by_value.entry(*v).or_insert(k);
+    }
+    Ok(Defined { list, by_value })
 }
 
-/// An error unless `v`, the value of cell `(x, y)` (the layer's column and row from its
-/// top-left, as LDtk shows them) is one the layer defines (`values`, none to check).
-pub(super) fn check_cell(
-    values: &[(i64, String)],
-    lname: &str,
-    (x, y): (i64, i64),
-    v: i64,
-) -> Result<(), String> {
-    if values.is_empty() || values.iter().any(|(n, _)| *n == v) {
-        return Ok(());
+/// The values a layer defines, in its definition's order, and each value's place in it: a
+/// cell's value is looked up once, whatever the number of values.
+#[derive(Default)]
+pub(super) struct Defined {
+    list: Vec<(i64, String)>,
+    by_value: HashMap<i64, usize>,
+}
+
+impl Defined {
+    /// The name of value `v` (empty when unnamed or not defined).
+    pub(super) fn name(&self, v: i64) -> &str {
+        self.by_value
+            .get(&v)
+            .and_then(|&k| self.list.get(k))
+            .map_or("", |(_, n)| n.as_str())
     }
-    Err(format!(
-        "layer {lname:?}: cell x = {x}, y = {y} holds IntGrid value {v}, which the layer's definition does not list; expected 0 (empty) or one of {} (LDtk removes a value's cells when the value is deleted)",
-        listed(values)
-    ))
+
+    /// An error unless `v`, the value of cell `(x, y)` (the layer's column and row from its
+    /// top-left, as LDtk shows them), is one the layer defines (none to check without
+    /// definitions).
+    pub(super) fn check_cell(&self, lname: &str, (x, y): (i64, i64), v: i64) -> Result<(), String> {
+        if self.list.is_empty() || self.by_value.contains_key(&v) {
+            return Ok(());
+        }
+        Err(format!(
+            "layer {lname:?}: cell x = {x}, y = {y} holds IntGrid value {v}, which the layer's definition does not list; expected 0 (empty) or one of {} (LDtk removes a value's cells when the value is deleted)",
+            listed(&self.list)
+        ))
+    }
 }
 
 /// `1 "Wall", 2 "Platform", 3`: values and their names.

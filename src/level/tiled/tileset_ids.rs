@@ -5,26 +5,29 @@
 //! tileset whose id is past the image's `tilecount` (Tiled keeps such tiles, left from a
 //! larger image, and shows them with no picture).
 
+use std::collections::HashMap;
+
 use quick_xml::events::Event;
 
 use super::attrs::{attr_offset, line_col};
 use super::scan::{attr, line_of, ScanError};
 
 /// A `<tileset>` being read: its name, `tilecount`, whether it has an `<image>`, and the ids
-/// of its `<tile>`s with their lines.
+/// of its `<tile>`s with where each starts (byte offsets: a line is counted only for an error,
+/// so that a tileset of many tiles is read in one pass).
 struct Open {
     name: String,
     count: Option<u32>,
     image: bool,
     over: Vec<u32>,
-    ids: Vec<(u32, usize)>,
+    ids: HashMap<u32, usize>,
 }
 
 /// Checks `text` (a map's TMX or a tileset's TSX); the warnings for tiles past `tilecount`.
 pub(super) fn check_tileset_ids(text: &str) -> Result<Vec<String>, ScanError> {
     let mut reader = quick_xml::Reader::from_str(text);
     let mut depth = 0usize;
-    let mut firstgids: Vec<(u32, String, usize)> = Vec::new();
+    let mut firstgids: HashMap<u32, (String, usize)> = HashMap::new();
     let mut open: Option<(usize, Open)> = None;
     let mut notes = Vec::new();
     loop {
@@ -50,7 +53,8 @@ pub(super) fn check_tileset_ids(text: &str) -> Result<Vec<String>, ScanError> {
                 // The map's own tilesets (depth 1, inside `<map>`) are numbered by firstgid.
                 let first = attr(&e, "firstgid").and_then(|g| g.trim().parse::<u32>().ok());
                 if let (1, Some(g)) = (depth, first) {
-                    if let Some((_, other, line)) = firstgids.iter().find(|f| f.0 == g) {
+                    if let Some((other, at)) = firstgids.get(&g) {
+                        let line = line_of(text, *at);
                         let (l, c) = line_col(text, attr_offset(text, pos, &e, "firstgid"));
                         return Err(ScanError {
                             line: l,
@@ -61,7 +65,7 @@ pub(super) fn check_tileset_ids(text: &str) -> Result<Vec<String>, ScanError> {
                             ),
                         });
                     }
-                    firstgids.push((g, source_or(&e, &ts_name), line_of(text, pos)));
+                    firstgids.insert(g, (source_or(&e, &ts_name), pos));
                 }
                 if start {
                     let count = attr(&e, "tilecount").and_then(|c| c.trim().parse().ok());
@@ -70,7 +74,7 @@ pub(super) fn check_tileset_ids(text: &str) -> Result<Vec<String>, ScanError> {
                         count,
                         image: false,
                         over: Vec::new(),
-                        ids: Vec::new(),
+                        ids: HashMap::new(),
                     };
                     open = Some((depth, t));
                 }
@@ -84,8 +88,8 @@ pub(super) fn check_tileset_ids(text: &str) -> Result<Vec<String>, ScanError> {
                 let id = attr(&e, "id").and_then(|i| i.trim().parse::<u32>().ok());
                 if let (Some((d, t)), Some(id)) = (open.as_mut(), id) {
                     if *d + 1 == depth {
-                        let line = line_of(text, pos);
-                        if let Some((_, first)) = t.ids.iter().find(|(i, _)| *i == id) {
+                        if let Some(at) = t.ids.get(&id) {
+                            let first = line_of(text, *at);
                             let (l, c) = line_col(text, attr_offset(text, pos, &e, "id"));
                             return Err(ScanError {
                                 line: l,
@@ -96,7 +100,7 @@ pub(super) fn check_tileset_ids(text: &str) -> Result<Vec<String>, ScanError> {
                                 ),
                             });
                         }
-                        t.ids.push((id, line));
+                        t.ids.insert(id, pos);
                         if t.count.is_some_and(|c| id >= c) {
                             t.over.push(id);
                         }
