@@ -71,6 +71,8 @@ pub(super) enum Key {
     Visible,
     FirstGid,
     Value,
+    Encoding,
+    Compression,
 }
 
 #[rustfmt::skip]
@@ -82,7 +84,8 @@ const KEYS: &[(&str, Key)] = &[
     ("name", Key::Name), ("type", Key::Type), ("tilesets", Key::Tilesets),
     ("tileset", Key::Tileset), ("infinite", Key::Infinite), ("properties", Key::Properties),
     ("point", Key::Point), ("ellipse", Key::Ellipse), ("visible", Key::Visible),
-    ("firstgid", Key::FirstGid), ("value", Key::Value),
+    ("firstgid", Key::FirstGid), ("value", Key::Value), ("encoding", Key::Encoding),
+    ("compression", Key::Compression),
 ];
 
 /// The key a member's name (with its quotes) is: a long escaped name is none of them.

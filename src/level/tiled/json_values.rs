@@ -107,6 +107,25 @@ fn kind(role: Role, key: Key) -> Option<(&'static str, &'static str)> {
     }
 }
 
+/// The strings Tiled writes under a key that holds one of a few (with their quotes), and the
+/// error's words for them: a layer's type, and the layer data's encoding and compression
+/// that the `tiled` crate reads (Tiled also writes zstd, which it does not).
+#[rustfmt::skip]
+fn choices(role: Role, key: Key) -> Option<(&'static [&'static [u8]], &'static str)> {
+    const ENCODINGS: &str = "csv, or base64 with no compression (\"\"), zlib or gzip, which the tiled crate reads (in Tiled: Map > Map Properties > Tile Layer Format)";
+    match (role, key) {
+        (Role::Layer, Key::Type) => Some((
+            &[b"\"tilelayer\"", b"\"objectgroup\"", b"\"imagelayer\"", b"\"group\""],
+            "tilelayer, objectgroup, imagelayer or group, as Tiled writes it",
+        )),
+        (Role::Layer, Key::Encoding) => Some((&[b"\"csv\"", b"\"base64\""], ENCODINGS)),
+        (Role::Layer, Key::Compression) => {
+            Some((&[b"\"\"", b"\"zlib\"", b"\"gzip\""], ENCODINGS))
+        }
+        _ => None,
+    }
+}
+
 /// A property's value as the translation to TMX writes it in `value="..."`: a string
 /// unescaped, another scalar as written; an array or object as a bracket, which no typed
 /// property reads.
@@ -183,19 +202,15 @@ impl Walker<'_> {
         if p.bad.is_some() {
             return;
         }
-        if p.role() == Role::Layer && p.key == Some(Key::Type) {
-            let known = [
-                &b"\"tilelayer\""[..],
-                b"\"objectgroup\"",
-                b"\"imagelayer\"",
-                b"\"group\"",
-            ];
-            if !known.contains(&raw) {
+        if let Some((allowed, expected)) = p.key.and_then(|k| choices(p.role(), k)) {
+            if !allowed.contains(&raw) {
                 let found = describe(c, raw);
-                p.bad = Some((
-                    at,
-                    format!("\"type\" is {found}; expected {LAYER_TYPES}, as Tiled writes it"),
-                ));
+                let key = match p.key {
+                    Some(Key::Type) => "type",
+                    Some(Key::Encoding) => "encoding",
+                    _ => "compression",
+                };
+                p.bad = Some((at, format!("\"{key}\" is {found}; expected {expected}")));
             }
             return;
         }
