@@ -69,19 +69,28 @@ impl Defined {
     }
 }
 
-/// `1 "Wall", 2 "Platform", 3`: values and their names.
+/// `1 "Wall", 2 "Platform", 3`: values and their names, the first 20 of a longer list.
 fn listed(values: &[(i64, String)]) -> String {
-    let each = values.iter().map(|(v, n)| match n.is_empty() {
+    let each = values.iter().take(20).map(|(v, n)| match n.is_empty() {
         true => v.to_string(),
         false => format!("{v} {n:?}"),
     });
-    each.collect::<Vec<_>>().join(", ")
+    let mut out = each.collect::<Vec<_>>().join(", ");
+    if values.len() > 20 {
+        out.push_str(&format!(", ... ({} in all)", values.len()));
+    }
+    out
 }
 
 /// The `--intgrid` keys (a value's number or name) that no IntGrid layer definition of the
 /// project defines, each with what the project defines: they change nothing. None for a
 /// project without definitions, whose values have no names to check.
 pub(super) fn unused_options(defs: &Defs, opts: &ImportOptions) -> Vec<String> {
+    if opts.intgrid.is_empty() {
+        return Vec::new();
+    }
+    // Each value once, in the definitions' order (a set: a project may define many).
+    let mut seen = std::collections::HashSet::new();
     let values: Vec<(i64, String)> = defs
         .layers
         .iter()
@@ -90,12 +99,8 @@ pub(super) fn unused_options(defs: &Defs, opts: &ImportOptions) -> Vec<String> {
                 .map(|(i, v)| (v.value.unwrap_or(i as i64 + 1), v.identifier.clone()))
         })
         .map(|(v, n)| (v, n.unwrap_or_default()))
-        .fold(Vec::new(), |mut all, v| {
-            if !all.contains(&v) {
-                all.push(v);
-            }
-            all
-        });
+        .filter(|v| seen.insert(v.clone()))
+        .collect();
     if values.is_empty() {
         return Vec::new();
     }
