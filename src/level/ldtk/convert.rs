@@ -325,19 +325,20 @@ pub(super) fn import(
                         cells.sort_unstable();
                         cells.dedup();
                     }
-                    let mut noted: Vec<i64> = Vec::new();
+                    let mut kinds: std::collections::HashMap<i64, Tile> = Default::default();
                     for (idx, v) in cells {
                         if idx < 0 || idx >= cw * ch {
                             continue;
                         }
                         (names.check_cell(&lname, (idx % cw, idx / cw), v)).map_err(&perr)?;
-                        let (t, note) = kind_of(v);
-                        if let Some(n) = note {
-                            if !noted.contains(&v) {
-                                noted.push(v);
+                        // Each value judged (and its note given) once, at its first cell.
+                        let t = *kinds.entry(v).or_insert_with(|| {
+                            let (t, note) = kind_of(v);
+                            if let Some(n) = note {
                                 warn(&format!("layer {lname:?}"), n);
                             }
-                        }
+                            t
+                        });
                         // In i128: a cell size near the 10^15 pixel limit times a column
                         // would wrap an i64.
                         let corner = |o: i64, off: i64, k: i64, lo: i64| {
