@@ -101,7 +101,8 @@ impl<C: Copy> NearCache<C> {
         &self.items
     }
 
-    /// Keeps the boxes touching `area` loosened by [`NEAR_MARGIN`] (the rare path of a query).
+    /// Keeps the boxes touching `area` grown by [`NEAR_MARGIN`], leaning ahead by [`LEAD`] (the
+    /// rare path of a query).
     #[cold]
     fn refill(&mut self, tiles: &StaticTiles, area: &Aabb, place: impl Fn(&Aabb) -> Rect<C>) {
         // Twice the margin on each axis, most of it ahead of the way the mover went since
