@@ -239,6 +239,25 @@ mod tests {
         assert_eq!(found, vec![10.0, 11.0]);
     }
 
+    type Answer = Vec<(Aabb, BoxKind)>;
+
+    /// The near cache's answer for `area`, picked out by the caller's own test (inclusive
+    /// touching), beside the BVH's direct answer.
+    fn cached_and_direct(
+        tiles: &StaticTiles,
+        near: &mut NearCache<f32>,
+        area: Aabb,
+    ) -> (Answer, Answer) {
+        let cached = near
+            .query(tiles, area, |b| Rect::from(*b))
+            .iter()
+            .map(|(b, k)| (Aabb::new(b.min.into(), b.max.into()), *k))
+            .filter(|(b, _)| b.intersects(&area))
+            .collect();
+        let direct = tiles.query(&area).map(|(b, k)| (*b, k)).collect();
+        (cached, direct)
+    }
+
     #[test]
     fn near_cache_answers_as_the_bvh_does() {
         // A floor with gaps and a wall, queried along a walk: every answer, refilled or cached,
@@ -259,15 +278,8 @@ mod tests {
             let x = k as f32 * 0.093;
             let area = Aabb::new(Vec2::new(x, 0.9), Vec2::new(x + 0.8, 2.05));
             let before = near.region;
-            // The caller's own test (inclusive touching) picks the answer out of the cache's.
-            let cached: Vec<(Aabb, BoxKind)> = near
-                .query(&tiles, area, |b| Rect::from(*b))
-                .iter()
-                .map(|(b, k)| (Aabb::new(b.min.into(), b.max.into()), *k))
-                .filter(|(b, _)| b.intersects(&area))
-                .collect();
+            let (cached, direct) = cached_and_direct(&tiles, &mut near, area);
             refills += (near.region != before) as usize;
-            let direct: Vec<(Aabb, BoxKind)> = tiles.query(&area).map(|(b, k)| (*b, k)).collect();
             assert_eq!(cached, direct, "at x = {x}");
         }
         // 186 tiles walked with a one-tile margin: a refill about every tile, not every query.
@@ -297,13 +309,7 @@ mod tests {
             p += Vec2::new(v.0, v.1);
             p = p.clamp(Vec2::splat(2.0), Vec2::new(w as f32 - 3.0, h as f32 - 3.0));
             let area = Aabb::new(p, p + Vec2::new(0.8, 0.9) + Vec2::new(v.0, v.1).abs());
-            let cached: Vec<(Aabb, BoxKind)> = near
-                .query(&tiles, area, |b| Rect::from(*b))
-                .iter()
-                .map(|(b, k)| (Aabb::new(b.min.into(), b.max.into()), *k))
-                .filter(|(b, _)| b.intersects(&area))
-                .collect();
-            let direct: Vec<(Aabb, BoxKind)> = tiles.query(&area).map(|(b, k)| (*b, k)).collect();
+            let (cached, direct) = cached_and_direct(&tiles, &mut near, area);
             assert_eq!(cached, direct, "step {k} at {p}");
             assert!(near.region.contains(&area), "step {k}");
         }
