@@ -21,15 +21,18 @@ use crate::rounding::{ceil32, floor32};
 /// and rounding, well under a climbing step.
 pub const TOP_TOLERANCE: f32 = 0.02;
 
-/// The ladder run under the centre column that the box overlaps: (centre x, bottom, top), world.
-fn ladder_here(level: &Level, origin: Vec2, feet: Vec2, size: Vec2) -> Option<(f32, f32, f32)> {
+/// The ladder run under the centre column that the box overlaps: (centre x, top), world.
+///
+/// Only the run's top is walked to: its bottom is at or below the ladder row found, which lies
+/// below the box's top (`j < ceil(y + h)` gives `j < y + h`), so the box always reaches above it.
+fn ladder_here(level: &Level, origin: Vec2, feet: Vec2, size: Vec2) -> Option<(f32, f32)> {
     let local = feet - origin;
     let i = floor32(local.x) as i64;
     let (j0, j1) = (floor32(local.y) as i64, ceil32(local.y + size.y) as i64);
     (j0..j1)
-        .find_map(|j| level.ladder_extent(i, j))
-        .filter(|(bottom, top)| local.y < *top && local.y + size.y > *bottom)
-        .map(|(b, t)| (i as f32 + 0.5 + origin.x, b + origin.y, t + origin.y))
+        .find_map(|j| level.ladder_top(i, j))
+        .filter(|top| local.y < *top)
+        .map(|t| (i as f32 + 0.5 + origin.x, t + origin.y))
 }
 
 /// Before the motion integrates: enters the ladder state if the input and position allow it,
@@ -64,15 +67,14 @@ pub fn enter_within(
     let grab = if input.up {
         // Feet standing on the ladder's top (sunk into it by less than the tolerance) have
         // nothing above to climb.
-        ladder_here(level, origin, *pos, size).filter(|(_, _, top)| !on_top(*top))
+        ladder_here(level, origin, *pos, size).filter(|(_, top)| !on_top(*top))
     } else if input.down && m.grounded {
         // Standing on a ladder's top: the ladder is in the tile just below the feet.
-        ladder_here(level, origin, *pos - Vec2::new(0.0, 0.5), size)
-            .filter(|(_, _, top)| on_top(*top))
+        ladder_here(level, origin, *pos - Vec2::new(0.0, 0.5), size).filter(|(_, top)| on_top(*top))
     } else {
         None
     };
-    if let Some((x, _, _)) = grab {
+    if let Some((x, _)) = grab {
         m.on_ladder = true;
         m.vel = Vec2::ZERO;
         m.grounded = false;
@@ -95,7 +97,7 @@ pub fn leave(
     }
     let off = match ladder_here(level, origin, pos, size) {
         None => true,
-        Some((_, _, top)) => pos.y >= top,
+        Some((_, top)) => pos.y >= top,
     };
     if off || (m.grounded && input.down) {
         m.on_ladder = false;

@@ -183,17 +183,25 @@ impl Level {
 
     /// The run of ladder tiles in column `i` that contains row `j`, as (bottom, top) heights.
     pub fn ladder_extent(&self, i: i64, j: i64) -> Option<(f32, f32)> {
-        if self.tile(i, j) != Tile::Ladder {
-            return None;
-        }
-        let (mut lo, mut hi) = (j, j);
+        let top = self.ladder_top(i, j)?;
+        let mut lo = j;
         while self.tile(i, lo - 1) == Tile::Ladder {
             lo -= 1;
         }
+        Some((lo as f32, top))
+    }
+
+    /// The top height of the run of ladder tiles in column `i` that contains row `j`
+    /// ([`Level::ladder_extent`]'s top, without walking down to its bottom).
+    pub(crate) fn ladder_top(&self, i: i64, j: i64) -> Option<f32> {
+        if self.tile(i, j) != Tile::Ladder {
+            return None;
+        }
+        let mut hi = j;
         while self.tile(i, hi + 1) == Tile::Ladder {
             hi += 1;
         }
-        Some((lo as f32, hi as f32 + 1.0))
+        Some(hi as f32 + 1.0)
     }
 
     /// Boxes of every one-way tile (see [`Level::is_one_way`]), in row order.

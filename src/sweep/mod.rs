@@ -185,6 +185,8 @@ struct Sweep<S: Space> {
     climb_gradient: f32,
     /// The level's grid, for the per-column feature rules (slopes).
     level: Level,
+    /// Which of the level's columns hold a slope tile.
+    slope_columns: slopes::SlopeColumns,
     stats: SweepStats,
     params: MotionParams,
     /// [`SweepConfig::snap_down`], tiles.
@@ -311,6 +313,8 @@ struct World<'a, S: Space> {
     /// The moving platforms, placed at the current frame as a move comes within their reach.
     platforms: &'a Platforms<S::Coord>,
     level: &'a Level,
+    /// Which of the level's columns hold a slope tile.
+    slope_columns: &'a slopes::SlopeColumns,
     params: &'a MotionParams,
     /// `tan(max_climb_angle)`.
     climb_gradient: f32,
@@ -351,6 +355,7 @@ impl<S: Space> Sweep<S> {
             steps: 0,
             climb_gradient: params.max_climb_angle.tan(),
             level: level.geometry(),
+            slope_columns: slopes::SlopeColumns::new(level),
             stats: SweepStats::default(),
             params,
             snap_down: config.snap_down,
@@ -379,6 +384,7 @@ impl<S: Space> Sweep<S> {
             tiles: &self.tiles,
             platforms: &self.platforms,
             level: &self.level,
+            slope_columns: &self.slope_columns,
             params: &self.params,
             climb_gradient: self.climb_gradient,
             snap_down: self.snap_down,

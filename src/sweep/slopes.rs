@@ -47,14 +47,17 @@ pub(crate) struct Column {
     /// The x the cells are read at (its bits), and its column `floor(x)` (0 at x = 0).
     x: u32,
     i: i64,
+    /// Whether the column holds a slope tile ([`SlopeColumns`]).
+    slopes: bool,
     /// The lowest row kept: rows `base..base + ROWS`, `None` where not read yet.
     base: i64,
     cells: [Option<SurfaceCell>; ROWS],
 }
 
 impl Column {
-    /// [`Level::surface_at`] (level coordinates), reading the cells through this column.
-    /// Inlined into each rule, so that a lookup of kept rows costs no call.
+    /// [`Level::surface_at`] at `x` (level coordinates, the x the column was last moved to by
+    /// [`Column::move_to`]), reading the cells through this column. Inlined into each rule, so
+    /// that a lookup of kept rows costs no call.
     #[inline(always)]
     fn surface_at(
         &mut self,
@@ -63,11 +66,6 @@ impl Column {
         top: f32,
         depth: f32,
     ) -> Option<(f32, Option<(i64, i64)>)> {
-        if x.to_bits() != self.x {
-            self.x = x.to_bits();
-            self.i = floor_to_i64(x);
-            self.cells = [None; ROWS];
-        }
         let i = self.i;
         surface_walk(level.height, i, top, depth, |j| {
             let k = j.wrapping_sub(self.base);
@@ -76,6 +74,17 @@ impl Column {
                 _ => self.read(level, j, x),
             }
         })
+    }
+
+    /// Makes `x` (level coordinates) the column's x: a new x keeps no cells.
+    #[inline(always)]
+    fn move_to(&mut self, x: f32, slope_columns: &SlopeColumns) {
+        if x.to_bits() != self.x {
+            self.x = x.to_bits();
+            self.i = floor_to_i64(x);
+            self.slopes = slope_columns.has(self.i);
+            self.cells = [None; ROWS];
+        }
     }
 
     /// Reads row `j` from the level and keeps it (the rows kept become two below to one
@@ -94,93 +103,119 @@ impl Column {
     }
 }
 
+/// Which columns of a level hold at least one slope tile: under the centre in any other column
+/// there is no slope to find, so [`slope_under`] answers without walking it (on a level with
+/// slopes, the flat stretches between them cost what a level without slopes costs there).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct SlopeColumns {
+    /// Bit `i % 64` of word `i / 64` is set when column `i` holds a slope; empty on a level
+    /// without slopes.
+    bits: Vec<u64>,
+}
+
+impl SlopeColumns {
+    /// The slope columns of `level` (a walk over its tiles only when it has slopes).
+    pub(crate) fn new(level: &Level) -> Self {
+        let mut bits = Vec::new();
+        if level.features.slopes {
+            bits = vec![0; (level.width as usize).div_ceil(64)];
+            for (i, _, _) in level.slopes() {
+                bits[i as usize / 64] |= 1 << (i % 64);
+            }
+        }
+        SlopeColumns { bits }
+    }
+
+    /// Whether column `i` holds a slope tile (none outside the map: a negative `i` is a word
+    /// index past the end).
+    #[inline]
+    fn has(&self, i: i64) -> bool {
+        let i = i as u64;
+        self.bits
+            .get((i / 64) as usize)
+            .is_some_and(|w| w >> (i % 64) & 1 != 0)
+    }
+}
+
 /// The surface under the centre at frame `x` from frame height `top` down `depth` tiles: its
 /// height (frame) and, on a slope, the slope's tile.
-fn surface(
-    level: &Level,
+fn surface<S: Space>(
+    w: &World<S>,
     column: &mut Column,
-    origin: Vec2,
     x: f32,
     top: f32,
     depth: f32,
 ) -> Option<(f32, Option<(i64, i64)>)> {
+    let origin = w.frame.origin;
     let (lx, ltop) = (x - origin.x, top - origin.y);
+    column.move_to(lx, w.slope_columns);
     column
-        .surface_at(level, lx, ltop, depth)
+        .surface_at(w.level, lx, ltop, depth)
         .map(|(h, slope)| (h + origin.y, slope))
 }
 
 /// The ground at height `y` (frame) found at frame `x`: its normal, a slope's if on one.
-fn ground_at(level: &Level, origin: Vec2, x: f32, y: f32, slope: Option<(i64, i64)>) -> Ground {
-    let lx = x - origin.x;
+fn ground_at<S: Space>(w: &World<S>, x: f32, y: f32, slope: Option<(i64, i64)>) -> Ground {
+    let lx = x - w.frame.origin.x;
     Ground {
         y,
-        normal: slope.map_or(Vec2::Y, |(i, j)| level.slope_normal(i, j, lx)),
+        normal: slope.map_or(Vec2::Y, |(i, j)| w.level.slope_normal(i, j, lx)),
     }
 }
 
 /// The height of the slope under the centre, if the ground under the centre (from `reach`
-/// above the feet down to one tile below) is a slope.
-fn slope_under(
-    level: &Level,
-    column: &mut Column,
-    origin: Vec2,
-    feet: Vec2,
-    reach: f32,
-) -> Option<f32> {
+/// above the feet down to one tile below) is a slope; `None` at once in a column without one.
+fn slope_under<S: Space>(w: &World<S>, column: &mut Column, feet: Vec2, reach: f32) -> Option<f32> {
+    let origin = w.frame.origin;
+    let x = feet.x - origin.x;
+    column.move_to(x, w.slope_columns);
+    if !column.slopes {
+        return None;
+    }
     column
-        .surface_at(
-            level,
-            feet.x - origin.x,
-            feet.y - origin.y + reach,
-            reach + 1.0,
-        )
+        .surface_at(w.level, x, feet.y - origin.y + reach, reach + 1.0)
         .and_then(|(h, slope)| slope.map(|_| h + origin.y))
 }
 
 /// Whether the ground under the centre at `x` rises above `feet + rise_allow` (within one tile
 /// above the feet): the climb limit.
-fn climb_blocked(
-    level: &Level,
+fn climb_blocked<S: Space>(
+    w: &World<S>,
     column: &mut Column,
-    origin: Vec2,
     x: f32,
     feet: f32,
     rise_allow: f32,
 ) -> bool {
-    surface(level, column, origin, x, feet + 1.0, 1.0)
-        .is_some_and(|(y, _)| y > feet + rise_allow && y > feet)
+    surface(w, column, x, feet + 1.0, 1.0).is_some_and(|(y, _)| y > feet + rise_allow && y > feet)
 }
 
 /// Puts feet that ended below the surface under the centre back on it. `from` is the feet
 /// height before the y move, `rise_allow` how far the surface may be above it (uphill walking).
-fn resolve_up(
-    level: &Level,
+fn resolve_up<S: Space>(
+    w: &World<S>,
     column: &mut Column,
-    origin: Vec2,
     pos: &mut Vec2,
     from: f32,
     rise_allow: f32,
 ) -> Option<Ground> {
     let top = from.max(pos.y) + rise_allow;
-    let (y, slope) = surface(level, column, origin, pos.x, top, top - pos.y + 1.0)?;
+    let (y, slope) = surface(w, column, pos.x, top, top - pos.y + 1.0)?;
     (pos.y < y).then(|| {
         pos.y = y;
-        ground_at(level, origin, pos.x, y, slope)
+        ground_at(w, pos.x, y, slope)
     })
 }
 
 /// Follows the ground down by at most `max_drop`.
-fn follow_down(
-    level: &Level,
+fn follow_down<S: Space>(
+    w: &World<S>,
     column: &mut Column,
-    origin: Vec2,
     pos: &mut Vec2,
     max_drop: f32,
 ) -> Option<Ground> {
-    let (y, slope) = surface(level, column, origin, pos.x, pos.y, max_drop)?;
+    let (y, slope) = surface(w, column, pos.x, pos.y, max_drop)?;
     pos.y = y;
-    Some(ground_at(level, origin, pos.x, y, slope))
+    Some(ground_at(w, pos.x, y, slope))
 }
 
 /// The overhang of the seed's box over a slope, in frame tiles: half the moved width times the
@@ -203,8 +238,7 @@ pub(super) fn ramp_top_for_x<S: Space>(
         return None;
     }
     let overhang = overhang(w, c);
-    slope_under(w.level, &mut c.column, w.frame.origin, feet, overhang)
-        .map(|h| w.space.coord_y(h + overhang))
+    slope_under(w, &mut c.column, feet, overhang).map(|h| w.space.coord_y(h + overhang))
 }
 
 /// Before the y move (step 5): the band of solid tops (above, at most) that the y move skips
@@ -219,7 +253,7 @@ pub(super) fn ramp_band_for_y<S: Space>(
         return None;
     }
     let overhang = overhang(w, c);
-    slope_under(w.level, &mut c.column, w.frame.origin, feet, overhang).map(|h| {
+    slope_under(w, &mut c.column, feet, overhang).map(|h| {
         (
             w.space.coord_y(h + w.frame.eps),
             w.space.coord_y(h + overhang),
@@ -266,8 +300,7 @@ pub(super) fn climb_limit<S: Space>(
         return false;
     }
     stats.slope_steps += 1;
-    let origin = w.frame.origin;
-    let blocked = climb_blocked(w.level, &mut c.column, origin, feet.x, feet.y, rise_allow);
+    let blocked = climb_blocked(w, &mut c.column, feet.x, feet.y, rise_allow);
     if blocked {
         c.body.at[0] = start.at[0];
         c.body.remainder.x = 0.0;
@@ -301,9 +334,8 @@ pub(super) fn ground_on_slopes<S: Space>(
     if !w.level.features.slopes {
         return None;
     }
-    let origin = w.frame.origin;
     let mut feet = w.feet(c);
-    if let Some(g) = resolve_up(w.level, &mut c.column, origin, &mut feet, from, rise_allow) {
+    if let Some(g) = resolve_up(w, &mut c.column, &mut feet, from, rise_allow) {
         set_feet_y(w, c, feet.y);
         return Some((g, true));
     }
@@ -312,17 +344,44 @@ pub(super) fn ground_on_slopes<S: Space>(
         // On the grid, a fall of less than a subpixel moves nothing, and feet put on a slope
         // stand at most a subpixel above it (`Grid::round_height`): the slope is under them if
         // it is within that subpixel (the grid's "collide check one pixel down", as for solids).
-        if let Some(g) = follow_down(w.level, &mut c.column, origin, &mut feet, unit) {
+        if let Some(g) = follow_down(w, &mut c.column, &mut feet, unit) {
             set_feet_y(w, c, feet.y);
             return Some((g, false));
         }
     }
     if !grounded && was_grounded && dy <= 0.0 {
         let max_drop = rise_allow + w.snap_down - dy.min(0.0);
-        if let Some(g) = follow_down(w.level, &mut c.column, origin, &mut feet, max_drop) {
+        if let Some(g) = follow_down(w, &mut c.column, &mut feet, max_drop) {
             set_feet_y(w, c, feet.y);
             return Some((g, false));
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::level::{Slope, Tile};
+
+    #[test]
+    fn slope_columns_are_the_columns_holding_a_slope_tile() {
+        // 70 columns (two words of bits), slopes in columns 3 and 66 at different rows.
+        let (w, h) = (70usize, 3usize);
+        let mut t = vec![Tile::Empty; w * h];
+        t[..w].fill(Tile::Solid);
+        let ramp = Tile::Slope(Slope::Line {
+            left: 0.0,
+            right: 1.0,
+        });
+        t[w + 3] = ramp;
+        t[2 * w + 66] = ramp;
+        let cols = SlopeColumns::new(&Level::from_tiles("ramps", w as u32, h as u32, t));
+        let with: Vec<i64> = (-2..w as i64 + 2).filter(|&i| cols.has(i)).collect();
+        assert_eq!(with, vec![3, 66]);
+        assert!(!cols.has(i64::MIN) && !cols.has(i64::MAX));
+        // A level without slopes keeps no bits and has none anywhere.
+        let flat = SlopeColumns::new(&Level::from_tiles("flat", 4, 1, vec![Tile::Solid; 4]));
+        assert!(flat.bits.is_empty() && !flat.has(0));
+    }
 }
