@@ -42,9 +42,11 @@ const ROWS: usize = 4;
 /// lookup at an x not kept (another x is another column, or the same column's slopes at other
 /// heights) starts afresh; the cells kept are what [`Level::surface_cell`] gives for that x, so
 /// every answer is the level's own ([`Level::surface_at`]'s walk over the same cells).
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct Column {
-    /// The x the cells are read at (its bits), and its column `floor(x)` (0 at x = 0).
+    /// The x the cells are read at (its bits; a new column's are a NaN no arithmetic on
+    /// numbers makes, so its first lookup reads the column whatever the x), and its column
+    /// `floor(x)`.
     x: u32,
     i: i64,
     /// Whether the column holds a slope tile ([`SlopeColumns`]).
@@ -52,6 +54,18 @@ pub(crate) struct Column {
     /// The lowest row kept: rows `base..base + ROWS`, `None` where not read yet.
     base: i64,
     cells: [Option<SurfaceCell>; ROWS],
+}
+
+impl Default for Column {
+    fn default() -> Self {
+        Column {
+            x: u32::MAX,
+            i: 0,
+            slopes: false,
+            base: 0,
+            cells: [None; ROWS],
+        }
+    }
 }
 
 impl Column {
@@ -383,5 +397,22 @@ mod tests {
         // A level without slopes keeps no bits and has none anywhere.
         let flat = SlopeColumns::new(&Level::from_tiles("flat", 4, 1, vec![Tile::Solid; 4]));
         assert!(flat.bits.is_empty() && !flat.has(0));
+    }
+
+    #[test]
+    fn a_new_column_learns_its_slopes_at_its_first_x_even_at_zero() {
+        // A slope in column 0: a character whose first lookup is at x = 0 finds it.
+        let mut t = vec![Tile::Solid; 2];
+        t[0] = Tile::Slope(Slope::Line {
+            left: 0.0,
+            right: 1.0,
+        });
+        let level = Level::from_tiles("edge", 2, 1, t);
+        let cols = SlopeColumns::new(&level);
+        for x in [0.0, -0.0, 0.5] {
+            let mut c = Column::default();
+            c.move_to(x, &cols);
+            assert!(c.slopes, "x = {x}");
+        }
     }
 }
