@@ -15,7 +15,7 @@ use glam::Vec2;
 
 use crate::level::Level;
 use crate::motion::{Input, MotionState};
-use crate::rounding::{ceil32, floor32};
+use crate::rounding::{ceil_to_i64, floor_to_i64};
 
 /// How close above a ladder's top the feet count as standing on it, in tiles: Rapier's offset
 /// and rounding, well under a climbing step.
@@ -27,8 +27,8 @@ pub const TOP_TOLERANCE: f32 = 0.02;
 /// below the box's top (`j < ceil(y + h)` gives `j < y + h`), so the box always reaches above it.
 fn ladder_here(level: &Level, origin: Vec2, feet: Vec2, size: Vec2) -> Option<(f32, f32)> {
     let local = feet - origin;
-    let i = floor32(local.x) as i64;
-    let (j0, j1) = (floor32(local.y) as i64, ceil32(local.y + size.y) as i64);
+    let i = floor_to_i64(local.x);
+    let (j0, j1) = (floor_to_i64(local.y), ceil_to_i64(local.y + size.y));
     (j0..j1)
         .find_map(|j| level.ladder_top(i, j))
         .filter(|top| local.y < *top)

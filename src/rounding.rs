@@ -13,11 +13,14 @@ const F32_WHOLE: f32 = 8_388_608.0;
 const F64_WHOLE: f64 = 4_503_599_627_370_496.0;
 
 /// Generates the three roundings for one float type: `$whole` is the magnitude from which
-/// every value is whole, `$int` an integer type holding every smaller whole value.
+/// every value is whole, `$int` an integer type holding every smaller whole value; `$unused`
+/// marks the float roundings a type's callers no longer need (kept, and tested, as the
+/// reference its integer forms are checked against).
 macro_rules! roundings {
-    ($float:ty, $whole:expr, $int:ty, $floor:ident, $ceil:ident, $round:ident) => {
+    ($float:ty, $whole:expr, $int:ty, $floor:ident, $ceil:ident, $round:ident $(, #[$unused:meta])?) => {
         /// `x.floor()`, bit for bit.
         #[inline]
+        $(#[$unused])?
         pub(crate) fn $floor(x: $float) -> $float {
             if x.is_nan() || x.abs() >= $whole {
                 return x;
@@ -28,6 +31,7 @@ macro_rules! roundings {
 
         /// `x.ceil()`, bit for bit.
         #[inline]
+        $(#[$unused])?
         pub(crate) fn $ceil(x: $float) -> $float {
             if x.is_nan() || x.abs() >= $whole {
                 return x;
@@ -57,7 +61,9 @@ macro_rules! roundings {
     };
 }
 
-roundings!(f32, F32_WHOLE, i32, floor32, ceil32, round32);
+// The f32 floor and ceil: every caller now wants a column or row index, which
+// `floor_to_i64` and `ceil_to_i64` give without rounding in float first.
+roundings!(f32, F32_WHOLE, i32, floor32, ceil32, round32, #[cfg_attr(not(test), allow(dead_code))]);
 roundings!(f64, F64_WHOLE, i64, floor64, ceil64, round64);
 
 /// `floor32(x) as i64` (so `x.floor() as i64`), bit for bit, without rounding in float first:
@@ -70,6 +76,19 @@ pub(crate) fn floor_to_i64(x: f32) -> i64 {
     // saturated bound, which only a value beyond it exceeds: then the bound is the answer).
     if (t as f32) > x && t != i64::MIN {
         t - 1
+    } else {
+        t
+    }
+}
+
+/// `ceil32(x) as i64` (so `x.ceil() as i64`), bit for bit: [`floor_to_i64`]'s way, one step up
+/// for a positive fraction. A row's end index from a coordinate.
+#[inline]
+pub(crate) fn ceil_to_i64(x: f32) -> i64 {
+    let t = x as i64;
+    // As in `floor_to_i64`: only a value beyond the saturated bound exceeds it.
+    if (t as f32) < x && t != i64::MAX {
+        t + 1
     } else {
         t
     }
@@ -150,9 +169,11 @@ mod tests {
             assert!(same32(ceil32(x), x.ceil()), "ceil {x:e}");
             assert!(same32(round32(x), x.round()), "round {x:e}");
             assert_eq!(floor_to_i64(x), x.floor() as i64, "floor to i64 {x:e}");
+            assert_eq!(ceil_to_i64(x), x.ceil() as i64, "ceil to i64 {x:e}");
         }
         for x in [-9.3e18f32, -9.223372e18, -1e30, 9.3e18, 9.223372e18, 1e30] {
             assert_eq!(floor_to_i64(x), x.floor() as i64, "floor to i64 {x:e}");
+            assert_eq!(ceil_to_i64(x), x.ceil() as i64, "ceil to i64 {x:e}");
         }
     }
 

@@ -1,6 +1,8 @@
 //! A level's grid of tiles as it is kept for the whole run ([`Cells`]): one byte per cell (an
 //! index into a palette of the level's distinct tiles), shared, so that every copy of a level's
-//! geometry a backend keeps ([`crate::level::Level::geometry`]) costs nothing per tile.
+//! geometry a backend keeps ([`crate::level::Level::geometry`]) costs nothing per tile. A level
+//! with ladders also keeps each ladder cell's run top (four bytes a cell), which the ladder
+//! rules read every step.
 //!
 //! A [`Tile`] is 20 bytes (a slope's 16 heights and its tag); a million-tile map held as tiles
 //! took 20 MB per copy, and the sweep kept a copy per configuration. A level has few
@@ -19,6 +21,10 @@ pub(super) struct Cells {
     codes: Codes,
     /// The level's distinct tiles, in the order first met.
     palette: Arc<[Tile]>,
+    /// Per cell, one more than the top row of the run of ladder tiles holding it (0: not a
+    /// ladder), built only when the level has ladders, so that the ladder rules that every
+    /// backend runs each step find a run's top with one read instead of a walk up the column.
+    ladder_tops: Option<Arc<[u32]>>,
 }
 
 /// Palette indices, a byte each while the palette has at most 256 entries.
@@ -63,8 +69,8 @@ fn key(t: &Tile) -> Key {
 }
 
 impl Cells {
-    /// The cells of `tiles`, in their order.
-    pub(super) fn new(tiles: &[Tile]) -> Cells {
+    /// The cells of `tiles` (rows of `width` cells), in their order.
+    pub(super) fn new(tiles: &[Tile], width: u32) -> Cells {
         let mut palette: Vec<Tile> = Vec::new();
         let mut index: HashMap<Key, u32> = HashMap::new();
         let mut code = |t: &Tile| -> u32 {
@@ -79,10 +85,22 @@ impl Cells {
         } else {
             Codes::Wide(wide.into())
         };
+        let ladder_tops = palette
+            .contains(&Tile::Ladder)
+            .then(|| ladder_tops(tiles, width as usize));
         Cells {
             codes,
             palette: palette.into(),
+            ladder_tops,
         }
+    }
+
+    /// The top row of the run of ladder tiles holding cell `k`, or none if `k` is not a ladder
+    /// (`k` below [`Cells::len`]).
+    #[inline]
+    pub(super) fn ladder_top(&self, k: usize) -> Option<u32> {
+        let top = self.ladder_tops.as_ref()?[k];
+        top.checked_sub(1)
     }
 
     /// The number of cells.
@@ -119,6 +137,28 @@ impl Cells {
     }
 }
 
+/// Per cell of `tiles` (rows of `width`), one more than the top row of its run of ladder
+/// tiles, 0 where it holds no ladder: each column walked down from its top row.
+fn ladder_tops(tiles: &[Tile], width: usize) -> Arc<[u32]> {
+    let mut tops = vec![0u32; tiles.len()];
+    let rows = tiles.len().checked_div(width).unwrap_or(0);
+    for i in 0..width {
+        let mut top = 0;
+        for j in (0..rows).rev() {
+            let k = j * width + i;
+            if tiles[k] != Tile::Ladder {
+                top = 0;
+                continue;
+            }
+            if top == 0 {
+                top = j as u32 + 1;
+            }
+            tops[k] = top;
+        }
+    }
+    tops.into()
+}
+
 impl PartialEq for Cells {
     /// Cell by cell, whatever the palette's order.
     fn eq(&self, other: &Cells) -> bool {
@@ -144,7 +184,7 @@ mod tests {
             line,
             Tile::OneWay,
         ];
-        let cells = Cells::new(&tiles);
+        let cells = Cells::new(&tiles, 2);
         assert!(matches!(cells.codes, Codes::Narrow(_)));
         assert_eq!(cells.iter().collect::<Vec<_>>(), tiles);
         // 300 distinct slopes (more than a byte indexes) keep four bytes a cell.
@@ -156,8 +196,36 @@ mod tests {
                 })
             })
             .collect();
-        let cells = Cells::new(&many);
+        let cells = Cells::new(&many, 300);
         assert!(matches!(cells.codes, Codes::Wide(_)));
         assert_eq!(cells.iter().collect::<Vec<_>>(), many);
+    }
+
+    #[test]
+    fn a_ladder_cell_knows_the_top_row_of_its_run() {
+        // Three columns, five rows from the bottom: a run of rows 0-2 and one of row 4 in
+        // column 0, a run of rows 1-4 (the map's top) in column 2, and row 4 alone in column 1.
+        let (l, e) = (Tile::Ladder, Tile::Empty);
+        #[rustfmt::skip]
+        let tiles = vec![
+            l, e, e,
+            l, Tile::Solid, l,
+            l, e, l,
+            e, e, l,
+            l, l, l,
+        ];
+        let cells = Cells::new(&tiles, 3);
+        let tops: Vec<Option<u32>> = (0..tiles.len()).map(|k| cells.ladder_top(k)).collect();
+        #[rustfmt::skip]
+        let expected = vec![
+            Some(2), None, None,
+            Some(2), None, Some(4),
+            Some(2), None, Some(4),
+            None, None, Some(4),
+            Some(4), Some(4), Some(4),
+        ];
+        assert_eq!(tops, expected);
+        // Without a ladder tile there is no table to read.
+        assert_eq!(Cells::new(&[Tile::Solid, e], 2).ladder_top(0), None);
     }
 }

@@ -192,16 +192,17 @@ impl Level {
     }
 
     /// The top height of the run of ladder tiles in column `i` that contains row `j`
-    /// ([`Level::ladder_extent`]'s top, without walking down to its bottom).
+    /// ([`Level::ladder_extent`]'s top, without walking down to its bottom), read from the
+    /// table of run tops the level keeps when it has ladders.
+    #[inline]
     pub(crate) fn ladder_top(&self, i: i64, j: i64) -> Option<f32> {
-        if self.tile(i, j) != Tile::Ladder {
+        if i < 0 || j < 0 || i >= self.width as i64 || j >= self.height as i64 {
             return None;
         }
-        let mut hi = j;
-        while self.tile(i, hi + 1) == Tile::Ladder {
-            hi += 1;
-        }
-        Some(hi as f32 + 1.0)
+        let hi = self
+            .tiles
+            .ladder_top((j as usize) * self.width as usize + i as usize)?;
+        Some(hi as i64 as f32 + 1.0)
     }
 
     /// Boxes of every one-way tile (see [`Level::is_one_way`]), in row order.

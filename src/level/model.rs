@@ -46,7 +46,7 @@ impl Level {
     /// [`Level::from_tiles`] from a slice; the level keeps its tiles a byte each.
     pub(crate) fn with_cells(name: &str, width: u32, height: u32, tiles: &[Tile]) -> Level {
         assert_eq!(tiles.len(), width as usize * height as usize);
-        let tiles = Cells::new(tiles);
+        let tiles = Cells::new(tiles, width);
         let features = Features {
             one_way: tiles.any_distinct(|t| *t == Tile::OneWay),
             ladders: tiles.any_distinct(|t| *t == Tile::Ladder),
@@ -114,7 +114,7 @@ impl Level {
     /// features as they are.
     pub(crate) fn set_tiles(&mut self, width: u32, tiles: &[Tile]) {
         assert_eq!(tiles.len(), width as usize * self.height as usize);
-        self.tiles = Cells::new(tiles);
+        self.tiles = Cells::new(tiles, width);
         self.width = width;
     }
 
