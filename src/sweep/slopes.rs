@@ -54,6 +54,9 @@ pub(crate) struct Column {
     /// The lowest row kept: rows `base..base + ROWS`, `None` where not read yet.
     base: i64,
     cells: [Option<SurfaceCell>; ROWS],
+    /// The slope normal found at this x, and the row of the slope tile it is of: a character
+    /// at rest on a slope stands on the same tile at the same x step after step.
+    normal: Option<(i64, Vec2)>,
 }
 
 impl Default for Column {
@@ -64,6 +67,7 @@ impl Default for Column {
             slopes: false,
             base: 0,
             cells: [None; ROWS],
+            normal: None,
         }
     }
 }
@@ -98,6 +102,21 @@ impl Column {
             self.i = floor_to_i64(x);
             self.slopes = slope_columns.has(self.i);
             self.cells = [None; ROWS];
+            self.normal = None;
+        }
+    }
+
+    /// [`Level::slope_normal`] of the slope tile in row `j` of this column at its x (the one
+    /// [`Column::surface_at`] found), kept until the x changes.
+    #[inline]
+    fn normal(&mut self, level: &Level, j: i64) -> Vec2 {
+        match self.normal {
+            Some((row, n)) if row == j => n,
+            _ => {
+                let n = level.slope_normal(self.i, j, f32::from_bits(self.x));
+                self.normal = Some((j, n));
+                n
+            }
         }
     }
 
@@ -168,12 +187,17 @@ fn surface<S: Space>(
         .map(|(h, slope)| (h + origin.y, slope))
 }
 
-/// The ground at height `y` (frame) found at frame `x`: its normal, a slope's if on one.
-fn ground_at<S: Space>(w: &World<S>, x: f32, y: f32, slope: Option<(i64, i64)>) -> Ground {
-    let lx = x - w.frame.origin.x;
+/// The ground at height `y` (frame) that `column`'s last lookup found: its normal, a slope's
+/// if on one (`slope`, a tile of that column).
+fn ground_at<S: Space>(
+    w: &World<S>,
+    column: &mut Column,
+    y: f32,
+    slope: Option<(i64, i64)>,
+) -> Ground {
     Ground {
         y,
-        normal: slope.map_or(Vec2::Y, |(i, j)| w.level.slope_normal(i, j, lx)),
+        normal: slope.map_or(Vec2::Y, |(_, j)| column.normal(w.level, j)),
     }
 }
 
@@ -216,7 +240,7 @@ fn resolve_up<S: Space>(
     let (y, slope) = surface(w, column, pos.x, top, top - pos.y + 1.0)?;
     (pos.y < y).then(|| {
         pos.y = y;
-        ground_at(w, pos.x, y, slope)
+        ground_at(w, column, y, slope)
     })
 }
 
@@ -229,7 +253,7 @@ fn follow_down<S: Space>(
 ) -> Option<Ground> {
     let (y, slope) = surface(w, column, pos.x, pos.y, max_drop)?;
     pos.y = y;
-    Some(ground_at(w, pos.x, y, slope))
+    Some(ground_at(w, column, y, slope))
 }
 
 /// The overhang of the seed's box over a slope, in frame tiles: half the moved width times the
@@ -239,40 +263,72 @@ fn overhang<S: Space>(w: &World<S>, c: &Character<S::Coord>) -> f32 {
     c.body.size.x * 0.5 * w.climb_gradient + w.frame.eps
 }
 
+/// The height (frame) of the slope under the centre of `c` with its feet at `feet`, looking
+/// from the overhang above the feet down to one tile below; `None` when no slope is under the
+/// centre or the level has none. Both moves' ramp rules read it ([`ramp_top_for_x`],
+/// [`ramp_band_for_y`]).
+#[inline]
+pub(super) fn under<S: Space>(
+    w: &World<S>,
+    c: &mut Character<S::Coord>,
+    feet: Vec2,
+) -> Option<f32> {
+    if !w.level.features.slopes {
+        return None;
+    }
+    let overhang = overhang(w, c);
+    slope_under(w, &mut c.column, feet, overhang)
+}
+
+/// [`under`] the feet at `feet` after the x move, given `under_start`, the slope under them at
+/// `start` before it: feet the move left where they were (at rest, or stopped) have the same
+/// slope under them, so the lookup is not repeated.
+#[inline]
+pub(super) fn under_moved<S: Space>(
+    w: &World<S>,
+    c: &mut Character<S::Coord>,
+    feet: Vec2,
+    start: Vec2,
+    under_start: Option<f32>,
+) -> Option<f32> {
+    if !w.level.features.slopes {
+        return None;
+    }
+    let bits = |v: Vec2| v.to_array().map(f32::to_bits);
+    if bits(feet) == bits(start) {
+        under_start
+    } else {
+        under(w, c, feet)
+    }
+}
+
 /// Before the x move (step 3): the highest top, as a coordinate of the storage, of a solid the
 /// x move skips because it lies within the overhang above the slope under the centre (the mass
-/// under a ramp); `None` when no slope is under the centre or the level has none.
+/// under a ramp), from that slope's height [`under`] the feet.
 #[inline]
 pub(super) fn ramp_top_for_x<S: Space>(
     w: &World<S>,
-    c: &mut Character<S::Coord>,
-    feet: Vec2,
+    c: &Character<S::Coord>,
+    under: Option<f32>,
 ) -> Option<S::Coord> {
-    if !w.level.features.slopes {
-        return None;
-    }
-    let overhang = overhang(w, c);
-    slope_under(w, &mut c.column, feet, overhang).map(|h| w.space.coord_y(h + overhang))
+    let h = under?;
+    Some(w.space.coord_y(h + overhang(w, c)))
 }
 
 /// Before the y move (step 5): the band of solid tops (above, at most) that the y move skips
-/// because the slope rules under the centre own them (steps up within the overhang).
+/// because the slope rules under the centre own them (steps up within the overhang), from the
+/// slope's height [`under`] the feet.
 #[inline]
 pub(super) fn ramp_band_for_y<S: Space>(
     w: &World<S>,
-    c: &mut Character<S::Coord>,
-    feet: Vec2,
+    c: &Character<S::Coord>,
+    under: Option<f32>,
 ) -> Option<(S::Coord, S::Coord)> {
-    if !w.level.features.slopes {
-        return None;
-    }
-    let overhang = overhang(w, c);
-    slope_under(w, &mut c.column, feet, overhang).map(|h| {
-        (
-            w.space.coord_y(h + w.frame.eps),
-            w.space.coord_y(h + overhang),
-        )
-    })
+    let h = under?;
+    Some((
+        w.space.coord_y(h + w.frame.eps),
+        w.space.coord_y(h + overhang(w, c)),
+    ))
 }
 
 /// `c`'s feet in the frame for the slope rules ([`World::feet`]; on the grid a conversion from
@@ -397,6 +453,21 @@ mod tests {
         // A level without slopes keeps no bits and has none anywhere.
         let flat = SlopeColumns::new(&Level::from_tiles("flat", 4, 1, vec![Tile::Solid; 4]));
         assert!(flat.bits.is_empty() && !flat.has(0));
+    }
+
+    #[test]
+    fn a_kept_slope_normal_is_the_levels_at_the_columns_x() {
+        // A curved slope (its gradient changes along x) on solid ground, in column 0.
+        let curve = Slope::Heights([0, 0, 1, 1, 2, 3, 4, 5, 6, 8, 9, 10, 12, 13, 15, 16]);
+        let level = Level::from_tiles("curve", 1, 2, vec![Tile::Solid, Tile::Slope(curve)]);
+        let cols = SlopeColumns::new(&level);
+        let mut c = Column::default();
+        for x in [0.2, 0.2, 0.7, 0.7, 0.2] {
+            c.move_to(x, &cols);
+            assert_eq!(c.normal(&level, 1), level.slope_normal(0, 1, x), "x = {x}");
+        }
+        // The normals differ along the curve, so a kept one would have been caught.
+        assert_ne!(level.slope_normal(0, 1, 0.2), level.slope_normal(0, 1, 0.7));
     }
 
     #[test]

@@ -39,7 +39,8 @@ pub(super) fn step<S: Space>(
     let start_feet = slopes::feet(w, c);
 
     // 3. x move: sweep and snap flush; one-way boxes and the mass under a ramp do not block.
-    let ramp_top = slopes::ramp_top_for_x(w, c, start_feet);
+    let under_start = slopes::under(w, c, start_feet);
+    let ramp_top = slopes::ramp_top_for_x(w, c, under_start);
     let mut wall = resolve::move_x(w, c, delta.x, ramp_top);
 
     // 4. Climb limit: a slope rising faster than the steepest walkable one stops the x move
@@ -57,7 +58,8 @@ pub(super) fn step<S: Space>(
     // 5. y move: sweep and snap flush; a one-way box blocks only a fall that started entirely
     //    above it. `from`: the feet's height before it, for step 6.
     let from = feet.y;
-    let ramp_band = slopes::ramp_band_for_y(w, c, feet);
+    let under = slopes::under_moved(w, c, feet, start_feet, under_start);
+    let ramp_band = slopes::ramp_band_for_y(w, c, under);
     if w.level.features.one_way || w.level.features.ladders {
         stats.one_way_steps += 1;
     }
