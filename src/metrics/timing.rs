@@ -21,8 +21,9 @@ pub(crate) const SAMPLES: usize = 11;
 /// rounds: each round times each (scenario, configuration) once, in run order (level, scenario,
 /// configuration), so that a scenario's samples are spread over the whole timing and a burst of
 /// load on the machine disturbs one sample of many scenarios, not every sample of a few. Each
-/// sample is a whole run right after an untimed one of the same run, so that no configuration's
-/// time depends on which ran before it in the round. The
+/// sample is a whole run right after an untimed one of the same run, so that a configuration's
+/// time depends far less on which ran before it in the round (docs/speed.md gives what is left:
+/// a few percent after an engine's run). The
 /// samples of run `i` (in that order) are `out[i]`; a run its configuration does not model, or
 /// that fails (the measured run says why), has NaN samples. `progress` is told each round's
 /// start.
@@ -46,9 +47,10 @@ pub(crate) fn time_rounds(
                     };
                     if crate::backend::runs_scenario(&*run.backend, level, spec) {
                         // Two whole runs, the first untimed: the sample is the second, with this
-                        // configuration's code, branch history and data warm whatever ran
+                        // configuration's code, branch history and data warmer whatever ran
                         // before it in the round (measured first after another controller, a
-                        // sweep configuration took about 1.2x its time measured second).
+                        // sweep configuration took about 1.2x its time measured second; 1.03x
+                        // with this run before it).
                         let mut two = [f64::NAN; 2];
                         if crate::scenario::time_samples(&mut runner, spec, run, &mut two).is_ok() {
                             slot[round] = two[1];
