@@ -14,8 +14,8 @@ const F64_WHOLE: f64 = 4_503_599_627_370_496.0;
 
 /// Generates the three roundings for one float type: `$whole` is the magnitude from which
 /// every value is whole, `$int` an integer type holding every smaller whole value; `$unused`
-/// marks the float roundings a type's callers no longer need (kept, and tested, as the
-/// reference its integer forms are checked against).
+/// marks a type's floor and ceil when no caller needs them (f32's: they stay, with their
+/// tests, beside the round the crate uses).
 macro_rules! roundings {
     ($float:ty, $whole:expr, $int:ty, $floor:ident, $ceil:ident, $round:ident $(, #[$unused:meta])?) => {
         /// `x.floor()`, bit for bit.

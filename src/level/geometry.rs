@@ -196,13 +196,8 @@ impl Level {
     /// table of run tops the level keeps when it has ladders.
     #[inline]
     pub(crate) fn ladder_top(&self, i: i64, j: i64) -> Option<f32> {
-        if i < 0 || j < 0 || i >= self.width as i64 || j >= self.height as i64 {
-            return None;
-        }
-        let hi = self
-            .tiles
-            .ladder_top((j as usize) * self.width as usize + i as usize)?;
-        Some(hi as i64 as f32 + 1.0)
+        let hi = self.tiles.ladder_top(self.cell(i, j)?)?;
+        Some(hi as f32 + 1.0)
     }
 
     /// Boxes of every one-way tile (see [`Level::is_one_way`]), in row order.

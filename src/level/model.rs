@@ -126,10 +126,13 @@ impl Level {
 
     /// The tile at column `i`, row `j` (from the bottom); outside the map is empty.
     pub fn tile(&self, i: i64, j: i64) -> Tile {
-        if i < 0 || j < 0 || i >= self.width as i64 || j >= self.height as i64 {
-            return Tile::Empty;
-        }
-        self.tiles
-            .get((j as usize) * self.width as usize + i as usize)
+        self.cell(i, j).map_or(Tile::Empty, |k| self.tiles.get(k))
+    }
+
+    /// The index in the cells (`j * width + i`) of column `i`, row `j`; none outside the map.
+    #[inline]
+    pub(super) fn cell(&self, i: i64, j: i64) -> Option<usize> {
+        let inside = i >= 0 && j >= 0 && i < self.width as i64 && j < self.height as i64;
+        inside.then(|| (j as usize) * self.width as usize + i as usize)
     }
 }
